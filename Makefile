@@ -1,0 +1,52 @@
+# makeway: the targets a user types. Every target installs missing Debian packages first.
+BUILD    ?= build
+TYPE     ?= Release
+JOBS     ?= $(shell nproc)
+CMAKE_ARGS ?=
+MAKEWAY  := $(BUILD)/bin/makeway
+FUZZ_SECONDS ?= 60
+
+.PHONY: all deps configure build test demo bench fuzz fuzz-run asan format clean
+
+all: build
+
+deps:
+	@scripts/install-deps.sh
+
+configure: deps
+	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=$(TYPE) $(CMAKE_ARGS) > /dev/null
+
+build: configure
+	@cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+demo: build
+	@$(MAKEWAY) demo --config config/default.yaml --out out/demo
+
+bench: build
+	@for b in $(BUILD)/bin/bench_*; do echo "== $$b"; $$b --benchmark_min_time=0.2; done
+
+# AddressSanitizer + UndefinedBehaviorSanitizer build of everything, then the tests.
+asan:
+	@$(MAKE) --no-print-directory test BUILD=build-asan TYPE=RelWithDebInfo \
+	    CMAKE_ARGS="-DMAKEWAY_SANITIZE=ON -DMAKEWAY_BUILD_BENCH=OFF $(CMAKE_ARGS)"
+
+# libFuzzer targets (clang), one per parser: build-fuzz/bin/fuzz_*.
+fuzz:
+	@scripts/install-deps.sh --fuzz
+	@CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	    -DMAKEWAY_FUZZ=ON -DMAKEWAY_BUILD_TESTS=OFF -DMAKEWAY_BUILD_BENCH=OFF \
+	    -DMAKEWAY_BUILD_APPS=OFF > /dev/null
+	@cmake --build build-fuzz -j $(JOBS)
+
+# Runs each fuzz target for FUZZ_SECONDS on its seed corpus.
+fuzz-run: fuzz
+	@scripts/run-fuzzers.sh build-fuzz/bin $(FUZZ_SECONDS)
+
+format:
+	@find src io apps tests bench fuzz -name '*.[ch]pp' | xargs clang-format -i
+
+clean:
+	rm -rf build build-asan build-fuzz out

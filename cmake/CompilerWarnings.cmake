@@ -1,0 +1,17 @@
+# Warning and sanitizer flags shared by every makeway target (see makeway_target_defaults).
+add_library(makeway_warnings INTERFACE)
+target_compile_options(makeway_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow)
+# GCC 12 reports -Wrestrict inside libstdc++'s std::string operator+ at -O3 (GCC PR 105651, a
+# false positive fixed in GCC 13); silence it there.
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
+    target_compile_options(makeway_warnings INTERFACE -Wno-restrict)
+endif()
+if(MAKEWAY_WERROR)
+    target_compile_options(makeway_warnings INTERFACE -Werror)
+endif()
+
+if(MAKEWAY_SANITIZE)
+    set(_san -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
+    add_compile_options(${_san})
+    add_link_options(-fsanitize=address,undefined)
+endif()

@@ -1,0 +1,27 @@
+# Every outside library comes from Debian's packages (scripts/install-deps.sh installs them).
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(Threads REQUIRED)
+find_package(yaml-cpp REQUIRED)
+find_package(nlohmann_json 3.10 REQUIRED)
+find_package(assimp REQUIRED)
+
+# liblzf (PCD binary_compressed) ships no CMake config.
+find_path(LZF_INCLUDE_DIR lzf.h PATH_SUFFIXES liblzf REQUIRED)
+find_library(LZF_LIBRARY lzf REQUIRED)
+add_library(lzf::lzf UNKNOWN IMPORTED)
+set_target_properties(lzf::lzf PROPERTIES IMPORTED_LOCATION ${LZF_LIBRARY}
+                                          INTERFACE_INCLUDE_DIRECTORIES ${LZF_INCLUDE_DIR})
+
+if(MAKEWAY_BUILD_APPS)
+    find_package(CLI11 REQUIRED)
+endif()
+if(MAKEWAY_BUILD_TESTS)
+    find_package(GTest REQUIRED)
+    include(GoogleTest)
+endif()
+if(MAKEWAY_BUILD_BENCH)
+    find_package(benchmark REQUIRED)
+endif()
+
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)

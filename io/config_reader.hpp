@@ -1,0 +1,59 @@
+#pragma once
+// YAML configuration mapped onto Params structs. Every problem in a file is collected and reported
+// at once: unknown keys (with a suggestion), wrong types, and each section's validate() messages.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "makeway/common/box_sampling.hpp"
+
+namespace YAML {
+class Node;
+}
+
+namespace makeway::io {
+
+/// Reads the keys of one YAML mapping; missing keys keep the struct's defaults.
+class YamlSection {
+public:
+    YamlSection(const YAML::Node& node, std::string prefix, std::vector<std::string>& problems);
+    ~YamlSection();
+    YamlSection(const YamlSection&) = delete;
+    YamlSection& operator=(const YamlSection&) = delete;
+
+    void read(const char* key, double& value);
+    void read(const char* key, int& value);
+    void read(const char* key, std::uint64_t& value);
+    void read(const char* key, bool& value);
+    void read(const char* key, std::string& value);
+
+    /// Adds `messages` (from a Params validate()) under this section's prefix.
+    void add_validation(const std::vector<std::string>& messages);
+    /// Reports every key that no read() asked for. Call once, after the reads.
+    void finish();
+
+private:
+    template <typename T>
+    void read_scalar(const char* key, T& value, const char* type_name);
+
+    struct Impl;
+    Impl* impl_;
+    std::string prefix_;
+    std::vector<std::string>& problems_;
+    std::vector<std::string> known_keys_;
+};
+
+/// Every section of a makeway configuration file (config/default.yaml documents each key).
+struct Config {
+    ObjectLayoutParams layout;
+    BoxSamplingParams sampling;
+};
+
+/// Throws FormatError listing every problem ("3 problems: a; b; c").
+Config parse_config(std::string_view yaml_text);
+/// Throws FileError("PATH: ...") on a missing file or any problem in it.
+Config load_config(const std::filesystem::path& path);
+
+}  // namespace makeway::io

@@ -1,0 +1,27 @@
+#pragma once
+// The two error types of the io layer. Messages never end with a newline.
+#include <stdexcept>
+#include <string>
+
+namespace makeway::io {
+
+/// A file's content is malformed: what is wrong, without the file name (parsers work on buffers).
+class FormatError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// A named input or output file cannot be used. what() is "FILE: what is wrong".
+class FileError : public std::runtime_error {
+public:
+    FileError(const std::string& path, const std::string& problem)
+        : std::runtime_error(path + ": " + problem), path_(path), problem_(problem) {}
+    const std::string& path() const { return path_; }
+    const std::string& problem() const { return problem_; }
+
+private:
+    std::string path_;
+    std::string problem_;
+};
+
+}  // namespace makeway::io

@@ -1,0 +1,63 @@
+#include "io/json_io.hpp"
+
+#include <cmath>
+
+#include "io/error.hpp"
+#include "io/file_util.hpp"
+
+namespace makeway::io {
+namespace {
+
+Eigen::Vector3d vec3_from(const Json& j, const char* key) {
+    if (!j.contains(key) || !j[key].is_array() || j[key].size() != 3) {
+        throw FormatError(std::string("'") + key + "' must be an array of 3 numbers");
+    }
+    Eigen::Vector3d v;
+    for (int i = 0; i < 3; ++i) {
+        if (!j[key][i].is_number()) throw FormatError(std::string("'") + key + "' holds a non-number");
+        v[i] = j[key][i].get<double>();
+    }
+    return v;
+}
+
+}  // namespace
+
+void write_json(const std::filesystem::path& path, const Json& value) {
+    write_file_atomic(path, value.dump(2) + "\n");
+}
+
+Json read_json(const std::filesystem::path& path) {
+    const std::string text = read_file(path);
+    try {
+        return Json::parse(text);
+    } catch (const Json::parse_error& e) {
+        throw FileError(path.string(), std::string("invalid JSON: ") + e.what());
+    }
+}
+
+Json to_json(const OrientedBox& box) {
+    return {{"centre_m", {box.centre_m.x(), box.centre_m.y(), box.centre_m.z()}},
+            {"size_m", {box.size_m.x(), box.size_m.y(), box.size_m.z()}},
+            {"yaw_rad", box.yaw_rad}};
+}
+
+OrientedBox box_from_json(const Json& j) {
+    if (!j.is_object()) throw FormatError("box must be an object");
+    OrientedBox box;
+    box.centre_m = vec3_from(j, "centre_m");
+    box.size_m = vec3_from(j, "size_m");
+    if (!j.contains("yaw_rad") || !j["yaw_rad"].is_number()) {
+        throw FormatError("'yaw_rad' must be a number");
+    }
+    box.yaw_rad = j["yaw_rad"].get<double>();
+    if (!box.is_valid()) throw FormatError("box has a non-finite value or a size <= 0");
+    return box;
+}
+
+Json to_json(const PointBounds& b) {
+    if (!b.valid) return nullptr;
+    return {{"min", {b.min_m.x(), b.min_m.y(), b.min_m.z()}},
+            {"max", {b.max_m.x(), b.max_m.y(), b.max_m.z()}}};
+}
+
+}  // namespace makeway::io

@@ -1,0 +1,23 @@
+#pragma once
+// Top-down pictures (PNG through cairo): points coloured by label, oriented boxes, a scale bar.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "makeway/common/box_sampling.hpp"
+#include "makeway/common/point_cloud.hpp"
+
+namespace makeway::io {
+
+struct TopDownStyle {
+    double pixels_per_m = 60.0;
+    double margin_m = 0.5;
+    std::string title;
+};
+
+/// Draws the cloud (coloured by semantic label when it has labels, else by height) and the boxes,
+/// with each box's heading marked. Atomic write; throws FileError.
+void write_top_down_png(const std::filesystem::path& path, const PointCloud& cloud,
+                        const std::vector<LabelledBox>& boxes, const TopDownStyle& style = {});
+
+}  // namespace makeway::io

@@ -1,0 +1,25 @@
+#pragma once
+// Seeded random numbers. Every random process in makeway takes a seed; the same seed gives the
+// same output bit for bit (the distributions below are written out, not left to the standard
+// library, whose distributions differ between implementations).
+#include <cstdint>
+#include <random>
+
+namespace makeway {
+
+using Rng = std::mt19937_64;
+
+/// Generator for one named stream of a seeded process: the same (seed, stream) pair always gives
+/// the same sequence, and different streams are decorrelated (SplitMix64 seeding).
+Rng make_rng(std::uint64_t seed, std::uint64_t stream = 0);
+
+/// Uniform in [lo, hi).
+double uniform(Rng& rng, double lo, double hi);
+/// Normal with the given mean and standard deviation (Box-Muller).
+double normal(Rng& rng, double mean, double stddev);
+/// Uniform integer in [lo, hi] (inclusive).
+std::int64_t uniform_int(Rng& rng, std::int64_t lo, std::int64_t hi);
+/// True with probability p.
+bool bernoulli(Rng& rng, double p);
+
+}  // namespace makeway

@@ -1,0 +1,27 @@
+#include "makeway/common/triangle_mesh.hpp"
+
+#include <string>
+
+namespace makeway {
+
+std::string TriangleMesh::validity_error() const {
+    for (std::size_t i = 0; i < vertices_m.size(); ++i) {
+        if (!vertices_m[i].allFinite()) return "vertex " + std::to_string(i) + " is not finite";
+    }
+    const auto n = static_cast<int>(vertices_m.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+        const auto& tri = triangles[t];
+        if ((tri.array() < 0).any() || (tri.array() >= n).any()) {
+            return "triangle " + std::to_string(t) + " indexes a missing vertex";
+        }
+    }
+    return {};
+}
+
+void TriangleMesh::append(const TriangleMesh& other) {
+    const int offset = static_cast<int>(vertices_m.size());
+    vertices_m.insert(vertices_m.end(), other.vertices_m.begin(), other.vertices_m.end());
+    for (const auto& tri : other.triangles) triangles.push_back(tri + Eigen::Vector3i::Constant(offset));
+}
+
+}  // namespace makeway
