@@ -1,6 +1,9 @@
 # Warning and sanitizer flags shared by every makeway target (see makeway_target_defaults).
 add_library(makeway_warnings INTERFACE)
-target_compile_options(makeway_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow)
+# Params structs carry defaults for every member; designated initializers that set a few of them
+# are the intended use, so the missing-initializer warning is off.
+target_compile_options(makeway_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow
+                                                  -Wno-missing-field-initializers)
 # GCC 12 reports -Wrestrict inside libstdc++'s std::string operator+ at -O3 (GCC PR 105651, a
 # false positive fixed in GCC 13); silence it there.
 if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)

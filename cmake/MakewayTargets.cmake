@@ -14,7 +14,7 @@ function(makeway_add_test name)
     add_executable(${name} ${ARG_SOURCES})
     target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main makeway_warnings)
     target_compile_definitions(${name} PRIVATE
-        MAKEWAY_TEST_DATA_DIR="${PROJECT_SOURCE_DIR}/tests/data")
+        MAKEWAY_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
     gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60
                          WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 endfunction()
