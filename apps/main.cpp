@@ -55,6 +55,14 @@ int main(int argc, char** argv) {
     add_info(app, info);
     add_convert(app, convert);
     add_demo(app, demo);
+    if (argc > 1 && argv[1][0] != '-') {
+        bool known = false;
+        for (const CLI::App* sub : app.get_subcommands({})) known |= sub->get_name() == argv[1];
+        if (!known) {
+            print_error(std::string("unknown subcommand '") + argv[1] + "' (see makeway --help)");
+            return kExitBadInput;
+        }
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

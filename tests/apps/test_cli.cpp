@@ -1,0 +1,139 @@
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+
+#include "../io/io_test_util.hpp"
+#include "io/json_io.hpp"
+#include "io/point_cloud_io.hpp"
+
+namespace makeway {
+namespace {
+
+struct CliRun {
+    int exit_code = -1;
+    std::string out;
+    std::string err;
+};
+
+// Runs the makeway binary with `args` (shell-quoted by the caller), capturing both streams.
+CliRun run_makeway(const std::string& args, const std::filesystem::path& dir) {
+    const auto err_path = dir / "stderr.txt";
+    const std::string cmd = std::string(MAKEWAY_BIN) + " " + args + " 2>" + err_path.string();
+    CliRun r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    std::array<char, 4096> buf;
+    while (std::size_t n = fread(buf.data(), 1, buf.size(), pipe)) r.out.append(buf.data(), n);
+    const int status = pclose(pipe);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream in(err_path);
+    r.err.assign(std::istreambuf_iterator<char>(in), {});
+    return r;
+}
+
+std::size_t lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
+
+TEST(Cli, InfoPrintsOneJsonObject) {
+    const auto dir = testing_util::fresh_dir("info");
+    PointCloud c = testing_util::random_cloud(1, 100, PointFields::all());
+    c.xyz[5].x() = NAN;
+    io::write_point_cloud(dir / "c.pcd", c, {.pcd = io::PcdEncoding::kBinaryCompressed});
+    const CliRun r = run_makeway("info " + (dir / "c.pcd").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(lines(r.out), 1u);
+    const io::Json j = io::Json::parse(r.out);
+    EXPECT_EQ(j["format"], "pcd");
+    EXPECT_EQ(j["encoding"], "binary_compressed");
+    EXPECT_EQ(j["points"], 100);
+    EXPECT_EQ(j["nan_count"], 1);
+    EXPECT_EQ(j["fields"].size(), 8u);
+    const PointBounds b = compute_bounds(c);
+    EXPECT_EQ(j["bounds_m"]["min"][0].get<float>(), b.min_m.x());
+    EXPECT_EQ(j["bounds_m"]["max"][2].get<float>(), b.max_m.z());
+}
+
+TEST(Cli, ConvertKeepsValuesAndWarnsAboutDroppedFields) {
+    const auto dir = testing_util::fresh_dir("convert");
+    const PointCloud c = testing_util::random_cloud(2, 500, PointFields::all());
+    io::write_point_cloud(dir / "c.ply", c);
+    CliRun r = run_makeway("convert " + (dir / "c.ply").string() + " " + (dir / "c.pcd").string() +
+                            " --pcd-encoding ascii",
+                        dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(testing_util::clouds_bit_equal(c, io::read_point_cloud(dir / "c.pcd").cloud));
+    r = run_makeway("convert " + (dir / "c.pcd").string() + " " + (dir / "c.bin").string(), dir);
+    ASSERT_EQ(r.exit_code, 0);
+    EXPECT_NE(r.err.find("cannot hold ring, time, label, instance"), std::string::npos) << r.err;
+}
+
+TEST(Cli, BadInputGivesExitTwoOneLineAndNoOutput) {
+    const auto dir = testing_util::fresh_dir("bad");
+    std::ofstream(dir / "trunc.pcd") << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+                                        "WIDTH 9\nPOINTS 9\nDATA binary\nabc";
+    std::ofstream(dir / "empty.ply").close();
+    PointCloud nan_cloud = testing_util::random_cloud(3, 10, {});
+    nan_cloud.xyz[2].z() = INFINITY;
+    io::write_point_cloud(dir / "nan.bin", nan_cloud);
+    std::ofstream(dir / "bad.yaml") << "layout:\n  num_objects: -1\n  colour: red\n";
+
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"convert " + (dir / "missing.pcd").string() + " " + (dir / "o1.ply").string(),
+         (dir / "missing.pcd").string() + ": no such file"},
+        {"convert " + (dir / "trunc.pcd").string() + " " + (dir / "o2.ply").string(),
+         (dir / "trunc.pcd").string() + ": data size mismatch"},
+        {"convert " + (dir / "empty.ply").string() + " " + (dir / "o3.pcd").string(),
+         (dir / "empty.ply").string() + ": empty file"},
+        {"convert " + (dir / "nan.bin").string() + " " + (dir / "o4.pcd").string(),
+         (dir / "nan.bin").string() + ": 1 points have NaN"},
+        {"convert " + (dir / "nan.bin").string() + " " + (dir / "o5.xyz").string(),
+         (dir / "o5.xyz").string() + ": unknown point-cloud extension"},
+        {"info " + (dir / "trunc.pcd").string(), (dir / "trunc.pcd").string() + ": data size mismatch"},
+        {"demo --config " + (dir / "bad.yaml").string() + " --out " + (dir / "o6").string(),
+         (dir / "bad.yaml").string() + ": 2 problems: "},
+        {"convert --pcd-encoding zip a.pcd b.pcd", "--pcd-encoding"},
+        {"frobnicate", "frobnicate"},
+    };
+    for (const auto& [args, expected] : cases) {
+        const CliRun r = run_makeway(args, dir);
+        EXPECT_EQ(r.exit_code, 2) << args;
+        EXPECT_EQ(lines(r.err), 1u) << args << "\n" << r.err;
+        EXPECT_EQ(r.err.rfind("makeway: ", 0), 0u) << r.err;
+        EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
+    }
+    for (const char* out : {"o1.ply", "o2.ply", "o3.pcd", "o4.pcd", "o5.xyz", "o6"}) {
+        EXPECT_FALSE(std::filesystem::exists(dir / out)) << out;
+    }
+    EXPECT_EQ(run_makeway("convert " + (dir / "nan.bin").string() + " " + (dir / "ok.pcd").string() +
+                              " --non-finite drop", dir).exit_code, 0);
+    EXPECT_EQ(io::read_point_cloud(dir / "ok.pcd").cloud.size(), 9u);
+}
+
+TEST(Cli, HelpDescribesEveryOption) {
+    const auto dir = testing_util::fresh_dir("help");
+    const CliRun top = run_makeway("--help", dir);
+    EXPECT_EQ(top.exit_code, 0);
+    for (const char* sub : {"info", "convert", "demo"}) EXPECT_NE(top.out.find(sub), std::string::npos);
+    const CliRun conv = run_makeway("convert --help", dir);
+    EXPECT_EQ(conv.exit_code, 0);
+    for (const char* opt : {"--pcd-encoding", "--ply-encoding", "--non-finite", "=binary", "=reject"}) {
+        EXPECT_NE(conv.out.find(opt), std::string::npos) << opt;
+    }
+}
+
+TEST(Cli, DemoWritesItsOutputs) {
+    const auto dir = testing_util::fresh_dir("demo");
+    std::ofstream(dir / "small.yaml") << "layout:\n  num_objects: 4\n  seed: 3\n";
+    const CliRun r = run_makeway("demo --config " + (dir / "small.yaml").string() + " --out " +
+                                  (dir / "out").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const io::Json s = io::read_json(dir / "out" / "summary.json");
+    EXPECT_EQ(s["objects"], 4);
+    EXPECT_TRUE(s["all_round_trips_exact"].get<bool>());
+    EXPECT_GT(s["mean_iou_3d"].get<double>(), 0.4);
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / "top_down.png"));
+}
+
+}  // namespace
+}  // namespace makeway
