@@ -18,3 +18,9 @@ if(MAKEWAY_SANITIZE)
     add_compile_options(${_san})
     add_link_options(-fsanitize=address,undefined)
 endif()
+
+if(MAKEWAY_FUZZ)
+    # Instrument every library for coverage-guided fuzzing; the fuzz executables add the driver.
+    add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer)
+    add_link_options(-fsanitize=address,undefined)
+endif()
