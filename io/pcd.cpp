@@ -196,11 +196,9 @@ void read_binary(const PcdHeader& h, const char* data, bool field_major, PointCl
     for (const PcdField& f : h.fields) {
         const std::size_t field_bytes = f.size * f.count;
         if (f.channel != Channel::kNone) {
-            for (std::size_t i = 0; i < h.points; ++i) {
-                const std::size_t offset = field_major ? field_start * h.points + i * field_bytes
-                                                       : i * h.point_step + field_start;
-                store_binary(cloud, f.channel, i, data + offset, *f.scalar);
-            }
+            const char* first = data + (field_major ? field_start * h.points : field_start);
+            store_binary_column(cloud, f.channel, first, field_major ? field_bytes : h.point_step,
+                                static_cast<std::size_t>(h.points), *f.scalar);
         }
         field_start += field_bytes;
     }

@@ -1,5 +1,6 @@
 #include "io/ply.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <optional>
 
@@ -150,6 +151,21 @@ void read_binary_element(const PlyElement& e, ByteCursor& cur, PointCloud* cloud
                           " entries but only " + std::to_string(cur.remaining()) + " bytes remain");
     }
     if (cloud) cloud->resize(static_cast<std::size_t>(e.count), fields);
+    const bool fixed_size = std::none_of(e.properties.begin(), e.properties.end(),
+                                         [](const PlyProperty& p) { return p.is_list; });
+    if (fixed_size) {  // one block, decoded column by column
+        const auto n = static_cast<std::size_t>(e.count);
+        const char* block = cur.take(n * min_bytes);
+        std::size_t offset = 0;
+        for (const auto& p : e.properties) {
+            if (cloud) {
+                store_binary_column(*cloud, p.channel, block + offset, min_bytes, n, p.type,
+                                    cur.big_endian());
+            }
+            offset += scalar_size(p.type);
+        }
+        return;
+    }
     for (std::size_t i = 0; i < e.count; ++i) {
         for (const auto& p : e.properties) {
             if (p.is_list) {

@@ -170,6 +170,25 @@ void store_binary(PointCloud& cloud, Channel channel, std::size_t i, const char*
     store_double(cloud, channel, i, decode_scalar(src, type, big_endian));
 }
 
+void store_binary_column(PointCloud& cloud, Channel channel, const char* src, std::size_t src_stride,
+                         std::size_t n, ScalarType type, bool big_endian) {
+    if (channel == Channel::kNone || n == 0) return;
+    if (type != native_type(channel) || big_endian) {
+        for (std::size_t i = 0; i < n; ++i) {
+            store_binary(cloud, channel, i, src + i * src_stride, type, big_endian);
+        }
+        return;
+    }
+    // Channel values are equally spaced in memory: xyz interleaved, the others packed.
+    char* dst = const_cast<char*>(value_bytes(cloud, channel, 0));
+    const std::size_t dst_stride =
+        channel == Channel::kX || channel == Channel::kY || channel == Channel::kZ
+            ? sizeof(Eigen::Vector3f)
+            : scalar_size(type);
+    const std::size_t size = scalar_size(type);
+    for (std::size_t i = 0; i < n; ++i) std::memcpy(dst + i * dst_stride, src + i * src_stride, size);
+}
+
 void store_text(PointCloud& cloud, Channel channel, std::size_t i, std::string_view token) {
     if (channel == Channel::kNone) return;
     const char* first = token.data();

@@ -33,6 +33,11 @@ double decode_scalar(const char* src, ScalarType type, bool big_endian = false);
 /// the channel (e.g. a negative ring). Values already in the native type are copied bit for bit.
 void store_binary(PointCloud& cloud, Channel channel, std::size_t i, const char* src,
                   ScalarType type, bool big_endian = false);
+/// Decodes n values of one field, the k-th at src + k * src_stride, into channel values 0..n-1.
+/// Values in the native type are copied without conversion (the fast path for makeway's files).
+void store_binary_column(PointCloud& cloud, Channel channel, const char* src, std::size_t src_stride,
+                         std::size_t n, ScalarType type, bool big_endian = false);
+
 /// Parses a text token into channel value i. Throws FormatError on a malformed number.
 void store_text(PointCloud& cloud, Channel channel, std::size_t i, std::string_view token);
 
