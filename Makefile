@@ -30,7 +30,8 @@ bench: build
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build of everything, then the tests.
 asan:
-	@$(MAKE) --no-print-directory test BUILD=build-asan TYPE=RelWithDebInfo \
+	@LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp UBSAN_OPTIONS=print_stacktrace=1 \
+	    $(MAKE) --no-print-directory test BUILD=build-asan TYPE=RelWithDebInfo \
 	    CMAKE_ARGS="-DMAKEWAY_SANITIZE=ON -DMAKEWAY_BUILD_BENCH=OFF $(CMAKE_ARGS)"
 
 # libFuzzer targets (clang), one per parser: build-fuzz/bin/fuzz_*.

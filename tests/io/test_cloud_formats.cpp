@@ -17,6 +17,14 @@ const PointFields kXyzOnly{};
 const PointFields kXyzI{.intensity = true};
 const PointFields kXyzLabel{.label = true, .instance = true};
 
+std::string pcd_encoding_name(const ::testing::TestParamInfo<PcdEncoding>& p) {
+    return p.param == PcdEncoding::kAscii ? "ascii" : p.param == PcdEncoding::kBinary ? "binary" : "compressed";
+}
+
+std::string ply_encoding_name(const ::testing::TestParamInfo<PlyEncoding>& p) {
+    return p.param == PlyEncoding::kAscii ? "ascii" : "binary";
+}
+
 class PcdRoundTrip : public ::testing::TestWithParam<PcdEncoding> {};
 
 TEST_P(PcdRoundTrip, EveryChannelBitForBit) {
@@ -35,7 +43,8 @@ TEST_P(PcdRoundTrip, EmptyCloud) {
 
 INSTANTIATE_TEST_SUITE_P(Encodings, PcdRoundTrip,
                          ::testing::Values(PcdEncoding::kAscii, PcdEncoding::kBinary,
-                                           PcdEncoding::kBinaryCompressed));
+                                           PcdEncoding::kBinaryCompressed),
+                         pcd_encoding_name);
 
 class PlyRoundTrip : public ::testing::TestWithParam<PlyEncoding> {};
 
@@ -47,7 +56,8 @@ TEST_P(PlyRoundTrip, EveryChannelBitForBit) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Encodings, PlyRoundTrip,
-                         ::testing::Values(PlyEncoding::kAscii, PlyEncoding::kBinaryLittleEndian));
+                         ::testing::Values(PlyEncoding::kAscii, PlyEncoding::kBinaryLittleEndian),
+                         ply_encoding_name);
 
 TEST(KittiBin, RoundTripXyzIntensity) {
     const PointCloud c = random_cloud(3, 1000, kXyzI);

@@ -49,7 +49,8 @@ TEST_P(MeshRoundTrip, WriteThenReadKeepsTriangles) {
     EXPECT_EQ(triangle_set(back), triangle_set(unit_cube()));
 }
 
-INSTANTIATE_TEST_SUITE_P(Formats, MeshRoundTrip, ::testing::Values("obj", "ply", "stl"));
+INSTANTIATE_TEST_SUITE_P(Formats, MeshRoundTrip, ::testing::Values("obj", "ply", "stl"),
+                         [](const ::testing::TestParamInfo<const char*>& p) { return std::string(p.param); });
 
 TEST(MeshIo, ReadsTextFormatsOfOtherTools) {
     const std::string obj = "# quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";

@@ -1,0 +1,79 @@
+#pragma once
+// An indoor scene as plain data: the building (floor, walls with door gaps, pillars), the furniture,
+// the people, and the robot's mission (start, waypoint, goal). Scenes are YAML files a person can
+// read and edit (io/scene_io); everything else in sim/ is computed from this.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "makeway/common/semantic_label.hpp"
+#include "makeway/common/transforms.hpp"
+#include "makeway/common/triangle_mesh.hpp"
+
+namespace makeway::sim {
+
+/// A straight wall from a_m to b_m (its centre line), standing on the floor.
+struct Wall {
+    Eigen::Vector2d a_m = Eigen::Vector2d::Zero();
+    Eigen::Vector2d b_m = Eigen::Vector2d::Zero();
+    double thickness_m = 0.15;
+    double height_m = 2.8;
+};
+
+/// A rectangular pillar, axis-aligned.
+struct Pillar {
+    Eigen::Vector2d centre_m = Eigen::Vector2d::Zero();
+    Eigen::Vector2d size_m = Eigen::Vector2d(0.4, 0.4);
+    double height_m = 2.8;
+};
+
+/// A chair or table: either a procedural model (style + model_seed) or a user mesh.
+struct SceneObject {
+    std::uint32_t id = 0;          ///< instance id, > 0, unique in the scene
+    ObjectClass cls = ObjectClass::kChair;
+    std::string style;             ///< furniture style name; empty for a user mesh
+    std::uint64_t model_seed = 0;  ///< dimensions of the procedural model
+    std::string mesh_file;         ///< user mesh (OBJ/PLY/STL/DAE), relative to the scene file
+    double scale = 1.0;            ///< applied to a user mesh
+    /// The loaded user mesh in its object frame (scaled); filled by io when the scene is read.
+    std::shared_ptr<const TriangleMesh> user_mesh;
+    Pose2 pose;                    ///< T_world_object on the floor at time 0
+    std::uint32_t table_id = 0;    ///< the table a chair belongs to, 0 for none
+};
+
+/// A person walking a closed route at constant speed.
+struct Walker {
+    std::vector<Eigen::Vector2d> route_m;  ///< closed polyline, at least 2 points
+    double speed_mps = 1.0;
+    double phase_s = 0.0;  ///< time offset along the route
+};
+
+/// A person who pulls a chair out from its table and pushes it back, along the chair's forward
+/// axis: the chair's offset is -pull_m * (1 - cos(2 pi (t + phase) / period)) / 2 along its x.
+struct ChairPusher {
+    std::uint32_t chair_id = 0;
+    double period_s = 8.0;
+    double pull_m = 0.4;
+    double phase_s = 0.0;
+};
+
+struct Scene {
+    std::string name = "scene";
+    std::uint64_t seed = 0;
+    std::string density = "medium";
+    Eigen::Vector2d floor_min_m = Eigen::Vector2d(-10, -10);
+    Eigen::Vector2d floor_max_m = Eigen::Vector2d(10, 10);
+    double ceiling_height_m = 2.8;
+    std::vector<Wall> walls;
+    std::vector<Pillar> pillars;
+    std::vector<SceneObject> objects;
+    std::vector<Walker> walkers;
+    std::vector<ChairPusher> pushers;
+    Pose2 start, waypoint, goal;
+
+    /// Every structural problem (duplicate ids, a pusher of a missing chair, ...); empty if valid.
+    std::vector<std::string> validate() const;
+};
+
+}  // namespace makeway::sim

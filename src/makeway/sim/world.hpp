@@ -1,0 +1,60 @@
+#pragma once
+// The ray-casting world: the scene's static structure (floor, ceiling, walls, pillars) and its
+// moving parts (furniture, people) as Embree instances whose poses follow the scene's time.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "makeway/common/semantic_label.hpp"
+#include "makeway/sim/scene.hpp"
+#include "makeway/sim/scene_dynamics.hpp"
+
+namespace makeway::sim {
+
+/// Instance ids of people in labelled clouds: kPersonInstanceBase + walker index.
+constexpr std::uint32_t kPersonInstanceBase = 1000000;
+
+struct RayHit {
+    bool hit = false;
+    float range_m = 0.0f;
+    SemanticLabel label = SemanticLabel::kUnlabelled;
+    std::uint32_t instance = 0;
+};
+
+class World {
+public:
+    /// `models[i]` is the model of scene.objects[i] (model_of()).
+    World(const Scene& scene, std::vector<ObjectModel> models);
+    ~World();
+    World(const World&) = delete;
+    World& operator=(const World&) = delete;
+
+    /// Moves furniture and people to where they are at t_s.
+    void set_time(double t_s);
+    double time_s() const { return time_s_; }
+
+    /// First hit along a ray (direction need not be unit; range is along the unit direction).
+    RayHit cast(const Eigen::Vector3f& origin_m, const Eigen::Vector3f& direction,
+                float max_range_m) const;
+
+    /// Eight rays at once (Embree ray packet); `valid[i]` false skips ray i.
+    void cast8(const Eigen::Vector3f& origin_m, const Eigen::Vector3f* directions, float max_range_m,
+               const bool* valid, RayHit* hits) const;
+
+    const Scene& scene() const { return scene_; }
+    const std::vector<ObjectModel>& models() const { return models_; }
+    std::size_t num_triangles() const { return num_triangles_; }
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    Scene scene_;
+    std::vector<ObjectModel> models_;
+    double time_s_ = -1.0;
+    std::size_t num_triangles_ = 0;
+};
+
+/// The scene's static structure as one mesh per label (floor/ceiling/walls+pillars), world frame.
+TriangleMesh structure_mesh(const Scene& scene);
+
+}  // namespace makeway::sim
