@@ -47,4 +47,18 @@ std::int64_t uniform_int(Rng& rng, std::int64_t lo, std::int64_t hi) {
 
 bool bernoulli(Rng& rng, double p) { return unit(rng) < p; }
 
+double counter_uniform(std::uint64_t seed, std::uint64_t counter) {
+    std::uint64_t state = seed * 0x9E3779B97F4A7C15ULL + counter;
+    splitmix64(state);
+    return static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53;
+}
+
+double counter_normal(std::uint64_t seed, std::uint64_t counter) {
+    std::uint64_t state = seed * 0x9E3779B97F4A7C15ULL + counter;
+    splitmix64(state);
+    const double u1 = 1.0 - static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53;
+    const double u2 = static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53;
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+}
+
 }  // namespace makeway

@@ -22,4 +22,9 @@ std::int64_t uniform_int(Rng& rng, std::int64_t lo, std::int64_t hi);
 /// True with probability p.
 bool bernoulli(Rng& rng, double p);
 
+/// Counter-based draws: a pure function of (seed, counter), so parallel loops give the same values
+/// as serial ones whatever the thread schedule. Uniform in [0, 1) and standard normal.
+double counter_uniform(std::uint64_t seed, std::uint64_t counter);
+double counter_normal(std::uint64_t seed, std::uint64_t counter);
+
 }  // namespace makeway

@@ -158,7 +158,9 @@ World::~World() {
 
 void World::set_time(double t_s) {
     if (t_s == time_s_) return;
+    const bool first = time_s_ < 0.0;
     time_s_ = t_s;
+    if (!first && scene_.pushers.empty() && scene_.walkers.empty()) return;  // nothing moves
     Impl& w = *impl_;
     for (std::size_t i = 0; i < scene_.objects.size(); ++i) {
         set_instance_pose(rtcGetGeometry(w.top, w.object_inst_ids[i]),

@@ -1,0 +1,52 @@
+#pragma once
+// A spinning multi-beam LiDAR, by default the Velodyne Ultra Puck (VLP-32C): 32 beams at the
+// datasheet's non-uniform elevations (-25 to +15 deg), 360 deg at 0.2 deg steps, 10 Hz.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "makeway/common/point_cloud.hpp"
+#include "makeway/common/transforms.hpp"
+#include "makeway/sim/world.hpp"
+
+namespace makeway::sim {
+
+/// VLP-32C elevation angles [deg], lowest first (ring 0 is the lowest beam).
+const std::vector<double>& vlp32c_elevations_deg();
+
+struct LidarParams {
+    std::vector<double> elevations_deg = vlp32c_elevations_deg();
+    double azimuth_step_deg = 0.2;  ///< 1800 columns per turn
+    double rate_hz = 10.0;          ///< turns per second
+    double min_range_m = 0.4;
+    double max_range_m = 100.0;
+    double range_noise_m = 0.015;   ///< Gaussian sigma (datasheet accuracy +-3 cm)
+    double dropout = 0.005;         ///< probability that a return is lost
+    int time_slices = 10;           ///< the world is moved this many times per sweep
+    int num_threads = 1;            ///< 1: serial; > 1: TBB with this many threads
+    bool use_packets = true;        ///< Embree 8-ray packets (false: one ray at a time)
+
+    std::vector<std::string> validate() const;
+    int num_columns() const;
+    int num_beams() const { return static_cast<int>(elevations_deg.size()); }
+    double sweep_duration_s() const { return 1.0 / rate_hz; }
+};
+
+/// Sensor pose at an absolute time [s] (T_world_sensor).
+using PoseAtTime = std::function<Isometry3(double t_s)>;
+
+struct SweepStats {
+    std::size_t rays = 0;
+    std::size_t returns = 0;
+};
+
+/// One full turn starting at t_start_s. Points are in the sensor frame of their own firing time
+/// (uncorrected, as a real sensor gives them), with ring, time since t_start_s, label and
+/// instance. The world is moved to the middle of each time slice. `seed` and `sweep_index` make
+/// noise and dropout reproducible, identical for any thread count.
+PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtTime& T_world_sensor_at,
+                          double t_start_s, std::uint64_t seed, std::uint64_t sweep_index,
+                          SweepStats* stats = nullptr);
+
+}  // namespace makeway::sim

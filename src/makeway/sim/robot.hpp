@@ -1,0 +1,89 @@
+#pragma once
+// The simulated robot: a Clearpath Jackal (differential drive) with a LiDAR on top, its wheel
+// odometry (with drift), and footprint collision checks against everything in the scene.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "makeway/common/random.hpp"
+#include "makeway/common/transforms.hpp"
+#include "makeway/common/velocity_command.hpp"
+#include "makeway/sim/scene.hpp"
+#include "makeway/sim/scene_dynamics.hpp"
+
+namespace makeway::sim {
+
+struct RobotParams {
+    double length_m = 0.508;        ///< Jackal footprint along x
+    double width_m = 0.430;         ///< Jackal footprint along y
+    double body_height_m = 0.50;    ///< top of the robot with its sensor: collisions below this
+    double lidar_height_m = 0.45;   ///< LiDAR optical centre above the floor (on a mount)
+    double max_v_mps = 0.75;        ///< top speed, as in the paper
+    double max_w_radps = 2.0;
+    double max_acc_mps2 = 1.0;
+    double max_ang_acc_radps2 = 3.0;
+
+    double inscribed_radius_m() const { return 0.5 * std::min(length_m, width_m); }
+    double circumscribed_radius_m() const { return 0.5 * std::hypot(length_m, width_m); }
+    Isometry3 T_robot_sensor() const { return make_T_xyz_yaw({0.0, 0.0, lidar_height_m}, 0.0); }
+    std::vector<std::string> validate() const;
+};
+
+struct RobotState {
+    Pose2 pose;
+    double v_mps = 0.0;
+    double w_radps = 0.0;
+};
+
+/// Advances the unicycle model by dt_s: the command is clamped to the velocity limits, then the
+/// velocities move toward it within the acceleration limits, and the pose follows the exact arc.
+RobotState step_diff_drive(const RobotState& state, const VelocityCommand& command, double dt_s,
+                           const RobotParams& params);
+
+/// Wheel odometry drift: noise on each increment, proportional to the motion.
+struct OdometryNoiseParams {
+    double translation_noise_per_m = 0.02;  ///< distance error sigma after 1 m [m]; grows with sqrt(distance)
+    double heading_noise_per_rad = 0.03;    ///< heading error sigma after turning 1 rad [rad]; grows with sqrt
+    double heading_noise_per_m = 0.01;      ///< heading drift sigma after 1 m [rad]; grows with sqrt(distance)
+    std::vector<std::string> validate() const;
+};
+
+class WheelOdometry {
+public:
+    WheelOdometry(const Pose2& start, const OdometryNoiseParams& params, std::uint64_t seed);
+    /// Integrates the motion between two true poses, with noise.
+    void update(const Pose2& true_before, const Pose2& true_after);
+    const Pose2& pose() const { return pose_; }
+
+private:
+    Pose2 pose_;
+    OdometryNoiseParams params_;
+    Rng rng_;
+};
+
+/// Footprint collision checks against walls, pillars, furniture (the parts of its mesh below the
+/// robot's top) and people, at any time of the scene.
+class CollisionChecker {
+public:
+    CollisionChecker(const Scene& scene, const std::vector<ObjectModel>& models, const RobotParams& robot,
+                     double spacing_m = 0.02);
+
+    /// Whether the footprint at `pose` overlaps anything at t_s.
+    bool collides(const Pose2& pose, double t_s) const;
+    /// Distance from the footprint to the nearest obstacle at t_s [m], capped at max_m.
+    double clearance_m(const Pose2& pose, double t_s, double max_m = 5.0) const;
+    /// Every obstacle point at t_s, floor plane [m] (for rasterising).
+    std::vector<Eigen::Vector2d> obstacle_points(double t_s) const;
+
+private:
+    template <typename Fn>
+    void for_each_point_near(const Eigen::Vector2d& centre, double radius, double t_s, Fn&& fn) const;
+
+    const Scene& scene_;
+    RobotParams robot_;
+    std::vector<Eigen::Vector2d> static_points_;
+    std::vector<std::vector<Eigen::Vector2d>> object_points_;  ///< object frame
+    std::vector<double> object_radius_m_;
+};
+
+}  // namespace makeway::sim

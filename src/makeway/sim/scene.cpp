@@ -1,0 +1,43 @@
+#include "makeway/sim/scene.hpp"
+
+#include <cmath>
+#include <set>
+
+namespace makeway::sim {
+
+std::vector<std::string> Scene::validate() const {
+    std::vector<std::string> p;
+    if (!(floor_max_m.array() > floor_min_m.array()).all()) p.push_back("floor: max must exceed min");
+    if (!(ceiling_height_m > 0.5 && ceiling_height_m < 20.0)) p.push_back("ceiling_height_m must be in (0.5, 20)");
+    std::set<std::uint32_t> ids;
+    for (const SceneObject& o : objects) {
+        const std::string what = "object " + std::to_string(o.id);
+        if (o.id == 0) p.push_back("object ids must be > 0");
+        if (!ids.insert(o.id).second) p.push_back(what + ": duplicate id");
+        if (o.style.empty() == o.mesh_file.empty()) p.push_back(what + ": give exactly one of style and mesh");
+        if (!(o.scale > 0.0 && o.scale < 100.0)) p.push_back(what + ": scale must be in (0, 100)");
+        if (!std::isfinite(o.pose.x_m) || !std::isfinite(o.pose.y_m) || !std::isfinite(o.pose.yaw_rad)) {
+            p.push_back(what + ": pose must be finite");
+        }
+    }
+    for (const SceneObject& o : objects) {
+        if (o.table_id != 0 && !ids.count(o.table_id)) {
+            p.push_back("object " + std::to_string(o.id) + ": table " + std::to_string(o.table_id) + " does not exist");
+        }
+    }
+    for (const ChairPusher& push : pushers) {
+        if (!ids.count(push.chair_id)) p.push_back("pusher: chair " + std::to_string(push.chair_id) + " does not exist");
+        if (!(push.period_s > 0.0)) p.push_back("pusher: period_s must be > 0");
+        if (!(push.pull_m >= 0.0 && push.pull_m < 3.0)) p.push_back("pusher: pull_m must be in [0, 3)");
+    }
+    for (const Walker& w : walkers) {
+        if (w.route_m.size() < 2) p.push_back("walker: route needs at least 2 points");
+        if (!(w.speed_mps >= 0.0 && w.speed_mps < 5.0)) p.push_back("walker: speed_mps must be in [0, 5)");
+    }
+    for (const Wall& w : walls) {
+        if (!(w.thickness_m > 0.0 && w.height_m > 0.0)) p.push_back("wall: thickness_m and height_m must be > 0");
+    }
+    return p;
+}
+
+}  // namespace makeway::sim

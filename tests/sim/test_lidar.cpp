@@ -1,0 +1,184 @@
+#include <gtest/gtest.h>
+
+#include "makeway/common/angles.hpp"
+#include "makeway/sim/lidar.hpp"
+#include "makeway/sim/mesh_primitives.hpp"
+#include "makeway/sim/scene_generator.hpp"
+#include "sim_test_util.hpp"
+
+namespace makeway::sim {
+namespace {
+
+LidarParams exact_lidar() {
+    LidarParams p;
+    p.range_noise_m = 0.0;
+    p.dropout = 0.0;
+    return p;
+}
+
+PoseAtTime fixed(const Isometry3& T) {
+    return [T](double) { return T; };
+}
+
+TEST(Lidar, BeamPatternMatchesDatasheet) {
+    const auto& el = vlp32c_elevations_deg();
+    ASSERT_EQ(el.size(), 32u);
+    EXPECT_DOUBLE_EQ(el.front(), -25.0);
+    EXPECT_DOUBLE_EQ(el.back(), 15.0);
+    EXPECT_TRUE(std::is_sorted(el.begin(), el.end()));
+    EXPECT_EQ(LidarParams{}.num_columns(), 1800);
+
+    World world(testing_util::box_room(5.0), {});
+    const PointCloud c = simulate_sweep(world, exact_lidar(), fixed(make_T_xyz_yaw({0.3, -0.2, 1.0}, 0.4)), 0.0, 1, 0);
+    ASSERT_GT(c.size(), 50000u);
+    for (std::size_t i = 0; i < c.size(); i += 7) {
+        const Eigen::Vector3f& p = c.xyz[i];
+        const double elevation = rad_to_deg(std::atan2(p.z(), std::hypot(p.x(), p.y())));
+        EXPECT_NEAR(elevation, el[c.ring[i]], 1e-3);
+        // The azimuth follows time: one turn per 100 ms.
+        const double az = rad_to_deg(std::atan2(p.y(), p.x()));
+        const double expected = c.time_s[i] / 0.1 * 360.0;
+        EXPECT_NEAR(std::abs(angle_diff(deg_to_rad(az), deg_to_rad(expected))), 0.0, 1e-3);
+    }
+}
+
+TEST(Lidar, BoxRoomGivesAnalyticRanges) {
+    // Inner wall faces at +-4.9 m, floor top at z = 0, ceiling at 3 m; sensor at height 1 m.
+    World world(testing_util::box_room(4.9), {});
+    const Isometry3 T = make_T_xyz_yaw({0.5, 1.0, 1.0}, 0.0);
+    const PointCloud c = simulate_sweep(world, exact_lidar(), fixed(T), 0.0, 1, 0);
+    ASSERT_EQ(c.size(), 1800u * 32u);  // a closed room returns every ray
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        const Eigen::Vector3d d = c.xyz[i].cast<double>().normalized();
+        const Eigen::Vector3d o = T.translation();
+        double expected = std::numeric_limits<double>::infinity();
+        for (int k = 0; k < 2; ++k) {
+            if (d[k] > 0) expected = std::min(expected, (4.9 - o[k]) / d[k]);
+            if (d[k] < 0) expected = std::min(expected, (-4.9 - o[k]) / d[k]);
+        }
+        if (d.z() < 0) expected = std::min(expected, -o.z() / d.z());
+        if (d.z() > 0) expected = std::min(expected, (3.0 - o.z()) / d.z());
+        ASSERT_NEAR(c.xyz[i].norm(), expected, 2e-4) << "point " << i;
+        const auto label = static_cast<SemanticLabel>(c.label[i]);
+        const Eigen::Vector3d w = T * c.xyz[i].cast<double>();
+        if (label == SemanticLabel::kGround) {
+            EXPECT_NEAR(w.z(), 0.0, 1e-3);
+        }
+        if (label == SemanticLabel::kCeiling) {
+            EXPECT_NEAR(w.z(), 3.0, 1e-3);
+        }
+        if (label == SemanticLabel::kStructure) {
+            EXPECT_NEAR(w.head<2>().cwiseAbs().maxCoeff(), 4.9, 1e-3);
+        }
+    }
+}
+
+class SimulatedScene : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        SceneGenParams p;
+        p.seed = 4;
+        p.density = Density::kDense;
+        scene_ = new Scene(generate_scene(p));
+    }
+    static void TearDownTestSuite() { delete scene_; }
+    static std::vector<ObjectModel> models() {
+        std::vector<ObjectModel> m;
+        for (const auto& o : scene_->objects) m.push_back(model_of(o));
+        return m;
+    }
+    static Scene* scene_;
+};
+Scene* SimulatedScene::scene_ = nullptr;
+
+TEST_F(SimulatedScene, EveryPointLiesOnTheMeshItsLabelNames) {
+    World world(*scene_, models());
+    LidarParams lidar;
+    lidar.range_noise_m = 0.01;
+    const Isometry3 T = lift_to_3d(scene_->waypoint, 0.45);
+    const PointCloud c = simulate_sweep(world, lidar, fixed(T), 0.0, 3, 0);
+    const TriangleMesh structure = structure_mesh(*scene_);
+    std::size_t checked = 0, object_points = 0;
+    for (std::size_t i = 0; i < c.size(); i += 5) {
+        const Eigen::Vector3d p = T * c.xyz[i].cast<double>();
+        const auto label = static_cast<SemanticLabel>(c.label[i]);
+        double d = 0.0;
+        if (label == SemanticLabel::kChair || label == SemanticLabel::kTable) {
+            const auto it = std::find_if(scene_->objects.begin(), scene_->objects.end(),
+                                         [&](const SceneObject& o) { return o.id == c.instance[i]; });
+            ASSERT_NE(it, scene_->objects.end());
+            EXPECT_EQ(to_semantic_label(it->cls), label);
+            const std::size_t k = static_cast<std::size_t>(it - scene_->objects.begin());
+            const Pose2 pose = object_pose_at(*scene_, k, 0.05);  // the slice the point was cast in
+            TriangleMesh m = world.models()[k].mesh_object;
+            transform_mesh(m, lift_to_3d(pose));
+            d = testing_util::mesh_distance(m, p);
+            ++object_points;
+            // Pushed chairs move up to ~1.5 cm within a time slice.
+            EXPECT_LT(d, 5 * lidar.range_noise_m + 0.02) << "point " << i;
+        } else if (label == SemanticLabel::kStructure) {
+            d = testing_util::mesh_distance(structure, p);
+            EXPECT_LT(d, 5 * lidar.range_noise_m) << "point " << i;
+        } else if (label == SemanticLabel::kGround) {
+            EXPECT_LT(std::abs(p.z()), 5 * lidar.range_noise_m);
+        } else if (label == SemanticLabel::kCeiling) {
+            EXPECT_LT(std::abs(p.z() - scene_->ceiling_height_m), 5 * lidar.range_noise_m);
+        }
+        ++checked;
+    }
+    EXPECT_GT(object_points, 500u);
+    EXPECT_GT(checked, 5000u);
+}
+
+TEST_F(SimulatedScene, SameSeedSameSweepForAnyThreadCountAndRayMode) {
+    World world(*scene_, models());
+    LidarParams lidar;
+    const PoseAtTime pose = [](double t) { return make_T_xyz_yaw({-2.0 + t, 0.5, 0.45}, 0.3 * t); };
+    const PointCloud a = simulate_sweep(world, lidar, pose, 1.0, 9, 2);
+    lidar.num_threads = 2;
+    const PointCloud b = simulate_sweep(world, lidar, pose, 1.0, 9, 2);
+    lidar.use_packets = false;
+    const PointCloud c = simulate_sweep(world, lidar, pose, 1.0, 9, 2);
+    ASSERT_EQ(a.size(), b.size());
+    ASSERT_EQ(a.size(), c.size());
+    EXPECT_TRUE(a.xyz == b.xyz && a.label == b.label && a.instance == b.instance && a.time_s == b.time_s);
+    for (std::size_t i = 0; i < a.size(); ++i) ASSERT_LT((a.xyz[i] - c.xyz[i]).norm(), 1e-4f);
+    const PointCloud other_seed = simulate_sweep(world, lidar, pose, 1.0, 10, 2);
+    EXPECT_FALSE(a.xyz == other_seed.xyz);
+}
+
+TEST(Lidar, UserMeshInASceneIsHitAndLabelled) {
+    Scene s = testing_util::box_room(5.0);
+    auto cube = std::make_shared<TriangleMesh>();
+    add_box(*cube, {0, 0, 0.4}, {0.8, 0.8, 0.8});
+    SceneObject o;
+    o.id = 42;
+    o.cls = ObjectClass::kTable;
+    o.mesh_file = "cube.obj";
+    o.user_mesh = cube;
+    o.pose = {2.0, 0.0, 0.3};
+    s.objects.push_back(o);
+    World world(s, {model_of(s.objects[0])});
+    const PointCloud c = simulate_sweep(world, exact_lidar(), fixed(make_T_xyz_yaw({0, 0, 0.45}, 0)), 0.0, 1, 0);
+    TriangleMesh placed = *cube;
+    transform_mesh(placed, lift_to_3d(o.pose));
+    std::size_t hits = 0;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        if (c.instance[i] != 42) continue;
+        ++hits;
+        EXPECT_EQ(c.label[i], static_cast<std::uint8_t>(SemanticLabel::kTable));
+        EXPECT_LT(testing_util::mesh_distance(placed, c.xyz[i].cast<double>() + Eigen::Vector3d(0, 0, 0.45)), 1e-3);
+    }
+    EXPECT_GT(hits, 100u);
+}
+
+TEST(Lidar, ParamsValidation) {
+    EXPECT_TRUE(LidarParams{}.validate().empty());
+    LidarParams p;
+    p.rate_hz = 0;
+    p.min_range_m = 200;
+    EXPECT_EQ(p.validate().size(), 2u);
+}
+
+}  // namespace
+}  // namespace makeway::sim
