@@ -1,6 +1,7 @@
 #pragma once
 // One function per subcommand. main.cpp alone parses the command line (CLI11 is slow to compile)
 // and fills these option structs. Each returns the process exit code: 0 success, 2 bad input.
+#include <cstdint>
 #include <string>
 
 namespace makeway::apps {
@@ -30,5 +31,44 @@ int run_demo(const DemoOptions& options);
 /// Prints "makeway: MESSAGE" to stderr.
 void print_error(const std::string& message);
 void print_warning(const std::string& message);
+
+}  // namespace makeway::apps
+
+namespace makeway::apps {
+
+struct CadOptions {
+    std::string style;
+    std::uint64_t seed = 0;
+    std::string out;
+};
+int run_cad(const CadOptions& options);
+
+struct SceneOptions {
+    std::uint64_t seed = 0;
+    std::string density = "medium";
+    std::string layout = "random";
+    int sessions = 1;
+    bool no_people = false;
+    std::string out = "scene.yaml";
+};
+int run_scene(const SceneOptions& options);
+
+struct SimulateOptions {
+    std::string scene;
+    std::string route = "auto";
+    int frames = 100;
+    std::string out_dir;
+    std::string format = "pcd";
+    std::uint64_t seed = 0;
+    int threads = 1;
+};
+int run_simulate(const SimulateOptions& options);
+
+struct BenchSimOptions {
+    std::uint64_t seed = 0;
+    int sweeps = 20;
+    std::string out;  ///< optional JSON file
+};
+int run_bench_sim(const BenchSimOptions& options);
 
 }  // namespace makeway::apps

@@ -71,6 +71,36 @@ void YamlSection::read(const char* key, std::uint64_t& value) {
 void YamlSection::read(const char* key, bool& value) { read_scalar(key, value, "true or false"); }
 void YamlSection::read(const char* key, std::string& value) { read_scalar(key, value, "a string"); }
 
+void YamlSection::read(const char* key, std::uint32_t& value) {
+    read_scalar(key, value, "a non-negative integer");
+}
+
+void YamlSection::read(const char* key, Eigen::Vector2d& value) {
+    known_keys_.emplace_back(key);
+    if (!impl_->node || !impl_->node.IsMap()) return;
+    const YAML::Node& node = impl_->node;
+    const YAML::Node v = node[key];
+    if (!v) return;
+    try {
+        if (!v.IsSequence() || v.size() != 2) throw YAML::Exception(YAML::Mark::null_mark(), "");
+        value = Eigen::Vector2d(v[0].as<double>(), v[1].as<double>());
+    } catch (const YAML::Exception&) {
+        problems_.push_back(prefix_ + "." + key + ": must be a pair of numbers [a, b]");
+        return;
+    }
+    if (!value.allFinite()) problems_.push_back(prefix_ + "." + key + ": must be finite");
+}
+
+YAML::Node YamlSection::take(const char* key) {
+    known_keys_.emplace_back(key);
+    if (!impl_->node || !impl_->node.IsMap()) return YAML::Node();
+    const YAML::Node& node = impl_->node;
+    const YAML::Node v = node[key];
+    return v ? v : YAML::Node();
+}
+
+void YamlSection::problem(const std::string& message) { problems_.push_back(prefix_ + ": " + message); }
+
 void YamlSection::add_validation(const std::vector<std::string>& messages) {
     for (const auto& m : messages) problems_.push_back(prefix_ + "." + m);
 }

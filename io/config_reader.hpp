@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "makeway/common/box_sampling.hpp"
 
 namespace YAML {
@@ -28,6 +30,13 @@ public:
     void read(const char* key, std::uint64_t& value);
     void read(const char* key, bool& value);
     void read(const char* key, std::string& value);
+    void read(const char* key, std::uint32_t& value);
+    /// A pair of numbers written as [a, b].
+    void read(const char* key, Eigen::Vector2d& value);
+    /// The raw node under `key` (null when absent), for lists and nested mappings.
+    YAML::Node take(const char* key);
+    /// Records a problem under this section's prefix.
+    void problem(const std::string& message);
 
     /// Adds `messages` (from a Params validate()) under this section's prefix.
     void add_validation(const std::vector<std::string>& messages);

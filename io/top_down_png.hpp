@@ -7,7 +7,14 @@
 #include "makeway/common/box_sampling.hpp"
 #include "makeway/common/point_cloud.hpp"
 
+#include "io/canvas.hpp"
+
 namespace makeway::io {
+
+/// The colour each semantic label is drawn in, in every picture.
+Rgb label_colour(SemanticLabel label);
+/// A box's footprint with a line from its centre to its front (+x) face.
+void draw_box(Canvas& canvas, const OrientedBox& box, const Rgb& colour);
 
 struct TopDownStyle {
     double pixels_per_m = 60.0;

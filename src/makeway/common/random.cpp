@@ -62,3 +62,21 @@ double counter_normal(std::uint64_t seed, std::uint64_t counter) {
 }
 
 }  // namespace makeway
+
+namespace makeway {
+
+std::pair<double, double> counter_normal_pair(std::uint64_t seed, std::uint64_t counter) {
+    std::uint64_t state = seed * 0x9E3779B97F4A7C15ULL + counter;
+    splitmix64(state);
+    while (true) {  // accepts with probability pi/4; the sequence is fixed by (seed, counter)
+        const double u = 2.0 * static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53 - 1.0;
+        const double v = 2.0 * static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53 - 1.0;
+        const double s = u * u + v * v;
+        if (s > 0.0 && s < 1.0) {
+            const double f = std::sqrt(-2.0 * std::log(s) / s);
+            return {u * f, v * f};
+        }
+    }
+}
+
+}  // namespace makeway

@@ -4,6 +4,7 @@
 // library, whose distributions differ between implementations).
 #include <cstdint>
 #include <random>
+#include <utility>
 
 namespace makeway {
 
@@ -26,5 +27,8 @@ bool bernoulli(Rng& rng, double p);
 /// as serial ones whatever the thread schedule. Uniform in [0, 1) and standard normal.
 double counter_uniform(std::uint64_t seed, std::uint64_t counter);
 double counter_normal(std::uint64_t seed, std::uint64_t counter);
+/// Two independent standard normals for one (seed, counter) (Marsaglia's polar method: no
+/// trigonometry, one logarithm per pair); the cheap path for per-ray sensor noise.
+std::pair<double, double> counter_normal_pair(std::uint64_t seed, std::uint64_t counter);
 
 }  // namespace makeway

@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 
@@ -27,12 +28,13 @@ float reflectivity(SemanticLabel label) {
     }
 }
 
-struct ColumnOutput {
-    std::vector<Eigen::Vector3f> xyz;
-    std::vector<float> intensity;
-    std::vector<std::uint16_t> ring;
-    std::vector<std::uint8_t> label;
-    std::vector<std::uint32_t> instance;
+// One ray's outcome, in a flat per-sweep buffer (no allocation inside the ray loop).
+struct RayResult {
+    Eigen::Vector3f xyz;
+    float intensity;
+    std::uint32_t instance;
+    std::uint8_t label;
+    bool keep;
 };
 
 }  // namespace
@@ -72,16 +74,17 @@ PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtT
     const int columns = params.num_columns();
     const int beams = params.num_beams();
     const double dt_column = params.sweep_duration_s() / columns;
-    std::vector<Eigen::Vector3f> beam_dirs(beams);  // at azimuth 0, sensor frame
     std::vector<float> cos_el(beams), sin_el(beams);
     for (int b = 0; b < beams; ++b) {
         const double el = deg_to_rad(params.elevations_deg[b]);
         cos_el[b] = static_cast<float>(std::cos(el));
         sin_el[b] = static_cast<float>(std::sin(el));
     }
-    std::vector<ColumnOutput> out(columns);
+    std::vector<RayResult> out(static_cast<std::size_t>(columns) * beams);
     const std::uint64_t stream = seed ^ (sweep_index * 0xA24BAED4963EE407ULL);
 
+    constexpr int kMaxBeams = 256;  // validate() caps the beam count
+    constexpr int kPacket = World::kPacketSize;
     auto cast_column = [&](int c) {
         const double t_rel = c * dt_column;
         const Isometry3 T_world_sensor = T_world_sensor_at(t_start_s + t_rel);
@@ -89,40 +92,44 @@ PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtT
         const Eigen::Vector3f origin = T_world_sensor.translation().cast<float>();
         const double az = deg_to_rad(c * params.azimuth_step_deg);
         const float ca = static_cast<float>(std::cos(az)), sa = static_cast<float>(std::sin(az));
-        std::vector<Eigen::Vector3f> dirs_sensor(beams), dirs_world(beams);
+        std::array<Eigen::Vector3f, kMaxBeams + kPacket> dirs_sensor, dirs_world;
+        std::array<RayHit, kMaxBeams + kPacket> hits;
         for (int b = 0; b < beams; ++b) {
             dirs_sensor[b] = Eigen::Vector3f(cos_el[b] * ca, cos_el[b] * sa, sin_el[b]);
             dirs_world[b] = R * dirs_sensor[b];
         }
-        std::vector<RayHit> hits(beams);
         const auto max_range = static_cast<float>(params.max_range_m);
         if (params.use_packets) {
-            for (int b0 = 0; b0 < beams; b0 += 8) {
-                bool valid[8];
-                Eigen::Vector3f d8[8];
-                RayHit h8[8];
-                for (int i = 0; i < 8; ++i) {
+            for (int b0 = 0; b0 < beams; b0 += kPacket) {
+                bool valid[kPacket];
+                for (int i = 0; i < kPacket; ++i) {
                     valid[i] = b0 + i < beams;
-                    d8[i] = valid[i] ? dirs_world[b0 + i] : Eigen::Vector3f::UnitX();
+                    if (!valid[i]) dirs_world[b0 + i] = Eigen::Vector3f::UnitX();
                 }
-                world.cast8(origin, d8, max_range, valid, h8);
-                for (int i = 0; i < 8 && b0 + i < beams; ++i) hits[b0 + i] = h8[i];
+                world.cast_packet(origin, &dirs_world[b0], max_range, valid, &hits[b0]);
             }
         } else {
             for (int b = 0; b < beams; ++b) hits[b] = world.cast(origin, dirs_world[b], max_range);
         }
-        ColumnOutput& o = out[c];
-        for (int b = 0; b < beams; ++b) {
-            if (!hits[b].hit) continue;
+        RayResult* o = &out[static_cast<std::size_t>(c) * beams];
+        for (int b = 0; b < beams; b += 2) {
+            // One normal pair serves two beams; the uniform decides dropout.
             const std::uint64_t ray_id = static_cast<std::uint64_t>(c) * beams + b;
-            if (counter_uniform(stream, 2 * ray_id) < params.dropout) continue;
-            const double range = hits[b].range_m + params.range_noise_m * counter_normal(stream, 2 * ray_id + 1);
-            if (range < params.min_range_m || range > params.max_range_m) continue;
-            o.xyz.push_back(static_cast<float>(range) * dirs_sensor[b]);
-            o.intensity.push_back(reflectivity(hits[b].label) * std::clamp(1.0f - hits[b].range_m / 60.0f, 0.2f, 1.0f));
-            o.ring.push_back(static_cast<std::uint16_t>(b));
-            o.label.push_back(static_cast<std::uint8_t>(hits[b].label));
-            o.instance.push_back(hits[b].instance);
+            const auto [n0, n1] = counter_normal_pair(stream, ray_id);
+            for (int k = 0; k < 2 && b + k < beams; ++k) {
+                const RayHit& h = hits[b + k];
+                RayResult& r = o[b + k];
+                r.keep = false;
+                if (!h.hit) continue;
+                if (params.dropout > 0.0 && counter_uniform(stream, ~(ray_id + k)) < params.dropout) continue;
+                const double range = h.range_m + params.range_noise_m * (k == 0 ? n0 : n1);
+                if (range < params.min_range_m || range > params.max_range_m) continue;
+                r.keep = true;
+                r.xyz = static_cast<float>(range) * dirs_sensor[b + k];
+                r.intensity = reflectivity(h.label) * std::clamp(1.0f - h.range_m / 60.0f, 0.2f, 1.0f);
+                r.label = static_cast<std::uint8_t>(h.label);
+                r.instance = h.instance;
+            }
         }
     };
 
@@ -145,18 +152,21 @@ PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtT
     }
 
     // Gather in firing order (column-major), so output never depends on the thread schedule.
-    PointCloud cloud;
     std::size_t n = 0;
-    for (const auto& o : out) n += o.xyz.size();
-    cloud.xyz.reserve(n);
-    for (int c = 0; c < columns; ++c) {
-        const ColumnOutput& o = out[c];
-        cloud.xyz.insert(cloud.xyz.end(), o.xyz.begin(), o.xyz.end());
-        cloud.intensity.insert(cloud.intensity.end(), o.intensity.begin(), o.intensity.end());
-        cloud.ring.insert(cloud.ring.end(), o.ring.begin(), o.ring.end());
-        cloud.time_s.insert(cloud.time_s.end(), o.xyz.size(), static_cast<float>(c * dt_column));
-        cloud.label.insert(cloud.label.end(), o.label.begin(), o.label.end());
-        cloud.instance.insert(cloud.instance.end(), o.instance.begin(), o.instance.end());
+    for (const RayResult& r : out) n += r.keep;
+    PointCloud cloud;
+    cloud.resize(n, PointFields{.intensity = true, .ring = true, .time = true, .label = true, .instance = true});
+    std::size_t i = 0;
+    for (std::size_t k = 0; k < out.size(); ++k) {
+        const RayResult& r = out[k];
+        if (!r.keep) continue;
+        cloud.xyz[i] = r.xyz;
+        cloud.intensity[i] = r.intensity;
+        cloud.ring[i] = static_cast<std::uint16_t>(k % beams);
+        cloud.time_s[i] = static_cast<float>(static_cast<double>(k / beams) * dt_column);
+        cloud.label[i] = r.label;
+        cloud.instance[i] = r.instance;
+        ++i;
     }
     if (stats) {
         stats->rays = static_cast<std::size_t>(columns) * beams;

@@ -37,9 +37,11 @@ public:
     RayHit cast(const Eigen::Vector3f& origin_m, const Eigen::Vector3f& direction,
                 float max_range_m) const;
 
-    /// Eight rays at once (Embree ray packet); `valid[i]` false skips ray i.
-    void cast8(const Eigen::Vector3f& origin_m, const Eigen::Vector3f* directions, float max_range_m,
-               const bool* valid, RayHit* hits) const;
+    /// kPacketSize rays from one origin at once (an Embree ray packet); `directions` must be unit
+    /// vectors; `valid[i]` false skips ray i.
+    static constexpr int kPacketSize = 16;
+    void cast_packet(const Eigen::Vector3f& origin_m, const Eigen::Vector3f* directions, float max_range_m,
+                     const bool* valid, RayHit* hits) const;
 
     const Scene& scene() const { return scene_; }
     const std::vector<ObjectModel>& models() const { return models_; }

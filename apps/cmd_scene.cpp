@@ -1,0 +1,78 @@
+// makeway cad / makeway scene: CAD models and procedural scenes.
+#include <iostream>
+
+#include "apps/commands.hpp"
+#include "io/error.hpp"
+#include "io/file_util.hpp"
+#include "io/mesh_io.hpp"
+#include "io/scene_io.hpp"
+#include "io/scene_png.hpp"
+#include "makeway/sim/furniture.hpp"
+#include "makeway/sim/route.hpp"
+#include "makeway/sim/scene_generator.hpp"
+
+namespace makeway::apps {
+namespace {
+
+std::vector<sim::ObjectModel> models_of(const sim::Scene& scene) {
+    std::vector<sim::ObjectModel> models;
+    for (const auto& o : scene.objects) models.push_back(sim::model_of(o));
+    return models;
+}
+
+void write_scene_with_picture(const std::filesystem::path& path, const sim::Scene& scene) {
+    io::write_scene(path, scene);
+    const auto models = models_of(scene);
+    const sim::CollisionChecker checker(scene, models, sim::RobotParams{});
+    io::ScenePicture pic;
+    if (auto route = sim::drive_route(scene, checker, sim::RobotParams{})) pic.route_m = *route;
+    int chairs = 0, tables = 0;
+    for (const auto& o : scene.objects) (o.cls == ObjectClass::kChair ? chairs : tables)++;
+    pic.title = scene.name + ": " + std::to_string(tables) + " tables, " + std::to_string(chairs) + " chairs, " +
+                std::to_string(scene.walkers.size()) + " walkers, " + std::to_string(scene.pushers.size()) +
+                " chair pushers";
+    auto png = path;
+    io::write_scene_png(png.replace_extension(".png"), scene, models, pic);
+    std::cout << "wrote " << path.string() << " and " << png.string() << " (" << pic.title << ")\n";
+}
+
+}  // namespace
+
+int run_cad(const CadOptions& options) {
+    const auto style = sim::parse_furniture_style(options.style);
+    if (!style) throw io::FileError(options.out, "unknown style '" + options.style + "'");
+    const sim::FurnitureModel m = sim::make_furniture(*style, options.seed);
+    io::write_mesh(options.out, m.mesh_object);
+    const Eigen::Vector3d s = m.box_object.size_m;
+    std::cout << "wrote " << options.out << ": " << options.style << " seed " << options.seed << ", "
+              << m.mesh_object.num_triangles() << " triangles, " << s.x() << " x " << s.y() << " x " << s.z()
+              << " m (length x width x height)\n";
+    return 0;
+}
+
+int run_scene(const SceneOptions& options) {
+    sim::SceneGenParams p;
+    p.seed = options.seed;
+    p.density = *sim::parse_density(options.density);
+    p.layout = *sim::parse_layout(options.layout);
+    p.people = !options.no_people;
+    const std::filesystem::path out = options.out;
+    if (io::lower_extension(out) != "yaml" && io::lower_extension(out) != "yml") {
+        throw io::FileError(out.string(), "a scene file must end in .yaml");
+    }
+    sim::Scene base;
+    try {
+        base = sim::generate_scene(p);
+    } catch (const std::runtime_error& e) {
+        throw io::FileError(out.string(), e.what());
+    }
+    write_scene_with_picture(out, base);
+    for (int k = 1; k < options.sessions; ++k) {
+        auto path = out;
+        path.replace_filename(out.stem().string() + "_session" + std::to_string(k) + out.extension().string());
+        write_scene_with_picture(path, sim::make_session(base, k));
+    }
+    return 0;
+}
+
+}  // namespace makeway::apps

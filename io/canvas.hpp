@@ -1,0 +1,49 @@
+#pragma once
+// A small top-down drawing surface over cairo: world coordinates in metres (x right, y up), PNG
+// output written atomically. Every picture makeway draws goes through it.
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace makeway::io {
+
+using Rgb = std::array<double, 3>;
+
+class Canvas {
+public:
+    /// Covers [min_m, max_m] plus margin_m at pixels_per_m (the image is clamped to 64..4096 px).
+    Canvas(Eigen::Vector2d min_m, Eigen::Vector2d max_m, double pixels_per_m, double margin_m = 0.5);
+    ~Canvas();
+    Canvas(const Canvas&) = delete;
+    Canvas& operator=(const Canvas&) = delete;
+
+    void fill_polygon(const std::vector<Eigen::Vector2d>& points_m, const Rgb& colour, double alpha = 1.0);
+    void stroke_polyline(const std::vector<Eigen::Vector2d>& points_m, const Rgb& colour, double width_px,
+                         bool closed = false, bool dashed = false);
+    void fill_circle(const Eigen::Vector2d& centre_m, double radius_px, const Rgb& colour);
+    void dot(const Eigen::Vector2d& p_m, double size_px, const Rgb& colour);
+    void text(const Eigen::Vector2d& p_m, const std::string& s, double size_px, const Rgb& colour);
+    /// Text at a pixel position (titles, legends).
+    void text_px(double x_px, double y_px, const std::string& s, double size_px, const Rgb& colour);
+    /// A 1 m scale bar in the bottom-left corner.
+    void scale_bar();
+
+    int width_px() const { return width_; }
+    int height_px() const { return height_; }
+    /// Encodes PNG and writes it atomically; throws FileError.
+    void save_png(const std::filesystem::path& path);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    Eigen::Vector2d origin_m_;
+    double ppm_;
+    int width_ = 0;
+    int height_ = 0;
+};
+
+}  // namespace makeway::io

@@ -1,0 +1,26 @@
+#pragma once
+// A progress bar for long work, on stderr. On a terminal it redraws one line; elsewhere (CI logs,
+// files) it prints a line at every 10 %.
+#include <chrono>
+#include <cstddef>
+#include <string>
+
+namespace makeway::io {
+
+class ProgressBar {
+public:
+    ProgressBar(std::string label, std::size_t total);
+    /// Marks `done` items finished; `note` is shown after the bar (e.g. "12.3 M rays/s").
+    void update(std::size_t done, const std::string& note = "");
+    /// Completes the line.
+    void finish(const std::string& note = "");
+
+private:
+    std::string label_;
+    std::size_t total_;
+    bool tty_;
+    int last_decile_ = -1;
+    std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace makeway::io

@@ -1,0 +1,246 @@
+#include "io/scene_io.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <iomanip>
+#include <memory>
+#include <sstream>
+
+#include "io/config_reader.hpp"
+#include "io/error.hpp"
+#include "io/file_util.hpp"
+#include "io/mesh_io.hpp"
+#include "makeway/sim/furniture.hpp"
+#include "makeway/sim/mesh_primitives.hpp"
+
+namespace makeway::io {
+namespace {
+
+void read_pose(YamlSection& parent, const char* key, Pose2& pose, std::vector<std::string>& problems,
+               const std::string& prefix) {
+    YamlSection s(parent.take(key), prefix + "." + key, problems);
+    s.read("x_m", pose.x_m);
+    s.read("y_m", pose.y_m);
+    s.read("yaw_rad", pose.yaw_rad);
+    s.finish();
+}
+
+template <typename Fn>
+void for_each_item(YAML::Node list, const std::string& name, std::vector<std::string>& problems, Fn&& fn) {
+    if (!list || list.IsNull()) return;
+    if (!list.IsSequence()) {
+        problems.push_back(name + ": must be a list");
+        return;
+    }
+    for (std::size_t i = 0; i < list.size(); ++i) fn(list[i], name + "[" + std::to_string(i) + "]");
+}
+
+sim::SceneObject read_object(const YAML::Node& node, const std::string& prefix, std::vector<std::string>& problems,
+                             const std::filesystem::path& mesh_base_dir) {
+    sim::SceneObject o;
+    YamlSection s(node, prefix, problems);
+    std::string cls = "chair";
+    s.read("id", o.id);
+    s.read("class", cls);
+    s.read("style", o.style);
+    s.read("model_seed", o.model_seed);
+    s.read("mesh", o.mesh_file);
+    s.read("scale", o.scale);
+    s.read("table_id", o.table_id);
+    read_pose(s, "pose", o.pose, problems, prefix);
+    s.finish();
+    const auto parsed = parse_object_class(cls);
+    if (!parsed) s.problem("class must be chair or table (got '" + cls + "')");
+    o.cls = parsed.value_or(ObjectClass::kChair);
+    if (!o.style.empty()) {
+        const auto style = sim::parse_furniture_style(o.style);
+        if (!style) {
+            s.problem("unknown style '" + o.style + "'");
+        } else if (sim::class_of(*style) != o.cls) {
+            s.problem("style '" + o.style + "' is not a " + cls);
+        }
+    }
+    if (!o.mesh_file.empty() && !mesh_base_dir.empty()) {
+        try {
+            auto mesh = std::make_shared<TriangleMesh>(read_mesh(mesh_base_dir / o.mesh_file));
+            sim::transform_mesh(*mesh, Isometry3(Eigen::Scaling(o.scale)));
+            o.user_mesh = std::move(mesh);
+        } catch (const FileError& e) {
+            s.problem(std::string("mesh ") + e.what());
+        }
+    }
+    return o;
+}
+
+}  // namespace
+
+sim::Scene parse_scene(std::string_view yaml_text, const std::filesystem::path& mesh_base_dir) {
+    YAML::Node root;
+    try {
+        root = YAML::Load(std::string(yaml_text));
+    } catch (const YAML::Exception& e) {
+        throw FormatError("YAML syntax error at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+    }
+    if (!root.IsMap()) throw FormatError("a scene must be a mapping (name, walls, objects, ...)");
+    std::vector<std::string> problems;
+    sim::Scene scene;
+    YamlSection s(root, "scene", problems);
+    s.read("name", scene.name);
+    s.read("seed", scene.seed);
+    s.read("density", scene.density);
+    s.read("ceiling_height_m", scene.ceiling_height_m);
+    {
+        YamlSection floor(s.take("floor"), "floor", problems);
+        floor.read("min_m", scene.floor_min_m);
+        floor.read("max_m", scene.floor_max_m);
+        floor.finish();
+    }
+    read_pose(s, "start", scene.start, problems, "scene");
+    read_pose(s, "waypoint", scene.waypoint, problems, "scene");
+    read_pose(s, "goal", scene.goal, problems, "scene");
+    for_each_item(s.take("walls"), "walls", problems, [&](const YAML::Node& n, const std::string& name) {
+        sim::Wall w;
+        YamlSection ws(n, name, problems);
+        ws.read("a_m", w.a_m);
+        ws.read("b_m", w.b_m);
+        ws.read("thickness_m", w.thickness_m);
+        ws.read("height_m", w.height_m);
+        ws.finish();
+        scene.walls.push_back(w);
+    });
+    for_each_item(s.take("pillars"), "pillars", problems, [&](const YAML::Node& n, const std::string& name) {
+        sim::Pillar p;
+        YamlSection ps(n, name, problems);
+        ps.read("centre_m", p.centre_m);
+        ps.read("size_m", p.size_m);
+        ps.read("height_m", p.height_m);
+        ps.finish();
+        scene.pillars.push_back(p);
+    });
+    for_each_item(s.take("objects"), "objects", problems, [&](const YAML::Node& n, const std::string& name) {
+        scene.objects.push_back(read_object(n, name, problems, mesh_base_dir));
+    });
+    for_each_item(s.take("walkers"), "walkers", problems, [&](const YAML::Node& n, const std::string& name) {
+        sim::Walker w;
+        YamlSection ws(n, name, problems);
+        ws.read("speed_mps", w.speed_mps);
+        ws.read("phase_s", w.phase_s);
+        for_each_item(ws.take("route_m"), name + ".route_m", problems, [&](const YAML::Node& p, const std::string& pn) {
+            try {
+                if (!p.IsSequence() || p.size() != 2) throw YAML::Exception(YAML::Mark::null_mark(), "");
+                w.route_m.emplace_back(p[0].as<double>(), p[1].as<double>());
+            } catch (const YAML::Exception&) {
+                problems.push_back(pn + ": must be a pair of numbers [x, y]");
+            }
+        });
+        ws.finish();
+        scene.walkers.push_back(w);
+    });
+    for_each_item(s.take("pushers"), "pushers", problems, [&](const YAML::Node& n, const std::string& name) {
+        sim::ChairPusher p;
+        YamlSection ps(n, name, problems);
+        ps.read("chair_id", p.chair_id);
+        ps.read("period_s", p.period_s);
+        ps.read("pull_m", p.pull_m);
+        ps.read("phase_s", p.phase_s);
+        ps.finish();
+        scene.pushers.push_back(p);
+    });
+    s.finish();
+    for (const auto& m : scene.validate()) problems.push_back(m);
+    if (!problems.empty()) {
+        std::string msg = problems.size() == 1 ? std::string() : std::to_string(problems.size()) + " problems: ";
+        for (std::size_t i = 0; i < problems.size(); ++i) msg += (i ? "; " : "") + problems[i];
+        throw FormatError(msg);
+    }
+    return scene;
+}
+
+sim::Scene read_scene(const std::filesystem::path& path) {
+    const std::string text = read_file(path);
+    try {
+        std::filesystem::path base = path.parent_path();
+        if (base.empty()) base = ".";
+        return parse_scene(text, base);
+    } catch (const FormatError& e) {
+        throw FileError(path.string(), e.what());
+    }
+}
+
+std::string scene_to_yaml(const sim::Scene& scene) {
+    YAML::Emitter out;
+    out.SetDoublePrecision(17);
+    auto pose = [&](const char* key, const Pose2& p) {
+        out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "x_m" << YAML::Value
+            << p.x_m << YAML::Key << "y_m" << YAML::Value << p.y_m << YAML::Key << "yaw_rad" << YAML::Value << p.yaw_rad
+            << YAML::EndMap;
+    };
+    auto vec2 = [&](const char* key, const Eigen::Vector2d& v) {
+        out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq << v.x() << v.y() << YAML::EndSeq;
+    };
+    out << YAML::BeginMap;
+    out << YAML::Key << "name" << YAML::Value << scene.name;
+    out << YAML::Key << "seed" << YAML::Value << scene.seed;
+    out << YAML::Key << "density" << YAML::Value << scene.density;
+    out << YAML::Key << "ceiling_height_m" << YAML::Value << scene.ceiling_height_m;
+    out << YAML::Key << "floor" << YAML::Value << YAML::BeginMap;
+    vec2("min_m", scene.floor_min_m);
+    vec2("max_m", scene.floor_max_m);
+    out << YAML::EndMap;
+    pose("start", scene.start);
+    pose("waypoint", scene.waypoint);
+    pose("goal", scene.goal);
+    out << YAML::Key << "walls" << YAML::Value << YAML::BeginSeq;
+    for (const auto& w : scene.walls) {
+        out << YAML::Flow << YAML::BeginMap;
+        vec2("a_m", w.a_m);
+        vec2("b_m", w.b_m);
+        out << YAML::Key << "thickness_m" << YAML::Value << w.thickness_m << YAML::Key << "height_m" << YAML::Value
+            << w.height_m << YAML::EndMap;
+    }
+    out << YAML::EndSeq << YAML::Key << "pillars" << YAML::Value << YAML::BeginSeq;
+    for (const auto& p : scene.pillars) {
+        out << YAML::Flow << YAML::BeginMap;
+        vec2("centre_m", p.centre_m);
+        vec2("size_m", p.size_m);
+        out << YAML::Key << "height_m" << YAML::Value << p.height_m << YAML::EndMap;
+    }
+    out << YAML::EndSeq << YAML::Key << "objects" << YAML::Value << YAML::BeginSeq;
+    for (const auto& o : scene.objects) {
+        out << YAML::Flow << YAML::BeginMap << YAML::Key << "id" << YAML::Value << o.id << YAML::Key << "class"
+            << YAML::Value << std::string(to_string(o.cls));
+        if (o.mesh_file.empty()) {
+            out << YAML::Key << "style" << YAML::Value << o.style << YAML::Key << "model_seed" << YAML::Value << o.model_seed;
+        } else {
+            out << YAML::Key << "mesh" << YAML::Value << o.mesh_file << YAML::Key << "scale" << YAML::Value << o.scale;
+        }
+        if (o.table_id) out << YAML::Key << "table_id" << YAML::Value << o.table_id;
+        pose("pose", o.pose);
+        out << YAML::EndMap;
+    }
+    out << YAML::EndSeq << YAML::Key << "walkers" << YAML::Value << YAML::BeginSeq;
+    for (const auto& w : scene.walkers) {
+        out << YAML::Flow << YAML::BeginMap << YAML::Key << "speed_mps" << YAML::Value << w.speed_mps << YAML::Key
+            << "phase_s" << YAML::Value << w.phase_s << YAML::Key << "route_m" << YAML::Value << YAML::BeginSeq;
+        for (const auto& p : w.route_m) out << YAML::Flow << YAML::BeginSeq << p.x() << p.y() << YAML::EndSeq;
+        out << YAML::EndSeq << YAML::EndMap;
+    }
+    out << YAML::EndSeq << YAML::Key << "pushers" << YAML::Value << YAML::BeginSeq;
+    for (const auto& p : scene.pushers) {
+        out << YAML::Flow << YAML::BeginMap << YAML::Key << "chair_id" << YAML::Value << p.chair_id << YAML::Key
+            << "period_s" << YAML::Value << p.period_s << YAML::Key << "pull_m" << YAML::Value << p.pull_m << YAML::Key
+            << "phase_s" << YAML::Value << p.phase_s << YAML::EndMap;
+    }
+    out << YAML::EndSeq << YAML::EndMap;
+    return "# makeway scene: lengths in metres, angles in radians, poses are T_world_object.\n"
+           "# Object styles: four_leg_chair office_chair stool armchair rect_table round_table\n"
+           "# conference_table; or `mesh: FILE` (OBJ/PLY/STL/DAE, relative to this file) with `scale`.\n" +
+           std::string(out.c_str()) + "\n";
+}
+
+void write_scene(const std::filesystem::path& path, const sim::Scene& scene) {
+    write_file_atomic(path, scene_to_yaml(scene));
+}
+
+}  // namespace makeway::io
