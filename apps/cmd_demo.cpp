@@ -1,41 +1,30 @@
-// The demo: the longest end-to-end path that exists so far. A seeded layout of chairs and tables,
-// a labelled surface cloud, every point-cloud format written and read back, noisy "detections"
-// scored against the truth with rotated 3D IoU/GIoU, and a top-down picture.
+// The demo: the longest end-to-end path that exists so far. A procedural scene from the
+// configuration, the simulated Jackal driving it with its VLP-32C, every sweep recorded with ground
+// truth, and the recorded clouds checked through every point-cloud format.
 #include <cstring>
 #include <filesystem>
 #include <iostream>
 
 #include "apps/commands.hpp"
+#include "apps/recording.hpp"
 #include "io/config_reader.hpp"
+#include "io/error.hpp"
 #include "io/json_io.hpp"
 #include "io/point_cloud_io.hpp"
-#include "io/top_down_png.hpp"
-#include "makeway/common/angles.hpp"
-#include "makeway/common/box_overlap.hpp"
 
 namespace makeway::apps {
 namespace {
 
 template <typename T>
 bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 bool same_cloud(const PointCloud& a, const PointCloud& b, bool xyzi_only) {
     const bool xyzi = same_bits(a.xyz, b.xyz) && same_bits(a.intensity, b.intensity);
     if (xyzi_only) return xyzi;
-    return xyzi && same_bits(a.ring, b.ring) && same_bits(a.time_s, b.time_s) &&
-           same_bits(a.label, b.label) && same_bits(a.instance, b.instance);
-}
-
-OrientedBox perturbed(const OrientedBox& truth, Rng& rng) {
-    OrientedBox d = truth;
-    for (int k = 0; k < 3; ++k) {
-        d.centre_m[k] += normal(rng, 0.0, 0.05);
-        d.size_m[k] *= 1.0 + normal(rng, 0.0, 0.05);
-    }
-    d.yaw_rad = wrap_angle(d.yaw_rad + normal(rng, 0.0, deg_to_rad(5.0)));
-    return d;
+    return xyzi && same_bits(a.ring, b.ring) && same_bits(a.time_s, b.time_s) && same_bits(a.label, b.label) &&
+           same_bits(a.instance, b.instance);
 }
 
 }  // namespace
@@ -44,59 +33,61 @@ int run_demo(const DemoOptions& options) {
     const io::Config cfg = options.config.empty() ? io::Config{} : io::load_config(options.config);
     const std::filesystem::path out = options.out_dir;
 
-    // Scene: chairs and tables on the floor, and the surface points a sensor could see.
-    const std::vector<LabelledBox> boxes = random_object_layout(cfg.layout);
-    Rng rng = make_rng(cfg.layout.seed, /*stream=*/2);
-    const PointCloud cloud = sample_box_surfaces(boxes, cfg.sampling, rng);
+    // Scene: a room with tables, chairs, people and a mission (start -> waypoint -> goal).
+    std::cout << "makeway demo: generating a " << sim::to_string(cfg.scene.density) << " scene (seed "
+              << cfg.scene.seed << ")\n";
+    sim::Scene scene;
+    try {
+        scene = sim::generate_scene(cfg.scene);
+    } catch (const std::runtime_error& e) {
+        throw io::FileError(options.config.empty() ? "built-in configuration" : options.config, e.what());
+    }
+    std::cout << "  " << write_scene_with_picture(out / "scene.yaml", scene) << "\n";
 
-    // Formats: write every format, read each back, check the values bit for bit.
-    io::Json files = io::Json::object();
+    // Drive: the robot follows the route while the LiDAR records every sweep.
+    sim::SequenceParams params;
+    params.lidar = cfg.lidar;
+    params.robot = cfg.robot;
+    params.odometry = cfg.odometry;
+    params.seed = cfg.simulation.seed;
+    const auto route = auto_route(scene, params.robot, "scene " + scene.name);
+    // The demo keeps one cloud per second (ground truth for every sweep) and stops at the goal.
+    const RecordingSummary rec =
+        record_sequence(scene, route, params,
+                        {.frames = cfg.simulation.frames, .format = "pcd", .cloud_every = 10, .stop_at_goal = true},
+                        out / "sequence", (out / "scene.yaml").string());
+
+    // Formats: the first sweep through PLY and KITTI, read back and compared bit for bit.
+    const PointCloud first = io::read_point_cloud(out / "sequence" / "clouds" / "000000.pcd").cloud;
     bool exact = true;
-    for (const char* name : {"scene.pcd", "scene.ply", "scene.bin"}) {
-        const auto path = out / name;
-        io::write_point_cloud(path, cloud, {.pcd = io::PcdEncoding::kBinaryCompressed});
-        const io::CloudFile back = io::read_point_cloud(path);
-        const bool same = same_cloud(cloud, back.cloud, back.info.format == "kitti_bin");
-        exact &= same;
-        files[name] = {{"bytes", std::filesystem::file_size(path)}, {"round_trip_exact", same}};
+    for (const char* name : {"first_sweep.ply", "first_sweep.bin"}) {
+        io::write_point_cloud(out / name, first);
+        exact &= same_cloud(first, io::read_point_cloud(out / name).cloud, std::strstr(name, ".bin") != nullptr);
     }
+    const std::size_t n_points = first.size();
+    std::size_t labelled[kNumSemanticLabels] = {};
+    for (std::uint8_t l : first.label) labelled[l < kNumSemanticLabels ? l : 0]++;
+    io::Json labels;
+    for (int l = 0; l < kNumSemanticLabels; ++l) labels[std::string(to_string(static_cast<SemanticLabel>(l)))] = labelled[l];
 
-    // Boxes: noisy copies of the truth, as a detector would give, scored with IoU and GIoU.
-    Rng det_rng = make_rng(cfg.layout.seed, /*stream=*/3);
-    io::Json objects = io::Json::array();
-    double iou_sum = 0.0, giou_sum = 0.0;
-    for (const LabelledBox& lb : boxes) {
-        const OrientedBox det = perturbed(lb.box, det_rng);
-        const BoxOverlap o = box_overlap_3d(lb.box, det);
-        iou_sum += o.iou;
-        giou_sum += o.giou;
-        objects.push_back({{"class", std::string(to_string(lb.label))},
-                           {"truth", io::to_json(lb.box)},
-                           {"detection", io::to_json(det)},
-                           {"iou_3d", o.iou},
-                           {"giou_3d", o.giou}});
-    }
-    const double n = std::max<double>(1.0, static_cast<double>(boxes.size()));
-
-    io::write_top_down_png(out / "top_down.png", cloud, boxes,
-                           {.title = "makeway demo: " + std::to_string(boxes.size()) +
-                                     " objects, " + std::to_string(cloud.size()) + " points"});
-    io::Json summary = {{"seed", cfg.layout.seed},
-                        {"objects", boxes.size()},
-                        {"points", cloud.size()},
-                        {"files", files},
-                        {"all_round_trips_exact", exact},
-                        {"mean_iou_3d", iou_sum / n},
-                        {"mean_giou_3d", giou_sum / n},
-                        {"boxes", objects}};
-    io::write_json(out / "summary.json", summary);
-
-    std::cout << "makeway demo: " << boxes.size() << " objects, " << cloud.size() << " points\n"
-              << "  round trips pcd/ply/bin exact: " << (exact ? "yes" : "NO") << "\n"
-              << "  noisy boxes vs truth: mean IoU " << iou_sum / n << ", mean GIoU "
-              << giou_sum / n << "\n"
-              << "  wrote " << (out / "summary.json").string() << ", "
-              << (out / "top_down.png").string() << "\n";
+    io::write_json(out / "summary.json", {{"scene", scene.name},
+                                          {"objects", scene.objects.size()},
+                                          {"frames", rec.frames},
+                                          {"reached_goal", rec.reached_goal},
+                                          {"frames_in_collision", rec.frames_in_collision},
+                                          {"distance_m", rec.distance_m},
+                                          {"ms_per_frame", rec.ms_per_frame},
+                                          {"first_sweep_points", n_points},
+                                          {"first_sweep_points_by_label", labels},
+                                          {"format_round_trips_exact", exact}});
+    std::cout << "  drove " << rec.distance_m << " m in " << rec.frames << " sweeps ("
+              << (rec.reached_goal ? "goal reached" : "goal not reached yet") << ", "
+              << rec.frames_in_collision << " frames in collision), " << rec.ms_per_frame << " ms per sweep\n"
+              << "  first sweep: " << n_points << " points, " << labelled[static_cast<int>(SemanticLabel::kChair)]
+              << " on chairs, " << labelled[static_cast<int>(SemanticLabel::kTable)] << " on tables\n"
+              << "  PLY and KITTI round trips exact: " << (exact ? "yes" : "NO") << "\n"
+              << "  wrote " << (out / "scene.png").string() << ", " << (out / "sequence").string() << "/, "
+              << (out / "summary.json").string() << "\n";
     return exact ? 0 : 1;
 }
 

@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "apps/commands.hpp"
+#include "apps/recording.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
 #include "io/mesh_io.hpp"
@@ -12,31 +13,6 @@
 #include "makeway/sim/scene_generator.hpp"
 
 namespace makeway::apps {
-namespace {
-
-std::vector<sim::ObjectModel> models_of(const sim::Scene& scene) {
-    std::vector<sim::ObjectModel> models;
-    for (const auto& o : scene.objects) models.push_back(sim::model_of(o));
-    return models;
-}
-
-void write_scene_with_picture(const std::filesystem::path& path, const sim::Scene& scene) {
-    io::write_scene(path, scene);
-    const auto models = models_of(scene);
-    const sim::CollisionChecker checker(scene, models, sim::RobotParams{});
-    io::ScenePicture pic;
-    if (auto route = sim::drive_route(scene, checker, sim::RobotParams{})) pic.route_m = *route;
-    int chairs = 0, tables = 0;
-    for (const auto& o : scene.objects) (o.cls == ObjectClass::kChair ? chairs : tables)++;
-    pic.title = scene.name + ": " + std::to_string(tables) + " tables, " + std::to_string(chairs) + " chairs, " +
-                std::to_string(scene.walkers.size()) + " walkers, " + std::to_string(scene.pushers.size()) +
-                " chair pushers";
-    auto png = path;
-    io::write_scene_png(png.replace_extension(".png"), scene, models, pic);
-    std::cout << "wrote " << path.string() << " and " << png.string() << " (" << pic.title << ")\n";
-}
-
-}  // namespace
 
 int run_cad(const CadOptions& options) {
     const auto style = sim::parse_furniture_style(options.style);
@@ -66,11 +42,12 @@ int run_scene(const SceneOptions& options) {
     } catch (const std::runtime_error& e) {
         throw io::FileError(out.string(), e.what());
     }
-    write_scene_with_picture(out, base);
+    std::cout << "wrote " << out.string() << " and its picture (" << write_scene_with_picture(out, base) << ")\n";
     for (int k = 1; k < options.sessions; ++k) {
         auto path = out;
         path.replace_filename(out.stem().string() + "_session" + std::to_string(k) + out.extension().string());
-        write_scene_with_picture(path, sim::make_session(base, k));
+        std::cout << "wrote " << path.string() << " (" << write_scene_with_picture(path, sim::make_session(base, k))
+                  << ")\n";
     }
     return 0;
 }

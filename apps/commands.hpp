@@ -54,6 +54,7 @@ struct SceneOptions {
 int run_scene(const SceneOptions& options);
 
 struct SimulateOptions {
+    std::string config;  ///< lidar, robot and odometry sections; empty: built-in defaults
     std::string scene;
     std::string route = "auto";
     int frames = 100;

@@ -78,6 +78,8 @@ void add_simulate(CLI::App& app, SimulateOptions& o) {
     auto* sub = app.add_subcommand("simulate", "Drive the simulated Jackal (VLP-32C LiDAR, 10 Hz) through a "
                                                "scene and record every sweep with ground truth");
     sub->add_option("--scene", o.scene, "Scene file (.yaml) from `makeway scene` or written by hand")->required();
+    sub->add_option("--config", o.config, "YAML configuration: its lidar, robot and odometry sections are used "
+                                          "(default: built-in VLP-32C on a Jackal; see config/default.yaml)");
     sub->add_option("--route", o.route, "auto (shortest safe route start -> waypoint -> goal) or a text file "
                                         "of 'x y' points [m], one per line")
         ->capture_default_str();

@@ -135,7 +135,7 @@ Config parse_config(std::string_view yaml_text) {
         throw FormatError("the top level must be a mapping of section names");
     }
     Config cfg;
-    const std::vector<std::string> sections{"layout", "sampling"};
+    const std::vector<std::string> sections{"scene", "lidar", "robot", "odometry", "simulation"};
     if (root.IsMap()) {
         for (const auto& kv : root) {
             const std::string name = kv.first.as<std::string>("");
@@ -144,23 +144,73 @@ Config parse_config(std::string_view yaml_text) {
             }
         }
     }
+    const YAML::Node& const_root = root;
     {
-        YamlSection s(root["layout"], "layout", problems);
-        s.read("seed", cfg.layout.seed);
-        s.read("num_objects", cfg.layout.num_objects);
-        s.read("room_size_m", cfg.layout.room_size_m);
-        s.read("table_share", cfg.layout.table_share);
+        YamlSection s(const_root["scene"], "scene", problems);
+        std::string density(sim::to_string(cfg.scene.density)), layout = "random";
+        s.read("seed", cfg.scene.seed);
+        s.read("density", density);
+        s.read("layout", layout);
+        s.read("people", cfg.scene.people);
         s.finish();
-        s.add_validation(cfg.layout.validate());
+        if (const auto d = sim::parse_density(density)) {
+            cfg.scene.density = *d;
+        } else {
+            s.problem("density must be sparse, medium or dense (got '" + density + "')");
+        }
+        if (const auto l = sim::parse_layout(layout)) {
+            cfg.scene.layout = *l;
+        } else {
+            s.problem("layout must be random or study_space (got '" + layout + "')");
+        }
     }
     {
-        YamlSection s(root["sampling"], "sampling", problems);
-        s.read("points_per_m2", cfg.sampling.points_per_m2);
-        s.read("noise_m", cfg.sampling.noise_m);
-        s.read("skip_bottom", cfg.sampling.skip_bottom);
+        YamlSection s(const_root["lidar"], "lidar", problems);
+        sim::LidarParams& l = cfg.lidar;
+        s.read("azimuth_step_deg", l.azimuth_step_deg);
+        s.read("rate_hz", l.rate_hz);
+        s.read("min_range_m", l.min_range_m);
+        s.read("max_range_m", l.max_range_m);
+        s.read("range_noise_m", l.range_noise_m);
+        s.read("dropout", l.dropout);
+        s.read("time_slices", l.time_slices);
+        s.read("num_threads", l.num_threads);
+        s.read("use_packets", l.use_packets);
         s.finish();
-        s.add_validation(validate(cfg.sampling));
+        s.add_validation(l.validate());
     }
+    {
+        YamlSection s(const_root["robot"], "robot", problems);
+        sim::RobotParams& r = cfg.robot;
+        s.read("length_m", r.length_m);
+        s.read("width_m", r.width_m);
+        s.read("body_height_m", r.body_height_m);
+        s.read("lidar_height_m", r.lidar_height_m);
+        s.read("max_v_mps", r.max_v_mps);
+        s.read("max_w_radps", r.max_w_radps);
+        s.read("max_acc_mps2", r.max_acc_mps2);
+        s.read("max_ang_acc_radps2", r.max_ang_acc_radps2);
+        s.finish();
+        s.add_validation(r.validate());
+    }
+    {
+        YamlSection s(const_root["odometry"], "odometry", problems);
+        s.read("translation_noise_per_m", cfg.odometry.translation_noise_per_m);
+        s.read("heading_noise_per_rad", cfg.odometry.heading_noise_per_rad);
+        s.read("heading_noise_per_m", cfg.odometry.heading_noise_per_m);
+        s.finish();
+        s.add_validation(cfg.odometry.validate());
+    }
+    {
+        YamlSection s(const_root["simulation"], "simulation", problems);
+        s.read("frames", cfg.simulation.frames);
+        s.read("seed", cfg.simulation.seed);
+        s.finish();
+        if (cfg.simulation.frames < 1 || cfg.simulation.frames > 1000000) {
+            s.add_validation({"frames must be in [1, 1000000] (got " + std::to_string(cfg.simulation.frames) + ")"});
+        }
+    }
+    cfg.scene.robot = cfg.robot;
     if (!problems.empty()) {
         std::string msg = problems.size() == 1 ? std::string() :
                           std::to_string(problems.size()) + " problems: ";

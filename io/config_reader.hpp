@@ -9,7 +9,9 @@
 
 #include <Eigen/Core>
 
-#include "makeway/common/box_sampling.hpp"
+#include "makeway/sim/lidar.hpp"
+#include "makeway/sim/robot.hpp"
+#include "makeway/sim/scene_generator.hpp"
 
 namespace YAML {
 class Node;
@@ -54,10 +56,19 @@ private:
     std::vector<std::string> known_keys_;
 };
 
+/// The `simulation` section: how long and with which seed `makeway demo` records.
+struct SimulationConfig {
+    int frames = 600;        ///< at most this many sweeps (10 per second)
+    std::uint64_t seed = 0;  ///< sensor noise and odometry drift
+};
+
 /// Every section of a makeway configuration file (config/default.yaml documents each key).
 struct Config {
-    ObjectLayoutParams layout;
-    BoxSamplingParams sampling;
+    sim::SceneGenParams scene;
+    sim::LidarParams lidar;
+    sim::RobotParams robot;
+    sim::OdometryNoiseParams odometry;
+    SimulationConfig simulation;
 };
 
 /// Throws FormatError listing every problem ("3 problems: a; b; c").

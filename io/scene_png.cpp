@@ -9,7 +9,8 @@ namespace makeway::io {
 
 void write_scene_png(const std::filesystem::path& path, const sim::Scene& scene,
                      const std::vector<sim::ObjectModel>& models, const ScenePicture& picture) {
-    Canvas canvas(scene.floor_min_m, scene.floor_max_m, picture.pixels_per_m, 0.3);
+    // Extra room above the floor for the title and legend.
+    Canvas canvas(scene.floor_min_m, scene.floor_max_m + Eigen::Vector2d(0.0, 1.0), picture.pixels_per_m, 0.3);
     const Eigen::Vector2d lo = scene.floor_min_m, hi = scene.floor_max_m;
     canvas.fill_polygon({lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}}, {0.96, 0.96, 0.93});
     // Structure: every triangle of the wall and pillar boxes, projected.

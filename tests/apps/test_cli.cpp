@@ -8,6 +8,7 @@
 #include "../io/io_test_util.hpp"
 #include "io/json_io.hpp"
 #include "io/point_cloud_io.hpp"
+#include "io/pose_io.hpp"
 
 namespace makeway {
 namespace {
@@ -76,7 +77,10 @@ TEST(Cli, BadInputGivesExitTwoOneLineAndNoOutput) {
     PointCloud nan_cloud = testing_util::random_cloud(3, 10, {});
     nan_cloud.xyz[2].z() = INFINITY;
     io::write_point_cloud(dir / "nan.bin", nan_cloud);
-    std::ofstream(dir / "bad.yaml") << "layout:\n  num_objects: -1\n  colour: red\n";
+    std::ofstream(dir / "bad.yaml") << "simulation:\n  frames: -1\n  colour: red\n";
+    std::ofstream(dir / "scene.yaml") << "name: x\nobjects:\n  - {id: 1, class: chair, style: throne}\n";
+    std::ofstream(dir / "route.txt") << "1 2\n3\n";
+    std::ofstream(dir / "good_scene.yaml") << "name: empty\nfloor: {min_m: [-5, -5], max_m: [5, 5]}\n";
 
     const std::vector<std::pair<std::string, std::string>> cases = {
         {"convert " + (dir / "missing.pcd").string() + " " + (dir / "o1.ply").string(),
@@ -93,6 +97,16 @@ TEST(Cli, BadInputGivesExitTwoOneLineAndNoOutput) {
         {"demo --config " + (dir / "bad.yaml").string() + " --out " + (dir / "o6").string(),
          (dir / "bad.yaml").string() + ": 2 problems: "},
         {"convert --pcd-encoding zip a.pcd b.pcd", "--pcd-encoding"},
+        {"simulate --scene " + (dir / "scene.yaml").string() + " --out " + (dir / "o7").string(),
+         (dir / "scene.yaml").string() + ": objects[0]: unknown style 'throne'"},
+        {"simulate --scene " + (dir / "good_scene.yaml").string() + " --route " + (dir / "route.txt").string() +
+             " --out " + (dir / "o8").string(),
+         (dir / "route.txt").string() + ": line 2: expected two numbers 'x y'"},
+        {"simulate --scene " + (dir / "good_scene.yaml").string() + " --frames 0 --out " + (dir / "o9").string(),
+         "--frames"},
+        {"cad --style throne --out " + (dir / "o10.obj").string(), "--style"},
+        {"scene --density crowded --out " + (dir / "o11.yaml").string(), "--density"},
+        {"scene --out " + (dir / "o12.txt").string(), (dir / "o12.txt").string() + ": a scene file must end in .yaml"},
         {"frobnicate", "frobnicate"},
     };
     for (const auto& [args, expected] : cases) {
@@ -102,7 +116,8 @@ TEST(Cli, BadInputGivesExitTwoOneLineAndNoOutput) {
         EXPECT_EQ(r.err.rfind("makeway: ", 0), 0u) << r.err;
         EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
     }
-    for (const char* out : {"o1.ply", "o2.ply", "o3.pcd", "o4.pcd", "o5.xyz", "o6"}) {
+    for (const char* out : {"o1.ply", "o2.ply", "o3.pcd", "o4.pcd", "o5.xyz", "o6", "o7", "o8", "o9", "o10.obj",
+                            "o11.yaml", "o12.txt"}) {
         EXPECT_FALSE(std::filesystem::exists(dir / out)) << out;
     }
     EXPECT_EQ(run_makeway("convert " + (dir / "nan.bin").string() + " " + (dir / "ok.pcd").string() +
@@ -114,7 +129,7 @@ TEST(Cli, HelpDescribesEveryOption) {
     const auto dir = testing_util::fresh_dir("help");
     const CliRun top = run_makeway("--help", dir);
     EXPECT_EQ(top.exit_code, 0);
-    for (const char* sub : {"info", "convert", "demo"}) EXPECT_NE(top.out.find(sub), std::string::npos);
+    for (const char* sub : {"info", "convert", "demo", "cad", "scene", "simulate", "bench"}) EXPECT_NE(top.out.find(sub), std::string::npos);
     const CliRun conv = run_makeway("convert --help", dir);
     EXPECT_EQ(conv.exit_code, 0);
     for (const char* opt : {"--pcd-encoding", "--ply-encoding", "--non-finite", "=binary", "=reject"}) {
@@ -124,15 +139,55 @@ TEST(Cli, HelpDescribesEveryOption) {
 
 TEST(Cli, DemoWritesItsOutputs) {
     const auto dir = testing_util::fresh_dir("demo");
-    std::ofstream(dir / "small.yaml") << "layout:\n  num_objects: 4\n  seed: 3\n";
-    const CliRun r = run_makeway("demo --config " + (dir / "small.yaml").string() + " --out " +
-                                  (dir / "out").string(), dir);
+    std::ofstream(dir / "small.yaml") << "scene:\n  density: sparse\n  seed: 3\nlidar:\n  azimuth_step_deg: 1.0\n"
+                                         "simulation:\n  frames: 30\n";
+    const CliRun r = run_makeway("demo --config " + (dir / "small.yaml").string() + " --out " + (dir / "out").string(), dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const io::Json s = io::read_json(dir / "out" / "summary.json");
-    EXPECT_EQ(s["objects"], 4);
-    EXPECT_TRUE(s["all_round_trips_exact"].get<bool>());
-    EXPECT_GT(s["mean_iou_3d"].get<double>(), 0.4);
-    EXPECT_TRUE(std::filesystem::exists(dir / "out" / "top_down.png"));
+    EXPECT_EQ(s["frames"], 30);
+    EXPECT_EQ(s["frames_in_collision"], 0);
+    EXPECT_TRUE(s["format_round_trips_exact"].get<bool>());
+    EXPECT_GT(s["first_sweep_points"].get<int>(), 10000);
+    EXPECT_GT(s["distance_m"].get<double>(), 1.0);
+    for (const char* f : {"scene.yaml", "scene.png", "sequence/scene.png", "sequence/poses_gt.txt",
+                          "sequence/odometry.txt", "sequence/clouds/000000.pcd", "sequence/clouds/000020.pcd",
+                          "sequence/objects/000029.json"}) {
+        EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "sequence/clouds/000001.pcd"));  // one cloud per second
+}
+
+TEST(Cli, CadSceneSimulateChain) {
+    const auto dir = testing_util::fresh_dir("chain");
+    ASSERT_EQ(run_makeway("cad --style office_chair --seed 3 --out " + (dir / "chair.obj").string(), dir).exit_code, 0);
+    EXPECT_GT(std::filesystem::file_size(dir / "chair.obj"), 1000u);
+    CliRun r = run_makeway("scene --seed 2 --density sparse --sessions 2 --out " + (dir / "s.yaml").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* f : {"s.yaml", "s.png", "s_session1.yaml", "s_session1.png"}) {
+        EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
+    }
+    r = run_makeway("simulate --scene " + (dir / "s.yaml").string() + " --frames 3 --format bin --seed 4 --out " +
+                        (dir / "run").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const PointCloud c = io::read_point_cloud(dir / "run" / "clouds" / "000002.bin").cloud;
+    EXPECT_GT(c.size(), 10000u);
+    EXPECT_EQ(std::filesystem::file_size(dir / "run" / "labels" / "000002.label"), 4 * c.size());
+    const io::Json frame = io::read_json(dir / "run" / "objects" / "000002.json");
+    EXPECT_FALSE(frame["objects"].empty());
+    EXPECT_NEAR(frame["stamp_s"].get<double>(), 0.2, 1e-12);
+    EXPECT_EQ(io::read_tum(dir / "run" / "poses_gt.txt").size(), 3u);
+    EXPECT_EQ(io::read_tum(dir / "run" / "odometry.txt").size(), 3u);
+}
+
+TEST(Cli, BenchSimPrintsItsNumbers) {
+    const auto dir = testing_util::fresh_dir("bench");
+    const CliRun r = run_makeway("bench sim --sweeps 1", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const io::Json j = io::Json::parse(r.out);
+    for (const char* key : {"rays_per_second_1t", "rays_per_second_2t", "scan_ms"}) {
+        EXPECT_GT(j[key].get<double>(), 0.0) << key;
+    }
+    EXPECT_EQ(j["rays_per_sweep"], 57600);
 }
 
 }  // namespace

@@ -21,60 +21,70 @@ std::string problem_of(const std::string& yaml) {
 TEST(Config, ShippedDefaultFileMatchesBuiltInDefaults) {
     const Config c = load_config(std::string(MAKEWAY_SOURCE_DIR) + "/config/default.yaml");
     const Config d;
-    EXPECT_EQ(c.layout.seed, d.layout.seed);
-    EXPECT_EQ(c.layout.num_objects, d.layout.num_objects);
-    EXPECT_EQ(c.layout.room_size_m, d.layout.room_size_m);
-    EXPECT_EQ(c.layout.table_share, d.layout.table_share);
-    EXPECT_EQ(c.sampling.points_per_m2, d.sampling.points_per_m2);
-    EXPECT_EQ(c.sampling.noise_m, d.sampling.noise_m);
-    EXPECT_EQ(c.sampling.skip_bottom, d.sampling.skip_bottom);
+    EXPECT_EQ(c.scene.seed, d.scene.seed);
+    EXPECT_EQ(c.scene.density, d.scene.density);
+    EXPECT_EQ(c.scene.layout, d.scene.layout);
+    EXPECT_EQ(c.scene.people, d.scene.people);
+    EXPECT_EQ(c.lidar.azimuth_step_deg, d.lidar.azimuth_step_deg);
+    EXPECT_EQ(c.lidar.range_noise_m, d.lidar.range_noise_m);
+    EXPECT_EQ(c.lidar.dropout, d.lidar.dropout);
+    EXPECT_EQ(c.lidar.max_range_m, d.lidar.max_range_m);
+    EXPECT_EQ(c.robot.length_m, d.robot.length_m);
+    EXPECT_EQ(c.robot.width_m, d.robot.width_m);
+    EXPECT_EQ(c.robot.lidar_height_m, d.robot.lidar_height_m);
+    EXPECT_EQ(c.robot.max_v_mps, d.robot.max_v_mps);
+    EXPECT_EQ(c.odometry.translation_noise_per_m, d.odometry.translation_noise_per_m);
+    EXPECT_EQ(c.odometry.heading_noise_per_m, d.odometry.heading_noise_per_m);
+    EXPECT_EQ(c.simulation.frames, d.simulation.frames);
 }
 
 TEST(Config, PartialFileKeepsDefaults) {
-    const Config c = parse_config("layout:\n  num_objects: 5\n");
-    EXPECT_EQ(c.layout.num_objects, 5);
-    EXPECT_EQ(c.layout.room_size_m, Config{}.layout.room_size_m);
-    EXPECT_EQ(parse_config("").layout.num_objects, Config{}.layout.num_objects);
+    const Config c = parse_config("scene:\n  density: dense\nsimulation:\n  frames: 5\n");
+    EXPECT_EQ(c.scene.density, sim::Density::kDense);
+    EXPECT_EQ(c.simulation.frames, 5);
+    EXPECT_EQ(c.lidar.rate_hz, Config{}.lidar.rate_hz);
+    EXPECT_EQ(parse_config("").simulation.frames, Config{}.simulation.frames);
 }
 
 TEST(Config, UnknownKeyGetsASuggestion) {
-    EXPECT_EQ(problem_of("layout:\n  num_object: 5\n"),
-              "layout.num_object: unknown key (did you mean 'num_objects'?)");
+    EXPECT_EQ(problem_of("lidar:\n  range_noise: 0.1\n"),
+              "lidar.range_noise: unknown key (did you mean 'range_noise_m'?)");
     EXPECT_EQ(problem_of("colour:\n  red: 1\n"), "colour: unknown section");
 }
 
 TEST(Config, OutOfRangeAndWrongTypes) {
-    EXPECT_NE(problem_of("layout:\n  room_size_m: -3\n").find("layout.room_size_m must be in"),
+    EXPECT_EQ(problem_of("lidar:\n  rate_hz: -3\n"), "lidar.rate_hz must be in [1, 50]");
+    EXPECT_EQ(problem_of("simulation:\n  frames: many\n"), "simulation.frames: must be an integer");
+    EXPECT_NE(problem_of("lidar:\n  range_noise_m: .nan\n").find("lidar.range_noise_m: must be finite"),
               std::string::npos);
-    EXPECT_EQ(problem_of("layout:\n  num_objects: many\n"), "layout.num_objects: must be an integer");
-    EXPECT_NE(problem_of("sampling:\n  noise_m: .nan\n").find("must be finite"), std::string::npos);
-    EXPECT_EQ(problem_of("sampling:\n  skip_bottom: perhaps\n"), "sampling.skip_bottom: must be true or false");
-    EXPECT_EQ(problem_of("layout: 3\n"), "layout: must be a mapping of keys to values");
-    EXPECT_EQ(problem_of("layout:\n  seed: -1\n"), "layout.seed: must be a non-negative integer");
+    EXPECT_EQ(problem_of("scene:\n  people: perhaps\n"), "scene.people: must be true or false");
+    EXPECT_EQ(problem_of("scene:\n  density: crowded\n"),
+              "scene: density must be sparse, medium or dense (got 'crowded')");
+    EXPECT_EQ(problem_of("robot: 3\n"), "robot: must be a mapping of keys to values");
+    EXPECT_EQ(problem_of("scene:\n  seed: -1\n"), "scene.seed: must be a non-negative integer");
 }
 
 TEST(Config, EveryProblemListedAtOnce) {
     const std::string msg = problem_of(
-        "layout:\n  num_objects: 0\n  room_sise_m: 3\n  table_share: 7\nsampling:\n  noise_m: x\n");
+        "simulation:\n  frames: 0\nlidar:\n  rate_hs: 3\n  dropout: 7\nrobot:\n  max_v_mps: x\n");
     EXPECT_EQ(msg.rfind("4 problems: ", 0), 0u) << msg;
-    for (const char* part : {"room_sise_m: unknown key", "num_objects must be in",
-                             "table_share must be in", "sampling.noise_m: must be a number"}) {
+    for (const char* part : {"lidar.rate_hs: unknown key (did you mean 'rate_hz'?)", "simulation.frames must be in",
+                             "lidar.dropout must be in", "robot.max_v_mps: must be a number"}) {
         EXPECT_NE(msg.find(part), std::string::npos) << part << " missing from: " << msg;
     }
     EXPECT_EQ(msg.find('\n'), std::string::npos);
 }
 
 TEST(Config, SyntaxErrorsAndFiles) {
-    EXPECT_NE(problem_of("layout:\n  seed: [1, 2\n").find("YAML syntax error at line"), std::string::npos);
+    EXPECT_NE(problem_of("scene:\n  seed: [1, 2\n").find("YAML syntax error at line"), std::string::npos);
     EXPECT_EQ(problem_of("- a\n- b\n"), "the top level must be a mapping of section names");
     const auto dir = testing_util::fresh_dir("cfg");
-    std::ofstream(dir / "c.yaml") << "layout:\n  num_objects: -2\n";
+    std::ofstream(dir / "c.yaml") << "simulation:\n  frames: -2\n";
     try {
         load_config(dir / "c.yaml");
         FAIL();
     } catch (const FileError& e) {
-        EXPECT_EQ(std::string(e.what()).rfind((dir / "c.yaml").string() + ": layout.num_objects", 0), 0u)
-            << e.what();
+        EXPECT_EQ(std::string(e.what()).rfind((dir / "c.yaml").string() + ": simulation.frames", 0), 0u) << e.what();
     }
     EXPECT_THROW(load_config(dir / "missing.yaml"), FileError);
 }
