@@ -1,0 +1,82 @@
+#include "makeway/costmap/affordance.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace makeway::costmap {
+namespace {
+
+Eigen::Vector2d to_object_frame(const ObjectEstimate& o, const Eigen::Vector2d& p) {
+    const Eigen::Vector2d d = p - o.box_world.centre_m.head<2>();
+    const double c = std::cos(o.box_world.yaw_rad), s = std::sin(o.box_world.yaw_rad);
+    return {c * d.x() + s * d.y(), -s * d.x() + c * d.y()};
+}
+
+// Half extents of the zone in the object frame.
+Eigen::Vector2d zone_half_extent(const ObjectEstimate& o, const AffordanceParams& p) {
+    const double hl = 0.5 * o.box_world.size_m.x(), hw = 0.5 * o.box_world.size_m.y();
+    if (o.cls == ObjectClass::kChair) return {hl + p.chair.forward_back_m, hw + p.chair.side_m};
+    const bool square = std::abs(o.box_world.size_m.x() - o.box_world.size_m.y()) < p.table.square_tolerance_m;
+    return {hl + (square ? p.table.sides_m : p.table.ends_m), hw + p.table.sides_m};
+}
+
+}  // namespace
+
+std::vector<std::string> AffordanceParams::validate() const {
+    std::vector<std::string> out;
+    auto check = [&](const char* name, double v, double lo, double hi) {
+        if (!(v >= lo && v <= hi)) {
+            out.push_back(std::string(name) + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                          "] (got " + std::to_string(v) + ")");
+        }
+    };
+    check("chair.forward_back_m", chair.forward_back_m, 0.0, 5.0);
+    check("chair.side_m", chair.side_m, 0.0, 5.0);
+    check("chair.peak_cost", chair.peak_cost, 0.0, 252.0);
+    check("chair.edge_cost", chair.edge_cost, 0.0, chair.peak_cost);
+    check("table.sides_m", table.sides_m, 0.0, 5.0);
+    check("table.ends_m", table.ends_m, 0.0, 5.0);
+    check("table.square_tolerance_m", table.square_tolerance_m, 0.0, 5.0);
+    check("table.peak_cost", table.peak_cost, 0.0, 252.0);
+    check("table.edge_cost", table.edge_cost, 0.0, table.peak_cost);
+    check("min_existence", min_existence, 0.0, 1.0);
+    return out;
+}
+
+double zone_coordinate(const ObjectEstimate& o, const AffordanceParams& p, const Eigen::Vector2d& p_m) {
+    const Eigen::Vector2d q = to_object_frame(o, p_m).cwiseAbs();
+    const Eigen::Vector2d half_object = 0.5 * o.box_world.size_m.head<2>();
+    if ((q.array() <= half_object.array()).all()) return 0.0;
+    const Eigen::Vector2d half_zone = zone_half_extent(o, p);
+    if (o.cls == ObjectClass::kChair) {
+        // Ellipse through the zone extents; u grows from the chair's inscribed ellipse outward.
+        const double e = std::hypot(q.x() / half_zone.x(), q.y() / half_zone.y());
+        const double e0 = std::min(half_object.x() / half_zone.x(), half_object.y() / half_zone.y());
+        return std::max(0.0, (e - e0) / std::max(1e-9, 1.0 - e0));
+    }
+    // Rectangle: the larger of the normalised overshoots beyond the table edge on each axis.
+    const Eigen::Vector2d pad = half_zone - half_object;
+    const double ux = q.x() <= half_object.x() ? 0.0 : (q.x() - half_object.x()) / std::max(pad.x(), 1e-9);
+    const double uy = q.y() <= half_object.y() ? 0.0 : (q.y() - half_object.y()) / std::max(pad.y(), 1e-9);
+    return std::max(ux, uy);
+}
+
+std::uint8_t zone_cost(const ObjectEstimate& o, const AffordanceParams& p, const Eigen::Vector2d& p_m) {
+    if (o.existence < p.min_existence) return cost::kFree;
+    const double u = zone_coordinate(o, p, p_m);
+    if (u > 1.0) return cost::kFree;
+    const double peak = o.cls == ObjectClass::kChair ? p.chair.peak_cost : p.table.peak_cost;
+    const double edge = o.cls == ObjectClass::kChair ? p.chair.edge_cost : p.table.edge_cost;
+    return static_cast<std::uint8_t>(std::clamp(std::lround(peak + (edge - peak) * u), 1L,
+                                                static_cast<long>(cost::kMaxSoft)));
+}
+
+void zone_bounds(const ObjectEstimate& o, const AffordanceParams& p, Eigen::Vector2d& min_m, Eigen::Vector2d& max_m) {
+    const Eigen::Vector2d h = zone_half_extent(o, p);
+    const double c = std::abs(std::cos(o.box_world.yaw_rad)), s = std::abs(std::sin(o.box_world.yaw_rad));
+    const Eigen::Vector2d r(c * h.x() + s * h.y(), s * h.x() + c * h.y());
+    min_m = o.box_world.centre_m.head<2>() - r;
+    max_m = o.box_world.centre_m.head<2>() + r;
+}
+
+}  // namespace makeway::costmap

@@ -1,0 +1,60 @@
+#pragma once
+// Class-specific affordance zones (the paper's object-aware costmaps). Defined once here and used
+// both by the costmap layer and by the benchmark's risk metric, so every method is scored against
+// the same zones.
+//
+// Chair: an ellipse centred on the chair, elongated along its forward/backward axis, because chairs
+// are slid backwards and forwards: semi-axes l/2 + forward_back_m (along x) and w/2 + side_m.
+// Table: the table's rectangle padded by sides_m on its long sides, where people sit, and by ends_m
+// at the ends (nobody sits there); a near-square table (round ones) is padded by sides_m all round.
+// Cost: `peak_cost` on the object, falling linearly in the zone coordinate u (0 on the object's
+// footprint, 1 on the zone boundary) to `edge_cost`; 0 outside. All costs are soft (<= 252), so a
+// zone steers the robot but never closes a passage.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "makeway/common/costmap.hpp"
+#include "makeway/common/object_estimate.hpp"
+
+namespace makeway::costmap {
+
+struct ChairZoneParams {
+    double forward_back_m = 0.6;  ///< reach beyond the chair along its axis, both ways
+    double side_m = 0.15;         ///< reach beyond the chair sideways
+    double peak_cost = 220;       ///< on the chair
+    double edge_cost = 40;        ///< at the zone boundary
+};
+
+struct TableZoneParams {
+    double sides_m = 0.75;            ///< padding on the sitting (long) sides
+    double ends_m = 0.15;             ///< padding at the ends
+    double square_tolerance_m = 0.15; ///< |length - width| below this: padded on all sides
+    double peak_cost = 200;
+    double edge_cost = 30;
+};
+
+struct AffordanceParams {
+    ChairZoneParams chair;
+    TableZoneParams table;
+    double min_existence = 0.5;  ///< objects less likely than this get no zone
+    std::vector<std::string> validate() const;
+};
+
+/// Zone coordinate of p for the object: 0 on the footprint, 1 on the boundary, > 1 outside.
+double zone_coordinate(const ObjectEstimate& object, const AffordanceParams& params, const Eigen::Vector2d& p_m);
+
+/// Whether p lies inside the object's zone (u <= 1): the risk-zone definition.
+inline bool in_affordance_zone(const ObjectEstimate& object, const AffordanceParams& params,
+                               const Eigen::Vector2d& p_m) {
+    return zone_coordinate(object, params, p_m) <= 1.0;
+}
+
+/// The soft cost at p (0 outside the zone).
+std::uint8_t zone_cost(const ObjectEstimate& object, const AffordanceParams& params, const Eigen::Vector2d& p_m);
+
+/// Axis-aligned world bounds of the zone [m].
+void zone_bounds(const ObjectEstimate& object, const AffordanceParams& params, Eigen::Vector2d& min_m,
+                 Eigen::Vector2d& max_m);
+
+}  // namespace makeway::costmap

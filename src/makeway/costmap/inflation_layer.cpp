@@ -1,0 +1,110 @@
+#include "makeway/costmap/inflation_layer.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace makeway::costmap {
+namespace {
+
+constexpr double kFar = 1e10;  // beyond any squared distance in cells, small enough to stay exact
+
+// 1D squared distance transform of f (Felzenszwalb & Huttenlocher 2012, lower envelope of parabolas).
+void dt1d(const std::vector<double>& f, std::vector<double>& d, std::vector<int>& v, std::vector<double>& z) {
+    const int n = static_cast<int>(f.size());
+    auto intersect = [&](int q, int p) { return ((f[q] + q * q) - (f[p] + p * p)) / (2.0 * q - 2.0 * p); };
+    int k = 0;
+    v[0] = 0;
+    z[0] = -std::numeric_limits<double>::infinity();
+    z[1] = std::numeric_limits<double>::infinity();
+    for (int q = 1; q < n; ++q) {
+        double s = intersect(q, v[k]);
+        while (s <= z[k]) s = intersect(q, v[--k]);  // z[0] = -inf stops the loop
+        ++k;
+        v[k] = q;
+        z[k] = s;
+        z[k + 1] = std::numeric_limits<double>::infinity();
+    }
+    k = 0;
+    for (int q = 0; q < n; ++q) {
+        while (z[k + 1] < q) ++k;
+        d[q] = (q - v[k]) * (q - v[k]) + f[v[k]];
+    }
+}
+
+}  // namespace
+
+std::vector<std::string> InflationParams::validate() const {
+    std::vector<std::string> out;
+    if (!(inscribed_radius_m > 0.0 && inscribed_radius_m < 5.0)) out.push_back("inscribed_radius_m must be in (0, 5)");
+    if (!(inflation_radius_m >= inscribed_radius_m && inflation_radius_m < 10.0)) {
+        out.push_back("inflation_radius_m must be in [inscribed_radius_m, 10)");
+    }
+    if (!(cost_scaling > 0.0 && cost_scaling < 100.0)) out.push_back("cost_scaling must be in (0, 100)");
+    return out;
+}
+
+std::uint8_t inflation_cost(double d, const InflationParams& p) {
+    if (d <= 0.0) return cost::kLethal;
+    if (d <= p.inscribed_radius_m) return cost::kInscribed;
+    if (d > p.inflation_radius_m) return cost::kFree;
+    return static_cast<std::uint8_t>(
+        std::max(1.0, std::floor(cost::kMaxSoft * std::exp(-p.cost_scaling * (d - p.inscribed_radius_m)))));
+}
+
+std::vector<double> squared_distance_to_lethal(const Costmap& grid, const GridWindow& src, const GridWindow& win) {
+    const int w = src.x1 - src.x0, h = src.y1 - src.y0;
+    std::vector<double> g(static_cast<std::size_t>(w) * h);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const std::uint8_t c = grid.at(src.x0 + x, src.y0 + y);
+            g[static_cast<std::size_t>(y) * w + x] = (c == cost::kLethal) ? 0.0 : kFar;
+        }
+    }
+    const int n = std::max(w, h);
+    std::vector<double> f(n), d(n), z(n + 1);
+    std::vector<int> v(n);
+    for (int x = 0; x < w; ++x) {  // columns
+        f.resize(h), d.resize(h);
+        for (int y = 0; y < h; ++y) f[y] = g[static_cast<std::size_t>(y) * w + x];
+        dt1d(f, d, v, z);
+        for (int y = 0; y < h; ++y) g[static_cast<std::size_t>(y) * w + x] = d[y];
+    }
+    for (int y = 0; y < h; ++y) {  // rows
+        f.resize(w), d.resize(w);
+        for (int x = 0; x < w; ++x) f[x] = g[static_cast<std::size_t>(y) * w + x];
+        dt1d(f, d, v, z);
+        for (int x = 0; x < w; ++x) g[static_cast<std::size_t>(y) * w + x] = d[x];
+    }
+    std::vector<double> out(static_cast<std::size_t>(win.x1 - win.x0) * (win.y1 - win.y0));
+    for (int y = win.y0; y < win.y1; ++y) {
+        for (int x = win.x0; x < win.x1; ++x) {
+            out[static_cast<std::size_t>(y - win.y0) * (win.x1 - win.x0) + (x - win.x0)] =
+                g[static_cast<std::size_t>(y - src.y0) * w + (x - src.x0)];
+        }
+    }
+    return out;
+}
+
+void InflationLayer::update_bounds(const Costmap& master, const LayerInput&, GridWindow& window) {
+    // A lethal cell that changed affects cells up to the inflation radius away.
+    const int r = static_cast<int>(std::ceil(params_.inflation_radius_m / master.resolution_m));
+    window = window.grown(r).clipped(master.width, master.height);
+}
+
+void InflationLayer::update_costs(Costmap& master, const GridWindow& window) {
+    if (window.empty()) return;
+    const int r = static_cast<int>(std::ceil(params_.inflation_radius_m / master.resolution_m));
+    const GridWindow source = window.grown(r).clipped(master.width, master.height);
+    const std::vector<double> d2 = squared_distance_to_lethal(master, source, window);
+    const int ww = window.x1 - window.x0;
+    for (int y = window.y0; y < window.y1; ++y) {
+        for (int x = window.x0; x < window.x1; ++x) {
+            const double d = std::sqrt(d2[static_cast<std::size_t>(y - window.y0) * ww + (x - window.x0)]) * master.resolution_m;
+            const std::uint8_t c = inflation_cost(d, params_);
+            std::uint8_t& m = master.at(x, y);
+            if (c > m || (m == cost::kUnknown && c != cost::kFree)) m = c;
+        }
+    }
+}
+
+}  // namespace makeway::costmap

@@ -1,0 +1,104 @@
+#include "makeway/planning/astar.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+namespace makeway::planning {
+
+std::vector<std::string> AStarParams::validate() const {
+    std::vector<std::string> out;
+    if (!(cost_weight >= 0.0 && cost_weight <= 100.0)) out.push_back("cost_weight must be in [0, 100]");
+    if (blocked_cost == 0) out.push_back("blocked_cost must be > 0");
+    return out;
+}
+
+std::string_view to_string(PlanStatus s) {
+    switch (s) {
+        case PlanStatus::kOk: return "ok";
+        case PlanStatus::kStartBlocked: return "start_blocked";
+        case PlanStatus::kGoalBlocked: return "goal_blocked";
+        case PlanStatus::kNoPath: return "no_path";
+        case PlanStatus::kOutsideMap: return "outside_map";
+    }
+    return "unknown";
+}
+
+PlanResult plan_astar(const Costmap& map, const Eigen::Vector2d& start_m, const Eigen::Vector2d& goal_m,
+                      const AStarParams& params) {
+    PlanResult r;
+    const Eigen::Vector2i s = map.cell_of(start_m), g = map.cell_of(goal_m);
+    if (!map.inside(s.x(), s.y()) || !map.inside(g.x(), g.y())) {
+        r.status = PlanStatus::kOutsideMap;
+        return r;
+    }
+    auto passable = [&](int x, int y) {
+        const std::uint8_t c = map.at(x, y);
+        if (c == cost::kUnknown) return params.allow_unknown;
+        return c < params.blocked_cost;
+    };
+    if (!passable(s.x(), s.y())) {
+        r.status = PlanStatus::kStartBlocked;
+        return r;
+    }
+    if (!passable(g.x(), g.y())) {
+        r.status = PlanStatus::kGoalBlocked;
+        return r;
+    }
+    const int w = map.width;
+    const std::size_t n = static_cast<std::size_t>(w) * map.height;
+    std::vector<double> best(n, std::numeric_limits<double>::infinity());
+    std::vector<int> parent(n, -1);
+    std::vector<std::uint8_t> closed(n, 0);
+    const double res = map.resolution_m;
+    auto heuristic = [&](int idx) {  // octile distance [m]
+        const double dx = std::abs(idx % w - g.x()), dy = std::abs(idx / w - g.y());
+        return res * (std::max(dx, dy) + (std::sqrt(2.0) - 1.0) * std::min(dx, dy));
+    };
+    using Entry = std::pair<double, int>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+    const int start = s.y() * w + s.x(), goal = g.y() * w + g.x();
+    best[start] = 0.0;
+    open.emplace(heuristic(start), start);
+    while (!open.empty()) {
+        const int idx = open.top().second;
+        open.pop();
+        if (closed[idx]) continue;
+        closed[idx] = 1;
+        ++r.expansions;
+        if (idx == goal) break;
+        const int x = idx % w, y = idx / w;
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                const int nx = x + dx, ny = y + dy;
+                if ((!dx && !dy) || !map.inside(nx, ny) || !passable(nx, ny)) continue;
+                const int nidx = ny * w + nx;
+                if (closed[nidx]) continue;
+                const double step = res * ((dx && dy) ? std::sqrt(2.0) : 1.0);
+                const std::uint8_t c = map.at(nx, ny);
+                const double soft = c == cost::kUnknown ? cost::kMaxSoft : c;
+                const double cand = best[idx] + step * (1.0 + params.cost_weight * soft / cost::kMaxSoft);
+                if (cand < best[nidx]) {
+                    best[nidx] = cand;
+                    parent[nidx] = idx;
+                    open.emplace(cand + heuristic(nidx), nidx);
+                }
+            }
+        }
+    }
+    if (!closed[goal]) {
+        r.status = PlanStatus::kNoPath;
+        return r;
+    }
+    for (int idx = goal; idx >= 0; idx = parent[idx]) r.path_m.push_back(map.centre_of(idx % w, idx / w));
+    std::reverse(r.path_m.begin(), r.path_m.end());
+    r.path_m.front() = start_m;
+    r.path_m.back() = goal_m;
+    for (std::size_t i = 1; i < r.path_m.size(); ++i) r.length_m += (r.path_m[i] - r.path_m[i - 1]).norm();
+    r.cost = best[goal];
+    r.status = PlanStatus::kOk;
+    return r;
+}
+
+}  // namespace makeway::planning

@@ -1,0 +1,34 @@
+#pragma once
+// Global planning: A* on the costmap, 8-connected. A step costs its length times
+// (1 + cost_weight * cost / 252); cells at or above `blocked_cost` (inscribed, lethal) and unknown
+// cells (unless allowed) cannot be entered. The octile heuristic is admissible for this cost.
+#include <string>
+#include <vector>
+
+#include "makeway/common/costmap.hpp"
+
+namespace makeway::planning {
+
+struct AStarParams {
+    double cost_weight = 3.0;
+    std::uint8_t blocked_cost = cost::kInscribed;
+    bool allow_unknown = false;
+    std::vector<std::string> validate() const;
+};
+
+enum class PlanStatus { kOk, kStartBlocked, kGoalBlocked, kNoPath, kOutsideMap };
+
+struct PlanResult {
+    PlanStatus status = PlanStatus::kNoPath;
+    std::vector<Eigen::Vector2d> path_m;  ///< cell centres from start to goal (ends replaced by the exact points)
+    double cost = 0.0;                    ///< the objective, in metres-equivalent
+    double length_m = 0.0;
+    std::size_t expansions = 0;
+};
+
+std::string_view to_string(PlanStatus status);
+
+PlanResult plan_astar(const Costmap& costmap, const Eigen::Vector2d& start_m, const Eigen::Vector2d& goal_m,
+                      const AStarParams& params = {});
+
+}  // namespace makeway::planning

@@ -1,0 +1,59 @@
+#pragma once
+// Local planning: the Dynamic Window Approach (Fox, Burgard, Thrun 1997). Velocities reachable
+// within one control period (the dynamic window) are sampled; each is rolled out for a horizon
+// with the robot's rectangular footprint; velocities whose rollout collides, or that could not
+// stop before the first collision, are inadmissible; the rest are scored by path alignment, goal
+// heading, clearance (costmap cost) and speed, each normalised over the samples.
+#include <string>
+#include <vector>
+
+#include "makeway/common/costmap.hpp"
+#include "makeway/common/transforms.hpp"
+#include "makeway/common/velocity_command.hpp"
+
+namespace makeway::planning {
+
+struct DwaParams {
+    double max_v_mps = 0.75;
+    double min_v_mps = 0.0;
+    double max_w_radps = 2.0;
+    double acc_v_mps2 = 1.0;
+    double acc_w_radps2 = 3.0;
+    double control_dt_s = 0.1;
+    double horizon_s = 1.6;
+    double rollout_dt_s = 0.1;
+    int v_samples = 7;
+    int w_samples = 15;
+    double footprint_length_m = 0.508;
+    double footprint_width_m = 0.430;
+    double lookahead_m = 1.2;  ///< carrot distance along the global path
+    double w_path = 1.0;
+    double w_heading = 0.6;
+    double w_clearance = 0.5;
+    double w_speed = 0.4;
+    std::vector<std::string> validate() const;
+};
+
+struct DwaState {
+    Pose2 pose;
+    double v_mps = 0.0;
+    double w_radps = 0.0;
+};
+
+struct DwaResult {
+    bool found = false;           ///< false: every sampled velocity collides (recovery needed)
+    VelocityCommand command;
+    int admissible = 0;
+    int samples = 0;
+    std::vector<Pose2> best_rollout;
+};
+
+/// Whether the footprint at `pose` touches a lethal cell (cells outside the map count as lethal).
+bool footprint_collides(const Costmap& costmap, const Pose2& pose, const DwaParams& params);
+
+/// `path_m` is the global path (any length >= 1); the carrot is taken along it from the point
+/// nearest the robot.
+DwaResult dwa_step(const Costmap& costmap, const DwaState& state, const std::vector<Eigen::Vector2d>& path_m,
+                   const DwaParams& params);
+
+}  // namespace makeway::planning

@@ -1,0 +1,104 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "makeway/common/random.hpp"
+#include "makeway/costmap/inflation_layer.hpp"
+#include "makeway/planning/astar.hpp"
+#include "makeway/planning/dwa.hpp"
+
+namespace makeway::planning {
+namespace {
+
+TEST(AStar, StraightLineIsOptimal) {
+    const Costmap m({0, 0}, 1.0, 10, 5);
+    const PlanResult r = plan_astar(m, {0.5, 2.5}, {9.5, 2.5});
+    ASSERT_EQ(r.status, PlanStatus::kOk);
+    EXPECT_DOUBLE_EQ(r.cost, 9.0);
+    EXPECT_EQ(r.path_m.size(), 10u);
+}
+
+TEST(AStar, DetoursAroundAWallOptimally) {
+    Costmap m({0, 0}, 1.0, 10, 6);
+    for (int y = 0; y < 5; ++y) m.at(5, y) = cost::kLethal;  // gap at y = 5
+    const PlanResult r = plan_astar(m, {0.5, 0.5}, {9.5, 0.5});
+    ASSERT_EQ(r.status, PlanStatus::kOk);
+    // 8-connected optimum: 4 diagonal steps up to (4,4), a diagonal to (5,5), one down to (6,4)... = 
+    // from (0,0) to (5,5): 5 diagonals; from (5,5) to (9,0): 4 diagonals + 1 straight.
+    EXPECT_NEAR(r.cost, 9 * std::sqrt(2.0) + 1.0, 1e-9);
+    m.at(5, 5) = cost::kLethal;
+    EXPECT_EQ(plan_astar(m, {0.5, 0.5}, {9.5, 0.5}).status, PlanStatus::kNoPath);
+    EXPECT_EQ(plan_astar(m, {5.5, 0.5}, {9.5, 0.5}).status, PlanStatus::kStartBlocked);
+    EXPECT_EQ(plan_astar(m, {0.5, 0.5}, {5.5, 2.5}).status, PlanStatus::kGoalBlocked);
+    EXPECT_EQ(plan_astar(m, {0.5, 0.5}, {50, 0.5}).status, PlanStatus::kOutsideMap);
+}
+
+TEST(AStar, RespectsSoftCosts) {
+    // A soft band across the direct route: cheap to cross with weight 0, avoided with a high weight.
+    Costmap m({0, 0}, 1.0, 11, 9);
+    for (int y = 0; y < 4; ++y) m.at(5, y) = 200;
+    const PlanResult cross = plan_astar(m, {0.5, 0.5}, {10.5, 0.5}, {.cost_weight = 0.0});
+    EXPECT_NEAR(cross.cost, 10.0, 1e-9);
+    const PlanResult around = plan_astar(m, {0.5, 0.5}, {10.5, 0.5}, {.cost_weight = 10.0});
+    ASSERT_EQ(around.status, PlanStatus::kOk);
+    bool crossed_band = false;
+    for (const auto& p : around.path_m) crossed_band |= (m.cell_of(p).x() == 5 && m.cell_of(p).y() < 4);
+    EXPECT_FALSE(crossed_band);
+    // Crossing costs 1 + 10 * 200/252 = 8.9 extra; going round via row 4 costs 2 (4 sqrt 2 + 1) in all.
+    EXPECT_NEAR(around.cost, 8 * std::sqrt(2.0) + 2.0, 1e-9);
+}
+
+TEST(Dwa, NeverSelectsAVelocityThatCollidesWithinItsHorizon) {
+    Rng rng = make_rng(21);
+    const DwaParams p;
+    int checked = 0;
+    for (int trial = 0; trial < 60; ++trial) {
+        Costmap m({0, 0}, 0.05, 80, 80);
+        for (int k = 0; k < 8; ++k) {  // random obstacles
+            const int cx = static_cast<int>(uniform_int(rng, 0, 79)), cy = static_cast<int>(uniform_int(rng, 0, 79));
+            for (int dy = -2; dy <= 2; ++dy) {
+                for (int dx = -2; dx <= 2; ++dx) {
+                    if (m.inside(cx + dx, cy + dy)) m.at(cx + dx, cy + dy) = cost::kLethal;
+                }
+            }
+        }
+        DwaState st;
+        st.pose = {uniform(rng, 0.8, 3.2), uniform(rng, 0.8, 3.2), uniform(rng, -3.1, 3.1)};
+        st.v_mps = uniform(rng, 0.0, 0.75);
+        if (footprint_collides(m, st.pose, p)) continue;
+        const std::vector<Eigen::Vector2d> path{{st.pose.x_m, st.pose.y_m}, {uniform(rng, 0.5, 3.5), uniform(rng, 0.5, 3.5)}};
+        const DwaResult r = dwa_step(m, st, path, p);
+        if (!r.found) continue;
+        ++checked;
+        // Roll the chosen command out independently and check every pose.
+        Pose2 pose = st.pose;
+        const double v = r.command.v_mps, w = r.command.w_radps;
+        for (int k = 0; k < 16; ++k) {
+            const double dt = 0.1;
+            if (std::abs(w) < 1e-9) {
+                pose.x_m += v * dt * std::cos(pose.yaw_rad);
+                pose.y_m += v * dt * std::sin(pose.yaw_rad);
+            } else {
+                pose.x_m += v / w * (std::sin(pose.yaw_rad + w * dt) - std::sin(pose.yaw_rad));
+                pose.y_m -= v / w * (std::cos(pose.yaw_rad + w * dt) - std::cos(pose.yaw_rad));
+            }
+            pose.yaw_rad += w * dt;
+            ASSERT_FALSE(footprint_collides(m, pose, p)) << "trial " << trial << " step " << k;
+        }
+    }
+    EXPECT_GT(checked, 20);
+}
+
+TEST(Dwa, HeadsForTheCarrotInFreeSpace) {
+    const Costmap m({0, 0}, 0.05, 100, 100);
+    DwaState st;
+    st.pose = {1.0, 2.5, 0.0};
+    st.v_mps = 0.5;
+    const DwaResult r = dwa_step(m, st, {{1.0, 2.5}, {4.0, 2.5}}, DwaParams{});
+    ASSERT_TRUE(r.found);
+    EXPECT_NEAR(r.command.v_mps, 0.6, 1e-9);  // accelerating within the window
+    EXPECT_NEAR(r.command.w_radps, 0.0, 0.25);
+}
+
+}  // namespace
+}  // namespace makeway::planning
