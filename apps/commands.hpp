@@ -73,3 +73,25 @@ struct BenchSimOptions {
 int run_bench_sim(const BenchSimOptions& options);
 
 }  // namespace makeway::apps
+
+namespace makeway::apps {
+
+struct NavigateOptions {
+    std::string scene;
+    std::string method = "gt-perc";
+    std::string out_dir;
+    std::uint64_t seed = 0;
+    double time_limit_s = 180.0;
+};
+int run_navigate(const NavigateOptions& options);
+
+struct BenchNavOptions {
+    int scenes = 25;
+    std::uint64_t seed = 0;
+    std::string out_dir = "out/bench_nav";
+    int threads = 2;
+    double time_limit_s = 180.0;
+};
+int run_bench_nav(const BenchNavOptions& options);
+
+}  // namespace makeway::apps

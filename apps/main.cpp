@@ -96,9 +96,36 @@ void add_simulate(CLI::App& app, SimulateOptions& o) {
     sub->add_option("--threads", o.threads, "Ray-casting threads")->check(CLI::Range(1, 256))->capture_default_str();
 }
 
-void add_bench(CLI::App& app, BenchSimOptions& o) {
+void add_navigate(CLI::App& app, NavigateOptions& o) {
+    auto* sub = app.add_subcommand("navigate", "Drive the simulated Jackal start -> waypoint -> goal with the "
+                                               "layered costmap, A* and DWA at 10 Hz; writes run.json and route.png");
+    sub->add_option("--scene", o.scene, "Scene file (.yaml)")->required();
+    sub->add_option("--method", o.method, "con (no semantics, inflation 3x robot radius), oppo (no semantics, "
+                                          "inflation = robot radius), gt-perc (affordance zones from ground truth)")
+        ->check(CLI::IsMember({"con", "oppo", "gt-perc"}))
+        ->capture_default_str();
+    sub->add_option("--out", o.out_dir, "Output folder")->required();
+    sub->add_option("--seed", o.seed, "Sensor-noise seed")->capture_default_str();
+    sub->add_option("--time-limit", o.time_limit_s, "Seconds before the run counts as failed [s]")
+        ->check(CLI::Range(1.0, 3600.0))
+        ->capture_default_str();
+}
+
+void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o) {
     auto* bench = app.add_subcommand("bench", "Benchmarks that print JSON");
     bench->require_subcommand(1);
+    auto* nav = bench->add_subcommand("nav", "The navigation benchmark (the paper's Table II): every method on "
+                                             "generated scenes of varied density; writes results.json, table.md "
+                                             "and one PNG per scene");
+    nav->add_option("--scenes", nav_o.scenes, "Number of scenes (density cycles sparse, medium, dense)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    nav->add_option("--seed", nav_o.seed, "Seed of the first scene")->capture_default_str();
+    nav->add_option("--out", nav_o.out_dir, "Output folder")->capture_default_str();
+    nav->add_option("--threads", nav_o.threads, "Runs in parallel")->check(CLI::Range(1, 256))->capture_default_str();
+    nav->add_option("--time-limit", nav_o.time_limit_s, "Seconds per run before it counts as failed [s]")
+        ->check(CLI::Range(1.0, 3600.0))
+        ->capture_default_str();
     auto* sim = bench->add_subcommand("sim", "LiDAR simulation speed: full VLP-32C sweeps (57,600 rays) in a "
                                              "20 x 20 m room with 40 objects, on 1 and 2 threads");
     sim->add_option("--seed", o.seed, "Scene seed")->capture_default_str();
@@ -122,13 +149,16 @@ int main(int argc, char** argv) {
     SceneOptions scene;
     SimulateOptions simulate;
     BenchSimOptions bench_sim;
+    NavigateOptions navigate;
+    BenchNavOptions bench_nav;
     add_info(app, info);
     add_convert(app, convert);
     add_demo(app, demo);
     add_cad(app, cad);
     add_scene(app, scene);
     add_simulate(app, simulate);
-    add_bench(app, bench_sim);
+    add_navigate(app, navigate);
+    add_bench(app, bench_sim, bench_nav);
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
         for (const CLI::App* sub : app.get_subcommands({})) known |= sub->get_name() == argv[1];
@@ -156,7 +186,12 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("cad")) return run_cad(cad);
         if (app.got_subcommand("scene")) return run_scene(scene);
         if (app.got_subcommand("simulate")) return run_simulate(simulate);
-        if (app.got_subcommand("bench")) return run_bench_sim(bench_sim);
+        if (app.got_subcommand("navigate")) return run_navigate(navigate);
+        if (app.got_subcommand("bench")) {
+            const CLI::App* bench = app.get_subcommand("bench");
+            if (bench->got_subcommand("nav")) return run_bench_nav(bench_nav);
+            return run_bench_sim(bench_sim);
+        }
     } catch (const makeway::io::FileError& e) {
         print_error(e.what());
         return kExitBadInput;

@@ -4,6 +4,8 @@ find_package(Threads REQUIRED)
 find_package(yaml-cpp REQUIRED)
 find_package(nlohmann_json 3.10 REQUIRED)
 find_package(assimp REQUIRED)
+find_package(embree 3 REQUIRED)
+find_package(TBB REQUIRED)
 
 # liblzf (PCD binary_compressed) ships no CMake config.
 find_path(LZF_INCLUDE_DIR lzf.h PATH_SUFFIXES liblzf REQUIRED)

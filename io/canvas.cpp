@@ -71,6 +71,14 @@ void Canvas::stroke_polyline(const std::vector<Eigen::Vector2d>& pts, const Rgb&
     cairo_set_dash(cr, dash, 0, 0.0);
 }
 
+void Canvas::cell(const Eigen::Vector2d& corner, double size, const Rgb& c) {
+    cairo_t* cr = impl_->cr;
+    const double x = (corner.x() - origin_m_.x()) * ppm_, y = height_ - (corner.y() + size - origin_m_.y()) * ppm_;
+    cairo_rectangle(cr, x, y, size * ppm_ + 0.5, size * ppm_ + 0.5);
+    cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+    cairo_fill(cr);
+}
+
 void Canvas::fill_circle(const Eigen::Vector2d& centre, double radius_px, const Rgb& c) {
     cairo_t* cr = impl_->cr;
     cairo_new_sub_path(cr);

@@ -29,6 +29,17 @@ public:
     void text(const Eigen::Vector2d& p_m, const std::string& s, double size_px, const Rgb& colour);
     /// Text at a pixel position (titles, legends).
     void text_px(double x_px, double y_px, const std::string& s, double size_px, const Rgb& colour);
+    /// Paints a grid (origin = corner of cell (0, 0), row-major); colour(i) returns nullopt to skip.
+    template <typename ColourFn>
+    void grid(const Eigen::Vector2d& origin_m, double resolution_m, int width, int height, ColourFn colour) {
+        for (int y = 0; y < height; ++y) {
+            for (int x = 0; x < width; ++x) {
+                if (const auto c = colour(x, y)) cell(origin_m + resolution_m * Eigen::Vector2d(x, y), resolution_m, *c);
+            }
+        }
+    }
+    /// One filled square cell whose lower-left corner is corner_m.
+    void cell(const Eigen::Vector2d& corner_m, double size_m, const Rgb& colour);
     /// A 1 m scale bar in the bottom-left corner.
     void scale_bar();
 

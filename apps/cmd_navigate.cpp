@@ -1,0 +1,114 @@
+// makeway navigate / makeway bench nav: closed-loop navigation on the simulator, one run or the
+// paper's benchmark (every method on generated scenes of varied density).
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <fstream>
+#include <iostream>
+#include <mutex>
+
+#include "apps/commands.hpp"
+#include "apps/nav_report.hpp"
+#include "io/error.hpp"
+#include "io/file_util.hpp"
+#include "io/nav_png.hpp"
+#include "io/progress.hpp"
+#include "io/scene_io.hpp"
+#include "makeway/sim/scene_generator.hpp"
+
+namespace makeway::apps {
+namespace {
+
+eval::NavRunResult run_method(const sim::Scene& scene, const std::string& method_name, const eval::NavParams& params) {
+    const eval::NavMethod method = *eval::nav_method(method_name, params.robot);
+    std::vector<sim::ObjectModel> models;
+    for (const auto& o : scene.objects) models.push_back(sim::model_of(o));
+    eval::NoObjects none;
+    eval::GroundTruthObjects truth(scene, models);
+    eval::ObjectSource& source = method.affordance ? static_cast<eval::ObjectSource&>(truth) : none;
+    return eval::run_navigation(scene, method, source, params);
+}
+
+}  // namespace
+
+int run_navigate(const NavigateOptions& options) {
+    const sim::Scene scene = io::read_scene(options.scene);
+    eval::NavParams params;
+    params.seed = options.seed;
+    params.time_limit_s = options.time_limit_s;
+    const eval::NavRunResult r = run_method(scene, options.method, params);
+    const std::filesystem::path out = options.out_dir;
+    io::Json j = run_to_json(r, true);
+    j["scene"] = options.scene;
+    io::write_json(out / "run.json", j);
+    io::write_nav_png(out / "route.png", scene, r.final_costmap, {{options.method, r.trajectory}}, r.last_plan,
+                      scene.name + " / " + options.method + ": " + (r.success ? "success" : "failed (" + r.failure + ")") +
+                          ", " + std::to_string(r.time_s).substr(0, 5) + " s, risk " +
+                          std::to_string(r.risk_time_s).substr(0, 4) + " s");
+    std::cout << j.dump() << "\n";
+    return 0;
+}
+
+int run_bench_nav(const BenchNavOptions& options) {
+    const std::filesystem::path out = options.out_dir;
+    const std::vector<std::string>& methods = eval::nav_method_names();
+    const sim::Density densities[] = {sim::Density::kSparse, sim::Density::kMedium, sim::Density::kDense};
+    std::vector<sim::Scene> scenes;
+    for (int i = 0; i < options.scenes; ++i) {
+        sim::SceneGenParams g;
+        g.seed = options.seed + static_cast<std::uint64_t>(i);
+        g.density = densities[i % 3];
+        scenes.push_back(sim::generate_scene(g));
+        io::write_scene(out / "scenes" / (scenes.back().name + ".yaml"), scenes.back());
+    }
+    std::vector<std::vector<eval::NavRunResult>> results(scenes.size());
+    io::ProgressBar bar("bench nav", scenes.size() * methods.size());
+    std::mutex mutex;
+    std::size_t done = 0;
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
+    tbb::parallel_for(std::size_t{0}, scenes.size() * methods.size(), [&](std::size_t job) {
+        const std::size_t s = job / methods.size(), m = job % methods.size();
+        eval::NavParams params;
+        params.seed = options.seed + s;
+        params.time_limit_s = options.time_limit_s;
+        eval::NavRunResult r = run_method(scenes[s], methods[m], params);
+        std::lock_guard<std::mutex> lock(mutex);
+        results[s].resize(methods.size());
+        results[s][m] = std::move(r);
+        bar.update(++done, scenes[s].name + " " + methods[m]);
+    });
+    bar.finish();
+
+    std::vector<eval::NavRunResult> all;
+    io::Json runs = io::Json::array();
+    for (std::size_t s = 0; s < scenes.size(); ++s) {
+        std::vector<io::DrivenPath> paths;
+        for (const auto& r : results[s]) {
+            io::Json j = run_to_json(r, false);
+            j["scene"] = scenes[s].name;
+            j["density"] = scenes[s].density;
+            runs.push_back(j);
+            paths.push_back({r.method + (r.success ? "" : " (failed: " + r.failure + ")") + ": risk " +
+                                 std::to_string(r.risk_time_s).substr(0, 4) + " s, time " + std::to_string(r.time_s).substr(0, 5) + " s",
+                             r.trajectory});
+            all.push_back(r);
+        }
+        io::write_nav_png(out / "routes" / (scenes[s].name + ".png"), scenes[s], Costmap{}, paths, {},
+                          scenes[s].name + ": every method");
+    }
+    const io::Json agg = aggregate_runs(all, methods);
+    io::write_json(out / "results.json", {{"scenes", options.scenes}, {"seed", options.seed}, {"runs", runs}, {"aggregate", agg}});
+    const std::string table = "# Navigation benchmark: " + std::to_string(options.scenes) + " scenes, seed " +
+                              std::to_string(options.seed) + "\n\n" + table_markdown(agg, methods, options.scenes) +
+                              "\nSums and means over successful runs (success = goal reached in " +
+                              std::to_string(static_cast<int>(options.time_limit_s)) + " s without a collision).\n";
+    io::write_file_atomic(out / "table.md", table);
+    std::cout << table;
+    for (const std::string& m : methods) {
+        std::cout << m << ": control cycle " << agg[m]["cycle_ms_median"].get<double>() << " ms median, "
+                  << agg[m]["cycle_ms_p99"].get<double>() << " ms p99\n";
+    }
+    return 0;
+}
+
+}  // namespace makeway::apps

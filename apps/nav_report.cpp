@@ -1,0 +1,95 @@
+#include "apps/nav_report.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace makeway::apps {
+
+std::pair<double, double> median_p99(std::vector<double> v) {
+    if (v.empty()) return {0.0, 0.0};
+    std::sort(v.begin(), v.end());
+    const auto at = [&](double q) { return v[std::min(v.size() - 1, static_cast<std::size_t>(q * (v.size() - 1) + 0.5))]; };
+    return {at(0.5), at(0.99)};
+}
+
+io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory) {
+    const auto [median, p99] = median_p99(r.cycle_ms);
+    io::Json j = {{"method", r.method},
+                  {"success", r.success},
+                  {"reached_goal", r.reached_goal},
+                  {"failure", r.failure},
+                  {"total_time_s", r.time_s},
+                  {"distance_m", r.distance_m},
+                  {"risk_time_s", r.risk_time_s},
+                  {"collisions", r.collisions},
+                  {"near_misses", r.near_misses},
+                  {"min_clearance_m", r.min_clearance_m},
+                  {"shortest_m", r.shortest_m},
+                  {"spl", r.spl},
+                  {"replans", r.replans},
+                  {"recoveries", r.recoveries},
+                  {"cycle_ms_median", median},
+                  {"cycle_ms_p99", p99}};
+    if (with_trajectory) {
+        io::Json traj = io::Json::array();
+        for (const Pose2& p : r.trajectory) traj.push_back({p.x_m, p.y_m, p.yaw_rad});
+        j["trajectory_xyyaw"] = traj;
+    }
+    return j;
+}
+
+io::Json aggregate_runs(const std::vector<eval::NavRunResult>& runs, const std::vector<std::string>& methods) {
+    io::Json agg = io::Json::object();
+    for (const std::string& m : methods) {
+        int n = 0, success = 0, collisions = 0, near = 0;
+        double t = 0, risk = 0, dist = 0, spl = 0;
+        std::vector<double> cycles;
+        for (const auto& r : runs) {
+            if (r.method != m) continue;
+            ++n;
+            collisions += r.collisions;
+            near += r.near_misses;
+            spl += r.spl;
+            cycles.insert(cycles.end(), r.cycle_ms.begin(), r.cycle_ms.end());
+            if (!r.success) continue;
+            ++success;
+            t += r.time_s;
+            risk += r.risk_time_s;
+            dist += r.distance_m;
+        }
+        const double s = std::max(success, 1);
+        const auto [median, p99] = median_p99(cycles);
+        agg[m] = {{"runs", n},
+                  {"success", success},
+                  {"total_time_s_sum", t},
+                  {"total_time_s_mean", t / s},
+                  {"risk_time_s_sum", risk},
+                  {"risk_time_s_mean", risk / s},
+                  {"distance_m_sum", dist},
+                  {"distance_m_mean", dist / s},
+                  {"collisions", collisions},
+                  {"near_misses", near},
+                  {"spl_mean", n ? spl / n : 0.0},
+                  {"cycle_ms_median", median},
+                  {"cycle_ms_p99", p99}};
+    }
+    return agg;
+}
+
+std::string table_markdown(const io::Json& agg, const std::vector<std::string>& methods, int scenes) {
+    std::string out = "| method | total time [s] (sum / mean) | risk time [s] (sum / mean) | distance [m] (sum / mean) | success | collisions | near-misses | SPL |\n"
+                      "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    char line[512];
+    for (const std::string& m : methods) {
+        const io::Json& a = agg.at(m);
+        std::snprintf(line, sizeof(line), "| %s | %.1f / %.1f | %.1f / %.2f | %.1f / %.2f | %d/%d | %d | %d | %.2f |\n",
+                      m.c_str(), a["total_time_s_sum"].get<double>(), a["total_time_s_mean"].get<double>(),
+                      a["risk_time_s_sum"].get<double>(), a["risk_time_s_mean"].get<double>(),
+                      a["distance_m_sum"].get<double>(), a["distance_m_mean"].get<double>(), a["success"].get<int>(),
+                      scenes, a["collisions"].get<int>(), a["near_misses"].get<int>(), a["spl_mean"].get<double>());
+        out += line;
+    }
+    return out;
+}
+
+}  // namespace makeway::apps

@@ -1,0 +1,73 @@
+#include "io/nav_png.hpp"
+
+#include <cmath>
+
+#include "io/canvas.hpp"
+#include "io/top_down_png.hpp"
+
+namespace makeway::io {
+namespace {
+
+// A zone's outline: the set u = 1, traced by marching outward along rays from the object centre.
+std::vector<Eigen::Vector2d> zone_outline(const ObjectEstimate& o, const costmap::AffordanceParams& p) {
+    std::vector<Eigen::Vector2d> out;
+    const Eigen::Vector2d c = o.box_world.centre_m.head<2>();
+    for (int k = 0; k < 72; ++k) {
+        const double a = 2.0 * M_PI * k / 72;
+        const Eigen::Vector2d d(std::cos(a), std::sin(a));
+        double r = 0.0;
+        while (r < 6.0 && costmap::in_affordance_zone(o, p, c + (r + 0.01) * d)) r += 0.01;
+        out.push_back(c + r * d);
+    }
+    return out;
+}
+
+const Rgb kPathColours[] = {{0.0, 0.0, 0.0}, {0.1, 0.5, 0.1}, {0.55, 0.1, 0.75}, {0.0, 0.45, 0.7}};
+
+}  // namespace
+
+void write_nav_png(const std::filesystem::path& path, const sim::Scene& scene, const Costmap& costmap,
+                   const std::vector<DrivenPath>& paths, const std::vector<Eigen::Vector2d>& plan,
+                   const std::string& title) {
+    Canvas canvas(scene.floor_min_m, scene.floor_max_m + Eigen::Vector2d(0.0, 1.0), 40.0, 0.3);
+    canvas.grid(costmap.origin_m, costmap.resolution_m, costmap.width, costmap.height,
+                [&](int x, int y) -> std::optional<Rgb> {
+                    const std::uint8_t c = costmap.at(x, y);
+                    if (c == cost::kFree) return std::nullopt;
+                    if (c == cost::kLethal) return Rgb{0.1, 0.1, 0.1};
+                    if (c == cost::kInscribed) return Rgb{0.55, 0.55, 0.55};
+                    if (c == cost::kUnknown) return Rgb{0.75, 0.8, 0.9};
+                    const double f = c / 252.0;  // soft: pale yellow to red
+                    return Rgb{1.0, 0.95 - 0.75 * f, 0.7 - 0.7 * f};
+                });
+    std::vector<sim::ObjectModel> models;
+    for (const auto& o : scene.objects) models.push_back(sim::model_of(o));
+    const costmap::AffordanceParams zones;
+    for (const sim::ObjectState& s : sim::object_states_at(scene, models, 0.0)) {
+        ObjectEstimate o;
+        o.cls = s.cls;
+        o.box_world = s.box_world;
+        const Rgb colour = label_colour(to_semantic_label(s.cls));
+        canvas.stroke_polyline(zone_outline(o, zones), colour, 1.0, true, true);
+        draw_box(canvas, s.box_world, colour);
+    }
+    canvas.stroke_polyline(plan, {0.4, 0.4, 0.4}, 1.5, false, true);
+    double legend_y = 36;
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+        const Rgb colour = kPathColours[i % 4];
+        std::vector<Eigen::Vector2d> pts;
+        for (const Pose2& p : paths[i].poses) pts.emplace_back(p.x_m, p.y_m);
+        canvas.stroke_polyline(pts, colour, 2.5);
+        canvas.text_px(10, legend_y, paths[i].label, 12, colour);
+        legend_y += 15;
+    }
+    for (const auto& [pose, colour] : {std::pair{scene.start, Rgb{0.1, 0.6, 0.1}}, std::pair{scene.waypoint, Rgb{0.1, 0.3, 0.9}},
+                                       std::pair{scene.goal, Rgb{0.85, 0.1, 0.1}}}) {
+        canvas.fill_circle({pose.x_m, pose.y_m}, 7.0, colour);
+    }
+    canvas.scale_bar();
+    canvas.text_px(10, 18, title, 14, {0, 0, 0});
+    canvas.save_png(path);
+}
+
+}  // namespace makeway::io
