@@ -101,7 +101,9 @@ int run_bench_nav(const BenchNavOptions& options) {
     const std::string table = "# Navigation benchmark: " + std::to_string(options.scenes) + " scenes, seed " +
                               std::to_string(options.seed) + "\n\n" + table_markdown(agg, methods, options.scenes) +
                               "\nSums and means over successful runs (success = goal reached in " +
-                              std::to_string(static_cast<int>(options.time_limit_s)) + " s without a collision).\n";
+                              std::to_string(static_cast<int>(options.time_limit_s)) +
+                              " s without touching a wall, pillar or piece of furniture; walking people do "
+                              "not avoid the robot, so contacts with them are counted apart).\n";
     io::write_file_atomic(out / "table.md", table);
     std::cout << table;
     for (const std::string& m : methods) {

@@ -22,6 +22,7 @@ io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory) {
                   {"distance_m", r.distance_m},
                   {"risk_time_s", r.risk_time_s},
                   {"collisions", r.collisions},
+                  {"person_contacts", r.person_contacts},
                   {"near_misses", r.near_misses},
                   {"min_clearance_m", r.min_clearance_m},
                   {"shortest_m", r.shortest_m},
@@ -41,13 +42,14 @@ io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory) {
 io::Json aggregate_runs(const std::vector<eval::NavRunResult>& runs, const std::vector<std::string>& methods) {
     io::Json agg = io::Json::object();
     for (const std::string& m : methods) {
-        int n = 0, success = 0, collisions = 0, near = 0;
+        int n = 0, success = 0, collisions = 0, near = 0, people = 0;
         double t = 0, risk = 0, dist = 0, spl = 0;
         std::vector<double> cycles;
         for (const auto& r : runs) {
             if (r.method != m) continue;
             ++n;
             collisions += r.collisions;
+            people += r.person_contacts;
             near += r.near_misses;
             spl += r.spl;
             cycles.insert(cycles.end(), r.cycle_ms.begin(), r.cycle_ms.end());
@@ -68,6 +70,7 @@ io::Json aggregate_runs(const std::vector<eval::NavRunResult>& runs, const std::
                   {"distance_m_sum", dist},
                   {"distance_m_mean", dist / s},
                   {"collisions", collisions},
+                  {"person_contacts", people},
                   {"near_misses", near},
                   {"spl_mean", n ? spl / n : 0.0},
                   {"cycle_ms_median", median},
@@ -77,16 +80,16 @@ io::Json aggregate_runs(const std::vector<eval::NavRunResult>& runs, const std::
 }
 
 std::string table_markdown(const io::Json& agg, const std::vector<std::string>& methods, int scenes) {
-    std::string out = "| method | total time [s] (sum / mean) | risk time [s] (sum / mean) | distance [m] (sum / mean) | success | collisions | near-misses | SPL |\n"
-                      "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    std::string out = "| method | total time [s] (sum / mean) | risk time [s] (sum / mean) | distance [m] (sum / mean) | success | collisions | person contacts | near-misses | SPL |\n"
+                      "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
     char line[512];
     for (const std::string& m : methods) {
         const io::Json& a = agg.at(m);
-        std::snprintf(line, sizeof(line), "| %s | %.1f / %.1f | %.1f / %.2f | %.1f / %.2f | %d/%d | %d | %d | %.2f |\n",
+        std::snprintf(line, sizeof(line), "| %s | %.1f / %.1f | %.1f / %.2f | %.1f / %.2f | %d/%d | %d | %d | %d | %.2f |\n",
                       m.c_str(), a["total_time_s_sum"].get<double>(), a["total_time_s_mean"].get<double>(),
                       a["risk_time_s_sum"].get<double>(), a["risk_time_s_mean"].get<double>(),
                       a["distance_m_sum"].get<double>(), a["distance_m_mean"].get<double>(), a["success"].get<int>(),
-                      scenes, a["collisions"].get<int>(), a["near_misses"].get<int>(), a["spl_mean"].get<double>());
+                      scenes, a["collisions"].get<int>(), a["person_contacts"].get<int>(), a["near_misses"].get<int>(), a["spl_mean"].get<double>());
         out += line;
     }
     return out;

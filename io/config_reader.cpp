@@ -147,7 +147,8 @@ Config parse_config(std::string_view yaml_text) {
     const YAML::Node& const_root = root;
     {
         YamlSection s(const_root["scene"], "scene", problems);
-        std::string density(sim::to_string(cfg.scene.density)), layout = "random";
+        std::string density(sim::to_string(cfg.scene.density));
+        std::string layout = cfg.scene.layout == sim::Layout::kStudySpace ? "study_space" : "random";
         s.read("seed", cfg.scene.seed);
         s.read("density", density);
         s.read("layout", layout);

@@ -58,13 +58,13 @@ private:
 
 /// The `simulation` section: how long and with which seed `makeway demo` records.
 struct SimulationConfig {
-    int frames = 600;        ///< at most this many sweeps (10 per second)
+    int frames = 50;         ///< sweeps recorded by the demo (10 per second)
     std::uint64_t seed = 0;  ///< sensor noise and odometry drift
 };
 
 /// Every section of a makeway configuration file (config/default.yaml documents each key).
 struct Config {
-    sim::SceneGenParams scene;
+    sim::SceneGenParams scene{.layout = sim::Layout::kStudySpace};  ///< the paper's real-world room
     sim::LidarParams lidar;
     sim::RobotParams robot;
     sim::OdometryNoiseParams odometry;

@@ -129,7 +129,7 @@ TEST(Cli, HelpDescribesEveryOption) {
     const auto dir = testing_util::fresh_dir("help");
     const CliRun top = run_makeway("--help", dir);
     EXPECT_EQ(top.exit_code, 0);
-    for (const char* sub : {"info", "convert", "demo", "cad", "scene", "simulate", "bench"}) EXPECT_NE(top.out.find(sub), std::string::npos);
+    for (const char* sub : {"info", "convert", "demo", "cad", "scene", "simulate", "navigate", "bench"}) EXPECT_NE(top.out.find(sub), std::string::npos);
     const CliRun conv = run_makeway("convert --help", dir);
     EXPECT_EQ(conv.exit_code, 0);
     for (const char* opt : {"--pcd-encoding", "--ply-encoding", "--non-finite", "=binary", "=reject"}) {
@@ -139,19 +139,19 @@ TEST(Cli, HelpDescribesEveryOption) {
 
 TEST(Cli, DemoWritesItsOutputs) {
     const auto dir = testing_util::fresh_dir("demo");
-    std::ofstream(dir / "small.yaml") << "scene:\n  density: sparse\n  seed: 3\nlidar:\n  azimuth_step_deg: 1.0\n"
-                                         "simulation:\n  frames: 30\n";
+    std::ofstream(dir / "small.yaml") << "lidar:\n  azimuth_step_deg: 1.0\nsimulation:\n  frames: 20\n";
     const CliRun r = run_makeway("demo --config " + (dir / "small.yaml").string() + " --out " + (dir / "out").string(), dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const io::Json s = io::read_json(dir / "out" / "summary.json");
-    EXPECT_EQ(s["frames"], 30);
-    EXPECT_EQ(s["frames_in_collision"], 0);
+    EXPECT_EQ(s["objects"], 34);  // the study space: 12 tables, 22 chairs
+    EXPECT_EQ(s["recorded_frames"], 20);
     EXPECT_TRUE(s["format_round_trips_exact"].get<bool>());
-    EXPECT_GT(s["first_sweep_points"].get<int>(), 10000);
-    EXPECT_GT(s["distance_m"].get<double>(), 1.0);
-    for (const char* f : {"scene.yaml", "scene.png", "sequence/scene.png", "sequence/poses_gt.txt",
-                          "sequence/odometry.txt", "sequence/clouds/000000.pcd", "sequence/clouds/000020.pcd",
-                          "sequence/objects/000029.json"}) {
+    EXPECT_GT(s["first_sweep_points"].get<int>(), 5000);
+    ASSERT_EQ(s["navigation"].size(), 3u);
+    for (const auto& run : s["navigation"]) EXPECT_TRUE(run["reached_goal"].get<bool>()) << run["method"];
+    for (const char* f : {"scene.yaml", "scene.png", "report.md", "routes/all_methods.png", "routes/con.png",
+                          "routes/oppo.png", "routes/gt-perc.png", "sequence/poses_gt.txt", "sequence/clouds/000010.pcd",
+                          "sequence/objects/000019.json"}) {
         EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
     }
     EXPECT_FALSE(std::filesystem::exists(dir / "out" / "sequence/clouds/000001.pcd"));  // one cloud per second

@@ -42,6 +42,7 @@ TEST(Config, PartialFileKeepsDefaults) {
     const Config c = parse_config("scene:\n  density: dense\nsimulation:\n  frames: 5\n");
     EXPECT_EQ(c.scene.density, sim::Density::kDense);
     EXPECT_EQ(c.simulation.frames, 5);
+    EXPECT_EQ(c.scene.layout, sim::Layout::kStudySpace);
     EXPECT_EQ(c.lidar.rate_hz, Config{}.lidar.rate_hz);
     EXPECT_EQ(parse_config("").simulation.frames, Config{}.simulation.frames);
 }

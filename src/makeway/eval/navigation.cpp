@@ -95,7 +95,7 @@ NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, Ob
     const costmap::AffordanceParams risk_zones;  // the same zones for every method
     const double control_dt = 1.0 / params.lidar.rate_hz;
     const int physics_steps = 10;
-    bool in_collision = false;
+    bool in_collision = false, touching_person = false;
     std::vector<bool> near_chair;
     Eigen::Vector2d progress_anchor(state.pose.x_m, state.pose.y_m);
     double progress_t = 0.0, recovery_until = -1.0;
@@ -151,9 +151,13 @@ NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, Ob
             const Pose2 before = state.pose;
             state = sim::step_diff_drive(state, cmd, dt, params.robot);
             out.distance_m += std::hypot(state.pose.x_m - before.x_m, state.pose.y_m - before.y_m);
-            const bool colliding = checker.collides(state.pose, ts);
+            using Against = sim::CollisionChecker::Against;
+            const bool colliding = checker.collides(state.pose, ts, Against::kStructureAndFurniture);
             out.collisions += colliding && !in_collision;
             in_collision = colliding;
+            const bool person = !scene.walkers.empty() && checker.collides(state.pose, ts, Against::kPeople);
+            out.person_contacts += person && !touching_person;
+            touching_person = person;
             const Eigen::Vector2d c(state.pose.x_m, state.pose.y_m);
             const auto truth = ground_truth_objects(scene, models, ts);
             bool risky = false;

@@ -46,13 +46,14 @@ struct NavParams {
 
 struct NavRunResult {
     std::string method;
-    bool success = false;       ///< goal reached in time without a collision
+    bool success = false;       ///< goal reached in time without colliding with structure or furniture
     bool reached_goal = false;
     std::string failure;        ///< why not, when not
     double time_s = 0.0;        ///< total time to goal (or to the end of the run)
     double distance_m = 0.0;
     double risk_time_s = 0.0;   ///< time with the robot's centre inside a ground-truth affordance zone
-    int collisions = 0;         ///< contacts of the footprint with anything (counted when they start)
+    int collisions = 0;         ///< contacts with walls, pillars or furniture (counted when they start)
+    int person_contacts = 0;    ///< contacts with walking people (who do not avoid the robot)
     int near_misses = 0;        ///< a moving chair within near_miss_m of the robot's body
     double min_clearance_m = 0.0;
     double shortest_m = 0.0;    ///< shortest collision-free route length start -> waypoint -> goal

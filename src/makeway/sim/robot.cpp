@@ -136,17 +136,20 @@ CollisionChecker::CollisionChecker(const Scene& scene, const std::vector<ObjectM
 
 template <typename Fn>
 void CollisionChecker::for_each_point_near(const Eigen::Vector2d& centre, double radius, double t_s,
-                                           Fn&& fn) const {
-    for (const auto& p : static_points_) {
-        if ((p - centre).squaredNorm() <= radius * radius) fn(p);
+                                           Fn&& fn, Against against) const {
+    if (against != Against::kPeople) {
+        for (const auto& p : static_points_) {
+            if ((p - centre).squaredNorm() <= radius * radius) fn(p);
+        }
+        for (std::size_t i = 0; i < object_points_.size(); ++i) {
+            const Pose2 pose = object_pose_at(scene_, i, t_s);
+            const Eigen::Vector2d c(pose.x_m, pose.y_m);
+            if ((c - centre).norm() > radius + object_radius_m_[i]) continue;
+            const Isometry2 T = to_isometry(pose);
+            for (const auto& p : object_points_[i]) fn(T * p);
+        }
     }
-    for (std::size_t i = 0; i < object_points_.size(); ++i) {
-        const Pose2 pose = object_pose_at(scene_, i, t_s);
-        const Eigen::Vector2d c(pose.x_m, pose.y_m);
-        if ((c - centre).norm() > radius + object_radius_m_[i]) continue;
-        const Isometry2 T = to_isometry(pose);
-        for (const auto& p : object_points_[i]) fn(T * p);
-    }
+    if (against == Against::kStructureAndFurniture) return;
     for (const Walker& w : scene_.walkers) {
         const Eigen::Vector2d c = walker_position_at(w, t_s);
         if ((c - centre).norm() > radius + kPersonRadius_m) continue;
@@ -157,7 +160,7 @@ void CollisionChecker::for_each_point_near(const Eigen::Vector2d& centre, double
     }
 }
 
-bool CollisionChecker::collides(const Pose2& pose, double t_s) const {
+bool CollisionChecker::collides(const Pose2& pose, double t_s, Against against) const {
     const Isometry2 T_robot_world = to_isometry(pose).inverse();
     const double hl = 0.5 * robot_.length_m, hw = 0.5 * robot_.width_m;
     bool inside = false;
@@ -165,7 +168,7 @@ bool CollisionChecker::collides(const Pose2& pose, double t_s) const {
                         [&](const Eigen::Vector2d& p_world) {
                             const Eigen::Vector2d p = T_robot_world * p_world;
                             inside |= std::abs(p.x()) <= hl && std::abs(p.y()) <= hw;
-                        });
+                        }, against);
     return inside;
 }
 

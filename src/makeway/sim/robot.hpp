@@ -68,8 +68,10 @@ public:
     CollisionChecker(const Scene& scene, const std::vector<ObjectModel>& models, const RobotParams& robot,
                      double spacing_m = 0.02);
 
-    /// Whether the footprint at `pose` overlaps anything at t_s.
-    bool collides(const Pose2& pose, double t_s) const;
+    /// What a check looks at.
+    enum class Against { kEverything, kStructureAndFurniture, kPeople };
+    /// Whether the footprint at `pose` overlaps anything (of `against`) at t_s.
+    bool collides(const Pose2& pose, double t_s, Against against = Against::kEverything) const;
     /// Distance from the footprint to the nearest obstacle at t_s [m], capped at max_m.
     double clearance_m(const Pose2& pose, double t_s, double max_m = 5.0) const;
     /// Every obstacle point at t_s, floor plane [m] (for rasterising).
@@ -77,7 +79,8 @@ public:
 
 private:
     template <typename Fn>
-    void for_each_point_near(const Eigen::Vector2d& centre, double radius, double t_s, Fn&& fn) const;
+    void for_each_point_near(const Eigen::Vector2d& centre, double radius, double t_s, Fn&& fn,
+                             Against against = Against::kEverything) const;
 
     const Scene& scene_;
     RobotParams robot_;

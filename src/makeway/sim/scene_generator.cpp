@@ -306,6 +306,7 @@ Scene generate_scene(const SceneGenParams& params) {
         s.seed = params.seed;
         s.density = params.layout == Layout::kStudySpace ? "study_space" : std::string(to_string(params.density));
         s.name = s.density + "_" + std::to_string(params.seed);
+        if (params.layout == Layout::kStudySpace && s.objects.size() != 12 + 22) continue;  // seats were blocked
         if (!is_navigable(s, params.robot)) continue;
         if (params.people && params.layout == Layout::kRandom) {
             // Walkers loop between two reachable points, away from the robot's start and goal.

@@ -1,0 +1,84 @@
+#include <gtest/gtest.h>
+
+#include "makeway/common/angles.hpp"
+#include "makeway/eval/navigation.hpp"
+
+namespace makeway::eval {
+namespace {
+
+// A 10 x 5 m room with a table and its chair between start and goal.
+sim::Scene corridor_with_table() {
+    sim::Scene s;
+    s.name = "table_room";
+    s.floor_min_m = {-5.5, -3.0};
+    s.floor_max_m = {5.5, 3.0};
+    const double x = 5.0, y = 2.5;
+    s.walls = {{{-x, -y}, {x, -y}}, {{x, -y}, {x, y}}, {{x, y}, {-x, y}}, {{-x, y}, {-x, -y}}};
+    sim::SceneObject table;
+    table.id = 1;
+    table.cls = ObjectClass::kTable;
+    table.style = "rect_table";
+    table.pose = {0.0, 0.3, 0.0};
+    sim::SceneObject chair;
+    chair.id = 2;
+    chair.cls = ObjectClass::kChair;
+    chair.style = "four_leg_chair";
+    chair.table_id = 1;
+    chair.pose = {0.0, -0.55, kPi / 2};  // facing the table
+    s.objects = {table, chair};
+    s.start = {-4.0, -1.0, 0.0};
+    s.waypoint = {-1.5, -1.6, 0.0};
+    s.goal = {4.0, -1.0, 0.0};
+    return s;
+}
+
+NavParams fast_params() {
+    NavParams p;
+    p.lidar.azimuth_step_deg = 1.0;  // coarse sensor: keeps the test fast
+    p.time_limit_s = 60.0;
+    return p;
+}
+
+TEST(Navigation, EveryMethodReachesTheGoalWithoutCollisions) {
+    const sim::Scene scene = corridor_with_table();
+    std::vector<sim::ObjectModel> models;
+    for (const auto& o : scene.objects) models.push_back(sim::model_of(o));
+    for (const std::string& name : nav_method_names()) {
+        const NavMethod method = *nav_method(name);
+        NoObjects none;
+        GroundTruthObjects truth(scene, models);
+        ObjectSource& source = method.affordance ? static_cast<ObjectSource&>(truth) : none;
+        const NavRunResult r = run_navigation(scene, method, source, fast_params());
+        EXPECT_TRUE(r.success) << name << ": " << r.failure;
+        EXPECT_EQ(r.collisions, 0) << name;
+        EXPECT_GT(r.min_clearance_m, 0.0) << name;
+        EXPECT_GT(r.distance_m, r.shortest_m - fast_params().goal_tolerance_m - 0.05) << name;  // stops within tolerance
+        EXPECT_LT(r.time_s, 40.0) << name;
+        EXPECT_GT(r.spl, 0.5) << name;
+        EXPECT_LE(r.spl, 1.0) << name;
+        EXPECT_FALSE(r.cycle_ms.empty());
+    }
+}
+
+TEST(Navigation, MethodsDifferOnlyInInflationAndObjects) {
+    const sim::RobotParams robot;
+    EXPECT_NEAR(nav_method("con", robot)->inflation_radius_m, 3 * robot.circumscribed_radius_m(), 1e-12);
+    EXPECT_NEAR(nav_method("oppo", robot)->inflation_radius_m, robot.circumscribed_radius_m(), 1e-12);
+    EXPECT_TRUE(nav_method("gt-perc", robot)->affordance);
+    EXPECT_FALSE(nav_method("con", robot)->affordance);
+    EXPECT_FALSE(nav_method("ours").has_value());  // arrives with the perception issue
+}
+
+TEST(Navigation, GroundTruthSourceFollowsPushedChairs) {
+    sim::Scene s = corridor_with_table();
+    s.pushers.push_back({2, 4.0, 0.4, 0.0});
+    std::vector<sim::ObjectModel> models;
+    for (const auto& o : s.objects) models.push_back(sim::model_of(o));
+    const auto at0 = ground_truth_objects(s, models, 0.0);
+    const auto at2 = ground_truth_objects(s, models, 2.0);  // fully pulled out
+    EXPECT_NEAR(at2[1].box_world.centre_m.y() - at0[1].box_world.centre_m.y(), -0.4, 1e-9);
+    EXPECT_EQ(at2[0].box_world.centre_m, at0[0].box_world.centre_m);
+}
+
+}  // namespace
+}  // namespace makeway::eval
