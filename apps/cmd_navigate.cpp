@@ -11,6 +11,7 @@
 #include "apps/nav_report.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
+#include "io/map_server_io.hpp"
 #include "io/nav_png.hpp"
 #include "io/progress.hpp"
 #include "io/scene_io.hpp"
@@ -36,11 +37,13 @@ int run_navigate(const NavigateOptions& options) {
     eval::NavParams params;
     params.seed = options.seed;
     params.time_limit_s = options.time_limit_s;
+    if (!options.map.empty()) params.static_map = io::read_map_server(options.map);
     const eval::NavRunResult r = run_method(scene, options.method, params);
     const std::filesystem::path out = options.out_dir;
     io::Json j = run_to_json(r, true);
     j["scene"] = options.scene;
     io::write_json(out / "run.json", j);
+    io::write_map_server(out / "costmap.yaml", r.final_costmap);
     io::write_nav_png(out / "route.png", scene, r.final_costmap, {{options.method, r.trajectory}}, r.last_plan,
                       scene.name + " / " + options.method + ": " + (r.success ? "success" : "failed (" + r.failure + ")") +
                           ", " + std::to_string(r.time_s).substr(0, 5) + " s, risk " +

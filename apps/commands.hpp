@@ -79,6 +79,7 @@ namespace makeway::apps {
 struct NavigateOptions {
     std::string scene;
     std::string method = "gt-perc";
+    std::string map;  ///< optional map_server YAML for the static layer
     std::string out_dir;
     std::uint64_t seed = 0;
     double time_limit_s = 180.0;

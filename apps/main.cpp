@@ -104,7 +104,11 @@ void add_navigate(CLI::App& app, NavigateOptions& o) {
                                           "inflation = robot radius), gt-perc (affordance zones from ground truth)")
         ->check(CLI::IsMember({"con", "oppo", "gt-perc"}))
         ->capture_default_str();
-    sub->add_option("--out", o.out_dir, "Output folder")->required();
+    sub->add_option("--map", o.map, "Static map in map_server format (YAML + PGM) instead of the scene's walls "
+                                    "and pillars; its resolution and origin become the costmap's");
+    sub->add_option("--out", o.out_dir, "Output folder: run.json, route.png, costmap.yaml/.pgm (master grid, "
+                                        "map_server format)")
+        ->required();
     sub->add_option("--seed", o.seed, "Sensor-noise seed")->capture_default_str();
     sub->add_option("--time-limit", o.time_limit_s, "Seconds before the run counts as failed [s]")
         ->check(CLI::Range(1.0, 3600.0))

@@ -190,5 +190,33 @@ TEST(Cli, BenchSimPrintsItsNumbers) {
     EXPECT_EQ(j["rays_per_sweep"], 57600);
 }
 
+TEST(Cli, NavigateWritesRunRouteAndCostmap) {
+    const auto dir = testing_util::fresh_dir("navigate");
+    std::ofstream(dir / "room.yaml")
+        << "name: room\nfloor: {min_m: [-4.5, -2.5], max_m: [4.5, 2.5]}\n"
+           "walls:\n  - {a_m: [-4, -2], b_m: [4, -2]}\n  - {a_m: [4, -2], b_m: [4, 2]}\n"
+           "  - {a_m: [4, 2], b_m: [-4, 2]}\n  - {a_m: [-4, 2], b_m: [-4, -2]}\n"
+           "objects:\n  - {id: 1, class: chair, style: office_chair, pose: {x_m: 0, y_m: 0.3, yaw_rad: 1.57}}\n"
+           "start: {x_m: -3, y_m: -0.5, yaw_rad: 0}\nwaypoint: {x_m: 0, y_m: -1.2, yaw_rad: 0}\n"
+           "goal: {x_m: 3, y_m: -0.5, yaw_rad: 0}\n";
+    CliRun r = run_makeway("navigate --scene " + (dir / "room.yaml").string() + " --method gt-perc --out " +
+                               (dir / "run").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const io::Json run = io::read_json(dir / "run" / "run.json");
+    EXPECT_TRUE(run["success"].get<bool>());
+    EXPECT_FALSE(run["trajectory_xyyaw"].empty());
+    for (const char* f : {"route.png", "costmap.yaml", "costmap.pgm"}) EXPECT_TRUE(std::filesystem::exists(dir / "run" / f)) << f;
+    // The exported costmap serves as a static map for another run.
+    r = run_makeway("navigate --scene " + (dir / "room.yaml").string() + " --map " + (dir / "run" / "costmap.yaml").string() +
+                        " --method oppo --out " + (dir / "run2").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = run_makeway("navigate --scene " + (dir / "room.yaml").string() + " --map " + (dir / "nope.yaml").string() +
+                        " --out " + (dir / "run3").string(), dir);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find((dir / "nope.yaml").string() + ": no such file"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "run3"));
+    EXPECT_EQ(run_makeway("navigate --scene x.yaml --method fast --out y", dir).exit_code, 2);
+}
+
 }  // namespace
 }  // namespace makeway

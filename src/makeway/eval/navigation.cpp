@@ -77,7 +77,7 @@ NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, Ob
     sim::World world(scene, models);
 
     // The stack: static (the known building), obstacle (LiDAR), affordance (objects), inflation.
-    const Costmap geometry = structure_grid(scene, params.resolution_m);
+    const Costmap geometry = params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m);
     costmap::LayeredCostmap layered(Costmap(geometry.origin_m, geometry.resolution_m, geometry.width, geometry.height));
     layered.add_layer(std::make_unique<costmap::StaticLayer>(geometry));
     layered.add_layer(std::make_unique<costmap::ObstacleLayer>(geometry, params.obstacle));

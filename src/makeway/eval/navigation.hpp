@@ -42,6 +42,9 @@ struct NavParams {
     double goal_tolerance_m = 0.3;
     double near_miss_m = 0.25;  ///< robot body this close to a chair being moved: a near-miss
     std::uint64_t seed = 0;
+    /// The static layer's map (e.g. a map_server map); its geometry becomes the costmap's. When
+    /// absent, the scene's walls and pillars are rasterised at resolution_m.
+    std::optional<Costmap> static_map;
 };
 
 struct NavRunResult {

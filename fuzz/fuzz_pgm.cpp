@@ -1,0 +1,16 @@
+// libFuzzer target: parse_pgm must either parse or throw FormatError; never crash, hang or leak.
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "io/error.hpp"
+#include "io/map_server_io.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+    try {
+        makeway::io::parse_pgm(bytes);
+    } catch (const makeway::io::FormatError&) {
+    }
+    return 0;
+}
