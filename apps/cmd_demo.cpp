@@ -64,10 +64,7 @@ int run_demo(const DemoOptions& options) {
               << (exact ? "exact" : "NOT exact") << "\n";
 
     // Navigation: every method on the same scene, with the same planners.
-    eval::NavParams nav;
-    nav.lidar = cfg.lidar;
-    nav.robot = cfg.robot;
-    nav.seed = cfg.simulation.seed;
+    const eval::NavParams nav = nav_params(cfg);
     std::vector<sim::ObjectModel> models;
     for (const auto& o : scene.objects) models.push_back(sim::model_of(o));
     std::vector<eval::NavRunResult> runs;

@@ -21,7 +21,7 @@ namespace makeway::apps {
 namespace {
 
 eval::NavRunResult run_method(const sim::Scene& scene, const std::string& method_name, const eval::NavParams& params) {
-    const eval::NavMethod method = *eval::nav_method(method_name, params.robot);
+    const eval::NavMethod method = *eval::nav_method(method_name, params.robot);  // CLI11 checked the name
     std::vector<sim::ObjectModel> models;
     for (const auto& o : scene.objects) models.push_back(sim::model_of(o));
     eval::NoObjects none;
@@ -33,8 +33,9 @@ eval::NavRunResult run_method(const sim::Scene& scene, const std::string& method
 }  // namespace
 
 int run_navigate(const NavigateOptions& options) {
+    const io::Config cfg = options.config.empty() ? io::Config{} : io::load_config(options.config);
     const sim::Scene scene = io::read_scene(options.scene);
-    eval::NavParams params;
+    eval::NavParams params = nav_params(cfg);
     params.seed = options.seed;
     params.time_limit_s = options.time_limit_s;
     if (!options.map.empty()) params.static_map = io::read_map_server(options.map);
@@ -53,6 +54,7 @@ int run_navigate(const NavigateOptions& options) {
 }
 
 int run_bench_nav(const BenchNavOptions& options) {
+    const io::Config cfg = options.config.empty() ? io::Config{} : io::load_config(options.config);
     const std::filesystem::path out = options.out_dir;
     const std::vector<std::string>& methods = eval::nav_method_names();
     const sim::Density densities[] = {sim::Density::kSparse, sim::Density::kMedium, sim::Density::kDense};
@@ -61,6 +63,7 @@ int run_bench_nav(const BenchNavOptions& options) {
         sim::SceneGenParams g;
         g.seed = options.seed + static_cast<std::uint64_t>(i);
         g.density = densities[i % 3];
+        g.robot = cfg.robot;
         scenes.push_back(sim::generate_scene(g));
         io::write_scene(out / "scenes" / (scenes.back().name + ".yaml"), scenes.back());
     }
@@ -71,7 +74,7 @@ int run_bench_nav(const BenchNavOptions& options) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
     tbb::parallel_for(std::size_t{0}, scenes.size() * methods.size(), [&](std::size_t job) {
         const std::size_t s = job / methods.size(), m = job % methods.size();
-        eval::NavParams params;
+        eval::NavParams params = nav_params(cfg);
         params.seed = options.seed + s;
         params.time_limit_s = options.time_limit_s;
         eval::NavRunResult r = run_method(scenes[s], methods[m], params);

@@ -77,6 +77,7 @@ int run_bench_sim(const BenchSimOptions& options);
 namespace makeway::apps {
 
 struct NavigateOptions {
+    std::string config;  ///< lidar, robot and affordance sections; empty: built-in defaults
     std::string scene;
     std::string method = "gt-perc";
     std::string map;  ///< optional map_server YAML for the static layer
@@ -87,6 +88,7 @@ struct NavigateOptions {
 int run_navigate(const NavigateOptions& options);
 
 struct BenchNavOptions {
+    std::string config;
     int scenes = 25;
     std::uint64_t seed = 0;
     std::string out_dir = "out/bench_nav";

@@ -104,6 +104,8 @@ void add_navigate(CLI::App& app, NavigateOptions& o) {
                                           "inflation = robot radius), gt-perc (affordance zones from ground truth)")
         ->check(CLI::IsMember({"con", "oppo", "gt-perc"}))
         ->capture_default_str();
+    sub->add_option("--config", o.config, "YAML configuration: lidar, robot and affordance sections "
+                                          "(default: built-in; see config/default.yaml)");
     sub->add_option("--map", o.map, "Static map in map_server format (YAML + PGM) instead of the scene's walls "
                                     "and pillars; its resolution and origin become the costmap's");
     sub->add_option("--out", o.out_dir, "Output folder: run.json, route.png, costmap.yaml/.pgm (master grid, "
@@ -121,6 +123,7 @@ void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o) {
     auto* nav = bench->add_subcommand("nav", "The navigation benchmark (the paper's Table II): every method on "
                                              "generated scenes of varied density; writes results.json, table.md "
                                              "and one PNG per scene");
+    nav->add_option("--config", nav_o.config, "YAML configuration: lidar, robot and affordance sections");
     nav->add_option("--scenes", nav_o.scenes, "Number of scenes (density cycles sparse, medium, dense)")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();

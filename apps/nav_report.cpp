@@ -12,6 +12,21 @@ std::pair<double, double> median_p99(std::vector<double> v) {
     return {at(0.5), at(0.99)};
 }
 
+eval::NavParams nav_params(const io::Config& config) {
+    eval::NavParams p;
+    p.lidar = config.lidar;
+    p.robot = config.robot;
+    p.affordance = config.affordance;
+    p.inflation.inscribed_radius_m = config.robot.inscribed_radius_m();
+    p.dwa.footprint_length_m = config.robot.length_m;
+    p.dwa.footprint_width_m = config.robot.width_m;
+    p.dwa.max_w_radps = config.robot.max_w_radps;
+    p.dwa.acc_v_mps2 = config.robot.max_acc_mps2;
+    p.dwa.acc_w_radps2 = config.robot.max_ang_acc_radps2;
+    p.seed = config.simulation.seed;
+    return p;
+}
+
 io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory) {
     const auto [median, p99] = median_p99(r.cycle_ms);
     io::Json j = {{"method", r.method},

@@ -3,10 +3,14 @@
 #include <string>
 #include <vector>
 
+#include "io/config_reader.hpp"
 #include "io/json_io.hpp"
 #include "makeway/eval/navigation.hpp"
 
 namespace makeway::apps {
+
+/// Navigation parameters from a configuration (lidar, robot, affordance sections).
+eval::NavParams nav_params(const io::Config& config);
 
 io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory);
 

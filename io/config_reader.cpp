@@ -135,7 +135,7 @@ Config parse_config(std::string_view yaml_text) {
         throw FormatError("the top level must be a mapping of section names");
     }
     Config cfg;
-    const std::vector<std::string> sections{"scene", "lidar", "robot", "odometry", "simulation"};
+    const std::vector<std::string> sections{"scene", "lidar", "robot", "odometry", "simulation", "affordance"};
     if (root.IsMap()) {
         for (const auto& kv : root) {
             const std::string name = kv.first.as<std::string>("");
@@ -210,6 +210,30 @@ Config parse_config(std::string_view yaml_text) {
         if (cfg.simulation.frames < 1 || cfg.simulation.frames > 1000000) {
             s.add_validation({"frames must be in [1, 1000000] (got " + std::to_string(cfg.simulation.frames) + ")"});
         }
+    }
+    {
+        YamlSection s(const_root["affordance"], "affordance", problems);
+        costmap::AffordanceParams& a = cfg.affordance;
+        s.read("min_existence", a.min_existence);
+        {
+            YamlSection c(s.take("chair"), "affordance.chair", problems);
+            c.read("forward_back_m", a.chair.forward_back_m);
+            c.read("side_m", a.chair.side_m);
+            c.read("peak_cost", a.chair.peak_cost);
+            c.read("edge_cost", a.chair.edge_cost);
+            c.finish();
+        }
+        {
+            YamlSection t(s.take("table"), "affordance.table", problems);
+            t.read("sides_m", a.table.sides_m);
+            t.read("ends_m", a.table.ends_m);
+            t.read("square_tolerance_m", a.table.square_tolerance_m);
+            t.read("peak_cost", a.table.peak_cost);
+            t.read("edge_cost", a.table.edge_cost);
+            t.finish();
+        }
+        s.finish();
+        s.add_validation(a.validate());
     }
     cfg.scene.robot = cfg.robot;
     if (!problems.empty()) {

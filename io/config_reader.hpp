@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "makeway/costmap/affordance.hpp"
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/robot.hpp"
 #include "makeway/sim/scene_generator.hpp"
@@ -69,6 +70,7 @@ struct Config {
     sim::RobotParams robot;
     sim::OdometryNoiseParams odometry;
     SimulationConfig simulation;
+    costmap::AffordanceParams affordance;  ///< zone shapes and cost profiles per class
 };
 
 /// Throws FormatError listing every problem ("3 problems: a; b; c").

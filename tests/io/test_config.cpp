@@ -36,6 +36,20 @@ TEST(Config, ShippedDefaultFileMatchesBuiltInDefaults) {
     EXPECT_EQ(c.odometry.translation_noise_per_m, d.odometry.translation_noise_per_m);
     EXPECT_EQ(c.odometry.heading_noise_per_m, d.odometry.heading_noise_per_m);
     EXPECT_EQ(c.simulation.frames, d.simulation.frames);
+    EXPECT_EQ(c.affordance.chair.forward_back_m, d.affordance.chair.forward_back_m);
+    EXPECT_EQ(c.affordance.chair.peak_cost, d.affordance.chair.peak_cost);
+    EXPECT_EQ(c.affordance.table.sides_m, d.affordance.table.sides_m);
+    EXPECT_EQ(c.affordance.table.ends_m, d.affordance.table.ends_m);
+    EXPECT_EQ(c.affordance.min_existence, d.affordance.min_existence);
+}
+
+TEST(Config, AffordanceZonesArePerClassParameters) {
+    const Config c = parse_config("affordance:\n  chair:\n    forward_back_m: 0.9\n  table:\n    sides_m: 1.0\n");
+    EXPECT_EQ(c.affordance.chair.forward_back_m, 0.9);
+    EXPECT_EQ(c.affordance.table.sides_m, 1.0);
+    EXPECT_EQ(problem_of("affordance:\n  chair:\n    peak_cost: 300\n"),
+              "affordance.chair.peak_cost must be in [0.000000, 252.000000] (got 300.000000)");
+    EXPECT_EQ(problem_of("affordance:\n  sofa:\n    side_m: 1\n"), "affordance.sofa: unknown key");
 }
 
 TEST(Config, PartialFileKeepsDefaults) {

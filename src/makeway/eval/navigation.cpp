@@ -92,7 +92,7 @@ NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, Ob
     std::size_t leg = 0;
     std::vector<Eigen::Vector2d> plan;
     double last_plan_t = -1e9;
-    const costmap::AffordanceParams risk_zones;  // the same zones for every method
+    const costmap::AffordanceParams& risk_zones = params.affordance;  // the same zones for every method
     const double control_dt = 1.0 / params.lidar.rate_hz;
     const int physics_steps = 10;
     bool in_collision = false, touching_person = false;
