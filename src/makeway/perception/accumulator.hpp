@@ -1,0 +1,45 @@
+#pragma once
+// Keyframe accumulation: a sliding window of the last sweeps (5 by default, as in the paper)
+// transformed into the newest sweep's sensor frame, each point de-skewed with its own timestamp
+// when the sweep's start and end poses are known.
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "makeway/common/point_cloud.hpp"
+#include "makeway/common/transforms.hpp"
+
+namespace makeway::perception {
+
+/// One sweep with its poses: points are in the sensor frame of their own firing time.
+struct StampedSweep {
+    PointCloud points_sensor;
+    double stamp_s = 0.0;                                   ///< sweep start
+    double duration_s = 0.1;
+    Isometry3 T_world_sensor_start = Isometry3::Identity();
+    Isometry3 T_world_sensor_end = Isometry3::Identity();   ///< equal to start: no de-skewing
+};
+
+struct AccumulatorParams {
+    int window = 5;
+    bool deskew = true;
+    std::vector<std::string> validate() const;
+};
+
+class KeyframeAccumulator {
+public:
+    explicit KeyframeAccumulator(const AccumulatorParams& params = {}) : params_(params) {}
+    void add(StampedSweep sweep);
+    bool full() const { return static_cast<int>(sweeps_.size()) >= params_.window; }
+    std::size_t size() const { return sweeps_.size(); }
+
+    /// Every point of the window in the newest sweep's start frame (T_world_keyframe), channels kept;
+    /// `time_s` becomes time relative to the keyframe stamp. Empty when no sweep was added.
+    PointCloud keyframe(Isometry3* T_world_keyframe = nullptr) const;
+
+private:
+    AccumulatorParams params_;
+    std::deque<StampedSweep> sweeps_;
+};
+
+}  // namespace makeway::perception

@@ -1,0 +1,45 @@
+#pragma once
+// Ground plane by RANSAC at start-up (Fischler & Bolles 1981): the plane with the most points, among
+// planes tilted at most max_tilt_deg from the sensor's horizontal, refined by least squares on its
+// inliers. Then, per keyframe, points near the ground and above the ceiling height are removed.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "makeway/common/point_cloud.hpp"
+
+namespace makeway::perception {
+
+struct GroundPlaneParams {
+    double inlier_distance_m = 0.05;
+    int iterations = 300;
+    double max_tilt_deg = 25.0;  ///< the ground is roughly below a robot's sensor
+    std::size_t min_inliers = 200;
+    std::uint64_t seed = 0;
+    std::vector<std::string> validate() const;
+};
+
+struct GroundPlaneResult {
+    bool found = false;
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit, pointing up (away from the ground)
+    double offset = 0.0;                                ///< plane: normal . p + offset = 0
+    std::size_t inliers = 0;
+    std::string reason;  ///< why not found
+
+    /// Signed height of p above the plane [m].
+    double height_of(const Eigen::Vector3d& p) const { return normal.dot(p) + offset; }
+};
+
+GroundPlaneResult fit_ground_plane(const PointCloud& points_sensor, const GroundPlaneParams& params);
+
+struct GroundFilterParams {
+    double ground_band_m = 0.08;     ///< points lower than this above the ground are removed
+    double ceiling_height_m = 2.2;   ///< points higher than this above the ground are removed
+    std::vector<std::string> validate() const;
+};
+
+/// Keeps the points between the ground band and the ceiling height (all channels kept).
+PointCloud remove_ground_and_ceiling(const PointCloud& points_sensor, const GroundPlaneResult& ground,
+                                     const GroundFilterParams& params);
+
+}  // namespace makeway::perception

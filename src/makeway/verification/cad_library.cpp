@@ -1,0 +1,109 @@
+#include "makeway/verification/cad_library.hpp"
+
+#include <nanoflann.hpp>
+
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "makeway/common/random.hpp"
+
+namespace makeway::verification {
+
+struct ModelLevel::Index {
+    struct Adaptor {
+        const std::vector<Eigen::Vector3d>* pts;
+        std::size_t kdtree_get_point_count() const { return pts->size(); }
+        double kdtree_get_pt(std::size_t i, std::size_t d) const { return (*pts)[i][static_cast<int>(d)]; }
+        template <class Bbox>
+        bool kdtree_get_bbox(Bbox&) const {
+            return false;
+        }
+    };
+    using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Adaptor>, Adaptor, 3, std::size_t>;
+    explicit Index(const std::vector<Eigen::Vector3d>& points)
+        : owned(points), adaptor{&owned}, tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
+    std::vector<Eigen::Vector3d> owned;
+    Adaptor adaptor;
+    Tree tree;
+};
+
+std::size_t ModelLevel::nearest(const Eigen::Vector3d& q, double* distance2) const {
+    std::size_t idx = 0;
+    double d2 = 0.0;
+    index->tree.knnSearch(q.data(), 1, &idx, &d2);
+    if (distance2) *distance2 = d2;
+    return idx;
+}
+
+std::vector<std::string> CadLibraryParams::validate() const {
+    std::vector<std::string> p;
+    if (voxel_sizes_m.empty() || voxel_sizes_m.size() > 6) p.push_back("voxel_sizes_m must hold 1..6 sizes");
+    for (double v : voxel_sizes_m) {
+        if (!(v > 0.0 && v < 1.0)) p.push_back("voxel sizes must be in (0, 1)");
+    }
+    if (!(sample_spacing_m > 0.0 && sample_spacing_m < 0.5)) p.push_back("sample_spacing_m must be in (0, 0.5)");
+    return p;
+}
+
+void CadLibrary::add(const std::string& name, ObjectClass cls, const TriangleMesh& mesh) {
+    CadModel model;
+    model.name = name;
+    model.cls = cls;
+    // Dense area-weighted surface samples with their triangle normals.
+    Rng rng = make_rng(params_.seed, 41 + models_.size());
+    std::vector<Eigen::Vector3d> pts, nrm;
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = -lo;
+    for (const auto& t : mesh.triangles) {
+        const Eigen::Vector3d a = mesh.vertices_m[t[0]].cast<double>(), b = mesh.vertices_m[t[1]].cast<double>(),
+                              c = mesh.vertices_m[t[2]].cast<double>();
+        lo = lo.cwiseMin(a).cwiseMin(b).cwiseMin(c);
+        hi = hi.cwiseMax(a).cwiseMax(b).cwiseMax(c);
+        const Eigen::Vector3d cr = (b - a).cross(c - a);
+        const double area = 0.5 * cr.norm();
+        if (area < 1e-12) continue;
+        const Eigen::Vector3d n = cr.normalized();
+        const double expected = area / (params_.sample_spacing_m * params_.sample_spacing_m);
+        auto count = static_cast<int>(expected);
+        if (uniform(rng, 0, 1) < expected - count) ++count;
+        for (int i = 0; i < count; ++i) {
+            double u = uniform(rng, 0, 1), v = uniform(rng, 0, 1);
+            if (u + v > 1) u = 1 - u, v = 1 - v;
+            pts.push_back(a + u * (b - a) + v * (c - a));
+            nrm.push_back(n);
+        }
+    }
+    model.box_object.centre_m = 0.5 * (lo + hi);
+    model.box_object.size_m = hi - lo;
+    // One voxel-thinned level per size: the sample nearest each voxel's centre survives.
+    for (double voxel : params_.voxel_sizes_m) {
+        std::map<std::tuple<long, long, long>, std::size_t> cells;
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+            const auto key = std::make_tuple(std::lround(std::floor(pts[i].x() / voxel)), std::lround(std::floor(pts[i].y() / voxel)),
+                                             std::lround(std::floor(pts[i].z() / voxel)));
+            const Eigen::Vector3d centre = (Eigen::Vector3d(std::get<0>(key), std::get<1>(key), std::get<2>(key)) +
+                                            Eigen::Vector3d::Constant(0.5)) * voxel;
+            auto [it, inserted] = cells.emplace(key, i);
+            if (!inserted && (pts[i] - centre).squaredNorm() < (pts[it->second] - centre).squaredNorm()) it->second = i;
+        }
+        ModelLevel level;
+        level.voxel_m = voxel;
+        for (const auto& [key, i] : cells) {
+            level.points_object.push_back(pts[i]);
+            level.normals_object.push_back(nrm[i]);
+        }
+        level.index = std::make_shared<ModelLevel::Index>(level.points_object);
+        model.levels.push_back(std::move(level));
+    }
+    models_.push_back(std::move(model));
+}
+
+std::vector<const CadModel*> CadLibrary::models_of(ObjectClass cls) const {
+    std::vector<const CadModel*> out;
+    for (const auto& m : models_) {
+        if (m.cls == cls) out.push_back(&m);
+    }
+    return out;
+}
+
+}  // namespace makeway::verification

@@ -1,0 +1,53 @@
+#pragma once
+// CAD models for verification: each mesh densely sampled into surface points with normals, thinned
+// on voxel grids of several sizes (one per coarse-to-fine level), each with a k-d tree (nanoflann).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "makeway/common/oriented_box.hpp"
+#include "makeway/common/transforms.hpp"
+#include "makeway/common/semantic_label.hpp"
+#include "makeway/common/triangle_mesh.hpp"
+
+namespace makeway::verification {
+
+struct ModelLevel {
+    double voxel_m = 0.0;
+    std::vector<Eigen::Vector3d> points_object;
+    std::vector<Eigen::Vector3d> normals_object;
+    struct Index;
+    std::shared_ptr<const Index> index;  ///< k-d tree over points_object
+    /// Index of the nearest model point and its squared distance.
+    std::size_t nearest(const Eigen::Vector3d& q, double* distance2) const;
+};
+
+struct CadModel {
+    std::string name;
+    ObjectClass cls = ObjectClass::kChair;
+    OrientedBox box_object;            ///< extent of the mesh in the object frame
+    std::vector<ModelLevel> levels;    ///< coarse to fine
+};
+
+struct CadLibraryParams {
+    std::vector<double> voxel_sizes_m{0.08, 0.04, 0.02};  ///< one level each, coarse to fine
+    double sample_spacing_m = 0.01;                         ///< surface sampling before thinning
+    std::uint64_t seed = 0;
+    std::vector<std::string> validate() const;
+};
+
+class CadLibrary {
+public:
+    explicit CadLibrary(const CadLibraryParams& params = {}) : params_(params) {}
+    /// Samples and indexes a mesh given in its object frame (origin on the floor, x forward).
+    void add(const std::string& name, ObjectClass cls, const TriangleMesh& mesh_object);
+    const std::vector<CadModel>& models() const { return models_; }
+    std::vector<const CadModel*> models_of(ObjectClass cls) const;
+    const CadLibraryParams& params() const { return params_; }
+
+private:
+    CadLibraryParams params_;
+    std::vector<CadModel> models_;
+};
+
+}  // namespace makeway::verification

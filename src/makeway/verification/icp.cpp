@@ -1,0 +1,113 @@
+#include "makeway/verification/icp.hpp"
+
+#include <cmath>
+#include <set>
+#include <tuple>
+
+#include "makeway/common/angles.hpp"
+
+namespace makeway::verification {
+
+Isometry3 Pose4::matrix() const { return make_T_xyz_yaw(t_m, yaw_rad); }
+
+std::vector<std::string> IcpParams::validate(std::size_t levels) const {
+    std::vector<std::string> p;
+    if (iterations.size() != levels || max_correspondence_m.size() != levels) {
+        p.push_back("iterations and max_correspondence_m need one entry per CAD level (" + std::to_string(levels) + ")");
+    }
+    for (double d : max_correspondence_m) {
+        if (!(d > 0.0 && d < 5.0)) p.push_back("max_correspondence_m must be in (0, 5)");
+    }
+    if (!(cauchy_scale_m > 0.0)) p.push_back("cauchy_scale_m must be > 0");
+    return p;
+}
+
+std::vector<Eigen::Vector3d> voxel_thin(const std::vector<Eigen::Vector3d>& points, double voxel) {
+    std::set<std::tuple<long, long, long>> seen;
+    std::vector<Eigen::Vector3d> out;
+    for (const auto& p : points) {
+        if (seen.emplace(std::lround(std::floor(p.x() / voxel)), std::lround(std::floor(p.y() / voxel)),
+                         std::lround(std::floor(p.z() / voxel))).second) {
+            out.push_back(p);
+        }
+    }
+    return out;
+}
+
+double geometric_residual(const std::vector<Eigen::Vector3d>& seg, const CadModel& model, int level, const Pose4& pose,
+                          double max_corr) {
+    if (seg.empty()) return max_corr;
+    const ModelLevel& m = model.levels[static_cast<std::size_t>(level)];
+    const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
+    double sum = 0.0;
+    for (const auto& p : seg) {
+        const Eigen::Vector3d d = p - pose.t_m;
+        const Eigen::Vector3d q(c * d.x() + s * d.y(), -s * d.x() + c * d.y(), d.z());  // R^T (p - t)
+        double d2 = 0.0;
+        const std::size_t j = m.nearest(q, &d2);
+        const double r = d2 > max_corr * max_corr ? max_corr : std::abs(m.normals_object[j].dot(q - m.points_object[j]));
+        sum += std::min(r * r, max_corr * max_corr);
+    }
+    return std::sqrt(sum / static_cast<double>(seg.size()));
+}
+
+IcpResult align(const std::vector<Eigen::Vector3d>& segment, const CadModel& model, const Pose4& initial,
+                const IcpParams& params, int first_level, int last_level) {
+    IcpResult result;
+    result.pose = initial;
+    const int n_levels = static_cast<int>(model.levels.size());
+    if (last_level < 0 || last_level >= n_levels) last_level = n_levels - 1;
+    for (int level = first_level; level <= last_level; ++level) {
+        const ModelLevel& m = model.levels[static_cast<std::size_t>(level)];
+        // The robust scale follows the level: coarse levels tolerate coarse residuals.
+        const double c = std::max(params.cauchy_scale_m, m.voxel_m);
+        const double c2 = c * c;
+        const std::vector<Eigen::Vector3d> seg = level == n_levels - 1 ? segment : voxel_thin(segment, m.voxel_m);
+        const double max_corr = params.max_correspondence_m[static_cast<std::size_t>(level)];
+        result.converged = false;
+        for (int it = 0; it < params.iterations[static_cast<std::size_t>(level)]; ++it) {
+            ++result.iterations;
+            Pose4& x = result.pose;
+            const double cy = std::cos(x.yaw_rad), s = std::sin(x.yaw_rad);
+            Eigen::Matrix4d H = Eigen::Matrix4d::Zero();
+            Eigen::Vector4d g = Eigen::Vector4d::Zero();
+            int used = 0;
+            for (const auto& p : seg) {
+                const Eigen::Vector3d d = p - x.t_m;
+                const Eigen::Vector3d q(cy * d.x() + s * d.y(), -s * d.x() + cy * d.y(), d.z());
+                double d2 = 0.0;
+                const std::size_t j = m.nearest(q, &d2);
+                if (d2 > max_corr * max_corr) continue;
+                const Eigen::Vector3d& n = m.normals_object[j];
+                const double r = n.dot(q - m.points_object[j]);  // eq. (1), in the object frame
+                // q = R^T (p - t): dq/dt = -R^T, dq/dyaw = dR^T/dyaw (p - t).
+                const Eigen::Vector3d Rn(cy * n.x() - s * n.y(), s * n.x() + cy * n.y(), n.z());
+                const Eigen::Vector3d dq_dyaw(-s * d.x() + cy * d.y(), -cy * d.x() - s * d.y(), 0.0);
+                Eigen::Vector4d J;
+                J << -Rn, n.dot(dq_dyaw);
+                const double w = 1.0 / (1.0 + r * r / c2);  // Cauchy: rho(r) = c^2/2 log(1 + r^2/c^2)
+                H += w * J * J.transpose();
+                g += w * J * r;
+                ++used;
+            }
+            if (used < 4) break;
+            const double wz = params.z_prior_weight * used;  // the z prior (see IcpParams)
+            H(2, 2) += wz;
+            g(2) += wz * (x.t_m.z() - initial.t_m.z());
+            H.diagonal().array() += 1e-9;
+            const Eigen::Vector4d delta = -H.ldlt().solve(g);
+            if (!delta.allFinite()) break;
+            x.t_m += delta.head<3>();
+            x.yaw_rad = wrap_angle(x.yaw_rad + delta[3]);
+            if (delta.head<3>().norm() < params.convergence_m && std::abs(delta[3]) < params.convergence_rad) {
+                result.converged = true;
+                break;
+            }
+        }
+    }
+    result.residual_m = geometric_residual(segment, model, last_level, result.pose,
+                                           params.max_correspondence_m[static_cast<std::size_t>(last_level)]);
+    return result;
+}
+
+}  // namespace makeway::verification

@@ -1,0 +1,94 @@
+#include "makeway/verification/verifier.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "makeway/common/angles.hpp"
+
+namespace makeway::verification {
+
+std::vector<std::string> VerifyParams::validate() const {
+    std::vector<std::string> p;
+    if (!(box_margin_m >= 0.0 && box_margin_m < 2.0)) p.push_back("box_margin_m must be in [0, 2)");
+    if (!(e_min_m >= 0.0 && e_min_m < e_max_m)) p.push_back("need 0 <= e_min_m < e_max_m");
+    if (candidate_iterations < 0 || candidate_iterations > 100) p.push_back("candidate_iterations must be in [0, 100]");
+    return p;
+}
+
+std::vector<Eigen::Vector3d> segment_points(const PointCloud& cloud, const OrientedBox& box, double margin) {
+    std::vector<Eigen::Vector3d> out;
+    for (const auto& p : cloud.xyz) {
+        const Eigen::Vector3d q = p.cast<double>();
+        if (q.allFinite() && box.contains(q, margin)) out.push_back(q);
+    }
+    return out;
+}
+
+double existence_probability(double e, double e_min, double e_max) {
+    return std::clamp(1.0 - 0.5 * (e - e_min) / (e_max - e_min), 0.5, 1.0);  // eq. (2)
+}
+
+VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det, const CadLibrary& library,
+                                   const VerifyParams& params, std::optional<double> floor_z_m) {
+    VerifiedDetection out;
+    out.detection = det;
+    const std::vector<Eigen::Vector3d> segment = segment_points(cloud, det.box_sensor, params.box_margin_m);
+    out.segment_points = segment.size();
+    const auto models = library.models_of(det.cls);
+    if (models.empty()) {
+        out.reason = "no CAD model for class " + std::string(to_string(det.cls));
+        return out;
+    }
+    if (segment.size() < params.min_points) {
+        out.reason = "segment has " + std::to_string(segment.size()) + " points (< " + std::to_string(params.min_points) + ")";
+        return out;
+    }
+    // The four yaw candidates of every model, ranked by their residual after a short coarse
+    // alignment; the best two are refined fully and the lower final residual wins.
+    struct Candidate {
+        const CadModel* model;
+        Pose4 pose;
+        double e;
+    };
+    std::vector<Candidate> candidates;
+    const std::vector<Eigen::Vector3d> coarse = voxel_thin(segment, models.front()->levels.front().voxel_m);
+    for (const CadModel* m : models) {
+        for (int k = 0; k < 4; ++k) {
+            Pose4 init;
+            init.yaw_rad = wrap_angle(det.box_sensor.yaw_rad + k * kPi / 2);
+            // Put the model's box centre on the detection's box centre.
+            init.t_m = det.box_sensor.centre_m - make_T_xyz_yaw({0, 0, 0}, init.yaw_rad).linear() * m->box_object.centre_m;
+            init.t_m.z() = floor_z_m.value_or(det.box_sensor.z_min_m());  // the object stands on the floor
+            Pose4 pose = init;
+            if (params.candidate_iterations > 0) {
+                IcpParams short_run = params.icp;
+                short_run.iterations.assign(short_run.iterations.size(), params.candidate_iterations);
+                pose = align(coarse, *m, init, short_run, 0, 0).pose;
+            }
+            candidates.push_back({m, pose, geometric_residual(coarse, *m, 0, pose, params.icp.max_correspondence_m.front())});
+        }
+    }
+    std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.e < b.e; });
+    const CadModel* best_model = nullptr;
+    IcpResult fit;
+    fit.residual_m = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(params.refined_candidates)); ++i) {
+        const IcpResult r = align(segment, *candidates[i].model, candidates[i].pose, params.icp);
+        if (r.residual_m < fit.residual_m) fit = r, best_model = candidates[i].model;
+    }
+    out.model = best_model->name;
+    out.residual_m = fit.residual_m;
+    out.iterations = fit.iterations;
+    out.converged = fit.converged;
+    out.T_sensor_object = fit.pose.matrix();
+    out.box_sensor = best_model->box_object.transformed(out.T_sensor_object);
+    if (fit.residual_m > params.e_max_m) {
+        out.reason = "residual " + std::to_string(fit.residual_m) + " m above e_max";
+        return out;
+    }
+    out.accepted = true;
+    out.p_exist = existence_probability(fit.residual_m, params.e_min_m, params.e_max_m);
+    return out;
+}
+
+}  // namespace makeway::verification

@@ -1,0 +1,53 @@
+#pragma once
+// Geometric verification of detections (paper, "Geometry Verification"): the scan segment inside
+// each (slightly enlarged) box is aligned to every CAD model of the detected class, starting from
+// the best of the four yaw candidates theta + k pi/2; the best fit is kept, rejected when its
+// residual exceeds e_max, and otherwise given p_exist = 1 - (e - e_min) / (2 (e_max - e_min))
+// (eq. 2, clamped to [0.5, 1]).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "makeway/common/detection.hpp"
+#include "makeway/common/point_cloud.hpp"
+#include "makeway/verification/icp.hpp"
+
+namespace makeway::verification {
+
+struct VerifyParams {
+    IcpParams icp;
+    double box_margin_m = 0.15;      ///< the box is grown by this on every side to cut the segment
+    int candidate_iterations = 4;    ///< coarse Gauss-Newton steps per yaw candidate before ranking
+    int refined_candidates = 2;      ///< best-ranked candidates aligned fully; the lowest residual wins
+    double e_min_m = 0.01;           ///< residual at or below which p_exist = 1
+    double e_max_m = 0.035;          ///< residual above which the detection is rejected
+    std::size_t min_points = 15;     ///< fewer segment points: rejected without fitting
+    std::vector<std::string> validate() const;
+};
+
+struct VerifiedDetection {
+    Detection detection;                 ///< as given
+    bool accepted = false;
+    std::string reason;                  ///< why rejected
+    Isometry3 T_sensor_object = Isometry3::Identity();
+    OrientedBox box_sensor;              ///< the CAD model's extent at the refined pose
+    double residual_m = 0.0;
+    int iterations = 0;
+    bool converged = false;
+    double p_exist = 0.0;
+    std::string model;
+    std::size_t segment_points = 0;
+};
+
+/// The segment: points of the cloud inside the detection box grown by margin.
+std::vector<Eigen::Vector3d> segment_points(const PointCloud& cloud_sensor, const OrientedBox& box, double margin_m);
+
+/// p_exist of eq. (2) for an accepted residual.
+double existence_probability(double residual_m, double e_min_m, double e_max_m);
+
+/// `floor_z_m`: the floor's height in the sensor frame under the object (from the ground plane),
+/// where the object's origin sits; without it the detection box's bottom is used.
+VerifiedDetection verify_detection(const PointCloud& cloud_sensor, const Detection& detection, const CadLibrary& library,
+                                   const VerifyParams& params, std::optional<double> floor_z_m = std::nullopt);
+
+}  // namespace makeway::verification

@@ -1,0 +1,138 @@
+#include <gtest/gtest.h>
+
+#include "../sim/sim_test_util.hpp"
+#include "makeway/common/angles.hpp"
+#include "makeway/common/random.hpp"
+#include "makeway/sim/furniture.hpp"
+#include "makeway/sim/lidar.hpp"
+#include "makeway/verification/verifier.hpp"
+
+namespace makeway::verification {
+namespace {
+
+// A room with one chair; the sensor 0.45 m above the floor, 2.5 m away. Returns the scan (sensor
+// frame, floor and ceiling dropped by height) and the chair's true pose in the sensor frame.
+struct ChairScan {
+    PointCloud cloud_sensor;
+    Pose4 truth;
+    OrientedBox box_sensor;
+};
+
+ChairScan scan_chair(sim::FurnitureStyle style, std::uint64_t model_seed, double yaw, std::uint64_t seed) {
+    sim::Scene s = sim::testing_util::box_room(5.0);
+    sim::SceneObject chair;
+    chair.id = 3;
+    chair.cls = sim::class_of(style);
+    chair.style = std::string(sim::to_string(style));
+    chair.model_seed = model_seed;
+    chair.pose = {1.0, 0.6, yaw};
+    s.objects.push_back(chair);
+    const sim::ObjectModel model = sim::model_of(chair);
+    sim::World world(s, {model});
+    const Isometry3 T_world_sensor = make_T_xyz_yaw({-1.5, 0.0, 0.45}, 0.0);
+    ChairScan out;
+    sim::LidarParams lidar;  // the real VLP-32C pattern, noise and dropout
+    PointCloud raw;
+    for (int k = 0; k < 5; ++k) raw.append(sim::simulate_sweep(world, lidar, [&](double) { return T_world_sensor; }, 0.1 * k, seed, k));
+    std::vector<std::size_t> keep;
+    for (std::size_t i = 0; i < raw.size(); ++i) {
+        const double h = raw.xyz[i].z() + 0.45;
+        if (h > 0.08 && h < 2.2) keep.push_back(i);
+    }
+    out.cloud_sensor = raw.select(keep);
+    const Isometry3 T_sensor_object = T_world_sensor.inverse() * lift_to_3d(chair.pose);
+    out.truth.t_m = T_sensor_object.translation();
+    out.truth.yaw_rad = yaw_of(T_sensor_object);
+    out.box_sensor = model.box_object.transformed(T_sensor_object);
+    return out;
+}
+
+CadLibrary library_with(sim::FurnitureStyle style, std::uint64_t model_seed) {
+    CadLibrary lib;
+    lib.add(std::string(sim::to_string(style)), sim::class_of(style), sim::make_furniture(style, model_seed).mesh_object);
+    return lib;
+}
+
+TEST(Verification, RecoversThePoseFromWrongStartsIncludingEveryYawFlip) {
+    const ChairScan scan = scan_chair(sim::FurnitureStyle::kFourLegChair, 4, 0.6, 1);
+    const CadLibrary lib = library_with(sim::FurnitureStyle::kFourLegChair, 4);
+    Rng rng = make_rng(17);
+    for (int flip = 0; flip < 4; ++flip) {
+        for (int trial = 0; trial < 3; ++trial) {
+            Detection det;
+            det.cls = ObjectClass::kChair;
+            det.box_sensor = scan.box_sensor;
+            det.box_sensor.centre_m += Eigen::Vector3d(normal(rng, 0, 0.08), normal(rng, 0, 0.08), normal(rng, 0, 0.03));
+            det.box_sensor.yaw_rad = wrap_angle(scan.truth.yaw_rad + flip * kPi / 2 + normal(rng, 0, deg_to_rad(8)));
+            const VerifiedDetection v = verify_detection(scan.cloud_sensor, det, lib, {}, -0.45);  // floor from the ground plane
+            ASSERT_TRUE(v.accepted) << "flip " << flip << " trial " << trial << ": " << v.reason << " yaw err "
+                                    << rad_to_deg(angle_diff(yaw_of(v.T_sensor_object), scan.truth.yaw_rad)) << " t err "
+                                    << (v.T_sensor_object.translation() - scan.truth.t_m).transpose();
+            EXPECT_LT(std::abs(rad_to_deg(angle_diff(yaw_of(v.T_sensor_object), scan.truth.yaw_rad))), 3.0) << "flip " << flip;
+            EXPECT_LT((v.T_sensor_object.translation() - scan.truth.t_m).norm(), 0.03) << "flip " << flip;
+            EXPECT_GE(v.p_exist, 0.5);
+            EXPECT_LE(v.p_exist, 1.0);
+        }
+    }
+}
+
+TEST(Verification, CauchyLossShrugsOffInjectedOutliers) {
+    ChairScan scan = scan_chair(sim::FurnitureStyle::kOfficeChair, 2, -1.0, 2);
+    const CadLibrary lib = library_with(sim::FurnitureStyle::kOfficeChair, 2);
+    Rng rng = make_rng(5);
+    // 30 % of the segment again as random points inside the box.
+    const std::size_t seg = segment_points(scan.cloud_sensor, scan.box_sensor, 0.15).size();
+    for (std::size_t i = 0; i < seg * 3 / 10; ++i) {
+        const Eigen::Vector3d local(uniform(rng, -0.5, 0.5), uniform(rng, -0.5, 0.5), uniform(rng, -0.5, 0.5));
+        const Eigen::Vector3d p = scan.box_sensor.centre_m + scan.box_sensor.T_frame_box().linear() *
+                                  local.cwiseProduct(scan.box_sensor.size_m);
+        scan.cloud_sensor.xyz.push_back(p.cast<float>());
+    }
+    const std::vector<Eigen::Vector3f> xyz = scan.cloud_sensor.xyz;
+    scan.cloud_sensor = PointCloud{};
+    scan.cloud_sensor.xyz = xyz;  // keep positions only: the outliers have no labels
+    Detection det;
+    det.cls = ObjectClass::kChair;
+    det.box_sensor = scan.box_sensor;
+    det.box_sensor.yaw_rad = wrap_angle(det.box_sensor.yaw_rad + 0.2);
+    det.box_sensor.centre_m.x() += 0.06;
+    VerifyParams params;
+    params.e_max_m = 1.0;  // judge the pose here, not the rejection
+    const VerifiedDetection v = verify_detection(scan.cloud_sensor, det, lib, params, -0.45);
+    ASSERT_TRUE(v.accepted);
+    EXPECT_LT(std::abs(rad_to_deg(angle_diff(yaw_of(v.T_sensor_object), scan.truth.yaw_rad))), 4.0);
+    EXPECT_LT((v.T_sensor_object.translation() - scan.truth.t_m).head<2>().norm(), 0.05);
+}
+
+TEST(Verification, RejectsBoxesOnWallsAndEmptySegments) {
+    const ChairScan scan = scan_chair(sim::FurnitureStyle::kFourLegChair, 4, 0.6, 3);
+    const CadLibrary lib = library_with(sim::FurnitureStyle::kFourLegChair, 4);
+    Detection wall;
+    wall.cls = ObjectClass::kChair;
+    wall.box_sensor = {{6.4, -2.0, 0.0}, {0.5, 0.5, 0.9}, 0.0};  // on the wall at x = 5 - (-1.5)
+    const VerifiedDetection w = verify_detection(scan.cloud_sensor, wall, lib, {});
+    EXPECT_GT(w.segment_points, 50u);
+    EXPECT_FALSE(w.accepted);
+    EXPECT_NE(w.reason.find("residual"), std::string::npos) << w.reason;
+
+    Detection empty = wall;
+    empty.box_sensor.centre_m = {1.0, -3.0, 0.0};  // free floor
+    const VerifiedDetection e = verify_detection(scan.cloud_sensor, empty, lib, {});
+    EXPECT_FALSE(e.accepted);
+    EXPECT_EQ(e.segment_points, 0u);
+    EXPECT_NE(e.reason.find("segment has 0 points"), std::string::npos);
+
+    Detection table = wall;
+    table.cls = ObjectClass::kTable;  // no table model in this library
+    EXPECT_NE(verify_detection(scan.cloud_sensor, table, lib, {}).reason.find("no CAD model"), std::string::npos);
+}
+
+TEST(Verification, ExistenceProbabilityFollowsEquationTwo) {
+    EXPECT_DOUBLE_EQ(existence_probability(0.01, 0.01, 0.05), 1.0);
+    EXPECT_DOUBLE_EQ(existence_probability(0.03, 0.01, 0.05), 0.75);
+    EXPECT_DOUBLE_EQ(existence_probability(0.05, 0.01, 0.05), 0.5);
+    EXPECT_DOUBLE_EQ(existence_probability(0.0, 0.01, 0.05), 1.0);  // clamped
+}
+
+}  // namespace
+}  // namespace makeway::verification
