@@ -98,3 +98,14 @@ struct BenchNavOptions {
 int run_bench_nav(const BenchNavOptions& options);
 
 }  // namespace makeway::apps
+
+namespace makeway::apps {
+
+struct BenchVerifyOptions {
+    int scenes = 5;
+    std::uint64_t seed = 0;
+    std::string out_dir = "out/bench_verify";
+};
+int run_bench_verify(const BenchVerifyOptions& options);
+
+}  // namespace makeway::apps

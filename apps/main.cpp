@@ -117,9 +117,16 @@ void add_navigate(CLI::App& app, NavigateOptions& o) {
         ->capture_default_str();
 }
 
-void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o) {
+void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchVerifyOptions& ver_o) {
     auto* bench = app.add_subcommand("bench", "Benchmarks that print JSON");
     bench->require_subcommand(1);
+    auto* ver = bench->add_subcommand("verify", "CAD verification on simulated keyframes: ground-truth boxes "
+                                                "corrupted like detector output (noise, yaw flips) and false "
+                                                "boxes on walls, with matching and non-matching CAD models");
+    ver->add_option("--scenes", ver_o.scenes, "Scenes (alternating medium and dense)")->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    ver->add_option("--seed", ver_o.seed, "Seed of scenes and corruption")->capture_default_str();
+    ver->add_option("--out", ver_o.out_dir, "Output folder (summary.json)")->capture_default_str();
     auto* nav = bench->add_subcommand("nav", "The navigation benchmark (the paper's Table II): every method on "
                                              "generated scenes of varied density; writes results.json, table.md "
                                              "and one PNG per scene");
@@ -158,6 +165,7 @@ int main(int argc, char** argv) {
     BenchSimOptions bench_sim;
     NavigateOptions navigate;
     BenchNavOptions bench_nav;
+    BenchVerifyOptions bench_verify;
     add_info(app, info);
     add_convert(app, convert);
     add_demo(app, demo);
@@ -165,7 +173,7 @@ int main(int argc, char** argv) {
     add_scene(app, scene);
     add_simulate(app, simulate);
     add_navigate(app, navigate);
-    add_bench(app, bench_sim, bench_nav);
+    add_bench(app, bench_sim, bench_nav, bench_verify);
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
         for (const CLI::App* sub : app.get_subcommands({})) known |= sub->get_name() == argv[1];
@@ -197,6 +205,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("bench")) {
             const CLI::App* bench = app.get_subcommand("bench");
             if (bench->got_subcommand("nav")) return run_bench_nav(bench_nav);
+            if (bench->got_subcommand("verify")) return run_bench_verify(bench_verify);
             return run_bench_sim(bench_sim);
         }
     } catch (const makeway::io::FileError& e) {
