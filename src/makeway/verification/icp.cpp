@@ -1,5 +1,6 @@
 #include "makeway/verification/icp.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <tuple>
@@ -35,20 +36,26 @@ std::vector<Eigen::Vector3d> voxel_thin(const std::vector<Eigen::Vector3d>& poin
 }
 
 double geometric_residual(const std::vector<Eigen::Vector3d>& seg, const CadModel& model, int level, const Pose4& pose,
-                          double max_corr) {
+                          double max_corr, double keep_fraction) {
     if (seg.empty()) return max_corr;
     const ModelLevel& m = model.levels[static_cast<std::size_t>(level)];
     const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
-    double sum = 0.0;
+    std::vector<double> r2;
+    r2.reserve(seg.size());
     for (const auto& p : seg) {
         const Eigen::Vector3d d = p - pose.t_m;
         const Eigen::Vector3d q(c * d.x() + s * d.y(), -s * d.x() + c * d.y(), d.z());  // R^T (p - t)
         double d2 = 0.0;
         const std::size_t j = m.nearest(q, &d2);
         const double r = d2 > max_corr * max_corr ? max_corr : std::abs(m.normals_object[j].dot(q - m.points_object[j]));
-        sum += std::min(r * r, max_corr * max_corr);
+        r2.push_back(std::min(r * r, max_corr * max_corr));
     }
-    return std::sqrt(sum / static_cast<double>(seg.size()));
+    // Trimmed: the worst points are often other objects inside the enlarged box.
+    const auto keep = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(keep_fraction * r2.size())));
+    std::nth_element(r2.begin(), r2.begin() + static_cast<long>(keep - 1), r2.end());
+    double sum = 0.0;
+    for (std::size_t i = 0; i < keep; ++i) sum += r2[i];
+    return std::sqrt(sum / static_cast<double>(keep));
 }
 
 IcpResult align(const std::vector<Eigen::Vector3d>& segment, const CadModel& model, const Pose4& initial,
@@ -106,7 +113,8 @@ IcpResult align(const std::vector<Eigen::Vector3d>& segment, const CadModel& mod
         }
     }
     result.residual_m = geometric_residual(segment, model, last_level, result.pose,
-                                           params.max_correspondence_m[static_cast<std::size_t>(last_level)]);
+                                           params.max_correspondence_m[static_cast<std::size_t>(last_level)],
+                                           params.residual_keep_fraction);
     return result;
 }
 

@@ -26,6 +26,7 @@ struct IcpParams {
     /// backs) far better than their horizontal ones, so z is weakly observed: a prior keeps it at
     /// the initial value (the detection's floor contact), weighted relative to the correspondences.
     double z_prior_weight = 0.2;
+    double residual_keep_fraction = 0.8;  ///< the final residual ignores the worst 20 % of points
     std::vector<std::string> validate(std::size_t levels) const;
 };
 
@@ -36,11 +37,12 @@ struct IcpResult {
     bool converged = false;
 };
 
-/// Point-to-plane residual of the segment against the model at `level` for a pose: the RMS of
-/// per-point distances, each truncated at max_correspondence_m (points without a model surface
-/// nearby count fully). The quantity the yaw candidates and the rejection test compare.
+/// Point-to-plane residual of the segment against the model at `level` for a pose: the RMS over
+/// the best keep_fraction of per-point distances, each truncated at max_correspondence_m (points
+/// without a model surface nearby count fully). The quantity the yaw candidates and the
+/// rejection test compare.
 double geometric_residual(const std::vector<Eigen::Vector3d>& segment_sensor, const CadModel& model, int level,
-                          const Pose4& pose, double max_correspondence_m);
+                          const Pose4& pose, double max_correspondence_m, double keep_fraction = 1.0);
 
 /// Gauss-Newton with Cauchy weights at levels [first_level, last_level] (inclusive).
 IcpResult align(const std::vector<Eigen::Vector3d>& segment_sensor, const CadModel& model, const Pose4& initial,

@@ -1,6 +1,7 @@
 #include "makeway/verification/verifier.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "makeway/common/angles.hpp"
@@ -17,9 +18,16 @@ std::vector<std::string> VerifyParams::validate() const {
 
 std::vector<Eigen::Vector3d> segment_points(const PointCloud& cloud, const OrientedBox& box, double margin) {
     std::vector<Eigen::Vector3d> out;
+    const double c = std::cos(box.yaw_rad), s = std::sin(box.yaw_rad);
+    const Eigen::Vector3d half = 0.5 * box.size_m + Eigen::Vector3d::Constant(margin);
+    const double reach2 = half.head<2>().squaredNorm();
     for (const auto& p : cloud.xyz) {
-        const Eigen::Vector3d q = p.cast<double>();
-        if (q.allFinite() && box.contains(q, margin)) out.push_back(q);
+        const Eigen::Vector3d d = p.cast<double>() - box.centre_m;
+        if (!(d.head<2>().squaredNorm() <= reach2)) continue;  // cheap reject (and NaN)
+        if (std::abs(c * d.x() + s * d.y()) <= half.x() && std::abs(-s * d.x() + c * d.y()) <= half.y() &&
+            std::abs(d.z()) <= half.z()) {
+            out.push_back(p.cast<double>());
+        }
     }
     return out;
 }
@@ -43,6 +51,22 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
         out.reason = "segment has " + std::to_string(segment.size()) + " points (< " + std::to_string(params.min_points) + ")";
         return out;
     }
+    // Models whose size agrees with the detected box (length and width compared unordered: the yaw
+    // may be off by pi/2): a large model would otherwise explain clutter around a small object.
+    auto size_mismatch = [&](const CadModel* m) {
+        const Eigen::Vector3d a = m->box_object.size_m, b = det.box_sensor.size_m.cwiseMax(1e-3);
+        const double straight = std::max({std::abs(std::log(a.x() / b.x())), std::abs(std::log(a.y() / b.y()))});
+        const double turned = std::max({std::abs(std::log(a.x() / b.y())), std::abs(std::log(a.y() / b.x()))});
+        return std::max(std::min(straight, turned), std::abs(std::log(a.z() / b.z())));
+    };
+    std::vector<const CadModel*> sized;
+    for (const CadModel* m : models) {
+        if (size_mismatch(m) <= params.max_size_mismatch) sized.push_back(m);
+    }
+    if (sized.empty()) {
+        sized.push_back(*std::min_element(models.begin(), models.end(),
+                                          [&](const auto* a, const auto* b) { return size_mismatch(a) < size_mismatch(b); }));
+    }
     // The four yaw candidates of every model, ranked by their residual after a short coarse
     // alignment; the best two are refined fully and the lower final residual wins.
     struct Candidate {
@@ -51,8 +75,8 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
         double e;
     };
     std::vector<Candidate> candidates;
-    const std::vector<Eigen::Vector3d> coarse = voxel_thin(segment, models.front()->levels.front().voxel_m);
-    for (const CadModel* m : models) {
+    const std::vector<Eigen::Vector3d> coarse = voxel_thin(segment, sized.front()->levels.front().voxel_m);
+    for (const CadModel* m : sized) {
         for (int k = 0; k < 4; ++k) {
             Pose4 init;
             init.yaw_rad = wrap_angle(det.box_sensor.yaw_rad + k * kPi / 2);
@@ -65,16 +89,20 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
                 short_run.iterations.assign(short_run.iterations.size(), params.candidate_iterations);
                 pose = align(coarse, *m, init, short_run, 0, 0).pose;
             }
+            // Ranked on every point: a back rest seen by few points is what tells the yaw flips apart.
             candidates.push_back({m, pose, geometric_residual(coarse, *m, 0, pose, params.icp.max_correspondence_m.front())});
         }
     }
     std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.e < b.e; });
     const CadModel* best_model = nullptr;
     IcpResult fit;
-    fit.residual_m = std::numeric_limits<double>::infinity();
+    double best_full = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(params.refined_candidates)); ++i) {
-        const IcpResult r = align(segment, *candidates[i].model, candidates[i].pose, params.icp);
-        if (r.residual_m < fit.residual_m) fit = r, best_model = candidates[i].model;
+        IcpResult r = align(segment, *candidates[i].model, candidates[i].pose, params.icp);
+        // Refined candidates compete on every point too; acceptance uses the trimmed residual.
+        const double full = geometric_residual(segment, *candidates[i].model, static_cast<int>(candidates[i].model->levels.size()) - 1,
+                                               r.pose, params.icp.max_correspondence_m.back());
+        if (full < best_full) best_full = full, fit = r, best_model = candidates[i].model;
     }
     out.model = best_model->name;
     out.residual_m = fit.residual_m;
