@@ -69,7 +69,8 @@ IcpResult align(const std::vector<Eigen::Vector3d>& segment, const CadModel& mod
         // The robust scale follows the level: coarse levels tolerate coarse residuals.
         const double c = std::max(params.cauchy_scale_m, m.voxel_m);
         const double c2 = c * c;
-        const std::vector<Eigen::Vector3d> seg = level == n_levels - 1 ? segment : voxel_thin(segment, m.voxel_m);
+        // One scan point per model voxel: accumulated keyframes repeat surfaces five times over.
+        const std::vector<Eigen::Vector3d> seg = voxel_thin(segment, m.voxel_m);
         const double max_corr = params.max_correspondence_m[static_cast<std::size_t>(level)];
         result.converged = false;
         for (int it = 0; it < params.iterations[static_cast<std::size_t>(level)]; ++it) {
@@ -112,7 +113,8 @@ IcpResult align(const std::vector<Eigen::Vector3d>& segment, const CadModel& mod
             }
         }
     }
-    result.residual_m = geometric_residual(segment, model, last_level, result.pose,
+    result.residual_m = geometric_residual(voxel_thin(segment, model.levels[static_cast<std::size_t>(last_level)].voxel_m),
+                                           model, last_level, result.pose,
                                            params.max_correspondence_m[static_cast<std::size_t>(last_level)],
                                            params.residual_keep_fraction);
     return result;

@@ -97,10 +97,11 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
     const CadModel* best_model = nullptr;
     IcpResult fit;
     double best_full = std::numeric_limits<double>::infinity();
+    const std::vector<Eigen::Vector3d> fine = voxel_thin(segment, sized.front()->levels.back().voxel_m);
     for (std::size_t i = 0; i < std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(params.refined_candidates)); ++i) {
         IcpResult r = align(segment, *candidates[i].model, candidates[i].pose, params.icp);
         // Refined candidates compete on every point too; acceptance uses the trimmed residual.
-        const double full = geometric_residual(segment, *candidates[i].model, static_cast<int>(candidates[i].model->levels.size()) - 1,
+        const double full = geometric_residual(fine, *candidates[i].model, static_cast<int>(candidates[i].model->levels.size()) - 1,
                                                r.pose, params.icp.max_correspondence_m.back());
         if (full < best_full) best_full = full, fit = r, best_model = candidates[i].model;
     }

@@ -19,7 +19,7 @@ struct VerifyParams {
     double box_margin_m = 0.15;      ///< the box is grown by this on every side to cut the segment
     int candidate_iterations = 4;    ///< coarse Gauss-Newton steps per yaw candidate before ranking
     double max_size_mismatch = 0.3;  ///< |log(model / detected size)| per dimension for a model to be tried
-    int refined_candidates = 2;      ///< best-ranked candidates aligned fully; the lowest residual wins
+    int refined_candidates = 4;      ///< best-ranked candidates aligned fully; the lowest residual wins
     double e_min_m = 0.01;           ///< residual at or below which p_exist = 1
     double e_max_m = 0.035;          ///< residual above which the detection is rejected
     std::size_t min_points = 15;     ///< fewer segment points: rejected without fitting
