@@ -49,8 +49,7 @@ double median(std::vector<double> v) {
 
 int run_bench_sim(const BenchSimOptions& options) {
     const sim::Scene scene = bench_scene(options.seed);
-    std::vector<sim::ObjectModel> models;
-    for (const auto& o : scene.objects) models.push_back(sim::model_of(o));
+    const std::vector<sim::ObjectModel> models = sim::models_of(scene);
     sim::World world(scene, models);
     const sim::PoseAtTime pose = [](double t) { return make_T_xyz_yaw({0.5 * t, 0.0, 0.45}, 0.1 * t); };
 

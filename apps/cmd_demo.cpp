@@ -65,8 +65,7 @@ int run_demo(const DemoOptions& options) {
 
     // Navigation: every method on the same scene, with the same planners.
     const eval::NavParams nav = nav_params(cfg);
-    std::vector<sim::ObjectModel> models;
-    for (const auto& o : scene.objects) models.push_back(sim::model_of(o));
+    const std::vector<sim::ObjectModel> models = sim::models_of(scene);
     std::vector<eval::NavRunResult> runs;
     std::vector<io::DrivenPath> paths;
     io::Json runs_json = io::Json::array();

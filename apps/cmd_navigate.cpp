@@ -22,8 +22,7 @@ namespace {
 
 eval::NavRunResult run_method(const sim::Scene& scene, const std::string& method_name, const eval::NavParams& params) {
     const eval::NavMethod method = *eval::nav_method(method_name, params.robot);  // CLI11 checked the name
-    std::vector<sim::ObjectModel> models;
-    for (const auto& o : scene.objects) models.push_back(sim::model_of(o));
+    const std::vector<sim::ObjectModel> models = sim::models_of(scene);
     eval::NoObjects none;
     eval::GroundTruthObjects truth(scene, models);
     eval::ObjectSource& source = method.affordance ? static_cast<eval::ObjectSource&>(truth) : none;

@@ -20,12 +20,6 @@
 namespace makeway::apps {
 namespace {
 
-std::vector<sim::ObjectModel> models_of(const sim::Scene& scene) {
-    std::vector<sim::ObjectModel> models;
-    for (const auto& o : scene.objects) models.push_back(sim::model_of(o));
-    return models;
-}
-
 // SemanticKITTI .label: uint32 per point, semantic label in the low 16 bits, instance in the high.
 std::string semantic_kitti_labels(const PointCloud& cloud) {
     std::string out(cloud.size() * 4, '\0');

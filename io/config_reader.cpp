@@ -122,6 +122,12 @@ void YamlSection::finish() {
     }
 }
 
+std::string join_problems(const std::vector<std::string>& problems) {
+    std::string msg = problems.size() == 1 ? std::string() : std::to_string(problems.size()) + " problems: ";
+    for (std::size_t i = 0; i < problems.size(); ++i) msg += (i ? "; " : "") + problems[i];
+    return msg;
+}
+
 Config parse_config(std::string_view yaml_text) {
     YAML::Node root;
     try {
@@ -236,12 +242,7 @@ Config parse_config(std::string_view yaml_text) {
         s.add_validation(a.validate());
     }
     cfg.scene.robot = cfg.robot;
-    if (!problems.empty()) {
-        std::string msg = problems.size() == 1 ? std::string() :
-                          std::to_string(problems.size()) + " problems: ";
-        for (std::size_t i = 0; i < problems.size(); ++i) msg += (i ? "; " : "") + problems[i];
-        throw FormatError(msg);
-    }
+    if (!problems.empty()) throw FormatError(join_problems(problems));
     return cfg;
 }
 

@@ -63,6 +63,9 @@ struct SimulationConfig {
     std::uint64_t seed = 0;  ///< sensor noise and odometry drift
 };
 
+/// "a" for one problem, "3 problems: a; b; c" for several: one line, every problem.
+std::string join_problems(const std::vector<std::string>& problems);
+
 /// Every section of a makeway configuration file (config/default.yaml documents each key).
 struct Config {
     sim::SceneGenParams scene{.layout = sim::Layout::kStudySpace};  ///< the paper's real-world room

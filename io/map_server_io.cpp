@@ -108,11 +108,7 @@ Costmap read_map_server(const std::filesystem::path& yaml_path) {
         if (!(free >= 0.0 && free < occupied && occupied <= 1.0)) s.problem("need 0 <= free_thresh < occupied_thresh <= 1");
         s.finish();
     }
-    if (!problems.empty()) {
-        std::string msg;
-        for (const auto& p : problems) msg += (msg.empty() ? "" : "; ") + p;
-        throw FileError(yaml_path.string(), msg);
-    }
+    if (!problems.empty()) throw FileError(yaml_path.string(), join_problems(problems));
     const std::filesystem::path image_path = yaml_path.parent_path() / image;
     PgmImage img;
     try {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "io/canvas.hpp"
+#include "io/scene_png.hpp"
 #include "io/top_down_png.hpp"
 #include "makeway/sim/world.hpp"
 
@@ -41,17 +42,8 @@ void write_nav_png(const std::filesystem::path& path, const sim::Scene& scene, c
                     const double f = c / 252.0;  // soft: pale yellow to red
                     return Rgb{1.0, 0.95 - 0.75 * f, 0.7 - 0.7 * f};
                 });
-    if (costmap.cost.empty()) {  // no costmap: draw the building itself
-        const TriangleMesh structure = sim::structure_mesh(scene);
-        for (const auto& t : structure.triangles) {
-            canvas.fill_polygon({structure.vertices_m[t[0]].head<2>().cast<double>(),
-                                 structure.vertices_m[t[1]].head<2>().cast<double>(),
-                                 structure.vertices_m[t[2]].head<2>().cast<double>()},
-                                label_colour(SemanticLabel::kStructure));
-        }
-    }
-    std::vector<sim::ObjectModel> models;
-    for (const auto& o : scene.objects) models.push_back(sim::model_of(o));
+    if (costmap.cost.empty()) draw_structure(canvas, scene);  // no costmap: draw the building itself
+    const std::vector<sim::ObjectModel> models = sim::models_of(scene);
     const costmap::AffordanceParams zones;
     for (const sim::ObjectState& s : sim::object_states_at(scene, models, 0.0)) {
         ObjectEstimate o;

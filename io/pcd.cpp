@@ -279,13 +279,7 @@ std::string serialize_pcd(const PointCloud& cloud, PcdEncoding encoding) {
                       std::to_string(n) + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " +
                       std::to_string(n) + "\nDATA " + data_name + "\n";
     if (encoding == PcdEncoding::kAscii) {
-        for (std::size_t i = 0; i < n; ++i) {
-            for (std::size_t k = 0; k < channels.size(); ++k) {
-                if (k > 0) out += ' ';
-                append_text(cloud, channels[k], i, out);
-            }
-            out += '\n';
-        }
+        append_ascii_rows(cloud, channels, out);
         return out;
     }
     std::string raw(n * point_step, '\0');

@@ -266,13 +266,7 @@ std::string serialize_ply(const PointCloud& cloud, PlyEncoding encoding) {
     }
     out += "end_header\n";
     if (encoding == PlyEncoding::kAscii) {
-        for (std::size_t i = 0; i < n; ++i) {
-            for (std::size_t k = 0; k < channels.size(); ++k) {
-                if (k > 0) out += ' ';
-                append_text(cloud, channels[k], i, out);
-            }
-            out += '\n';
-        }
+        append_ascii_rows(cloud, channels, out);
         return out;
     }
     const std::size_t header_size = out.size();

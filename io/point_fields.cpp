@@ -239,6 +239,16 @@ void append_text(const PointCloud& cloud, Channel channel, std::size_t i, std::s
     out.append(buf, r.ptr);
 }
 
+void append_ascii_rows(const PointCloud& cloud, const std::vector<Channel>& channels, std::string& out) {
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        for (std::size_t k = 0; k < channels.size(); ++k) {
+            if (k > 0) out += ' ';
+            append_text(cloud, channels[k], i, out);
+        }
+        out += '\n';
+    }
+}
+
 void check_field_set(const std::vector<std::string>& names, const std::vector<Channel>& channels) {
     for (std::size_t a = 0; a < channels.size(); ++a) {
         if (channels[a] == Channel::kNone) continue;

@@ -46,6 +46,9 @@ void load_binary(const PointCloud& cloud, Channel channel, std::size_t i, char* 
 /// Appends channel value i as text that parses back to the same bits.
 void append_text(const PointCloud& cloud, Channel channel, std::size_t i, std::string& out);
 
+/// One text line per point: the channels' values separated by spaces (PCD and PLY ascii bodies).
+void append_ascii_rows(const PointCloud& cloud, const std::vector<Channel>& channels, std::string& out);
+
 /// Problems shared by the readers: duplicate or missing coordinate fields. Throws FormatError.
 void check_field_set(const std::vector<std::string>& names, const std::vector<Channel>& channels);
 

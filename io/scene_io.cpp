@@ -149,11 +149,7 @@ sim::Scene parse_scene(std::string_view yaml_text, const std::filesystem::path& 
     });
     s.finish();
     for (const auto& m : scene.validate()) problems.push_back(m);
-    if (!problems.empty()) {
-        std::string msg = problems.size() == 1 ? std::string() : std::to_string(problems.size()) + " problems: ";
-        for (std::size_t i = 0; i < problems.size(); ++i) msg += (i ? "; " : "") + problems[i];
-        throw FormatError(msg);
-    }
+    if (!problems.empty()) throw FormatError(join_problems(problems));
     return scene;
 }
 

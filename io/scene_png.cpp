@@ -7,13 +7,8 @@
 
 namespace makeway::io {
 
-void write_scene_png(const std::filesystem::path& path, const sim::Scene& scene,
-                     const std::vector<sim::ObjectModel>& models, const ScenePicture& picture) {
-    // Extra room above the floor for the title and legend.
-    Canvas canvas(scene.floor_min_m, scene.floor_max_m + Eigen::Vector2d(0.0, 1.0), picture.pixels_per_m, 0.3);
-    const Eigen::Vector2d lo = scene.floor_min_m, hi = scene.floor_max_m;
-    canvas.fill_polygon({lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}}, {0.96, 0.96, 0.93});
-    // Structure: every triangle of the wall and pillar boxes, projected.
+void draw_structure(Canvas& canvas, const sim::Scene& scene) {
+    // Every triangle of the wall and pillar boxes, projected.
     const TriangleMesh structure = sim::structure_mesh(scene);
     for (const auto& t : structure.triangles) {
         canvas.fill_polygon({structure.vertices_m[t[0]].head<2>().cast<double>(),
@@ -21,6 +16,15 @@ void write_scene_png(const std::filesystem::path& path, const sim::Scene& scene,
                              structure.vertices_m[t[2]].head<2>().cast<double>()},
                             label_colour(SemanticLabel::kStructure));
     }
+}
+
+void write_scene_png(const std::filesystem::path& path, const sim::Scene& scene,
+                     const std::vector<sim::ObjectModel>& models, const ScenePicture& picture) {
+    // Extra room above the floor for the title and legend.
+    Canvas canvas(scene.floor_min_m, scene.floor_max_m + Eigen::Vector2d(0.0, 1.0), picture.pixels_per_m, 0.3);
+    const Eigen::Vector2d lo = scene.floor_min_m, hi = scene.floor_max_m;
+    canvas.fill_polygon({lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}}, {0.96, 0.96, 0.93});
+    draw_structure(canvas, scene);
     for (std::size_t i = 0; i < scene.objects.size() && i < models.size(); ++i) {
         const sim::SceneObject& o = scene.objects[i];
         const Isometry2 T = to_isometry(o.pose);

@@ -16,6 +16,10 @@ struct ScenePicture {
     double pixels_per_m = 40.0;
 };
 
+class Canvas;
+/// The scene's walls and pillars, filled.
+void draw_structure(Canvas& canvas, const sim::Scene& scene);
+
 /// `models[i]` belongs to scene.objects[i]. Objects are drawn at t = 0. Throws FileError.
 void write_scene_png(const std::filesystem::path& path, const sim::Scene& scene,
                      const std::vector<sim::ObjectModel>& models, const ScenePicture& picture = {});

@@ -41,8 +41,7 @@ NavParams fast_params() {
 
 TEST(Navigation, EveryMethodReachesTheGoalWithoutCollisions) {
     const sim::Scene scene = corridor_with_table();
-    std::vector<sim::ObjectModel> models;
-    for (const auto& o : scene.objects) models.push_back(sim::model_of(o));
+    const std::vector<sim::ObjectModel> models = sim::models_of(scene);
     for (const std::string& name : nav_method_names()) {
         const NavMethod method = *nav_method(name);
         NoObjects none;
@@ -72,8 +71,7 @@ TEST(Navigation, MethodsDifferOnlyInInflationAndObjects) {
 TEST(Navigation, GroundTruthSourceFollowsPushedChairs) {
     sim::Scene s = corridor_with_table();
     s.pushers.push_back({2, 4.0, 0.4, 0.0});
-    std::vector<sim::ObjectModel> models;
-    for (const auto& o : s.objects) models.push_back(sim::model_of(o));
+    const std::vector<sim::ObjectModel> models = sim::models_of(s);
     const auto at0 = ground_truth_objects(s, models, 0.0);
     const auto at2 = ground_truth_objects(s, models, 2.0);  // fully pulled out
     EXPECT_NEAR(at2[1].box_world.centre_m.y() - at0[1].box_world.centre_m.y(), -0.4, 1e-9);

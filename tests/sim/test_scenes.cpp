@@ -103,8 +103,7 @@ TEST(Sequence, RobotDrivesTheRouteWithoutCollisions) {
     const Scene s = generate_scene({.seed = 0, .density = Density::kSparse});
     SequenceParams p;
     p.lidar.azimuth_step_deg = 2.0;  // a coarse sensor keeps the test fast
-    std::vector<ObjectModel> models;
-    for (const auto& o : s.objects) models.push_back(model_of(o));
+    const std::vector<ObjectModel> models = models_of(s);
     const CollisionChecker checker(s, models, p.robot);
     const auto route = drive_route(s, checker, p.robot);
     ASSERT_TRUE(route.has_value());

@@ -68,8 +68,7 @@ NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, Ob
                             const NavParams& params) {
     NavRunResult out;
     out.method = method.name;
-    std::vector<sim::ObjectModel> models;
-    for (const auto& o : scene.objects) models.push_back(sim::model_of(o));
+    const std::vector<sim::ObjectModel> models = sim::models_of(scene);
     const sim::CollisionChecker checker(scene, models, params.robot);
     if (auto shortest = sim::mission_route(scene, sim::make_nav_grid(scene, checker, params.robot))) {
         out.shortest_m = sim::route_length_m(*shortest);

@@ -90,8 +90,7 @@ VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::functi
         g.density = k % 2 ? sim::Density::kDense : sim::Density::kMedium;
         g.people = false;
         const sim::Scene scene = sim::generate_scene(g);
-        std::vector<sim::ObjectModel> models;
-        for (const auto& o : scene.objects) models.push_back(sim::model_of(o));
+        const std::vector<sim::ObjectModel> models = sim::models_of(scene);
         sim::World world(scene, models);
         // A keyframe of 5 sweeps from the waypoint, ground and ceiling removed.
         const Isometry3 T_world_sensor = lift_to_3d(scene.waypoint, 0.45);

@@ -27,6 +27,13 @@ ObjectModel model_of(const SceneObject& object) {
     return model;
 }
 
+std::vector<ObjectModel> models_of(const Scene& scene) {
+    std::vector<ObjectModel> models;
+    models.reserve(scene.objects.size());
+    for (const SceneObject& o : scene.objects) models.push_back(model_of(o));
+    return models;
+}
+
 Pose2 object_pose_at(const Scene& scene, std::size_t index, double t_s, Eigen::Vector2d* velocity_mps) {
     const SceneObject& o = scene.objects[index];
     Pose2 pose = o.pose;

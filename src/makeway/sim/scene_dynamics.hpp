@@ -18,6 +18,9 @@ struct ObjectModel {
 /// unknown style or a missing user mesh (io validates scenes before this is reached).
 ObjectModel model_of(const SceneObject& object);
 
+/// model_of() of every object of the scene, in order.
+std::vector<ObjectModel> models_of(const Scene& scene);
+
 /// Ground truth of one object at one time.
 struct ObjectState {
     std::uint32_t id = 0;

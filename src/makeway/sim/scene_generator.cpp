@@ -291,8 +291,7 @@ std::string_view to_string(Density d) {
 }
 
 bool is_navigable(const Scene& scene, const RobotParams& robot) {
-    std::vector<ObjectModel> models;
-    for (const SceneObject& o : scene.objects) models.push_back(model_of(o));
+    const std::vector<ObjectModel> models = models_of(scene);
     const CollisionChecker checker(scene, models, robot);
     if (checker.collides(scene.start, 0.0)) return false;
     const NavGrid grid = make_nav_grid(scene, checker, robot);
@@ -311,8 +310,7 @@ Scene generate_scene(const SceneGenParams& params) {
         if (params.people && params.layout == Layout::kRandom) {
             // Walkers loop between two reachable points, away from the robot's start and goal.
             const int walkers = counts_for(params.density).walkers;
-            std::vector<ObjectModel> models;
-            for (const SceneObject& o : s.objects) models.push_back(model_of(o));
+            const std::vector<ObjectModel> models = models_of(s);
             RobotParams person;
             person.length_m = person.width_m = 2 * kPersonRadius_m;
             const CollisionChecker checker(s, models, person);

@@ -7,12 +7,6 @@
 namespace makeway::sim {
 namespace {
 
-std::vector<ObjectModel> models_of(const Scene& scene) {
-    std::vector<ObjectModel> models;
-    for (const SceneObject& o : scene.objects) models.push_back(model_of(o));
-    return models;
-}
-
 Pose2 lerp(const Pose2& a, const Pose2& b, double alpha) {
     return {a.x_m + alpha * (b.x_m - a.x_m), a.y_m + alpha * (b.y_m - a.y_m),
             wrap_angle(a.yaw_rad + alpha * angle_diff(b.yaw_rad, a.yaw_rad))};
