@@ -1,10 +1,18 @@
 // makeway bench verify: the CAD verification benchmark (matched and mismatched models).
+#include <algorithm>
+#include <filesystem>
 #include <iostream>
 
 #include "apps/commands.hpp"
 #include "io/json_io.hpp"
 #include "io/progress.hpp"
+#include "io/error.hpp"
+#include "io/file_util.hpp"
+#include "io/mesh_io.hpp"
+#include "io/point_cloud_io.hpp"
+#include "makeway/common/angles.hpp"
 #include "makeway/eval/verify_bench.hpp"
+#include "makeway/perception/ground.hpp"
 
 namespace makeway::apps {
 namespace {
@@ -26,7 +34,89 @@ io::Json to_json(const eval::VerifyBenchArm& a) {
             {"ms_per_object_p99", a.ms_per_object_p99}};
 }
 
+std::vector<Detection> read_detections(const std::string& path) {
+    const io::Json j = io::read_json(path);
+    const io::Json& list = j.is_object() && j.contains("detections") ? j["detections"] : j;
+    if (!list.is_array()) throw io::FileError(path, "expected a list of detections (or {\"detections\": [...]})");
+    std::vector<Detection> out;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        const std::string where = "detection " + std::to_string(i) + ": ";
+        const io::Json& d = list[i];
+        Detection det;
+        try {
+            if (!d.is_object() || !d.contains("class") || !d["class"].is_string()) throw io::FormatError("'class' must be chair or table");
+            const auto cls = parse_object_class(d["class"].get<std::string>());
+            if (!cls) throw io::FormatError("'class' must be chair or table");
+            det.cls = *cls;
+            det.box_sensor = io::box_from_json(d.contains("box") ? d["box"] : d);
+            det.score = d.contains("score") && d["score"].is_number() ? d["score"].get<double>() : 1.0;
+        } catch (const io::FormatError& e) {
+            throw io::FileError(path, where + e.what());
+        }
+        out.push_back(det);
+    }
+    return out;
+}
+
+// Every mesh in the folder, its class from its name: chair_*.obj, table_*.ply, ...
+verification::CadLibrary read_cad_folder(const std::string& dir) {
+    if (!std::filesystem::is_directory(dir)) throw io::FileError(dir, "not a folder of CAD meshes");
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) {
+        const std::string ext = io::lower_extension(e.path());
+        if (e.is_regular_file() && (ext == "obj" || ext == "ply" || ext == "stl" || ext == "dae")) files.push_back(e.path());
+    }
+    std::sort(files.begin(), files.end());
+    verification::CadLibrary lib;
+    for (const auto& f : files) {
+        const std::string name = f.stem().string();
+        const auto cls = parse_object_class(name.substr(0, name.find('_')));
+        if (!cls) throw io::FileError(f.string(), "CAD file names must start with chair_ or table_");
+        lib.add(name, *cls, io::read_mesh(f));
+    }
+    if (lib.models().empty()) throw io::FileError(dir, "no CAD meshes (.obj, .ply, .stl, .dae) in the folder");
+    return lib;
+}
+
 }  // namespace
+
+int run_verify(const VerifyOptions& options) {
+    const PointCloud raw = io::read_point_cloud(options.cloud, {.non_finite = io::NonFinitePolicy::kDrop}).cloud;
+    const std::vector<Detection> detections = read_detections(options.detections);
+    const verification::CadLibrary library = read_cad_folder(options.cad_dir);
+    // The floor under each object from the ground plane, when the cloud still holds the ground;
+    // ground and ceiling points are then removed, as the pipeline does before detection.
+    const perception::GroundPlaneResult ground = perception::fit_ground_plane(raw, {});
+    const PointCloud cloud = perception::remove_ground_and_ceiling(raw, ground, {});
+    io::Json results = io::Json::array();
+    std::size_t accepted = 0;
+    for (const Detection& det : detections) {
+        std::optional<double> floor_z;
+        if (ground.found) {
+            const Eigen::Vector3d c = det.box_sensor.centre_m;
+            floor_z = -(ground.normal.x() * c.x() + ground.normal.y() * c.y() + ground.offset) / ground.normal.z();
+        }
+        const verification::VerifiedDetection v = verification::verify_detection(cloud, det, library, {}, floor_z);
+        accepted += v.accepted;
+        results.push_back({{"class", std::string(to_string(det.cls))},
+                           {"accepted", v.accepted},
+                           {"reason", v.reason},
+                           {"model", v.model},
+                           {"residual_m", v.residual_m},
+                           {"p_exist", v.p_exist},
+                           {"iterations", v.iterations},
+                           {"converged", v.converged},
+                           {"segment_points", v.segment_points},
+                           {"input_box", io::to_json(det.box_sensor)},
+                           {"box", io::to_json(v.box_sensor)},
+                           {"T_sensor_object", {{"t_m", {v.T_sensor_object.translation().x(), v.T_sensor_object.translation().y(),
+                                                          v.T_sensor_object.translation().z()}},
+                                                {"yaw_rad", yaw_of(v.T_sensor_object)}}}});
+    }
+    io::write_json(options.out, {{"cloud", options.cloud}, {"ground_found", ground.found}, {"verified", results}});
+    std::cout << "verified " << detections.size() << " detections: " << accepted << " accepted; wrote " << options.out << "\n";
+    return 0;
+}
 
 int run_bench_verify(const BenchVerifyOptions& options) {
     eval::VerifyBenchParams p;

@@ -109,3 +109,15 @@ struct BenchVerifyOptions {
 int run_bench_verify(const BenchVerifyOptions& options);
 
 }  // namespace makeway::apps
+
+namespace makeway::apps {
+
+struct VerifyOptions {
+    std::string cloud;
+    std::string detections;
+    std::string cad_dir;
+    std::string out;
+};
+int run_verify(const VerifyOptions& options);
+
+}  // namespace makeway::apps

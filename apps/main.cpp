@@ -117,6 +117,22 @@ void add_navigate(CLI::App& app, NavigateOptions& o) {
         ->capture_default_str();
 }
 
+void add_verify(CLI::App& app, VerifyOptions& o) {
+    auto* sub = app.add_subcommand("verify", "Verify detections against CAD models: yaw + translation "
+                                             "point-to-plane ICP from 4 yaw candidates, rejection by residual, "
+                                             "existence probability (paper eq. 2)");
+    sub->add_option("--cloud", o.cloud, "Keyframe cloud in the sensor frame (.pcd, .ply, .bin); the floor under "
+                                        "each object comes from its ground plane when it has one")
+        ->required();
+    sub->add_option("--detections", o.detections, "JSON: [{\"class\": \"chair\", \"box\": {\"centre_m\": [x, y, z], "
+                                                  "\"size_m\": [l, w, h], \"yaw_rad\": a}, \"score\": s}, ...]")
+        ->required();
+    sub->add_option("--cad", o.cad_dir, "Folder of CAD meshes named chair_*.obj / table_*.obj (also .ply, .stl, "
+                                        ".dae), in their object frame: origin on the floor, x forward")
+        ->required();
+    sub->add_option("--out", o.out, "Result JSON (refined pose and box, residual [m], p_exist, model)")->required();
+}
+
 void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchVerifyOptions& ver_o) {
     auto* bench = app.add_subcommand("bench", "Benchmarks that print JSON");
     bench->require_subcommand(1);
@@ -166,6 +182,7 @@ int main(int argc, char** argv) {
     NavigateOptions navigate;
     BenchNavOptions bench_nav;
     BenchVerifyOptions bench_verify;
+    VerifyOptions verify;
     add_info(app, info);
     add_convert(app, convert);
     add_demo(app, demo);
@@ -173,6 +190,7 @@ int main(int argc, char** argv) {
     add_scene(app, scene);
     add_simulate(app, simulate);
     add_navigate(app, navigate);
+    add_verify(app, verify);
     add_bench(app, bench_sim, bench_nav, bench_verify);
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
@@ -202,6 +220,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("scene")) return run_scene(scene);
         if (app.got_subcommand("simulate")) return run_simulate(simulate);
         if (app.got_subcommand("navigate")) return run_navigate(navigate);
+        if (app.got_subcommand("verify")) return run_verify(verify);
         if (app.got_subcommand("bench")) {
             const CLI::App* bench = app.get_subcommand("bench");
             if (bench->got_subcommand("nav")) return run_bench_nav(bench_nav);

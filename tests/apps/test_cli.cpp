@@ -218,5 +218,51 @@ TEST(Cli, NavigateWritesRunRouteAndCostmap) {
     EXPECT_EQ(run_makeway("navigate --scene x.yaml --method fast --out y", dir).exit_code, 2);
 }
 
+TEST(Cli, VerifyRefinesAFlippedDetectionAndRejectsAWallBox) {
+    const auto dir = testing_util::fresh_dir("verify");
+    std::ofstream(dir / "room.yaml")
+        << "name: room\nfloor: {min_m: [-4.5, -2.5], max_m: [4.5, 2.5]}\n"
+           "walls:\n  - {a_m: [-4, -2], b_m: [4, -2]}\n  - {a_m: [4, -2], b_m: [4, 2]}\n"
+           "  - {a_m: [4, 2], b_m: [-4, 2]}\n  - {a_m: [-4, 2], b_m: [-4, -2]}\n"
+           "objects:\n  - {id: 1, class: chair, style: four_leg_chair, model_seed: 4, pose: {x_m: -1, y_m: 0.6, yaw_rad: 0.6}}\n"
+           // The robot stands still (start = waypoint = goal): one static sweep.
+           "start: {x_m: -3, y_m: -0.5, yaw_rad: 0}\nwaypoint: {x_m: -3, y_m: -0.5, yaw_rad: 0}\n"
+           "goal: {x_m: -3, y_m: -0.5, yaw_rad: 0}\n";
+    ASSERT_EQ(run_makeway("simulate --scene " + (dir / "room.yaml").string() + " --frames 1 --out " + (dir / "sim").string(), dir).exit_code, 0);
+    ASSERT_EQ(run_makeway("cad --style four_leg_chair --seed 4 --out " + (dir / "cad" / "chair_four_leg.obj").string(), dir).exit_code, 0);
+    ASSERT_EQ(run_makeway("cad --style office_chair --seed 9 --out " + (dir / "cad" / "chair_office.obj").string(), dir).exit_code, 0);
+    const Isometry3 T_world_sensor = io::read_tum(dir / "sim" / "poses_gt.txt").front().T_world_sensor;
+    const io::Json truth = io::read_json(dir / "sim" / "objects" / "000000.json")["objects"][0];
+    OrientedBox box = io::box_from_json(truth["box_world"]).transformed(T_world_sensor.inverse());
+    const double true_yaw = box.yaw_rad;
+    box.yaw_rad += 3.14159265358979 + 0.1;  // a detector's flip by pi
+    box.centre_m.x() += 0.05;
+    const OrientedBox wall{{0.0, 0.0, 0.0}, {0.5, 0.5, 0.9}, 0.0};
+    io::Json dets = {{"detections", {{{"class", "chair"}, {"box", io::to_json(box)}, {"score", 0.8}},
+                                      {{"class", "chair"}, {"box", io::to_json(wall.transformed(Isometry3::Identity()))}}}}};
+    dets["detections"][1]["box"]["centre_m"] = {(T_world_sensor.inverse() * Eigen::Vector3d(3.95, 0.0, 0.45)).x(),
+                                                (T_world_sensor.inverse() * Eigen::Vector3d(3.95, 0.0, 0.45)).y(), 0.0};
+    io::write_json(dir / "dets.json", dets);
+    const CliRun r = run_makeway("verify --cloud " + (dir / "sim" / "clouds" / "000000.pcd").string() + " --detections " +
+                                     (dir / "dets.json").string() + " --cad " + (dir / "cad").string() + " --out " +
+                                     (dir / "verified.json").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const io::Json v = io::read_json(dir / "verified.json")["verified"];
+    ASSERT_EQ(v.size(), 2u);
+    EXPECT_TRUE(v[0]["accepted"].get<bool>()) << v[0]["reason"];
+    EXPECT_EQ(v[0]["model"], "chair_four_leg");
+    const double yaw = v[0]["T_sensor_object"]["yaw_rad"].get<double>();
+    EXPECT_LT(std::abs(std::remainder(yaw - true_yaw, 2 * 3.14159265358979)), 0.05);
+    EXPECT_FALSE(v[1]["accepted"].get<bool>());
+    // Bad input: a detection without a class names the file and the detection.
+    std::ofstream(dir / "bad.json") << "[{\"box\": {}}]";
+    const CliRun bad = run_makeway("verify --cloud " + (dir / "sim" / "clouds" / "000000.pcd").string() + " --detections " +
+                                       (dir / "bad.json").string() + " --cad " + (dir / "cad").string() + " --out " +
+                                       (dir / "v2.json").string(), dir);
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find((dir / "bad.json").string() + ": detection 0: 'class' must be chair or table"), std::string::npos) << bad.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "v2.json"));
+}
+
 }  // namespace
 }  // namespace makeway

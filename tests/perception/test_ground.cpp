@@ -53,6 +53,26 @@ TEST(Ground, RemovesGroundAndCeilingKeepsObjects) {
     EXPECT_LT(kept.size(), 3500u);  // floor and ceiling are gone
 }
 
+TEST(Ground, BeamsAtTheHorizonDoNotMakeAGround) {
+    // Walls close around the sensor, hit by many beams near 0 deg elevation: their returns all lie
+    // within a few centimetres of z = 0, more of them than on the floor.
+    Rng rng = make_rng(8);
+    PointCloud c;
+    for (int i = 0; i < 4000; ++i) {
+        const double a = uniform(rng, -kPi, kPi);
+        const double r = 2.0;
+        c.xyz.emplace_back(static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a)),
+                           static_cast<float>(normal(rng, 0.0, 0.015)));
+    }
+    for (int i = 0; i < 1500; ++i) {
+        c.xyz.emplace_back(static_cast<float>(uniform(rng, -1.9, 1.9)), static_cast<float>(uniform(rng, -1.9, 1.9)),
+                           static_cast<float>(-0.45 + normal(rng, 0.0, 0.01)));
+    }
+    const GroundPlaneResult g = fit_ground_plane(c, {});
+    ASSERT_TRUE(g.found);
+    EXPECT_NEAR(g.offset, 0.45, 0.02);
+}
+
 TEST(Ground, ClearResultWhenThereIsNoPlane) {
     PointCloud wall;
     Rng rng = make_rng(2);

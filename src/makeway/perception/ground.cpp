@@ -46,6 +46,7 @@ GroundPlaneResult fit_ground_plane(const PointCloud& cloud, const GroundPlanePar
         if (n.z() < 0) n = -n;
         if (n.z() < cos_tilt) continue;
         const double d = -n.dot(a);
+        if (d < params.min_sensor_height_m) continue;  // d is the sensor's height above the plane
         std::size_t inliers = 0;
         for (const auto& p : pts) inliers += std::abs(n.dot(p) + d) < params.inlier_distance_m;
         // The ground is the largest plane; among ties, the lowest (a table top has fewer points).

@@ -15,6 +15,10 @@ struct GroundPlaneParams {
     int iterations = 300;
     double max_tilt_deg = 25.0;  ///< the ground is roughly below a robot's sensor
     std::size_t min_inliers = 200;
+    /// The ground lies at least this far below the sensor. Without it, the returns of the beams
+    /// near 0 deg elevation on the walls (the VLP-32C packs 20 of its 32 beams within +-4 deg) form
+    /// a "plane" through the sensor that can out-vote the floor in a small room.
+    double min_sensor_height_m = 0.15;
     std::uint64_t seed = 0;
     std::vector<std::string> validate() const;
 };

@@ -20,8 +20,8 @@ struct IcpParams {
     std::vector<int> iterations{15, 10, 10};                 ///< per level, coarse to fine
     std::vector<double> max_correspondence_m{0.30, 0.15, 0.08};
     double cauchy_scale_m = 0.03;  ///< c in rho(r) = c^2/2 log(1 + (r/c)^2); at least the level's voxel
-    double convergence_m = 1e-4;                             ///< stop a level when the step is smaller
-    double convergence_rad = 1e-4;
+    double convergence_m = 5e-4;                             ///< stop a level when the step is smaller
+    double convergence_rad = 5e-4;
     /// Objects stand on the ground, and a LiDAR at seat height sees chairs' vertical parts (legs,
     /// backs) far better than their horizontal ones, so z is weakly observed: a prior keeps it at
     /// the initial value (the detection's floor contact), weighted relative to the correspondences.
