@@ -95,16 +95,20 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
     }
     std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.e < b.e; });
     const CadModel* best_model = nullptr;
-    IcpResult fit;
-    double best_full = std::numeric_limits<double>::infinity();
-    const std::vector<Eigen::Vector3d> fine = voxel_thin(segment, sized.front()->levels.back().voxel_m);
+    double best_e = std::numeric_limits<double>::infinity();
+    Pose4 best_pose;
+    const int levels = static_cast<int>(sized.front()->levels.size());
+    const int rank_level = std::max(0, levels - 2);  // candidates compete at the second-finest level
+    const std::vector<Eigen::Vector3d> ranked_points = voxel_thin(segment, sized.front()->levels[static_cast<std::size_t>(rank_level)].voxel_m);
     for (std::size_t i = 0; i < std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(params.refined_candidates)); ++i) {
-        IcpResult r = align(segment, *candidates[i].model, candidates[i].pose, params.icp);
-        // Refined candidates compete on every point too; acceptance uses the trimmed residual.
-        const double full = geometric_residual(fine, *candidates[i].model, static_cast<int>(candidates[i].model->levels.size()) - 1,
-                                               r.pose, params.icp.max_correspondence_m.back());
-        if (full < best_full) best_full = full, fit = r, best_model = candidates[i].model;
+        const IcpResult r = align(segment, *candidates[i].model, candidates[i].pose, params.icp, 0, rank_level);
+        // Ranked on every point: a back rest seen by few points tells the yaw flips apart.
+        const double e = geometric_residual(ranked_points, *candidates[i].model, rank_level, r.pose,
+                                            params.icp.max_correspondence_m[static_cast<std::size_t>(rank_level)]);
+        if (e < best_e) best_e = e, best_pose = r.pose, best_model = candidates[i].model;
     }
+    // Only the winner is refined at the finest level; acceptance uses its trimmed residual.
+    IcpResult fit = align(segment, *best_model, best_pose, params.icp, rank_level + 1 < levels ? rank_level + 1 : rank_level);
     out.model = best_model->name;
     out.residual_m = fit.residual_m;
     out.iterations = fit.iterations;
