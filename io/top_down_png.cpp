@@ -24,12 +24,12 @@ void draw_box(Canvas& canvas, const OrientedBox& box, const Rgb& colour) {
 }
 
 void write_top_down_png(const std::filesystem::path& path, const PointCloud& cloud,
-                        const std::vector<LabelledBox>& boxes, const TopDownStyle& style) {
+                        const std::vector<ObjectEstimate>& objects, const TopDownStyle& style) {
     PointBounds b = compute_bounds(cloud);
     Eigen::Vector2d lo = b.valid ? Eigen::Vector2d(b.min_m.head<2>().cast<double>()) : Eigen::Vector2d(0, 0);
     Eigen::Vector2d hi = b.valid ? Eigen::Vector2d(b.max_m.head<2>().cast<double>()) : Eigen::Vector2d(1, 1);
-    for (const auto& lb : boxes) {
-        for (const auto& c : lb.box.bev_corners()) {
+    for (const auto& o : objects) {
+        for (const auto& c : o.box_world.bev_corners()) {
             lo = lo.cwiseMin(c);
             hi = hi.cwiseMax(c);
         }
@@ -43,7 +43,7 @@ void write_top_down_png(const std::filesystem::path& path, const PointCloud& clo
                                           : label_colour(static_cast<SemanticLabel>(cloud.label[i]));
         canvas.dot(p.head<2>().cast<double>(), 2.0, c);
     }
-    for (const auto& lb : boxes) draw_box(canvas, lb.box, label_colour(lb.label));
+    for (const auto& o : objects) draw_box(canvas, o.box_world, label_colour(to_semantic_label(o.cls)));
     canvas.scale_bar();
     if (!style.title.empty()) canvas.text_px(10, 18, style.title, 12, {0, 0, 0});
     canvas.save_png(path);

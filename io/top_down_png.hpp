@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "makeway/common/box_sampling.hpp"
+#include "makeway/common/object_estimate.hpp"
 #include "makeway/common/point_cloud.hpp"
 
 #include "io/canvas.hpp"
@@ -22,9 +22,9 @@ struct TopDownStyle {
     std::string title;
 };
 
-/// Draws the cloud (coloured by semantic label when it has labels, else by height) and the boxes,
+/// Draws the cloud (coloured by semantic label when it has labels, else by height) and the objects,
 /// with each box's heading marked. Atomic write; throws FileError.
 void write_top_down_png(const std::filesystem::path& path, const PointCloud& cloud,
-                        const std::vector<LabelledBox>& boxes, const TopDownStyle& style = {});
+                        const std::vector<ObjectEstimate>& objects, const TopDownStyle& style = {});
 
 }  // namespace makeway::io
