@@ -63,7 +63,7 @@ OrientationStats stats(const std::vector<Sample>& samples, bool after) {
     return s;
 }
 
-verification::CadLibrary library_for(const sim::SceneObject& o, bool matched) {
+verification::CadLibrary build_library(const sim::SceneObject& o, bool matched) {
     // The object's own model (matched) or none of its dimensions (mismatched), plus one model of
     // every other style of its class.
     verification::CadLibrary lib;
@@ -76,6 +76,20 @@ verification::CadLibrary library_for(const sim::SceneObject& o, bool matched) {
     return lib;
 }
 
+// Libraries are sampled once per (object model, arm): the false boxes reuse the same two proxies.
+class LibraryCache {
+public:
+    const verification::CadLibrary& get(const sim::SceneObject& o, bool matched) {
+        const std::string key = o.style + "/" + std::to_string(o.model_seed) + (matched ? "/matched" : "/mismatched");
+        auto it = cache_.find(key);
+        if (it == cache_.end()) it = cache_.emplace(key, build_library(o, matched)).first;
+        return it->second;
+    }
+
+private:
+    std::map<std::string, verification::CadLibrary> cache_;
+};
+
 }  // namespace
 
 VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::function<void(int, int)>& progress) {
@@ -84,6 +98,7 @@ VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::functi
     std::vector<double> ms[2];
     std::size_t true_rejected[2] = {0, 0}, false_accepted[2] = {0, 0};
     Rng rng = make_rng(p.seed, 500);
+    LibraryCache libraries;
     for (int k = 0; k < p.scenes; ++k) {
         sim::SceneGenParams g;
         g.seed = p.seed + 100 + static_cast<std::uint64_t>(k);
@@ -129,7 +144,7 @@ VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::functi
             det.box_sensor.yaw_rad = wrap_angle(truth.yaw_rad + flip + normal(rng, 0, deg_to_rad(p.yaw_sigma_deg)));
             ++result.true_boxes;
             for (int arm = 0; arm < 2; ++arm) {
-                const verification::CadLibrary lib = library_for(o, arm == 0);
+                const verification::CadLibrary& lib = libraries.get(o, arm == 0);
                 const auto t0 = std::chrono::steady_clock::now();
                 const verification::VerifiedDetection v =
                     verification::verify_detection(cloud, det, lib, p.verify, floor_z(det.box_sensor.centre_m));
@@ -163,7 +178,7 @@ VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::functi
             proxy.cls = det.cls;
             proxy.style = det.cls == ObjectClass::kChair ? "four_leg_chair" : "rect_table";
             for (int arm = 0; arm < 2; ++arm) {
-                const verification::CadLibrary lib = library_for(proxy, arm == 0);
+                const verification::CadLibrary& lib = libraries.get(proxy, arm == 0);
                 false_accepted[arm] += verification::verify_detection(cloud, det, lib, p.verify, floor_z(c)).accepted;
             }
         }
