@@ -47,7 +47,8 @@ int run_navigate(const NavigateOptions& options) {
     io::write_nav_png(out / "route.png", scene, r.final_costmap, {{options.method, r.trajectory}}, r.last_plan,
                       scene.name + " / " + options.method + ": " + (r.success ? "success" : "failed (" + r.failure + ")") +
                           ", " + std::to_string(r.time_s).substr(0, 5) + " s, risk " +
-                          std::to_string(r.risk_time_s).substr(0, 4) + " s");
+                          std::to_string(r.risk_time_s).substr(0, 4) + " s",
+                      params.affordance);
     std::cout << j.dump() << "\n";
     return 0;
 }
@@ -99,7 +100,7 @@ int run_bench_nav(const BenchNavOptions& options) {
             all.push_back(r);
         }
         io::write_nav_png(out / "routes" / (scenes[s].name + ".png"), scenes[s], Costmap{}, paths, {},
-                          scenes[s].name + ": every method");
+                          scenes[s].name + ": every method", cfg.affordance);
     }
     const io::Json agg = aggregate_runs(all, methods);
     io::write_json(out / "results.json", {{"scenes", options.scenes}, {"seed", options.seed}, {"runs", runs}, {"aggregate", agg}});

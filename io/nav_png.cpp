@@ -30,7 +30,7 @@ const Rgb kPathColours[] = {{0.0, 0.0, 0.0}, {0.1, 0.5, 0.1}, {0.55, 0.1, 0.75},
 
 void write_nav_png(const std::filesystem::path& path, const sim::Scene& scene, const Costmap& costmap,
                    const std::vector<DrivenPath>& paths, const std::vector<Eigen::Vector2d>& plan,
-                   const std::string& title) {
+                   const std::string& title, const costmap::AffordanceParams& zones) {
     Canvas canvas(scene.floor_min_m, scene.floor_max_m + Eigen::Vector2d(0.0, 1.0), 40.0, 0.3);
     canvas.grid(costmap.origin_m, costmap.resolution_m, costmap.width, costmap.height,
                 [&](int x, int y) -> std::optional<Rgb> {
@@ -44,7 +44,6 @@ void write_nav_png(const std::filesystem::path& path, const sim::Scene& scene, c
                 });
     if (costmap.cost.empty()) draw_structure(canvas, scene);  // no costmap: draw the building itself
     const std::vector<sim::ObjectModel> models = sim::models_of(scene);
-    const costmap::AffordanceParams zones;
     for (const sim::ObjectState& s : sim::object_states_at(scene, models, 0.0)) {
         ObjectEstimate o;
         o.cls = s.cls;

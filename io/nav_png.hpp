@@ -17,9 +17,9 @@ struct DrivenPath {
 };
 
 /// `costmap` may be empty (no grid drawn). Objects are drawn at t = 0 with their ground-truth
-/// affordance zones (the risk-time zones). Throws FileError.
+/// affordance zones as `zones` defines them (the risk-time zones of the run). Throws FileError.
 void write_nav_png(const std::filesystem::path& path, const sim::Scene& scene, const Costmap& costmap,
                    const std::vector<DrivenPath>& paths, const std::vector<Eigen::Vector2d>& plan,
-                   const std::string& title);
+                   const std::string& title, const costmap::AffordanceParams& zones);
 
 }  // namespace makeway::io
