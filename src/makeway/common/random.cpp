@@ -14,7 +14,8 @@ std::uint64_t splitmix64(std::uint64_t& state) {
     return z ^ (z >> 31);
 }
 
-double unit(Rng& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }  // [0, 1)
+double to_unit(std::uint64_t bits) { return static_cast<double>(bits >> 11) * 0x1.0p-53; }  // [0, 1)
+double unit(Rng& rng) { return to_unit(rng()); }
 
 }  // namespace
 
@@ -50,27 +51,15 @@ bool bernoulli(Rng& rng, double p) { return unit(rng) < p; }
 double counter_uniform(std::uint64_t seed, std::uint64_t counter) {
     std::uint64_t state = seed * 0x9E3779B97F4A7C15ULL + counter;
     splitmix64(state);
-    return static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53;
+    return to_unit(splitmix64(state));
 }
-
-double counter_normal(std::uint64_t seed, std::uint64_t counter) {
-    std::uint64_t state = seed * 0x9E3779B97F4A7C15ULL + counter;
-    splitmix64(state);
-    const double u1 = 1.0 - static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53;
-    const double u2 = static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53;
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
-}
-
-}  // namespace makeway
-
-namespace makeway {
 
 std::pair<double, double> counter_normal_pair(std::uint64_t seed, std::uint64_t counter) {
     std::uint64_t state = seed * 0x9E3779B97F4A7C15ULL + counter;
     splitmix64(state);
     while (true) {  // accepts with probability pi/4; the sequence is fixed by (seed, counter)
-        const double u = 2.0 * static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53 - 1.0;
-        const double v = 2.0 * static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53 - 1.0;
+        const double u = 2.0 * to_unit(splitmix64(state)) - 1.0;
+        const double v = 2.0 * to_unit(splitmix64(state)) - 1.0;
         const double s = u * u + v * v;
         if (s > 0.0 && s < 1.0) {
             const double f = std::sqrt(-2.0 * std::log(s) / s);

@@ -24,9 +24,8 @@ std::int64_t uniform_int(Rng& rng, std::int64_t lo, std::int64_t hi);
 bool bernoulli(Rng& rng, double p);
 
 /// Counter-based draws: a pure function of (seed, counter), so parallel loops give the same values
-/// as serial ones whatever the thread schedule. Uniform in [0, 1) and standard normal.
+/// as serial ones whatever the thread schedule. Uniform in [0, 1).
 double counter_uniform(std::uint64_t seed, std::uint64_t counter);
-double counter_normal(std::uint64_t seed, std::uint64_t counter);
 /// Two independent standard normals for one (seed, counter) (Marsaglia's polar method: no
 /// trigonometry, one logarithm per pair); the cheap path for per-ray sensor noise.
 std::pair<double, double> counter_normal_pair(std::uint64_t seed, std::uint64_t counter);
