@@ -3,6 +3,7 @@
 #include <nanoflann.hpp>
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <tuple>
 
@@ -28,11 +29,16 @@ struct ModelLevel::Index {
     Tree tree;
 };
 
-std::size_t ModelLevel::nearest(const Eigen::Vector3d& q, double* distance2) const {
-    std::size_t idx = 0;
+std::size_t ModelLevel::nearest(const Eigen::Vector3d& q, double max_distance_m, double* distance2) const {
+    // A 1-NN search whose ball starts at max_distance: branches farther away are never visited.
+    std::size_t idx = kNone;
     double d2 = 0.0;
-    index->tree.knnSearch(q.data(), 1, &idx, &d2);
-    if (distance2) *distance2 = d2;
+    nanoflann::KNNResultSet<double, std::size_t> found(1);
+    found.init(&idx, &d2);
+    d2 = max_distance_m * max_distance_m;
+    index->tree.findNeighbors(found, q.data(), nanoflann::SearchParams());
+    if (found.size() == 0) idx = kNone;
+    if (distance2) *distance2 = idx == kNone ? std::numeric_limits<double>::infinity() : d2;
     return idx;
 }
 

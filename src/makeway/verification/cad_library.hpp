@@ -18,8 +18,10 @@ struct ModelLevel {
     std::vector<Eigen::Vector3d> normals_object;
     struct Index;
     std::shared_ptr<const Index> index;  ///< k-d tree over points_object
-    /// Index of the nearest model point and its squared distance.
-    std::size_t nearest(const Eigen::Vector3d& q, double* distance2) const;
+    static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+    /// Index of the nearest model point within max_distance_m [m] of q (object frame) and its
+    /// squared distance, or kNone (distance2 = inf) when there is none that close.
+    std::size_t nearest(const Eigen::Vector3d& q, double max_distance_m, double* distance2) const;
 };
 
 struct CadModel {

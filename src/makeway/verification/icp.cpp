@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
-#include <tuple>
+#include <cstdint>
+#include <limits>
+#include <unordered_set>
 
 #include "makeway/common/angles.hpp"
 
@@ -24,15 +25,33 @@ std::vector<std::string> IcpParams::validate(std::size_t levels) const {
 }
 
 std::vector<Eigen::Vector3d> voxel_thin(const std::vector<Eigen::Vector3d>& points, double voxel) {
-    std::set<std::tuple<long, long, long>> seen;
+    // Voxel keys packed into 64 bits (21 bits per axis: +-1 million voxels) in a hash set.
+    auto key = [voxel](const Eigen::Vector3d& p) {
+        std::uint64_t k = 0;
+        for (int a = 0; a < 3; ++a) {
+            const auto v = static_cast<std::int64_t>(std::floor(p[a] / voxel)) & ((std::int64_t{1} << 21) - 1);
+            k = (k << 21) | static_cast<std::uint64_t>(v);
+        }
+        return k;
+    };
+    std::unordered_set<std::uint64_t> seen;
+    seen.reserve(points.size());
     std::vector<Eigen::Vector3d> out;
     for (const auto& p : points) {
-        if (seen.emplace(std::lround(std::floor(p.x() / voxel)), std::lround(std::floor(p.y() / voxel)),
-                         std::lround(std::floor(p.z() / voxel))).second) {
-            out.push_back(p);
-        }
+        if (p.allFinite() && seen.insert(key(p)).second) out.push_back(p);
     }
     return out;
+}
+
+LevelledSegment thin_to_levels(const std::vector<Eigen::Vector3d>& segment, const CadModel& model) {
+    LevelledSegment out;
+    for (const ModelLevel& level : model.levels) out.per_level_sensor.push_back(voxel_thin(segment, level.voxel_m));
+    return out;
+}
+
+IcpResult align(const std::vector<Eigen::Vector3d>& segment, const CadModel& model, const Pose4& initial,
+                const IcpParams& params, int first_level, int last_level) {
+    return align(thin_to_levels(segment, model), model, initial, params, first_level, last_level);
 }
 
 double geometric_residual(const std::vector<Eigen::Vector3d>& seg, const CadModel& model, int level, const Pose4& pose,
@@ -46,8 +65,8 @@ double geometric_residual(const std::vector<Eigen::Vector3d>& seg, const CadMode
         const Eigen::Vector3d d = p - pose.t_m;
         const Eigen::Vector3d q(c * d.x() + s * d.y(), -s * d.x() + c * d.y(), d.z());  // R^T (p - t)
         double d2 = 0.0;
-        const std::size_t j = m.nearest(q, &d2);
-        const double r = d2 > max_corr * max_corr ? max_corr : std::abs(m.normals_object[j].dot(q - m.points_object[j]));
+        const std::size_t j = m.nearest(q, max_corr, &d2);
+        const double r = j == ModelLevel::kNone ? max_corr : std::abs(m.normals_object[j].dot(q - m.points_object[j]));
         r2.push_back(std::min(r * r, max_corr * max_corr));
     }
     // Trimmed: the worst points are often other objects inside the enlarged box.
@@ -58,19 +77,22 @@ double geometric_residual(const std::vector<Eigen::Vector3d>& seg, const CadMode
     return std::sqrt(sum / static_cast<double>(keep));
 }
 
-IcpResult align(const std::vector<Eigen::Vector3d>& segment, const CadModel& model, const Pose4& initial,
-                const IcpParams& params, int first_level, int last_level) {
+IcpResult align(const LevelledSegment& segment, const CadModel& model, const Pose4& initial, const IcpParams& params,
+                int first_level, int last_level) {
     IcpResult result;
     result.pose = initial;
     const int n_levels = static_cast<int>(model.levels.size());
     if (last_level < 0 || last_level >= n_levels) last_level = n_levels - 1;
+    if (segment.per_level_sensor.size() != model.levels.size() || first_level < 0) {
+        result.residual_m = std::numeric_limits<double>::infinity();  // thinned for another library
+        return result;
+    }
     for (int level = first_level; level <= last_level; ++level) {
         const ModelLevel& m = model.levels[static_cast<std::size_t>(level)];
         // The robust scale follows the level: coarse levels tolerate coarse residuals.
         const double c = std::max(params.cauchy_scale_m, m.voxel_m);
         const double c2 = c * c;
-        // One scan point per model voxel: accumulated keyframes repeat surfaces five times over.
-        const std::vector<Eigen::Vector3d> seg = voxel_thin(segment, m.voxel_m);
+        const std::vector<Eigen::Vector3d>& seg = segment.per_level_sensor[static_cast<std::size_t>(level)];
         const double max_corr = params.max_correspondence_m[static_cast<std::size_t>(level)];
         result.converged = false;
         for (int it = 0; it < params.iterations[static_cast<std::size_t>(level)]; ++it) {
@@ -84,8 +106,8 @@ IcpResult align(const std::vector<Eigen::Vector3d>& segment, const CadModel& mod
                 const Eigen::Vector3d d = p - x.t_m;
                 const Eigen::Vector3d q(cy * d.x() + s * d.y(), -s * d.x() + cy * d.y(), d.z());
                 double d2 = 0.0;
-                const std::size_t j = m.nearest(q, &d2);
-                if (d2 > max_corr * max_corr) continue;
+                const std::size_t j = m.nearest(q, max_corr, &d2);
+                if (j == ModelLevel::kNone) continue;
                 const Eigen::Vector3d& n = m.normals_object[j];
                 const double r = n.dot(q - m.points_object[j]);  // eq. (1), in the object frame
                 // q = R^T (p - t): dq/dt = -R^T, dq/dyaw = dR^T/dyaw (p - t).
@@ -113,8 +135,8 @@ IcpResult align(const std::vector<Eigen::Vector3d>& segment, const CadModel& mod
             }
         }
     }
-    result.residual_m = geometric_residual(voxel_thin(segment, model.levels[static_cast<std::size_t>(last_level)].voxel_m),
-                                           model, last_level, result.pose,
+    result.residual_m = geometric_residual(segment.per_level_sensor[static_cast<std::size_t>(last_level)], model,
+                                           last_level, result.pose,
                                            params.max_correspondence_m[static_cast<std::size_t>(last_level)],
                                            params.residual_keep_fraction);
     return result;

@@ -44,11 +44,22 @@ struct IcpResult {
 double geometric_residual(const std::vector<Eigen::Vector3d>& segment_sensor, const CadModel& model, int level,
                           const Pose4& pose, double max_correspondence_m, double keep_fraction = 1.0);
 
-/// Gauss-Newton with Cauchy weights at levels [first_level, last_level] (inclusive).
-IcpResult align(const std::vector<Eigen::Vector3d>& segment_sensor, const CadModel& model, const Pose4& initial,
-                const IcpParams& params, int first_level = 0, int last_level = -1);
-
 /// Keeps one point per voxel (the first), for the coarse levels.
 std::vector<Eigen::Vector3d> voxel_thin(const std::vector<Eigen::Vector3d>& points, double voxel_m);
+
+/// A scan segment thinned to one point per voxel of every level of a library (accumulated
+/// keyframes repeat surfaces five times over); computed once and shared by every candidate.
+struct LevelledSegment {
+    std::vector<std::vector<Eigen::Vector3d>> per_level_sensor;  ///< coarse to fine
+};
+LevelledSegment thin_to_levels(const std::vector<Eigen::Vector3d>& segment_sensor, const CadModel& model);
+
+/// Gauss-Newton with Cauchy weights at levels [first_level, last_level] (inclusive; -1: finest).
+/// The segment must have been thinned for a model with the same voxel sizes.
+IcpResult align(const LevelledSegment& segment, const CadModel& model, const Pose4& initial, const IcpParams& params,
+                int first_level = 0, int last_level = -1);
+/// The same, thinning the segment first.
+IcpResult align(const std::vector<Eigen::Vector3d>& segment_sensor, const CadModel& model, const Pose4& initial,
+                const IcpParams& params, int first_level = 0, int last_level = -1);
 
 }  // namespace makeway::verification

@@ -75,7 +75,8 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
         double e;
     };
     std::vector<Candidate> candidates;
-    const std::vector<Eigen::Vector3d> coarse = voxel_thin(segment, sized.front()->levels.front().voxel_m);
+    const LevelledSegment levelled = thin_to_levels(segment, *sized.front());  // every model has the library's levels
+    const std::vector<Eigen::Vector3d>& coarse = levelled.per_level_sensor.front();
     for (const CadModel* m : sized) {
         for (int k = 0; k < 4; ++k) {
             Pose4 init;
@@ -87,7 +88,7 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
             if (params.candidate_iterations > 0) {
                 IcpParams short_run = params.icp;
                 short_run.iterations.assign(short_run.iterations.size(), params.candidate_iterations);
-                pose = align(coarse, *m, init, short_run, 0, 0).pose;
+                pose = align(levelled, *m, init, short_run, 0, 0).pose;
             }
             // Ranked on every point: a back rest seen by few points is what tells the yaw flips apart.
             candidates.push_back({m, pose, geometric_residual(coarse, *m, 0, pose, params.icp.max_correspondence_m.front())});
@@ -99,16 +100,16 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
     Pose4 best_pose;
     const int levels = static_cast<int>(sized.front()->levels.size());
     const int rank_level = std::max(0, levels - 2);  // candidates compete at the second-finest level
-    const std::vector<Eigen::Vector3d> ranked_points = voxel_thin(segment, sized.front()->levels[static_cast<std::size_t>(rank_level)].voxel_m);
+    const std::vector<Eigen::Vector3d>& ranked_points = levelled.per_level_sensor[static_cast<std::size_t>(rank_level)];
     for (std::size_t i = 0; i < std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(params.refined_candidates)); ++i) {
-        const IcpResult r = align(segment, *candidates[i].model, candidates[i].pose, params.icp, 0, rank_level);
+        const IcpResult r = align(levelled, *candidates[i].model, candidates[i].pose, params.icp, 0, rank_level);
         // Ranked on every point: a back rest seen by few points tells the yaw flips apart.
         const double e = geometric_residual(ranked_points, *candidates[i].model, rank_level, r.pose,
                                             params.icp.max_correspondence_m[static_cast<std::size_t>(rank_level)]);
         if (e < best_e) best_e = e, best_pose = r.pose, best_model = candidates[i].model;
     }
     // Only the winner is refined at the finest level; acceptance uses its trimmed residual.
-    IcpResult fit = align(segment, *best_model, best_pose, params.icp, rank_level + 1 < levels ? rank_level + 1 : rank_level);
+    IcpResult fit = align(levelled, *best_model, best_pose, params.icp, rank_level + 1 < levels ? rank_level + 1 : rank_level);
     out.model = best_model->name;
     out.residual_m = fit.residual_m;
     out.iterations = fit.iterations;
