@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numeric>
+
 #include "../sim/sim_test_util.hpp"
 #include "makeway/common/angles.hpp"
 #include "makeway/common/random.hpp"
@@ -47,8 +50,8 @@ ChairScan scan_chair(sim::FurnitureStyle style, std::uint64_t model_seed, double
     return out;
 }
 
-CadLibrary library_with(sim::FurnitureStyle style, std::uint64_t model_seed) {
-    CadLibrary lib;
+CadLibrary library_with(sim::FurnitureStyle style, std::uint64_t model_seed, const CadLibraryParams& params = {}) {
+    CadLibrary lib(params);
     lib.add(std::string(sim::to_string(style)), sim::class_of(style), sim::make_furniture(style, model_seed).mesh_object);
     return lib;
 }
@@ -73,6 +76,67 @@ TEST(Verification, RecoversThePoseFromWrongStartsIncludingEveryYawFlip) {
             EXPECT_GE(v.p_exist, 0.5);
             EXPECT_LE(v.p_exist, 1.0);
         }
+    }
+}
+
+TEST(ClosestPointGrid, EveryCellHoldsTheExactNearestPointOfItsCentre) {
+    Rng rng = make_rng(5);
+    std::vector<Eigen::Vector3d> pts;
+    for (int i = 0; i < 300; ++i) pts.emplace_back(uniform(rng, -0.4, 0.4), uniform(rng, 0.0, 0.3), uniform(rng, 0.0, 0.9));
+    const double cell = 0.03;
+    const ClosestPointGrid grid(pts, cell, 0.1);
+    ASSERT_GT(grid.dims().prod(), 1000);
+    int checked = 0;
+    for (int z = 0; z < grid.dims().z(); z += 3) {
+        for (int y = 0; y < grid.dims().y(); ++y) {
+            for (int x = 0; x < grid.dims().x(); ++x) {
+                // The centre of cell (x, y, z): the grid starts 0.1 m below the points' minimum.
+                const Eigen::Vector3d lo = std::accumulate(pts.begin(), pts.end(), pts.front(),
+                                                           [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a.cwiseMin(b); });
+                const Eigen::Vector3d c = lo - Eigen::Vector3d::Constant(0.1) + (Eigen::Vector3d(x, y, z) + Eigen::Vector3d::Constant(0.5)) * cell;
+                double brute = 1e9;
+                for (const auto& p : pts) brute = std::min(brute, (p - c).norm());
+                const std::uint32_t j = grid.lookup(c);
+                ASSERT_NE(j, ClosestPointGrid::kOutside);
+                // Sites sit at their cells' centres during the transform, so the answer is the
+                // nearest up to one cell's half diagonal per end.
+                EXPECT_LE((pts[j] - c).norm(), brute + std::sqrt(3.0) * cell + 1e-9);
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GT(checked, 1000);
+    EXPECT_EQ(grid.lookup(Eigen::Vector3d(5.0, 0.0, 0.0)), ClosestPointGrid::kOutside);
+    EXPECT_EQ(grid.lookup(Eigen::Vector3d::Constant(std::nan(""))), ClosestPointGrid::kOutside);
+    EXPECT_EQ(ClosestPointGrid({}, cell, 0.1).lookup(Eigen::Vector3d::Zero()), ClosestPointGrid::kOutside);
+}
+
+TEST(ClosestPointGrid, OnePointGridAnswersThatPointEverywhere) {
+    const ClosestPointGrid grid({Eigen::Vector3d(1.0, 2.0, 3.0)}, 0.05, 0.2);
+    EXPECT_EQ(grid.dims().x(), 9);
+    EXPECT_EQ(grid.lookup(Eigen::Vector3d(1.18, 1.81, 3.1)), 0u);
+    EXPECT_EQ(grid.lookup(Eigen::Vector3d(1.3, 2.0, 3.0)), ClosestPointGrid::kOutside);
+}
+
+TEST(Verification, LookupGridAndExactTreeAgree) {
+    const ChairScan scan = scan_chair(sim::FurnitureStyle::kOfficeChair, 9, -2.2, 3);
+    const CadLibrary fast = library_with(sim::FurnitureStyle::kOfficeChair, 9);
+    const CadLibrary exact = library_with(sim::FurnitureStyle::kOfficeChair, 9, {.lookup_margin_m = {}});
+    ASSERT_TRUE(fast.models()[0].levels[0].grid);
+    ASSERT_FALSE(exact.models()[0].levels[0].grid);
+    Rng rng = make_rng(23);
+    for (int trial = 0; trial < 8; ++trial) {
+        Detection det;
+        det.cls = ObjectClass::kChair;
+        det.box_sensor = scan.box_sensor;
+        det.box_sensor.centre_m += Eigen::Vector3d(normal(rng, 0, 0.06), normal(rng, 0, 0.06), 0.0);
+        det.box_sensor.yaw_rad = wrap_angle(scan.truth.yaw_rad + trial * kPi / 2 + normal(rng, 0, deg_to_rad(5)));
+        const VerifiedDetection a = verify_detection(scan.cloud_sensor, det, fast, {}, -0.45);
+        const VerifiedDetection b = verify_detection(scan.cloud_sensor, det, exact, {}, -0.45);
+        ASSERT_TRUE(a.accepted && b.accepted) << a.reason << " / " << b.reason;
+        EXPECT_LT(std::abs(rad_to_deg(angle_diff(yaw_of(a.T_sensor_object), yaw_of(b.T_sensor_object)))), 1.0);
+        EXPECT_LT((a.T_sensor_object.translation() - b.T_sensor_object.translation()).norm(), 0.01);
+        EXPECT_NEAR(a.residual_m, b.residual_m, 0.003);
     }
 }
 

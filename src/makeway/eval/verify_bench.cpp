@@ -76,7 +76,8 @@ verification::CadLibrary build_library(const sim::SceneObject& o, bool matched) 
     return lib;
 }
 
-// Libraries are sampled once per (object model, arm): the false boxes reuse the same two proxies.
+// Libraries are sampled once per (object model, arm). Scene objects get a cache per scene (their
+// model seeds are the scene's own); the false boxes' two proxies share one for the whole run.
 class LibraryCache {
 public:
     const verification::CadLibrary& get(const sim::SceneObject& o, bool matched) {
@@ -98,8 +99,9 @@ VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::functi
     std::vector<double> ms[2];
     std::size_t true_rejected[2] = {0, 0}, false_accepted[2] = {0, 0};
     Rng rng = make_rng(p.seed, 500);
-    LibraryCache libraries;
+    LibraryCache proxy_libraries;
     for (int k = 0; k < p.scenes; ++k) {
+        LibraryCache libraries;
         sim::SceneGenParams g;
         g.seed = p.seed + 100 + static_cast<std::uint64_t>(k);
         g.density = k % 2 ? sim::Density::kDense : sim::Density::kMedium;
@@ -178,7 +180,7 @@ VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::functi
             proxy.cls = det.cls;
             proxy.style = det.cls == ObjectClass::kChair ? "four_leg_chair" : "rect_table";
             for (int arm = 0; arm < 2; ++arm) {
-                const verification::CadLibrary& lib = libraries.get(proxy, arm == 0);
+                const verification::CadLibrary& lib = proxy_libraries.get(proxy, arm == 0);
                 false_accepted[arm] += verification::verify_detection(cloud, det, lib, p.verify, floor_z(c)).accepted;
             }
         }

@@ -31,6 +31,15 @@ struct ModelLevel::Index {
 
 std::size_t ModelLevel::nearest(const Eigen::Vector3d& q, double max_distance_m, double* distance2) const {
     // A 1-NN search whose ball starts at max_distance: branches farther away are never visited.
+    if (grid) {
+        double d2 = 0.0;
+        const std::uint32_t j = grid->nearest(q, points_object, &d2);
+        if (j != ClosestPointGrid::kOutside) {
+            const bool near = d2 <= max_distance_m * max_distance_m;
+            if (distance2) *distance2 = near ? d2 : std::numeric_limits<double>::infinity();
+            return near ? j : kNone;
+        }
+    }
     std::size_t idx = kNone;
     double d2 = 0.0;
     nanoflann::KNNResultSet<double, std::size_t> found(1);
@@ -49,6 +58,11 @@ std::vector<std::string> CadLibraryParams::validate() const {
         if (!(v > 0.0 && v < 1.0)) p.push_back("voxel sizes must be in (0, 1)");
     }
     if (!(sample_spacing_m > 0.0 && sample_spacing_m < 0.5)) p.push_back("sample_spacing_m must be in (0, 0.5)");
+    if (lookup_margin_m.size() > voxel_sizes_m.size()) p.push_back("lookup_margin_m has more entries than voxel_sizes_m");
+    for (double m : lookup_margin_m) {
+        if (!(m >= 0.0 && m <= 1.0)) p.push_back("lookup margins must be in [0, 1] m");
+    }
+    if (!(lookup_cell_fraction >= 0.1 && lookup_cell_fraction <= 2.0)) p.push_back("lookup_cell_fraction must be in [0.1, 2]");
     return p;
 }
 
@@ -82,7 +96,8 @@ void CadLibrary::add(const std::string& name, ObjectClass cls, const TriangleMes
     model.box_object.centre_m = 0.5 * (lo + hi);
     model.box_object.size_m = hi - lo;
     // One voxel-thinned level per size: the sample nearest each voxel's centre survives.
-    for (double voxel : params_.voxel_sizes_m) {
+    for (std::size_t l = 0; l < params_.voxel_sizes_m.size(); ++l) {
+        const double voxel = params_.voxel_sizes_m[l];
         std::map<std::tuple<long, long, long>, std::size_t> cells;
         for (std::size_t i = 0; i < pts.size(); ++i) {
             const auto key = std::make_tuple(std::lround(std::floor(pts[i].x() / voxel)), std::lround(std::floor(pts[i].y() / voxel)),
@@ -99,6 +114,10 @@ void CadLibrary::add(const std::string& name, ObjectClass cls, const TriangleMes
             level.normals_object.push_back(nrm[i]);
         }
         level.index = std::make_shared<ModelLevel::Index>(level.points_object);
+        if (l < params_.lookup_margin_m.size()) {
+            level.grid = std::make_shared<ClosestPointGrid>(level.points_object, params_.lookup_cell_fraction * voxel,
+                                                            params_.lookup_margin_m[l]);
+        }
         model.levels.push_back(std::move(level));
     }
     models_.push_back(std::move(model));

@@ -9,6 +9,7 @@
 #include "makeway/common/transforms.hpp"
 #include "makeway/common/semantic_label.hpp"
 #include "makeway/common/triangle_mesh.hpp"
+#include "makeway/verification/closest_point_grid.hpp"
 
 namespace makeway::verification {
 
@@ -18,9 +19,11 @@ struct ModelLevel {
     std::vector<Eigen::Vector3d> normals_object;
     struct Index;
     std::shared_ptr<const Index> index;  ///< k-d tree over points_object
+    std::shared_ptr<const ClosestPointGrid> grid;  ///< optional lookup near the model (null: k-d tree only)
     static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
     /// Index of the nearest model point within max_distance_m [m] of q (object frame) and its
-    /// squared distance, or kNone (distance2 = inf) when there is none that close.
+    /// squared distance, or kNone (distance2 = inf) when there is none that close. Inside the
+    /// lookup grid the answer is the nearest point of q's cell centre (see ClosestPointGrid).
     std::size_t nearest(const Eigen::Vector3d& q, double max_distance_m, double* distance2) const;
 };
 
@@ -34,6 +37,11 @@ struct CadModel {
 struct CadLibraryParams {
     std::vector<double> voxel_sizes_m{0.08, 0.04, 0.02};  ///< one level each, coarse to fine
     double sample_spacing_m = 0.01;                         ///< surface sampling before thinning
+    /// Closest-point lookup grids for the coarsest levels, one entry per level, reaching this far
+    /// around the model [m] (the ICP's correspondence distances); queries beyond, and levels
+    /// without an entry, use the exact k-d tree.
+    std::vector<double> lookup_margin_m{0.30, 0.15};
+    double lookup_cell_fraction = 0.5;                      ///< grid cell size / level voxel size
     std::uint64_t seed = 0;
     std::vector<std::string> validate() const;
 };
