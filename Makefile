@@ -25,9 +25,13 @@ test: build
 demo: build
 	@$(MAKEWAY) demo --config config/default.yaml --out out/demo
 
-bench: build
+# Benchmarks also install Open3D (benchmark only) for the ICP comparison.
+bench:
+	@scripts/install-deps.sh --bench
+	@$(MAKE) --no-print-directory build
 	@for b in $(BUILD)/bin/bench_*; do echo "== $$b"; $$b --benchmark_min_time=0.2; done
 	@echo "== makeway bench sim"; $(MAKEWAY) bench sim
+	@echo "== compare_open3d_icp (one core)"; OMP_NUM_THREADS=1 $(BUILD)/bin/compare_open3d_icp
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build of everything, then the tests.
 asan:

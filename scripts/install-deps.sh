@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages makeway builds against. A no-op when they are all present.
-# Usage: scripts/install-deps.sh [--fuzz]   (--fuzz adds clang and its libFuzzer runtime)
+# Usage: scripts/install-deps.sh [--fuzz | --bench]
+#   --fuzz adds clang and its libFuzzer runtime; --bench adds Open3D (the ICP comparison only)
 set -euo pipefail
 
 packages=(
@@ -12,6 +13,8 @@ packages=(
 )
 if [[ "${1:-}" == "--fuzz" ]]; then
     packages+=(clang libclang-rt-14-dev)
+elif [[ "${1:-}" == "--bench" ]]; then
+    packages+=(libopen3d-dev)
 fi
 
 missing=()

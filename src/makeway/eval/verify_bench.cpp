@@ -93,6 +93,34 @@ private:
 
 }  // namespace
 
+double BenchKeyframe::floor_z_m(const Eigen::Vector3d& c) const {
+    return -(ground.normal.x() * c.x() + ground.normal.y() * c.y() + ground.offset) / ground.normal.z();
+}
+
+BenchKeyframe simulate_bench_keyframe(std::uint64_t seed, int k) {
+    BenchKeyframe kf;
+    sim::SceneGenParams g;
+    g.seed = seed + 100 + static_cast<std::uint64_t>(k);
+    g.density = k % 2 ? sim::Density::kDense : sim::Density::kMedium;
+    g.people = false;
+    kf.scene = sim::generate_scene(g);
+    kf.models = sim::models_of(kf.scene);
+    sim::World world(kf.scene, kf.models);
+    kf.T_world_sensor = lift_to_3d(kf.scene.waypoint, 0.45);
+    perception::KeyframeAccumulator acc;
+    for (int s = 0; s < 5; ++s) {
+        perception::StampedSweep sw;
+        sw.stamp_s = 0.1 * s;
+        sw.points_sensor = sim::simulate_sweep(world, {}, [&](double) { return kf.T_world_sensor; }, sw.stamp_s, seed + k, s);
+        sw.T_world_sensor_start = sw.T_world_sensor_end = kf.T_world_sensor;
+        acc.add(std::move(sw));
+    }
+    const PointCloud raw = acc.keyframe();
+    kf.ground = perception::fit_ground_plane(raw, {.seed = seed});
+    kf.cloud_sensor = perception::remove_ground_and_ceiling(raw, kf.ground, {});
+    return kf;
+}
+
 VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::function<void(int, int)>& progress) {
     VerifyBenchResult result;
     std::vector<Sample> samples[2];
@@ -102,29 +130,12 @@ VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::functi
     LibraryCache proxy_libraries;
     for (int k = 0; k < p.scenes; ++k) {
         LibraryCache libraries;
-        sim::SceneGenParams g;
-        g.seed = p.seed + 100 + static_cast<std::uint64_t>(k);
-        g.density = k % 2 ? sim::Density::kDense : sim::Density::kMedium;
-        g.people = false;
-        const sim::Scene scene = sim::generate_scene(g);
-        const std::vector<sim::ObjectModel> models = sim::models_of(scene);
-        sim::World world(scene, models);
-        // A keyframe of 5 sweeps from the waypoint, ground and ceiling removed.
-        const Isometry3 T_world_sensor = lift_to_3d(scene.waypoint, 0.45);
-        perception::KeyframeAccumulator acc;
-        for (int s = 0; s < 5; ++s) {
-            perception::StampedSweep sw;
-            sw.stamp_s = 0.1 * s;
-            sw.points_sensor = sim::simulate_sweep(world, {}, [&](double) { return T_world_sensor; }, sw.stamp_s, p.seed + k, s);
-            sw.T_world_sensor_start = sw.T_world_sensor_end = T_world_sensor;
-            acc.add(std::move(sw));
-        }
-        const PointCloud raw = acc.keyframe();
-        const perception::GroundPlaneResult ground = perception::fit_ground_plane(raw, {.seed = p.seed});
-        const PointCloud cloud = perception::remove_ground_and_ceiling(raw, ground, {});
-        auto floor_z = [&](const Eigen::Vector3d& c) {
-            return -(ground.normal.x() * c.x() + ground.normal.y() * c.y() + ground.offset) / ground.normal.z();
-        };
+        const BenchKeyframe kf = simulate_bench_keyframe(p.seed, k);
+        const sim::Scene& scene = kf.scene;
+        const std::vector<sim::ObjectModel>& models = kf.models;
+        const Isometry3& T_world_sensor = kf.T_world_sensor;
+        const PointCloud& cloud = kf.cloud_sensor;
+        auto floor_z = [&](const Eigen::Vector3d& c) { return kf.floor_z_m(c); };
         std::map<std::uint32_t, std::size_t> points_of;
         for (std::uint32_t id : cloud.instance) ++points_of[id];
 

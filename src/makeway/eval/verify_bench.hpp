@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "makeway/perception/ground.hpp"
+#include "makeway/sim/scene_dynamics.hpp"
 #include "makeway/verification/verifier.hpp"
 
 namespace makeway::eval {
@@ -46,6 +48,19 @@ struct VerifyBenchResult {
     std::size_t true_boxes = 0;
     std::size_t false_boxes = 0;
 };
+
+/// One benchmark scene: a keyframe of 5 static sweeps from the scene's waypoint, ground and ceiling
+/// removed, with the scene's ground truth.
+struct BenchKeyframe {
+    sim::Scene scene;
+    std::vector<sim::ObjectModel> models;      ///< one per scene object
+    Isometry3 T_world_sensor = Isometry3::Identity();
+    PointCloud cloud_sensor;                    ///< instance ids per point
+    perception::GroundPlaneResult ground;
+    double floor_z_m(const Eigen::Vector3d& p_sensor) const;  ///< the floor's height under a point
+};
+/// Scene k of a benchmark run with this seed (medium and dense rooms alternate, no people).
+BenchKeyframe simulate_bench_keyframe(std::uint64_t seed, int k);
 
 /// Runs the benchmark; `progress(done, total)` is called after each scene.
 VerifyBenchResult run_verify_bench(const VerifyBenchParams& params,
