@@ -1,0 +1,88 @@
+#include "makeway/tracking/box_kalman_filter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "makeway/common/angles.hpp"
+
+namespace makeway::tracking {
+
+std::vector<std::string> KalmanParams::validate() const {
+    std::vector<std::string> p;
+    for (double s : {accel_sigma_mps2, yaw_rate_sigma_radps, size_sigma_mps, meas_position_sigma_m, meas_yaw_sigma_rad,
+                     meas_size_sigma_m, initial_velocity_sigma_mps}) {
+        if (!(s > 0.0 && s < 100.0)) {
+            p.push_back("Kalman noise sigmas must be in (0, 100)");
+            break;
+        }
+    }
+    if (heading_votes_to_turn < 1) p.push_back("heading_votes_to_turn must be >= 1");
+    return p;
+}
+
+BoxKalmanFilter::BoxKalmanFilter(const OrientedBox& b, const KalmanParams& params) : params_(params) {
+    x_ << b.centre_m, b.yaw_rad, b.size_m, Eigen::Vector3d::Zero();
+    P_.setZero();
+    const double sp = params.meas_position_sigma_m, sy = params.meas_yaw_sigma_rad, ss = params.meas_size_sigma_m,
+                 sv = params.initial_velocity_sigma_mps;
+    P_.diagonal() << sp * sp, sp * sp, sp * sp, sy * sy, ss * ss, ss * ss, ss * ss, sv * sv, sv * sv, sv * sv;
+}
+
+void BoxKalmanFilter::predict(double dt) {
+    dt = std::max(0.0, dt);
+    BoxCovariance F = BoxCovariance::Identity();
+    for (int a = 0; a < 3; ++a) F(a, 7 + a) = dt;
+    x_ = F * x_;
+    x_[3] = wrap_angle(x_[3]);
+    BoxCovariance Q = BoxCovariance::Zero();
+    const double qa = params_.accel_sigma_mps2 * params_.accel_sigma_mps2;
+    for (int a = 0; a < 3; ++a) {  // discrete white-noise acceleration per axis
+        Q(a, a) = qa * std::pow(dt, 4) / 4;
+        Q(a, 7 + a) = Q(7 + a, a) = qa * std::pow(dt, 3) / 2;
+        Q(7 + a, 7 + a) = qa * dt * dt;
+    }
+    Q(3, 3) = std::pow(params_.yaw_rate_sigma_radps * dt, 2);
+    for (int a = 4; a < 7; ++a) Q(a, a) = std::pow(params_.size_sigma_mps * dt, 2);
+    P_ = F * P_ * F.transpose() + Q;
+}
+
+int BoxKalmanFilter::update(const OrientedBox& det, double weight) {
+    // The detection as the equivalent box within pi/4 of the predicted yaw.
+    const double d = angle_diff(det.yaw_rad, x_[3]);  // det - state, in (-pi, pi]
+    const int k = static_cast<int>(std::lround(d / (kPi / 2))) & 3;
+    double yaw_innovation = wrap_angle(d - k * kPi / 2);
+    Eigen::Vector3d size = det.size_m;
+    if (k % 2 == 1) std::swap(size.x(), size.y());
+    // Heading votes: decayed, so the track follows a persistent turn but not single flips.
+    for (double& v : votes_) v *= 0.9;
+    votes_[static_cast<std::size_t>(k)] += weight;
+    const auto best = static_cast<int>(std::max_element(votes_.begin(), votes_.end()) - votes_.begin());
+    if (best != 0 && votes_[static_cast<std::size_t>(best)] - votes_[0] >= params_.heading_votes_to_turn) {
+        x_[3] = wrap_angle(x_[3] + best * kPi / 2);  // turn the track to the quarter the detections agree on
+        if (best % 2 == 1) std::swap(x_[4], x_[5]), std::swap(P_(4, 4), P_(5, 5));
+        std::array<double, 4> turned{};
+        for (int j = 0; j < 4; ++j) turned[static_cast<std::size_t>((j - best + 4) & 3)] = votes_[static_cast<std::size_t>(j)];
+        votes_ = turned;
+        return update(det, 0.0);
+    }
+    Eigen::Matrix<double, 7, 1> innovation;
+    innovation << det.centre_m - x_.head<3>(), yaw_innovation, size - x_.segment<3>(4);
+    Eigen::Matrix<double, 7, 10> H = Eigen::Matrix<double, 7, 10>::Zero();
+    H.leftCols<7>().setIdentity();
+    Eigen::Matrix<double, 7, 7> R = Eigen::Matrix<double, 7, 7>::Zero();
+    const double sp = params_.meas_position_sigma_m, sy = params_.meas_yaw_sigma_rad, ss = params_.meas_size_sigma_m;
+    R.diagonal() << sp * sp, sp * sp, sp * sp, sy * sy, ss * ss, ss * ss, ss * ss;
+    const Eigen::Matrix<double, 7, 7> S = H * P_ * H.transpose() + R;
+    const Eigen::Matrix<double, 10, 7> K = P_ * H.transpose() * S.inverse();
+    x_ += K * innovation;
+    x_[3] = wrap_angle(x_[3]);
+    x_.segment<3>(4) = x_.segment<3>(4).cwiseMax(0.01);
+    const BoxCovariance I_KH = BoxCovariance::Identity() - K * H;
+    P_ = I_KH * P_ * I_KH.transpose() + K * R * K.transpose();  // Joseph form: stays symmetric
+    return k;
+}
+
+OrientedBox BoxKalmanFilter::box() const { return OrientedBox{x_.head<3>(), x_.segment<3>(4), x_[3]}; }
+
+}  // namespace makeway::tracking

@@ -1,0 +1,57 @@
+#pragma once
+// A 3D box Kalman filter in the style of AB3DMOT (Weng et al., IROS 2020), re-implemented from
+// the published description: state [x, y, z, yaw, l, w, h, vx, vy, vz], constant velocity,
+// observation of the first seven.
+//
+// A box with yaw theta and size (l, w) is the same box as one with yaw theta + pi/2 and size (w, l),
+// and detectors trained on rotated IoU confuse the two (and theta with theta + pi). Each detection
+// is therefore re-expressed as the equivalent box within pi/4 of the predicted yaw before the
+// update (AB3DMOT flips the prediction by pi for the same reason), so a flipped detection does not
+// turn the track. The track's heading among the four quarter turns is decided by votes: when most
+// recent detections agree on another quarter turn, the state turns to it.
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "makeway/common/oriented_box.hpp"
+
+namespace makeway::tracking {
+
+struct KalmanParams {
+    double accel_sigma_mps2 = 0.5;     ///< white-noise acceleration (x, y, z)
+    double yaw_rate_sigma_radps = 0.5; ///< yaw random walk
+    double size_sigma_mps = 0.02;      ///< size random walk [m/s]
+    double meas_position_sigma_m = 0.05;
+    double meas_yaw_sigma_rad = 0.1;
+    double meas_size_sigma_m = 0.05;
+    double initial_velocity_sigma_mps = 0.5;
+    int heading_votes_to_turn = 3;     ///< net votes for another quarter turn that turn the track
+    std::vector<std::string> validate() const;
+};
+
+using BoxState = Eigen::Matrix<double, 10, 1>;
+using BoxCovariance = Eigen::Matrix<double, 10, 10>;
+
+class BoxKalmanFilter {
+public:
+    BoxKalmanFilter(const OrientedBox& first_world, const KalmanParams& params);
+
+    void predict(double dt_s);
+    /// Updates with a detection box (world frame); returns the quarter turn k (0..3) by which the
+    /// detection's yaw differed from the track's (0 = agreed; 2 = flipped by pi).
+    int update(const OrientedBox& detection_world, double weight = 1.0);
+
+    OrientedBox box() const;
+    Eigen::Vector3d velocity_mps() const { return x_.tail<3>(); }
+    const BoxState& state() const { return x_; }
+    const BoxCovariance& covariance() const { return P_; }
+
+private:
+    KalmanParams params_;
+    BoxState x_ = BoxState::Zero();
+    BoxCovariance P_ = BoxCovariance::Identity();
+    std::array<double, 4> votes_{0, 0, 0, 0};  ///< decaying votes per quarter turn
+};
+
+}  // namespace makeway::tracking

@@ -1,0 +1,162 @@
+#include "makeway/tracking/object_map.hpp"
+
+#include <algorithm>
+
+#include "makeway/common/box_overlap.hpp"
+#include "makeway/tracking/hungarian.hpp"
+
+namespace makeway::tracking {
+
+std::vector<std::string> TrackerParams::validate() const {
+    std::vector<std::string> p = kalman.validate();
+    if (!(min_giou >= -1.0 && min_giou <= 1.0)) p.push_back("min_giou must be in [-1, 1]");
+    if (!(sensor_range_m > 0.0)) p.push_back("sensor_range_m must be > 0");
+    if (min_hits < 1) p.push_back("min_hits must be >= 1");
+    if (max_misses < 1) p.push_back("max_misses must be >= 1");
+    if (!(min_existence >= 0.0 && min_existence <= 1.0)) p.push_back("min_existence must be in [0, 1]");
+    if (existence_grace_frames < 1) p.push_back("existence_grace_frames must be >= 1");
+    if (!(occlusion.blocked_fraction > 0.0 && occlusion.blocked_fraction <= 1.0)) p.push_back("blocked_fraction must be in (0, 1]");
+    return p;
+}
+
+std::array<double, kNumObjectClasses> Track::class_distribution() const {
+    std::array<double, kNumObjectClasses> p{};
+    for (int c = 0; c < kNumObjectClasses; ++c) {
+        p[static_cast<std::size_t>(c)] = class_frames ? class_probability_sum[static_cast<std::size_t>(c)] / class_frames : 0.0;
+    }
+    return p;
+}
+
+ObjectClass Track::cls() const {
+    const auto p = class_distribution();
+    return static_cast<ObjectClass>(std::max_element(p.begin(), p.end()) - p.begin());
+}
+
+double Track::class_confidence() const {
+    const auto p = class_distribution();
+    return *std::max_element(p.begin(), p.end());
+}
+
+double Track::existence() const { return existence_frames ? existence_sum / existence_frames : 0.0; }
+
+TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const Isometry3& T_world_sensor, double stamp_s) {
+    TrackerFrameResult out;
+    const double dt = started_ ? stamp_s - last_stamp_s_ : 0.0;
+    started_ = true;
+    last_stamp_s_ = stamp_s;
+    const Eigen::Vector3d sensor = T_world_sensor.translation();
+    auto in_range = [&](const OrientedBox& b) { return (b.centre_m - sensor).head<2>().norm() <= params_.sensor_range_m; };
+
+    // Predict every object to this frame.
+    std::vector<std::uint32_t> ids;
+    for (auto& [id, t] : tracks_) {
+        t.filter.predict(dt);
+        ++t.age_frames;
+        ids.push_back(id);
+    }
+    std::sort(ids.begin(), ids.end());  // deterministic order
+    std::vector<OrientedBox> det_world;
+    for (const Detection& d : dets) det_world.push_back(d.box_sensor.transformed(T_world_sensor));
+
+    // Associate: GIoU between every detection and every predicted object in range; Hungarian on
+    // 1 - GIoU; pairs below the threshold are rejected afterwards.
+    std::vector<std::uint32_t> candidates;
+    for (std::uint32_t id : ids) {
+        if (in_range(tracks_.at(id).filter.box())) candidates.push_back(id);
+    }
+    out.track_of_detection.assign(dets.size(), -1);
+    std::vector<bool> matched_track(candidates.size(), false);
+    if (!dets.empty() && !candidates.empty()) {
+        Eigen::MatrixXd giou(static_cast<Eigen::Index>(dets.size()), static_cast<Eigen::Index>(candidates.size()));
+        for (std::size_t i = 0; i < dets.size(); ++i) {
+            for (std::size_t j = 0; j < candidates.size(); ++j) {
+                giou(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = giou_3d(det_world[i], tracks_.at(candidates[j]).filter.box());
+            }
+        }
+        const std::vector<int> col = min_cost_assignment(1.0 - giou.array());
+        for (std::size_t i = 0; i < dets.size(); ++i) {
+            const int j = col[i];
+            if (j < 0 || giou(static_cast<Eigen::Index>(i), j) < params_.min_giou) continue;
+            Track& t = tracks_.at(candidates[static_cast<std::size_t>(j)]);
+            t.filter.update(det_world[i]);
+            for (int c = 0; c < kNumObjectClasses; ++c) {
+                t.class_probability_sum[static_cast<std::size_t>(c)] += dets[i].class_probabilities[static_cast<std::size_t>(c)];
+            }
+            ++t.class_frames;
+            t.existence_sum += dets[i].score;
+            ++t.existence_frames;
+            ++t.hits;
+            t.misses = 0;
+            t.last_stamp_s = stamp_s;
+            matched_track[static_cast<std::size_t>(j)] = true;
+            out.track_of_detection[i] = static_cast<int>(t.id);
+        }
+    }
+
+    // Unmatched objects in range: occluded ones are not penalised; the rest get existence 0 for
+    // this frame and one more miss.
+    std::vector<OrientedBox> all_boxes;
+    for (std::uint32_t id : ids) all_boxes.push_back(tracks_.at(id).filter.box());
+    for (std::size_t i = 0; i < dets.size(); ++i) {
+        if (out.track_of_detection[i] < 0) all_boxes.push_back(det_world[i]);
+    }
+    for (std::size_t j = 0; j < candidates.size(); ++j) {
+        if (matched_track[j]) continue;
+        Track& t = tracks_.at(candidates[j]);
+        std::vector<OrientedBox> others;
+        const auto own = static_cast<std::size_t>(std::find(ids.begin(), ids.end(), t.id) - ids.begin());
+        for (std::size_t k = 0; k < all_boxes.size(); ++k) {
+            if (k != own) others.push_back(all_boxes[k]);
+        }
+        if (is_occluded(sensor, t.filter.box(), others, params_.occlusion)) {
+            out.occluded.push_back(t.id);
+            continue;
+        }
+        ++t.existence_frames;  // adds 0 to the sum
+        ++t.misses;
+    }
+    for (std::uint32_t id : ids) {
+        const Track& t = tracks_.at(id);
+        const bool judged = t.existence_frames >= params_.existence_grace_frames;
+        if (t.misses >= params_.max_misses || (judged && t.existence() < params_.min_existence)) {
+            out.removed.push_back(id);
+            tracks_.erase(id);
+        }
+    }
+
+    // Births: unmatched detections start objects in their own frame, anchored in the world.
+    for (std::size_t i = 0; i < dets.size(); ++i) {
+        if (out.track_of_detection[i] >= 0) continue;
+        Track t{.id = next_id_++, .filter = BoxKalmanFilter(det_world[i], params_.kalman)};
+        t.T_world_object_birth = det_world[i].T_frame_box();
+        t.class_probability_sum = dets[i].class_probabilities;
+        t.class_frames = 1;
+        t.existence_sum = dets[i].score;
+        t.existence_frames = 1;
+        t.hits = 1;
+        t.last_stamp_s = stamp_s;
+        out.track_of_detection[i] = static_cast<int>(t.id);
+        out.born.push_back(t.id);
+        tracks_.emplace(t.id, std::move(t));
+    }
+    out.objects_world = objects();
+    return out;
+}
+
+std::vector<ObjectEstimate> ObjectMap::objects() const {
+    std::vector<ObjectEstimate> out;
+    for (const auto& [id, t] : tracks_) {
+        if (!t.confirmed(params_.min_hits)) continue;
+        ObjectEstimate e;
+        e.id = id;
+        e.cls = t.cls();
+        e.box_world = t.filter.box();
+        e.velocity_mps = t.filter.velocity_mps().head<2>();
+        e.existence = t.existence();
+        out.push_back(e);
+    }
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
+    return out;
+}
+
+}  // namespace makeway::tracking
