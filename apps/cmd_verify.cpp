@@ -5,6 +5,7 @@
 
 #include "apps/commands.hpp"
 #include "io/json_io.hpp"
+#include "io/tracking_io.hpp"
 #include "io/progress.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
@@ -34,30 +35,6 @@ io::Json to_json(const eval::VerifyBenchArm& a) {
             {"ms_per_object_p99", a.ms_per_object_p99}};
 }
 
-std::vector<Detection> read_detections(const std::string& path) {
-    const io::Json j = io::read_json(path);
-    const io::Json& list = j.is_object() && j.contains("detections") ? j["detections"] : j;
-    if (!list.is_array()) throw io::FileError(path, "expected a list of detections (or {\"detections\": [...]})");
-    std::vector<Detection> out;
-    for (std::size_t i = 0; i < list.size(); ++i) {
-        const std::string where = "detection " + std::to_string(i) + ": ";
-        const io::Json& d = list[i];
-        Detection det;
-        try {
-            if (!d.is_object() || !d.contains("class") || !d["class"].is_string()) throw io::FormatError("'class' must be chair or table");
-            const auto cls = parse_object_class(d["class"].get<std::string>());
-            if (!cls) throw io::FormatError("'class' must be chair or table");
-            det.cls = *cls;
-            det.box_sensor = io::box_from_json(d.contains("box") ? d["box"] : d);
-            det.score = d.contains("score") && d["score"].is_number() ? d["score"].get<double>() : 1.0;
-        } catch (const io::FormatError& e) {
-            throw io::FileError(path, where + e.what());
-        }
-        out.push_back(det);
-    }
-    return out;
-}
-
 // Every mesh in the folder, its class from its name: chair_*.obj, table_*.ply, ...
 verification::CadLibrary read_cad_folder(const std::string& dir) {
     if (!std::filesystem::is_directory(dir)) throw io::FileError(dir, "not a folder of CAD meshes");
@@ -82,7 +59,7 @@ verification::CadLibrary read_cad_folder(const std::string& dir) {
 
 int run_verify(const VerifyOptions& options) {
     const PointCloud raw = io::read_point_cloud(options.cloud, {.non_finite = io::NonFinitePolicy::kDrop}).cloud;
-    const std::vector<Detection> detections = read_detections(options.detections);
+    const std::vector<Detection> detections = io::read_detection_frame(options.detections).detections_sensor;
     const verification::CadLibrary library = read_cad_folder(options.cad_dir);
     // The floor under each object from the ground plane, when the cloud still holds the ground;
     // ground and ceiling points are then removed, as the pipeline does before detection.

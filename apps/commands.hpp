@@ -121,3 +121,31 @@ struct VerifyOptions {
 int run_verify(const VerifyOptions& options);
 
 }  // namespace makeway::apps
+
+namespace makeway::apps {
+
+struct TrackOptions {
+    std::string detections;      ///< folder of per-frame JSON (makeway) or KITTI file / folder of files
+    std::string format = "makeway";
+    std::string poses;           ///< TUM sensor poses per frame (makeway format, optional)
+    double rate_hz = 10.0;       ///< frame rate for KITTI files (stamps = frame / rate)
+    std::string out;
+};
+int run_track(const TrackOptions& options);
+
+struct EvalTrackingOptions {
+    std::string gt;
+    std::string tracks;
+    std::string format = "makeway";
+    std::string out;             ///< optional JSON
+};
+int run_eval_tracking(const EvalTrackingOptions& options);
+
+struct BenchTrackOptions {
+    int scenes = 5;
+    std::uint64_t seed = 0;
+    std::string out_dir = "out/bench_track";
+};
+int run_bench_track(const BenchTrackOptions& options);
+
+}  // namespace makeway::apps

@@ -133,9 +133,34 @@ void add_verify(CLI::App& app, VerifyOptions& o) {
     sub->add_option("--out", o.out, "Result JSON (refined pose and box, residual [m], p_exist, model)")->required();
 }
 
-void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchVerifyOptions& ver_o) {
+void add_track(CLI::App& app, TrackOptions& o, EvalTrackingOptions& e) {
+    auto* sub = app.add_subcommand("track", "Track objects across frames (GIoU + Hungarian, Kalman filters, class and "
+                                            "existence fusion, occlusion) and write the object map per frame");
+    sub->add_option("--detections", o.detections, "makeway: folder of per-frame JSON ({\"stamp_s\", \"T_world_sensor\", "
+                                                  "\"detections\"}); kitti: a tracking-format file or a folder of them")
+        ->required();
+    sub->add_option("--format", o.format, "makeway or kitti")->check(CLI::IsMember({"makeway", "kitti"}))->capture_default_str();
+    sub->add_option("--poses", o.poses, "TUM file of T_world_sensor, one per frame (makeway format)");
+    sub->add_option("--rate", o.rate_hz, "Frame rate of KITTI sequences [Hz]")->check(CLI::Range(0.1, 1000.0))->capture_default_str();
+    sub->add_option("--out", o.out, "Output folder: per-frame JSON objects, or one KITTI file per sequence")->required();
+    auto* ev = app.add_subcommand("eval-tracking", "CLEAR MOT (MOTA, MOTP, ID switches, fragmentations) and HOTA "
+                                                   "(DetA, AssA) per class, 3D IoU");
+    ev->add_option("--gt", e.gt, "Ground truth: folder of per-frame object JSON (as makeway simulate writes), or KITTI")->required();
+    ev->add_option("--tracks", e.tracks, "Tracks in the same format")->required();
+    ev->add_option("--format", e.format, "makeway or kitti")->check(CLI::IsMember({"makeway", "kitti"}))->capture_default_str();
+    ev->add_option("--out", e.out, "Also write the metrics as JSON");
+}
+
+void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchVerifyOptions& ver_o, BenchTrackOptions& trk_o) {
     auto* bench = app.add_subcommand("bench", "Benchmarks that print JSON");
     bench->require_subcommand(1);
+    auto* trk = bench->add_subcommand("track", "Tracking on simulated drives: visible objects' ground truth corrupted "
+                                               "(20 % missed, 10 % false positives, noise, yaw flips); MOTA, HOTA, "
+                                               "map yaw accuracy, frames per second");
+    trk->add_option("--scenes", trk_o.scenes, "Scenes (alternating medium and dense)")->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    trk->add_option("--seed", trk_o.seed, "Seed of scenes and corruption")->capture_default_str();
+    trk->add_option("--out", trk_o.out_dir, "Output folder (summary.json)")->capture_default_str();
     auto* ver = bench->add_subcommand("verify", "CAD verification on simulated keyframes: ground-truth boxes "
                                                 "corrupted like detector output (noise, yaw flips) and false "
                                                 "boxes on walls, with matching and non-matching CAD models");
@@ -183,6 +208,9 @@ int main(int argc, char** argv) {
     BenchNavOptions bench_nav;
     BenchVerifyOptions bench_verify;
     VerifyOptions verify;
+    TrackOptions track;
+    EvalTrackingOptions eval_tracking;
+    BenchTrackOptions bench_track;
     add_info(app, info);
     add_convert(app, convert);
     add_demo(app, demo);
@@ -191,7 +219,8 @@ int main(int argc, char** argv) {
     add_simulate(app, simulate);
     add_navigate(app, navigate);
     add_verify(app, verify);
-    add_bench(app, bench_sim, bench_nav, bench_verify);
+    add_track(app, track, eval_tracking);
+    add_bench(app, bench_sim, bench_nav, bench_verify, bench_track);
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
         for (const CLI::App* sub : app.get_subcommands({})) known |= sub->get_name() == argv[1];
@@ -221,10 +250,13 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("simulate")) return run_simulate(simulate);
         if (app.got_subcommand("navigate")) return run_navigate(navigate);
         if (app.got_subcommand("verify")) return run_verify(verify);
+        if (app.got_subcommand("track")) return run_track(track);
+        if (app.got_subcommand("eval-tracking")) return run_eval_tracking(eval_tracking);
         if (app.got_subcommand("bench")) {
             const CLI::App* bench = app.get_subcommand("bench");
             if (bench->got_subcommand("nav")) return run_bench_nav(bench_nav);
             if (bench->got_subcommand("verify")) return run_bench_verify(bench_verify);
+            if (bench->got_subcommand("track")) return run_bench_track(bench_track);
             return run_bench_sim(bench_sim);
         }
     } catch (const makeway::io::FileError& e) {

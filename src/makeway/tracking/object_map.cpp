@@ -108,7 +108,8 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
         for (std::size_t k = 0; k < all_boxes.size(); ++k) {
             if (k != own) others.push_back(all_boxes[k]);
         }
-        if (is_occluded(sensor, t.filter.box(), others, params_.occlusion)) {
+        // Only confirmed objects are protected: a tentative track hidden at once is most likely false.
+        if (t.confirmed(params_.min_hits) && is_occluded(sensor, t.filter.box(), others, params_.occlusion)) {
             out.occluded.push_back(t.id);
             continue;
         }

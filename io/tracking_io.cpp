@@ -1,0 +1,265 @@
+#include "io/tracking_io.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+#include "io/error.hpp"
+#include "io/file_util.hpp"
+#include "io/text_scan.hpp"
+#include "makeway/common/angles.hpp"
+
+namespace makeway::io {
+namespace {
+
+double number(std::string_view w, const std::string& where) {
+    double v = 0.0;
+    auto [ptr, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
+    if (ec != std::errc() || ptr != w.data() + w.size()) throw FormatError(where + "bad number '" + std::string(w.substr(0, 40)) + "'");
+    if (!std::isfinite(v)) throw FormatError(where + "value is NaN or infinite");
+    return v;
+}
+
+int integer(std::string_view w, const std::string& where) {
+    int v = 0;
+    auto [ptr, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
+    if (ec != std::errc() || ptr != w.data() + w.size()) throw FormatError(where + "bad integer '" + std::string(w.substr(0, 40)) + "'");
+    return v;
+}
+
+void append(std::string& out, double v) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof(buf), v);
+    out.append(buf, r.ptr);
+}
+
+}  // namespace
+
+std::vector<KittiTrackingRecord> parse_kitti_tracking(std::string_view text) {
+    std::vector<KittiTrackingRecord> out;
+    std::size_t pos = 0, line_no = 0;
+    while (const auto line = next_line(text, pos)) {
+        ++line_no;
+        const auto w = split_words(*line);
+        if (w.empty() || w[0].front() == '#') continue;
+        const std::string where = "line " + std::to_string(line_no) + ": ";
+        // frame [id] type + 14 numbers [+ score]; a track id is there when the second word is a number.
+        const bool has_id = w.size() >= 2 && (std::isdigit(static_cast<unsigned char>(w[1].front())) || w[1].front() == '-');
+        const std::size_t base = has_id ? 2 : 1;  // index of the type
+        if (w.size() != base + 15 && w.size() != base + 16) {
+            throw FormatError(where + "expected " + std::to_string(base + 15) + " or " + std::to_string(base + 16) +
+                              " fields, found " + std::to_string(w.size()));
+        }
+        KittiTrackingRecord r;
+        r.frame = integer(w[0], where);
+        if (r.frame < 0) throw FormatError(where + "negative frame");
+        if (has_id) r.track_id = integer(w[1], where);
+        r.type = std::string(w[base]);
+        std::array<double, 14> v{};
+        for (std::size_t i = 0; i < 14; ++i) v[i] = number(w[base + 1 + i], where);
+        r.truncated = v[0], r.occluded = v[1], r.alpha = v[2];
+        r.bbox_px = {v[3], v[4], v[5], v[6]};
+        r.h_m = v[7], r.w_m = v[8], r.l_m = v[9];
+        r.location_cam_m = {v[10], v[11], v[12]};
+        r.rotation_y_rad = v[13];
+        if (w.size() == base + 16) r.score = number(w[base + 15], where);
+        if (!(r.h_m > 0 && r.w_m > 0 && r.l_m > 0)) throw FormatError(where + "box dimensions must be > 0");
+        out.push_back(r);
+    }
+    return out;
+}
+
+std::vector<KittiTrackingRecord> read_kitti_tracking(const std::filesystem::path& path) {
+    const std::string text = read_file(path);
+    try {
+        return parse_kitti_tracking(text);
+    } catch (const FormatError& e) {
+        throw FileError(path.string(), e.what());
+    }
+}
+
+void write_kitti_tracking(const std::filesystem::path& path, const std::vector<KittiTrackingRecord>& records) {
+    std::string out;
+    for (const auto& r : records) {
+        out += std::to_string(r.frame) + " ";
+        if (r.track_id >= 0) out += std::to_string(r.track_id) + " ";
+        out += r.type;
+        for (double v : {r.truncated, r.occluded, r.alpha, r.bbox_px[0], r.bbox_px[1], r.bbox_px[2], r.bbox_px[3], r.h_m, r.w_m,
+                         r.l_m, r.location_cam_m.x(), r.location_cam_m.y(), r.location_cam_m.z(), r.rotation_y_rad}) {
+            out += ' ';
+            append(out, v);
+        }
+        if (r.score) {
+            out += ' ';
+            append(out, *r.score);
+        }
+        out += '\n';
+    }
+    write_file_atomic(path, out);
+}
+
+std::optional<ObjectClass> class_of_kitti_type(std::string_view type) {
+    std::string lower(type);
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return parse_object_class(lower);
+}
+
+KittiTrackingRecord to_kitti(const OrientedBox& b, ObjectClass cls, int frame, int track_id, std::optional<double> score) {
+    KittiTrackingRecord r;
+    r.frame = frame;
+    r.track_id = track_id;
+    r.type = cls == ObjectClass::kChair ? "Chair" : "Table";
+    r.l_m = b.size_m.x(), r.w_m = b.size_m.y(), r.h_m = b.size_m.z();
+    r.location_cam_m = {-b.centre_m.y(), -(b.centre_m.z() - 0.5 * b.size_m.z()), b.centre_m.x()};
+    r.rotation_y_rad = wrap_angle(-b.yaw_rad - kPi / 2);
+    r.alpha = wrap_angle(r.rotation_y_rad - std::atan2(r.location_cam_m.x(), r.location_cam_m.z()));
+    r.bbox_px = {-1, -1, -1, -1};  // no camera
+    r.score = score;
+    return r;
+}
+
+OrientedBox box_from_kitti(const KittiTrackingRecord& r) {
+    OrientedBox b;
+    b.size_m = {r.l_m, r.w_m, r.h_m};
+    b.centre_m = {r.location_cam_m.z(), -r.location_cam_m.x(), -r.location_cam_m.y() + 0.5 * r.h_m};
+    b.yaw_rad = wrap_angle(-r.rotation_y_rad - kPi / 2);
+    return b;
+}
+
+namespace {
+
+Detection detection_from_json(const Json& d) {
+    Detection det;
+    if (!d.is_object() || !d.contains("class") || !d["class"].is_string()) throw FormatError("'class' must be chair or table");
+    const auto cls = parse_object_class(d["class"].get<std::string>());
+    if (!cls) throw FormatError("'class' must be chair or table");
+    det.cls = *cls;
+    det.box_sensor = box_from_json(d.contains("box") ? d["box"] : d);
+    det.score = 1.0;
+    if (d.contains("score")) {
+        if (!d["score"].is_number() || !(d["score"].get<double>() >= 0.0 && d["score"].get<double>() <= 1.0)) {
+            throw FormatError("'score' must be a number in [0, 1]");
+        }
+        det.score = d["score"].get<double>();
+    }
+    det.class_probabilities.fill(0.0);
+    det.class_probabilities[static_cast<std::size_t>(det.cls)] = 1.0;
+    if (d.contains("class_probabilities")) {
+        const Json& p = d["class_probabilities"];
+        if (!p.is_array() || p.size() != kNumObjectClasses) throw FormatError("'class_probabilities' must list chair and table");
+        for (std::size_t c = 0; c < kNumObjectClasses; ++c) {
+            if (!p[c].is_number() || !(p[c].get<double>() >= 0.0 && p[c].get<double>() <= 1.0)) {
+                throw FormatError("'class_probabilities' must be numbers in [0, 1]");
+            }
+            det.class_probabilities[c] = p[c].get<double>();
+        }
+    }
+    return det;
+}
+
+Isometry3 pose_from_json(const Json& j) {
+    if (!j.is_object() || !j.contains("t_m") || !j["t_m"].is_array() || j["t_m"].size() != 3 || !j.contains("yaw_rad") ||
+        !j["yaw_rad"].is_number()) {
+        throw FormatError("'T_world_sensor' must be {\"t_m\": [x, y, z], \"yaw_rad\": yaw}");
+    }
+    Eigen::Vector3d t;
+    for (int a = 0; a < 3; ++a) {
+        if (!j["t_m"][static_cast<std::size_t>(a)].is_number()) throw FormatError("'T_world_sensor.t_m' must hold numbers");
+        t[a] = j["t_m"][static_cast<std::size_t>(a)].get<double>();
+    }
+    const double yaw = j["yaw_rad"].get<double>();
+    if (!t.allFinite() || !std::isfinite(yaw)) throw FormatError("'T_world_sensor' is NaN or infinite");
+    return make_T_xyz_yaw(t, yaw);
+}
+
+}  // namespace
+
+DetectionFrame read_detection_frame(const std::filesystem::path& path) {
+    const Json j = read_json(path);
+    DetectionFrame f;
+    const Json& list = j.is_object() && j.contains("detections") ? j["detections"] : j;
+    if (!list.is_array()) throw FileError(path.string(), "expected a list of detections (or {\"detections\": [...]})");
+    try {
+        if (j.is_object() && j.contains("stamp_s")) {
+            if (!j["stamp_s"].is_number() || !std::isfinite(j["stamp_s"].get<double>())) throw FormatError("'stamp_s' must be a number");
+            f.stamp_s = j["stamp_s"].get<double>();
+        }
+        if (j.is_object() && j.contains("T_world_sensor")) f.T_world_sensor = pose_from_json(j["T_world_sensor"]);
+    } catch (const FormatError& e) {
+        throw FileError(path.string(), e.what());
+    }
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        try {
+            f.detections_sensor.push_back(detection_from_json(list[i]));
+        } catch (const FormatError& e) {
+            throw FileError(path.string(), "detection " + std::to_string(i) + ": " + e.what());
+        }
+    }
+    return f;
+}
+
+Json to_json(const DetectionFrame& f) {
+    Json dets = Json::array();
+    for (const Detection& d : f.detections_sensor) {
+        dets.push_back({{"class", std::string(to_string(d.cls))},
+                        {"box", to_json(d.box_sensor)},
+                        {"score", d.score},
+                        {"class_probabilities", d.class_probabilities}});
+    }
+    Json j = {{"stamp_s", f.stamp_s}, {"detections", dets}};
+    if (f.T_world_sensor) {
+        const Eigen::Vector3d t = f.T_world_sensor->translation();
+        j["T_world_sensor"] = {{"t_m", {t.x(), t.y(), t.z()}}, {"yaw_rad", yaw_of(*f.T_world_sensor)}};
+    }
+    return j;
+}
+
+std::vector<ObjectEstimate> read_object_frame(const std::filesystem::path& path) {
+    const Json j = read_json(path);
+    if (!j.is_object() || !j.contains("objects") || !j["objects"].is_array()) throw FileError(path.string(), "expected {\"objects\": [...]}");
+    std::vector<ObjectEstimate> out;
+    for (std::size_t i = 0; i < j["objects"].size(); ++i) {
+        const Json& o = j["objects"][i];
+        try {
+            ObjectEstimate e;
+            if (!o.is_object() || !o.contains("id") || !o["id"].is_number_unsigned()) throw FormatError("'id' must be a non-negative integer");
+            e.id = o["id"].get<std::uint32_t>();
+            if (!o.contains("class") || !o["class"].is_string() || !parse_object_class(o["class"].get<std::string>())) {
+                throw FormatError("'class' must be chair or table");
+            }
+            e.cls = *parse_object_class(o["class"].get<std::string>());
+            if (!o.contains("box_world")) throw FormatError("missing 'box_world'");
+            e.box_world = box_from_json(o["box_world"]);
+            if (o.contains("existence") && o["existence"].is_number()) e.existence = o["existence"].get<double>();
+            out.push_back(e);
+        } catch (const FormatError& e) {
+            throw FileError(path.string(), "object " + std::to_string(i) + ": " + e.what());
+        }
+    }
+    return out;
+}
+
+Json objects_to_json(int frame, double stamp_s, const std::vector<ObjectEstimate>& objects) {
+    Json list = Json::array();
+    for (const ObjectEstimate& o : objects) {
+        list.push_back({{"id", o.id},
+                        {"class", std::string(to_string(o.cls))},
+                        {"box_world", to_json(o.box_world)},
+                        {"velocity_mps", {o.velocity_mps.x(), o.velocity_mps.y()}},
+                        {"existence", o.existence}});
+    }
+    return {{"frame", frame}, {"stamp_s", stamp_s}, {"objects", list}};
+}
+
+std::vector<std::filesystem::path> frame_files(const std::filesystem::path& dir, const std::string& extension) {
+    if (!std::filesystem::is_directory(dir)) throw FileError(dir.string(), "not a folder");
+    std::vector<std::filesystem::path> out;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) {
+        if (e.is_regular_file() && lower_extension(e.path()) == extension) out.push_back(e.path());
+    }
+    std::sort(out.begin(), out.end());
+    if (out.empty()) throw FileError(dir.string(), "no ." + extension + " files");
+    return out;
+}
+
+}  // namespace makeway::io
