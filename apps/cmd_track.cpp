@@ -51,13 +51,15 @@ std::vector<io::KittiTrackingRecord> track_kitti_sequence(const fs::path& file, 
 }  // namespace
 
 int run_track(const TrackOptions& o) {
+    // Every input is read and tracked before anything is written: bad input leaves no output.
     if (o.format == "kitti") {
         const auto files = kitti_sequences(o.detections);
+        std::vector<std::vector<io::KittiTrackingRecord>> tracks;
+        for (const auto& f : files) tracks.push_back(track_kitti_sequence(f, o.rate_hz));
         fs::create_directories(o.out);
-        for (const auto& f : files) {
-            const auto tracks = track_kitti_sequence(f, o.rate_hz);
-            io::write_kitti_tracking(fs::path(o.out) / f.filename(), tracks);
-            std::cout << f.filename().string() << ": " << tracks.size() << " track boxes\n";
+        for (std::size_t k = 0; k < files.size(); ++k) {
+            io::write_kitti_tracking(fs::path(o.out) / files[k].filename(), tracks[k]);
+            std::cout << files[k].filename().string() << ": " << tracks[k].size() << " track boxes\n";
         }
         std::cout << "wrote " << files.size() << " sequence(s) to " << o.out << "\n";
         return 0;
@@ -73,16 +75,22 @@ int run_track(const TrackOptions& o) {
         for (std::size_t k = 0; k < frames.size(); ++k) frames[k].T_world_sensor = poses[k].T_world_sensor;
     }
     tracking::ObjectMap map;
-    const fs::path out(o.out);
-    fs::create_directories(out);
+    std::vector<io::Json> results;
     io::ProgressBar bar("track", frames.size());
+    double last_stamp = -1e300;
     for (std::size_t k = 0; k < frames.size(); ++k) {
+        // Frames without stamps are taken at 10 Hz.
         const double stamp = frames[k].stamp_s != 0.0 || k == 0 ? frames[k].stamp_s : static_cast<double>(k) / 10.0;
+        if (stamp < last_stamp) throw io::FileError(files[k].string(), "stamp_s goes back in time");
+        last_stamp = stamp;
         const auto r = map.update(frames[k].detections_sensor, frames[k].T_world_sensor.value_or(Isometry3::Identity()), stamp);
-        io::write_json(out / files[k].filename(), io::objects_to_json(static_cast<int>(k), stamp, r.objects_world));
+        results.push_back(io::objects_to_json(static_cast<int>(k), stamp, r.objects_world));
         bar.update(k + 1);
     }
     bar.finish();
+    const fs::path out(o.out);
+    fs::create_directories(out);
+    for (std::size_t k = 0; k < frames.size(); ++k) io::write_json(out / files[k].filename(), results[k]);
     std::cout << "tracked " << frames.size() << " frames: " << map.objects().size() << " objects in the map; wrote " << o.out << "\n";
     return 0;
 }

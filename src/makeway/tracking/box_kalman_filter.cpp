@@ -31,20 +31,21 @@ BoxKalmanFilter::BoxKalmanFilter(const OrientedBox& b, const KalmanParams& param
 
 void BoxKalmanFilter::predict(double dt) {
     dt = std::max(0.0, dt);
-    BoxCovariance F = BoxCovariance::Identity();
-    for (int a = 0; a < 3; ++a) F(a, 7 + a) = dt;
-    x_ = F * x_;
+    // x' = F x and P' = F P F^T with F = I + dt (position <- velocity), written out: F only adds
+    // velocity rows/columns to position ones.
+    x_.head<3>() += dt * x_.tail<3>();
     x_[3] = wrap_angle(x_[3]);
-    BoxCovariance Q = BoxCovariance::Zero();
-    const double qa = params_.accel_sigma_mps2 * params_.accel_sigma_mps2;
+    for (int a = 0; a < 3; ++a) P_.row(a) += dt * P_.row(7 + a);
+    for (int a = 0; a < 3; ++a) P_.col(a) += dt * P_.col(7 + a);
+    const double qa = params_.accel_sigma_mps2 * params_.accel_sigma_mps2, dt2 = dt * dt;
     for (int a = 0; a < 3; ++a) {  // discrete white-noise acceleration per axis
-        Q(a, a) = qa * std::pow(dt, 4) / 4;
-        Q(a, 7 + a) = Q(7 + a, a) = qa * std::pow(dt, 3) / 2;
-        Q(7 + a, 7 + a) = qa * dt * dt;
+        P_(a, a) += qa * dt2 * dt2 / 4;
+        P_(a, 7 + a) += qa * dt2 * dt / 2;
+        P_(7 + a, a) += qa * dt2 * dt / 2;
+        P_(7 + a, 7 + a) += qa * dt2;
     }
-    Q(3, 3) = std::pow(params_.yaw_rate_sigma_radps * dt, 2);
-    for (int a = 4; a < 7; ++a) Q(a, a) = std::pow(params_.size_sigma_mps * dt, 2);
-    P_ = F * P_ * F.transpose() + Q;
+    P_(3, 3) += params_.yaw_rate_sigma_radps * params_.yaw_rate_sigma_radps * dt2;
+    for (int a = 4; a < 7; ++a) P_(a, a) += params_.size_sigma_mps * params_.size_sigma_mps * dt2;
 }
 
 int BoxKalmanFilter::update(const OrientedBox& det, double weight) {
@@ -68,18 +69,18 @@ int BoxKalmanFilter::update(const OrientedBox& det, double weight) {
     }
     Eigen::Matrix<double, 7, 1> innovation;
     innovation << det.centre_m - x_.head<3>(), yaw_innovation, size - x_.segment<3>(4);
-    Eigen::Matrix<double, 7, 10> H = Eigen::Matrix<double, 7, 10>::Zero();
-    H.leftCols<7>().setIdentity();
-    Eigen::Matrix<double, 7, 7> R = Eigen::Matrix<double, 7, 7>::Zero();
+    // H selects the first 7 states: H P = P's top rows, H P H^T its top-left block.
+    Eigen::Matrix<double, 7, 1> r;
     const double sp = params_.meas_position_sigma_m, sy = params_.meas_yaw_sigma_rad, ss = params_.meas_size_sigma_m;
-    R.diagonal() << sp * sp, sp * sp, sp * sp, sy * sy, ss * ss, ss * ss, ss * ss;
-    const Eigen::Matrix<double, 7, 7> S = H * P_ * H.transpose() + R;
-    const Eigen::Matrix<double, 10, 7> K = P_ * H.transpose() * S.inverse();
+    r << sp * sp, sp * sp, sp * sp, sy * sy, ss * ss, ss * ss, ss * ss;
+    Eigen::Matrix<double, 7, 7> S = P_.topLeftCorner<7, 7>();
+    S.diagonal() += r;
+    const Eigen::Matrix<double, 10, 7> K = S.llt().solve(P_.topRows<7>()).transpose();  // P H^T S^-1 (S, P symmetric)
     x_ += K * innovation;
     x_[3] = wrap_angle(x_[3]);
     x_.segment<3>(4) = x_.segment<3>(4).cwiseMax(0.01);
-    const BoxCovariance I_KH = BoxCovariance::Identity() - K * H;
-    P_ = I_KH * P_ * I_KH.transpose() + K * R * K.transpose();  // Joseph form: stays symmetric
+    P_ -= K * P_.topRows<7>();
+    P_ = 0.5 * (P_ + P_.transpose()).eval();  // keep it symmetric
     return k;
 }
 

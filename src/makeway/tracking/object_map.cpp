@@ -11,6 +11,7 @@ std::vector<std::string> TrackerParams::validate() const {
     std::vector<std::string> p = kalman.validate();
     if (!(min_giou >= -1.0 && min_giou <= 1.0)) p.push_back("min_giou must be in [-1, 1]");
     if (!(sensor_range_m > 0.0)) p.push_back("sensor_range_m must be > 0");
+    if (!(association_gate_m >= 0.0)) p.push_back("association_gate_m must be >= 0");
     if (min_hits < 1) p.push_back("min_hits must be >= 1");
     if (max_misses < 1) p.push_back("max_misses must be >= 1");
     if (!(min_existence >= 0.0 && min_existence <= 1.0)) p.push_back("min_existence must be in [0, 1]");
@@ -57,6 +58,10 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
     std::sort(ids.begin(), ids.end());  // deterministic order
     std::vector<OrientedBox> det_world;
     for (const Detection& d : dets) det_world.push_back(d.box_sensor.transformed(T_world_sensor));
+    // Detections beyond the sensor range are ignored: an object born there could never be judged.
+    std::vector<bool> usable(dets.size());
+    for (std::size_t i = 0; i < dets.size(); ++i) usable[i] = in_range(det_world[i]) && det_world[i].is_valid();
+    auto radius = [](const OrientedBox& b) { return 0.5 * b.size_m.head<2>().norm(); };
 
     // Associate: GIoU between every detection and every predicted object in range; Hungarian on
     // 1 - GIoU; pairs below the threshold are rejected afterwards.
@@ -67,10 +72,16 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
     out.track_of_detection.assign(dets.size(), -1);
     std::vector<bool> matched_track(candidates.size(), false);
     if (!dets.empty() && !candidates.empty()) {
-        Eigen::MatrixXd giou(static_cast<Eigen::Index>(dets.size()), static_cast<Eigen::Index>(candidates.size()));
+        std::vector<OrientedBox> predicted;
+        for (std::uint32_t id : candidates) predicted.push_back(tracks_.at(id).filter.box());
+        Eigen::MatrixXd giou = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(dets.size()), static_cast<Eigen::Index>(candidates.size()), -1.0);
         for (std::size_t i = 0; i < dets.size(); ++i) {
+            if (!usable[i]) continue;
             for (std::size_t j = 0; j < candidates.size(); ++j) {
-                giou(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = giou_3d(det_world[i], tracks_.at(candidates[j]).filter.box());
+                // Gate: footprints farther apart than the gate have a GIoU far below any useful threshold.
+                const double gap = (det_world[i].centre_m - predicted[j].centre_m).head<2>().norm() - radius(det_world[i]) - radius(predicted[j]);
+                if (gap > params_.association_gate_m) continue;
+                giou(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = giou_3d(det_world[i], predicted[j]);
             }
         }
         const std::vector<int> col = min_cost_assignment(1.0 - giou.array());
@@ -98,7 +109,7 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
     std::vector<OrientedBox> all_boxes;
     for (std::uint32_t id : ids) all_boxes.push_back(tracks_.at(id).filter.box());
     for (std::size_t i = 0; i < dets.size(); ++i) {
-        if (out.track_of_detection[i] < 0) all_boxes.push_back(det_world[i]);
+        if (out.track_of_detection[i] < 0 && usable[i]) all_boxes.push_back(det_world[i]);
     }
     for (std::size_t j = 0; j < candidates.size(); ++j) {
         if (matched_track[j]) continue;
@@ -127,7 +138,7 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
 
     // Births: unmatched detections start objects in their own frame, anchored in the world.
     for (std::size_t i = 0; i < dets.size(); ++i) {
-        if (out.track_of_detection[i] >= 0) continue;
+        if (out.track_of_detection[i] >= 0 || !usable[i]) continue;
         Track t{.id = next_id_++, .filter = BoxKalmanFilter(det_world[i], params_.kalman)};
         t.T_world_object_birth = det_world[i].T_frame_box();
         t.class_probability_sum = dets[i].class_probabilities;

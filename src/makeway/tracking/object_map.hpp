@@ -22,6 +22,9 @@ struct TrackerParams {
     OcclusionParams occlusion;
     double min_giou = -0.1;          ///< associated pairs need at least this 3D GIoU
     double sensor_range_m = 10.0;    ///< objects farther from the sensor are neither matched nor penalised
+    /// Pairs whose footprints (circumscribed circles) are farther apart than this are not scored:
+    /// at 1 m even two 1.8 m tables have a GIoU near -0.2, below any sensible min_giou.
+    double association_gate_m = 1.0;
     int min_hits = 2;                ///< detections before an object enters the map's output
     int max_misses = 10;             ///< consecutive unexplained misses that remove an object
     double min_existence = 0.5;      ///< fused existence below this removes an object ...
@@ -52,7 +55,7 @@ struct Track {
 
 /// What one update did, for diagnostics and evaluation.
 struct TrackerFrameResult {
-    std::vector<int> track_of_detection;       ///< track id per detection (new or matched)
+    std::vector<int> track_of_detection;       ///< track id per detection (new or matched; -1: out of range or invalid)
     std::vector<std::uint32_t> born, removed, occluded;
     std::vector<ObjectEstimate> objects_world;  ///< the confirmed map after the update
 };
