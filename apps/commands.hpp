@@ -142,6 +142,7 @@ struct EvalTrackingOptions {
 int run_eval_tracking(const EvalTrackingOptions& options);
 
 struct BenchTrackOptions {
+    bool scan_occlusion = false;
     int scenes = 5;
     std::uint64_t seed = 0;
     std::string out_dir = "out/bench_track";

@@ -161,6 +161,8 @@ void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchV
         ->capture_default_str();
     trk->add_option("--seed", trk_o.seed, "Seed of scenes and corruption")->capture_default_str();
     trk->add_option("--out", trk_o.out_dir, "Output folder (summary.json)")->capture_default_str();
+    trk->add_flag("--scan-occlusion", trk_o.scan_occlusion, "Also treat LiDAR returns in front of an object as occlusion "
+                                                             "(walls, people), beyond the paper's object boxes");
     auto* ver = bench->add_subcommand("verify", "CAD verification on simulated keyframes: ground-truth boxes "
                                                 "corrupted like detector output (noise, yaw flips) and false "
                                                 "boxes on walls, with matching and non-matching CAD models");

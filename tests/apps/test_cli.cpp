@@ -9,6 +9,7 @@
 #include "io/json_io.hpp"
 #include "io/point_cloud_io.hpp"
 #include "io/pose_io.hpp"
+#include "io/tracking_io.hpp"
 
 namespace makeway {
 namespace {
@@ -262,6 +263,79 @@ TEST(Cli, VerifyRefinesAFlippedDetectionAndRejectsAWallBox) {
     EXPECT_EQ(bad.exit_code, 2);
     EXPECT_NE(bad.err.find((dir / "bad.json").string() + ": detection 0: 'class' must be chair or table"), std::string::npos) << bad.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "v2.json"));
+}
+
+TEST(Cli, TrackAndEvalTrackingInBothFormats) {
+    const auto dir = testing_util::fresh_dir("track");
+    std::ofstream(dir / "room.yaml")
+        << "name: room\nfloor: {min_m: [-4.5, -2.5], max_m: [4.5, 2.5]}\n"
+           "walls:\n  - {a_m: [-4.5, -2.5], b_m: [4.5, -2.5]}\n  - {a_m: [4.5, -2.5], b_m: [4.5, 2.5]}\n"
+           "  - {a_m: [4.5, 2.5], b_m: [-4.5, 2.5]}\n  - {a_m: [-4.5, 2.5], b_m: [-4.5, -2.5]}\n"
+           "objects:\n  - {id: 1, class: chair, style: four_leg_chair, model_seed: 4, pose: {x_m: -1, y_m: 0.6, yaw_rad: 0.6}}\n"
+           "  - {id: 2, class: table, style: rect_table, model_seed: 2, pose: {x_m: 1.5, y_m: -0.8, yaw_rad: 0.1}}\n"
+           "  - {id: 3, class: chair, style: office_chair, model_seed: 1, pose: {x_m: 2.5, y_m: 1.2, yaw_rad: -2.0}}\n"
+           "start: {x_m: -3, y_m: -0.5, yaw_rad: 0}\nwaypoint: {x_m: -3, y_m: -0.5, yaw_rad: 0}\n"
+           "goal: {x_m: -3, y_m: -0.5, yaw_rad: 0}\n";
+    ASSERT_EQ(run_makeway("simulate --scene " + (dir / "room.yaml").string() + " --frames 20 --out " + (dir / "sim").string(), dir).exit_code, 0);
+    // A perfect detector: every ground-truth box in the sensor frame, one JSON per frame, and the
+    // same as one KITTI detection file (camera frame) plus KITTI ground truth.
+    const auto poses = io::read_tum(dir / "sim" / "poses_gt.txt");
+    const auto gt_files = io::frame_files(dir / "sim" / "objects", "json");
+    ASSERT_EQ(gt_files.size(), 20u);
+    std::filesystem::create_directories(dir / "dets");
+    std::vector<io::KittiTrackingRecord> kitti_dets, kitti_gt;
+    for (std::size_t k = 0; k < gt_files.size(); ++k) {
+        io::DetectionFrame f;
+        f.stamp_s = poses[k].stamp_s;
+        f.T_world_sensor = poses[k].T_world_sensor;
+        for (const ObjectEstimate& o : io::read_object_frame(gt_files[k])) {
+            Detection d;
+            d.cls = o.cls;
+            d.box_sensor = o.box_world.transformed(poses[k].T_world_sensor.inverse());
+            d.class_probabilities = {o.cls == ObjectClass::kChair ? 0.9 : 0.1, o.cls == ObjectClass::kChair ? 0.1 : 0.9};
+            d.score = 0.9;
+            f.detections_sensor.push_back(d);
+            kitti_dets.push_back(io::to_kitti(d.box_sensor, d.cls, static_cast<int>(k), -1, 0.9));
+            kitti_gt.push_back(io::to_kitti(d.box_sensor, d.cls, static_cast<int>(k), static_cast<int>(o.id), std::nullopt));
+        }
+        io::write_json(dir / "dets" / gt_files[k].filename(), io::to_json(f));
+    }
+    io::write_kitti_tracking(dir / "kitti_dets" / "0000.txt", kitti_dets);
+    io::write_kitti_tracking(dir / "kitti_gt" / "0000.txt", kitti_gt);
+
+    CliRun r = run_makeway("track --detections " + (dir / "dets").string() + " --out " + (dir / "tracks").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto last = io::read_object_frame(dir / "tracks" / gt_files.back().filename());
+    ASSERT_EQ(last.size(), 3u);
+    r = run_makeway("eval-tracking --gt " + (dir / "sim" / "objects").string() + " --tracks " + (dir / "tracks").string() +
+                        " --out " + (dir / "m.json").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const io::Json m = io::read_json(dir / "m.json");
+    // Frame 0 is missed by design (objects enter the map on their second detection): MOTA = 1 - 3/60.
+    EXPECT_NEAR(m["mota"].get<double>(), 1.0 - 3.0 / 60.0, 1e-9);
+    EXPECT_EQ(m["id_switches"].get<int>(), 0);
+    EXPECT_GT(m["per_class"]["table"]["hota"].get<double>(), 0.9);
+
+    r = run_makeway("track --format kitti --detections " + (dir / "kitti_dets").string() + " --out " + (dir / "kitti_tracks").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = run_makeway("eval-tracking --format kitti --gt " + (dir / "kitti_gt").string() + " --tracks " + (dir / "kitti_tracks").string() +
+                        " --out " + (dir / "mk.json").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NEAR(io::read_json(dir / "mk.json")["mota"].get<double>(), 1.0 - 3.0 / 60.0, 1e-9);
+
+    // Bad input: one line naming the file, exit 2, nothing written.
+    std::filesystem::copy(dir / "dets", dir / "dets_bad");
+    std::ofstream(dir / "dets_bad" / gt_files[5].filename()) << "{\"detections\": [{\"class\": \"sofa\"}]}";
+    r = run_makeway("track --detections " + (dir / "dets_bad").string() + " --out " + (dir / "t2").string(), dir);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find((dir / "dets_bad" / gt_files[5].filename()).string() + ": detection 0: 'class' must be chair or table"),
+              std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "t2"));
+    r = run_makeway("eval-tracking --gt " + (dir / "sim" / "objects").string() + " --tracks " + (dir / "dets").string(), dir);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("expected {\"objects\": [...]}"), std::string::npos) << r.err;
+    EXPECT_EQ(run_makeway("track --format csv --detections x --out y", dir).exit_code, 2);
 }
 
 }  // namespace

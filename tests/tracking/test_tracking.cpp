@@ -195,3 +195,29 @@ TEST(ObjectMap, WorksInTheWorldFrameWithAMovingSensor) {
 
 }  // namespace
 }  // namespace makeway::tracking
+
+namespace makeway::tracking {
+namespace {
+
+TEST(ScanOcclusion, ReturnsInFrontBlockButTheObjectAndTheFloorDoNot) {
+    // Sensor 0.45 m above the floor at the origin; a chair 4 m ahead.
+    const Isometry3 T_world_sensor = make_T_xyz_yaw({0, 0, 0.45}, 0.0);
+    const OrientedBox chair{{4.0, 0.0, 0.45}, {0.5, 0.5, 0.9}, 0.0};
+    PointCloud own_and_floor;
+    for (int i = -5; i <= 5; ++i) {
+        own_and_floor.xyz.emplace_back(3.75f, 0.04f * i, 0.0f);          // the chair's front face (sensor frame)
+        own_and_floor.xyz.emplace_back(1.0f + 0.2f * (i + 5), 0.0f, -0.45f);  // floor returns on the way
+    }
+    EXPECT_FALSE(is_occluded(T_world_sensor.translation(), chair, {}, {}, nullptr));
+    const ScanOcclusion clear(own_and_floor, T_world_sensor);
+    EXPECT_FALSE(is_occluded(T_world_sensor.translation(), chair, {}, {}, &clear));
+    PointCloud wall = own_and_floor;
+    for (int i = -40; i <= 40; ++i) {
+        for (float z : {-0.2f, 0.0f, 0.2f}) wall.xyz.emplace_back(2.0f, 0.02f * i, z);  // a person or wall at 2 m
+    }
+    const ScanOcclusion blocked(wall, T_world_sensor);
+    EXPECT_TRUE(is_occluded(T_world_sensor.translation(), chair, {}, {}, &blocked));
+}
+
+}  // namespace
+}  // namespace makeway::tracking

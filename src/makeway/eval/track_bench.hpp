@@ -24,6 +24,7 @@ struct TrackBenchParams {
     double yaw_sigma_deg = 3.0;
     double p_flip_90 = 0.05;            ///< each of +-pi/2
     double p_flip_180 = 0.1;
+    bool use_scan_occlusion = false;    ///< also give the tracker the sweep for occlusion (default: the paper's object boxes only)
     tracking::TrackerParams tracker;
 };
 

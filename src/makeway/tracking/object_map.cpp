@@ -1,6 +1,7 @@
 #include "makeway/tracking/object_map.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "makeway/common/box_overlap.hpp"
 #include "makeway/tracking/hungarian.hpp"
@@ -40,7 +41,8 @@ double Track::class_confidence() const {
 
 double Track::existence() const { return existence_frames ? existence_sum / existence_frames : 0.0; }
 
-TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const Isometry3& T_world_sensor, double stamp_s) {
+TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const Isometry3& T_world_sensor, double stamp_s,
+                                     const PointCloud* keyframe_sensor) {
     TrackerFrameResult out;
     const double dt = started_ ? stamp_s - last_stamp_s_ : 0.0;
     started_ = true;
@@ -111,8 +113,10 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
     for (std::size_t i = 0; i < dets.size(); ++i) {
         if (out.track_of_detection[i] < 0 && usable[i]) all_boxes.push_back(det_world[i]);
     }
+    std::optional<ScanOcclusion> scan;  // binned only when an object needs it
     for (std::size_t j = 0; j < candidates.size(); ++j) {
         if (matched_track[j]) continue;
+        if (keyframe_sensor && !scan) scan.emplace(*keyframe_sensor, T_world_sensor, params_.occlusion);
         Track& t = tracks_.at(candidates[j]);
         std::vector<OrientedBox> others;
         const auto own = static_cast<std::size_t>(std::find(ids.begin(), ids.end(), t.id) - ids.begin());
@@ -120,7 +124,7 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
             if (k != own) others.push_back(all_boxes[k]);
         }
         // Only confirmed objects are protected: a tentative track hidden at once is most likely false.
-        if (t.confirmed(params_.min_hits) && is_occluded(sensor, t.filter.box(), others, params_.occlusion)) {
+        if (t.confirmed(params_.min_hits) && is_occluded(sensor, t.filter.box(), others, params_.occlusion, scan ? &*scan : nullptr)) {
             out.occluded.push_back(t.id);
             continue;
         }

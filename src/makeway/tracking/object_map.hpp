@@ -66,7 +66,9 @@ public:
 
     /// One keyframe: detections in the sensor frame, the sensor pose, the keyframe's time.
     /// Detection scores are the per-frame existence evidence (verified p_exist where available).
-    TrackerFrameResult update(const std::vector<Detection>& detections_sensor, const Isometry3& T_world_sensor, double stamp_s);
+    /// With the keyframe cloud (sensor frame), returns in front of an object also count as occlusion.
+    TrackerFrameResult update(const std::vector<Detection>& detections_sensor, const Isometry3& T_world_sensor, double stamp_s,
+                              const PointCloud* keyframe_sensor = nullptr);
 
     /// Confirmed objects, world frame.
     std::vector<ObjectEstimate> objects() const;
