@@ -6,6 +6,8 @@ find_package(nlohmann_json 3.10 REQUIRED)
 find_package(assimp REQUIRED)
 find_package(embree 3 REQUIRED)
 find_package(TBB REQUIRED)
+# libtorch (the detector); Debian's libtorch-dev ships TorchConfig.cmake.
+find_package(Torch REQUIRED)
 
 # liblzf (PCD binary_compressed) ships no CMake config.
 find_path(LZF_INCLUDE_DIR lzf.h PATH_SUFFIXES liblzf REQUIRED)

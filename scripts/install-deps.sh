@@ -9,6 +9,7 @@ packages=(
     libeigen3-dev libnanoflann-dev libtbb-dev libembree-dev
     libassimp-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev liblzf-dev
     libcairo2-dev
+    libtorch-dev libopenblas0-pthread
     libgtest-dev libgmock-dev libbenchmark-dev
 )
 if [[ "${1:-}" == "--fuzz" ]]; then

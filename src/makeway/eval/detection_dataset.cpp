@@ -1,0 +1,97 @@
+#include "makeway/eval/detection_dataset.hpp"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+
+#include "makeway/perception/accumulator.hpp"
+#include "makeway/perception/ground.hpp"
+#include "makeway/sim/furniture.hpp"
+#include "makeway/sim/route.hpp"
+#include "makeway/sim/scene_dynamics.hpp"
+#include "makeway/sim/scene_generator.hpp"
+#include "makeway/sim/sequence.hpp"
+
+namespace makeway::eval {
+namespace {
+
+sim::FurnitureStyle parse_style(const std::string& name) {
+    const auto s = sim::parse_furniture_style(name);
+    if (!s) throw std::invalid_argument("unknown furniture style '" + name + "'");
+    return *s;
+}
+
+// Restyles objects: excluded styles become the first allowed style of their class; with `only`,
+// every object takes the given style of its class.
+void restyle(sim::Scene& scene, const DatasetParams& p) {
+    std::vector<sim::FurnitureStyle> excluded, only;
+    for (const auto& n : p.exclude_styles) excluded.push_back(parse_style(n));
+    for (const auto& n : p.only_styles) only.push_back(parse_style(n));
+    for (sim::SceneObject& o : scene.objects) {
+        const sim::FurnitureStyle current = parse_style(o.style);
+        std::optional<sim::FurnitureStyle> to;
+        for (sim::FurnitureStyle s : only) {
+            if (sim::class_of(s) == o.cls) to = s;
+        }
+        if (!to && std::find(excluded.begin(), excluded.end(), current) != excluded.end()) {
+            for (sim::FurnitureStyle s : sim::styles_of(o.cls)) {
+                if (std::find(excluded.begin(), excluded.end(), s) == excluded.end()) {
+                    to = s;
+                    break;
+                }
+            }
+        }
+        if (to) o.style = std::string(sim::to_string(*to));
+    }
+}
+
+}  // namespace
+
+std::vector<LabelledKeyframe> generate_detection_dataset(const DatasetParams& p, const std::function<void(int, int)>& progress) {
+    std::vector<LabelledKeyframe> out;
+    for (int k = 0; k < p.scenes; ++k) {
+        sim::SceneGenParams g;
+        g.seed = p.seed + static_cast<std::uint64_t>(k);
+        g.density = static_cast<sim::Density>(k % 3);
+        sim::Scene scene = sim::generate_scene(g);
+        restyle(scene, p);
+        const sim::RobotParams robot;
+        const sim::CollisionChecker checker(scene, sim::models_of(scene), robot);
+        auto route = sim::drive_route(scene, checker, robot);
+        if (!route) continue;
+        sim::SequenceParams sp;
+        sp.seed = p.seed * 7919 + static_cast<std::uint64_t>(k);
+        sim::SequenceSimulator simulator(scene, *route, sp);
+        perception::KeyframeAccumulator acc;
+        int made = 0;
+        for (int f = 0; made < p.max_keyframes_per_scene && !simulator.reached_goal() && f < 2000; ++f) {
+            const sim::SimFrame frame = simulator.next();
+            perception::StampedSweep sw;
+            sw.points_sensor = frame.points_sensor;
+            sw.stamp_s = frame.stamp_s;
+            sw.T_world_sensor_start = sw.T_world_sensor_end = frame.T_world_sensor;
+            acc.add(std::move(sw));
+            if (!acc.full() || f % p.keyframe_every != 0) continue;
+            Isometry3 T_world_keyframe;
+            const PointCloud raw = acc.keyframe(&T_world_keyframe);
+            const perception::GroundPlaneResult ground = perception::fit_ground_plane(raw, {.seed = p.seed});
+            LabelledKeyframe kf;
+            kf.cloud_sensor = ground.found ? perception::remove_ground_and_ceiling(raw, ground, {}) : raw;
+            std::map<std::uint32_t, std::size_t> points_of;
+            for (std::uint32_t id : kf.cloud_sensor.instance) ++points_of[id];
+            const Isometry3 T_keyframe_world = T_world_keyframe.inverse();
+            for (const sim::ObjectState& o : frame.objects) {
+                const OrientedBox box = o.box_world.transformed(T_keyframe_world);
+                if (points_of[o.id] < p.min_points || std::abs(box.centre_m.x()) > p.range_m || std::abs(box.centre_m.y()) > p.range_m) continue;
+                const auto it = std::find_if(scene.objects.begin(), scene.objects.end(), [&](const sim::SceneObject& s) { return s.id == o.id; });
+                kf.objects.push_back({o.cls, it == scene.objects.end() ? "" : it->style, box, points_of[o.id]});
+            }
+            out.push_back(std::move(kf));
+            ++made;
+        }
+        if (progress) progress(k + 1, p.scenes);
+    }
+    return out;
+}
+
+}  // namespace makeway::eval

@@ -1,0 +1,44 @@
+#pragma once
+// Labelled keyframes for the detector, from simulated drives: the last 5 sweeps accumulated with
+// the true poses, ground and ceiling removed, and every chair and table seen by enough points
+// labelled with its box in the keyframe's sensor frame.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "makeway/common/point_cloud.hpp"
+#include "makeway/common/semantic_label.hpp"
+#include "makeway/common/oriented_box.hpp"
+
+namespace makeway::eval {
+
+struct LabelledObject {
+    ObjectClass cls = ObjectClass::kChair;
+    std::string style;
+    OrientedBox box_sensor;
+    std::size_t points = 0;
+};
+
+struct LabelledKeyframe {
+    PointCloud cloud_sensor;
+    std::vector<LabelledObject> objects;
+};
+
+struct DatasetParams {
+    int scenes = 10;
+    std::uint64_t seed = 0;
+    int keyframe_every = 10;            ///< sweeps between keyframes along the drive
+    int max_keyframes_per_scene = 30;
+    std::size_t min_points = 10;        ///< objects seen by fewer keyframe points are not labelled
+    double range_m = 8.0;               ///< objects whose centre is farther (|x| or |y|) are not labelled
+    /// Styles replaced by another style of their class (training without them), or, with
+    /// `only_styles`, the styles every object is given (evaluation on held-out styles).
+    std::vector<std::string> exclude_styles;
+    std::vector<std::string> only_styles;
+};
+
+/// Throws std::invalid_argument on unknown style names.
+std::vector<LabelledKeyframe> generate_detection_dataset(const DatasetParams& params,
+                                                         const std::function<void(int, int)>& progress = {});
+
+}  // namespace makeway::eval

@@ -1,0 +1,128 @@
+#include "makeway/perception/detector.hpp"
+
+#include <stdexcept>
+
+#include "makeway/perception/detector_impl.hpp"
+
+namespace makeway::perception {
+
+ConvBnImpl::ConvBnImpl(int in, int out, int stride) {
+    conv = register_module("conv", torch::nn::Conv2d(torch::nn::Conv2dOptions(in, out, 3).stride(stride).padding(1).bias(false)));
+    bn = register_module("bn", torch::nn::BatchNorm2d(out));
+}
+
+torch::Tensor ConvBnImpl::forward(const torch::Tensor& x) { return torch::relu(bn->forward(conv->forward(x))); }
+
+CenterNetImpl::CenterNetImpl(int in, int w) {
+    stem = register_module("stem", ConvBn(in, w, 2));
+    s2a = register_module("s2a", ConvBn(w, w, 1));
+    s2b = register_module("s2b", ConvBn(w, w, 1));
+    down = register_module("down", ConvBn(w, 2 * w, 2));
+    s4a = register_module("s4a", ConvBn(2 * w, 2 * w, 1));
+    s4b = register_module("s4b", ConvBn(2 * w, 2 * w, 1));
+    up = register_module("up", torch::nn::ConvTranspose2d(torch::nn::ConvTranspose2dOptions(2 * w, w, 2).stride(2)));
+    head_conv = register_module("head_conv", ConvBn(w, w, 1));
+    head = register_module("head", torch::nn::Conv2d(torch::nn::Conv2dOptions(w, kHeadChannels, 1)));
+    // Heatmap logits start at p = 0.1 (CenterNet), the rest near zero.
+    torch::NoGradGuard no_grad;
+    head->bias.zero_();
+    head->bias.slice(0, 0, kNumObjectClasses).fill_(-2.19);
+}
+
+torch::Tensor CenterNetImpl::forward(const torch::Tensor& bev) {
+    const torch::Tensor a = s2b->forward(s2a->forward(stem->forward(bev)));
+    const torch::Tensor b = s4b->forward(s4a->forward(down->forward(a)));
+    const torch::Tensor c = torch::relu(up->forward(b)) + a;  // skip connection at stride 2
+    return head->forward(head_conv->forward(c));
+}
+
+torch::Tensor activate_heads(const torch::Tensor& raw) {
+    return torch::cat({torch::sigmoid(raw.slice(1, 0, kNumObjectClasses)), raw.slice(1, kNumObjectClasses)}, 1);
+}
+
+torch::Tensor bev_tensor(const PointCloud& cloud, const BevGridParams& g) {
+    std::vector<float> bev = encode_bev(cloud, g);
+    return torch::from_blob(bev.data(), {1, g.channels(), g.cells(), g.cells()}, torch::kFloat32).clone();
+}
+
+Detector::Detector(const DetectorParams& params) : params_(params), impl_(std::make_unique<Impl>()) {
+    torch::manual_seed(params.seed);
+    impl_->net = CenterNet(params.grid.channels(), params.width);
+    impl_->net->eval();
+}
+
+Detector::~Detector() = default;
+Detector::Detector(Detector&&) noexcept = default;
+Detector& Detector::operator=(Detector&&) noexcept = default;
+
+std::size_t Detector::parameter_count() const {
+    std::size_t n = 0;
+    for (const auto& p : impl_->net->parameters()) n += static_cast<std::size_t>(p.numel());
+    return n;
+}
+
+namespace {
+
+// Grid and network shape, stored in the model file beside the weights.
+torch::Tensor params_tensor(const DetectorParams& p) {
+    return torch::tensor({p.grid.range_m, p.grid.cell_m, p.grid.z_min_m, p.grid.z_max_m, static_cast<double>(p.grid.height_slices),
+                          static_cast<double>(p.grid.output_stride), static_cast<double>(p.width), p.decode.score_threshold,
+                          p.decode.nms_bev_iou},
+                         torch::kFloat64);
+}
+
+}  // namespace
+
+void Detector::save(const std::filesystem::path& path) const {
+    torch::serialize::OutputArchive archive;
+    archive.write("makeway_detector_params", params_tensor(params_));
+    impl_->net->save(archive);
+    const std::filesystem::path tmp = path.string() + ".tmp";
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    archive.save_to(tmp.string());
+    std::filesystem::rename(tmp, path);
+}
+
+Detector Detector::load(const std::filesystem::path& path) {
+    if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path.string() + ": no such model file");
+    try {
+        torch::serialize::InputArchive archive;
+        archive.load_from(path.string());
+        torch::Tensor t;
+        if (!archive.try_read("makeway_detector_params", t) || t.numel() != 9) {
+            throw std::runtime_error("not a makeway detector (no parameters)");
+        }
+        const auto v = t.to(torch::kFloat64).contiguous();
+        const double* d = v.data_ptr<double>();
+        DetectorParams p;
+        p.grid = {.range_m = d[0], .cell_m = d[1], .z_min_m = d[2], .z_max_m = d[3], .height_slices = static_cast<int>(d[4]),
+                  .output_stride = static_cast<int>(d[5])};
+        p.width = static_cast<int>(d[6]);
+        p.decode.score_threshold = d[7];
+        p.decode.nms_bev_iou = d[8];
+        if (!p.grid.validate().empty() || p.width < 1 || p.width > 512) throw std::runtime_error("impossible parameters in the file");
+        Detector det(p);
+        det.impl_->net->load(archive);
+        det.impl_->net->eval();
+        return det;
+    } catch (const c10::Error& e) {
+        throw std::runtime_error(path.string() + ": not a readable model (" + std::string(e.what_without_backtrace()).substr(0, 120) + ")");
+    } catch (const std::runtime_error& e) {
+        const std::string what = e.what();
+        throw std::runtime_error(what.rfind(path.string(), 0) == 0 ? what : path.string() + ": " + what);
+    }
+}
+
+std::vector<float> Detector::heads(const PointCloud& cloud) const {
+    torch::NoGradGuard no_grad;
+    if (params_.threads > 0) torch::set_num_threads(params_.threads);
+    impl_->net->eval();
+    const torch::Tensor out = activate_heads(impl_->net->forward(bev_tensor(cloud, params_.grid))).contiguous();
+    return std::vector<float>(out.data_ptr<float>(), out.data_ptr<float>() + out.numel());
+}
+
+std::vector<Detection> Detector::detect(const PointCloud& cloud) const {
+    return decode_heads(heads(cloud), params_.grid, params_.decode);
+}
+
+}  // namespace makeway::perception

@@ -1,0 +1,82 @@
+#pragma once
+// The neural 3D detector (libtorch, CPU): height-sliced BEV occupancy -> a small 2D encoder-decoder
+// -> CenterNet-style heads (class heatmaps, centre offset, z, log size, sin/cos yaw) on a stride-2
+// grid -> peaks -> rotated NMS. Torch stays inside detector.cpp and detector_training.cpp.
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "makeway/common/detection.hpp"
+#include "makeway/common/point_cloud.hpp"
+#include "makeway/perception/bev_grid.hpp"
+
+namespace makeway::perception {
+
+struct DetectorParams {
+    BevGridParams grid;
+    DecodeParams decode;
+    int width = 32;          ///< channels of the first stage (the second has twice as many)
+    int threads = 0;         ///< intra-op threads for inference; 0: leave torch's default
+    std::uint64_t seed = 0;  ///< weight initialisation
+};
+
+class Detector {
+public:
+    /// A freshly initialised network (seeded).
+    explicit Detector(const DetectorParams& params = {});
+    ~Detector();
+    Detector(Detector&&) noexcept;
+    Detector& operator=(Detector&&) noexcept;
+
+    /// Throws std::runtime_error naming the file on a missing or corrupt model.
+    static Detector load(const std::filesystem::path& path);
+    /// Atomic (written beside, then renamed).
+    void save(const std::filesystem::path& path) const;
+
+    /// Detections in the cloud's (sensor) frame; the cloud should be ground- and ceiling-filtered.
+    std::vector<Detection> detect(const PointCloud& cloud_sensor) const;
+    /// The decoded head maps for a cloud (channel-major, see bev_grid.hpp).
+    std::vector<float> heads(const PointCloud& cloud_sensor) const;
+
+    const DetectorParams& params() const { return params_; }
+    std::size_t parameter_count() const;
+
+    struct Impl;  ///< torch internals (detector.cpp)
+    Impl& impl() const { return *impl_; }
+
+private:
+    DetectorParams params_;
+    std::unique_ptr<Impl> impl_;
+};
+
+/// A labelled training sample: a keyframe and its boxes in the sensor frame.
+struct TrainingSample {
+    const PointCloud* cloud_sensor = nullptr;
+    std::vector<std::pair<ObjectClass, OrientedBox>> boxes;
+};
+
+struct TrainParams {
+    int epochs = 20;
+    int batch_size = 8;
+    double learning_rate = 2e-3;   ///< AdamW peak, cosine-decayed after a 5 % warm-up
+    double weight_decay = 1e-4;
+    std::uint64_t seed = 0;
+    bool augment = true;           ///< rotation about z, flip, subsampling, range dropout
+    int threads = 0;               ///< 0: torch's default
+    std::filesystem::path checkpoint;  ///< written every epoch when set; resumed from when it exists
+    std::vector<std::string> validate() const;
+};
+
+struct EpochReport {
+    int epoch = 0;
+    double mean_loss = 0.0, heatmap_loss = 0.0, box_loss = 0.0;
+};
+
+/// Trains in place. `progress(step, steps, loss)` after each batch; `on_epoch` after each epoch.
+std::vector<EpochReport> train_detector(Detector& detector, const std::vector<TrainingSample>& samples, const TrainParams& params,
+                                        const std::function<void(int, int, double)>& progress = {},
+                                        const std::function<void(const EpochReport&)>& on_epoch = {});
+
+}  // namespace makeway::perception
