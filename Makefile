@@ -6,7 +6,7 @@ CMAKE_ARGS ?=
 MAKEWAY  := $(BUILD)/bin/makeway
 FUZZ_SECONDS ?= 60
 
-.PHONY: all deps configure build test demo bench fuzz fuzz-run asan format clean
+.PHONY: all deps configure build test demo bench model fuzz fuzz-run asan format clean
 
 all: build
 
@@ -24,6 +24,14 @@ test: build
 
 demo: build
 	@$(MAKEWAY) demo --config config/default.yaml --out out/demo
+
+# The default detector weights (models/detector.pt), from a fixed seed, then their evaluation.
+MODEL_SCENES ?= 40
+MODEL_EPOCHS ?= 30
+model: build
+	@$(MAKEWAY) dataset --scenes $(MODEL_SCENES) --seed 0 --out data/detector_train
+	@$(MAKEWAY) train-detector --data data/detector_train --epochs $(MODEL_EPOCHS) --seed 0 --threads 2 --out models/detector.pt
+	@$(MAKEWAY) eval-detection --model models/detector.pt --scenes 6 --out models/detector_eval
 
 # Benchmarks also install Open3D (benchmark only) for the ICP comparison.
 bench:

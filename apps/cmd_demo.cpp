@@ -4,8 +4,10 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "apps/commands.hpp"
+#include "apps/model_path.hpp"
 #include "apps/nav_report.hpp"
 #include "apps/recording.hpp"
 #include "io/config_reader.hpp"
@@ -14,6 +16,7 @@
 #include "io/json_io.hpp"
 #include "io/nav_png.hpp"
 #include "io/point_cloud_io.hpp"
+#include "makeway/eval/perception_source.hpp"
 
 namespace makeway::apps {
 namespace {
@@ -69,11 +72,24 @@ int run_demo(const DemoOptions& options) {
     std::vector<eval::NavRunResult> runs;
     std::vector<io::DrivenPath> paths;
     io::Json runs_json = io::Json::array();
-    for (const std::string& name : eval::nav_method_names()) {
+    // The full system `ours` runs when the default detector weights are there.
+    std::vector<std::string> methods = eval::nav_method_names();
+    std::optional<perception::Detector> detector;
+    if (const auto model = default_model_path()) {
+        detector = perception::Detector::load(*model);
+        methods.push_back("ours");
+    } else {
+        std::cout << "  no detector weights (models/detector.pt; `make model`): skipping the full system `ours`\n";
+    }
+    const verification::CadLibrary cad = eval::default_cad_library();
+    for (const std::string& name : methods) {
         const eval::NavMethod method = *eval::nav_method(name, nav.robot);
         eval::NoObjects none;
         eval::GroundTruthObjects truth(scene, models);
-        eval::ObjectSource& source = method.affordance ? static_cast<eval::ObjectSource&>(truth) : none;
+        std::optional<eval::PerceptionObjects> perceived;
+        if (name == "ours") perceived.emplace(*detector, &cad);
+        eval::ObjectSource& source = perceived ? static_cast<eval::ObjectSource&>(*perceived)
+                                     : method.affordance ? static_cast<eval::ObjectSource&>(truth) : none;
         eval::NavRunResult r = eval::run_navigation(scene, method, source, nav);
         const std::string line = name + ": " + (r.success ? "success" : "failed (" + r.failure + ")") + ", " +
                                  std::to_string(r.time_s).substr(0, 5) + " s, risk " +
@@ -87,14 +103,15 @@ int run_demo(const DemoOptions& options) {
         runs.push_back(std::move(r));
     }
     io::write_nav_png(out / "routes" / "all_methods.png", scene, Costmap{}, paths, {}, scene.name + ": every method", nav.affordance);
-    const io::Json agg = aggregate_runs(runs, eval::nav_method_names());
+    const io::Json agg = aggregate_runs(runs, methods);
     const std::string report =
         "# makeway demo report\n\nScene `" + scene.name + "` (" + std::to_string(scene.objects.size()) +
         " objects; `scene.png`). Each method drives start -> waypoint -> goal with the same A* and DWA; "
         "risk time is the time the robot's centre spends inside the ground-truth affordance zones.\n\n" +
-        table_markdown(agg, eval::nav_method_names(), 1) +
+        table_markdown(agg, methods, 1) +
         "\n![every method](routes/all_methods.png)\n\nPer method, with its final costmap: "
-        "[con](routes/con.png), [oppo](routes/oppo.png), [gt-perc](routes/gt-perc.png).\n";
+        "[con](routes/con.png), [oppo](routes/oppo.png), [gt-perc](routes/gt-perc.png)" +
+        (detector ? std::string(", [ours](routes/ours.png) (detector, verification and tracking)") : std::string()) + ".\n";
     io::write_file_atomic(out / "report.md", report);
     io::write_json(out / "summary.json", {{"scene", scene.name},
                                           {"objects", scene.objects.size()},

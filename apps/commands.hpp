@@ -3,6 +3,7 @@
 // and fills these option structs. Each returns the process exit code: 0 success, 2 bad input.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace makeway::apps {
 
@@ -148,5 +149,47 @@ struct BenchTrackOptions {
     std::string out_dir = "out/bench_track";
 };
 int run_bench_track(const BenchTrackOptions& options);
+
+}  // namespace makeway::apps
+
+namespace makeway::apps {
+
+struct DatasetOptions {
+    int scenes = 20;
+    std::uint64_t seed = 0;
+    std::vector<std::string> exclude_styles{"armchair", "round_table"};
+    int keyframe_every = 10;
+    int max_keyframes = 30;
+    std::string out;
+};
+int run_dataset(const DatasetOptions& options);
+
+struct TrainDetectorOptions {
+    std::vector<std::string> data;
+    int epochs = 20;
+    int batch = 8;
+    double learning_rate = 2e-3;
+    std::uint64_t seed = 0;
+    int threads = 0;
+    int width = 32;
+    bool resume = false;
+    std::string out;
+};
+int run_train_detector(const TrainDetectorOptions& options);
+
+struct DetectOptions {
+    std::string model;  ///< empty: the default weights
+    std::string cloud;
+    std::string out;
+};
+int run_detect(const DetectOptions& options);
+
+struct EvalDetectionOptions {
+    std::string model;
+    int scenes = 6;
+    std::uint64_t seed = 1000000;
+    std::string out_dir = "out/eval_detection";
+};
+int run_eval_detection(const EvalDetectionOptions& options);
 
 }  // namespace makeway::apps

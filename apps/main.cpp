@@ -151,6 +151,41 @@ void add_track(CLI::App& app, TrackOptions& o, EvalTrackingOptions& e) {
     ev->add_option("--out", e.out, "Also write the metrics as JSON");
 }
 
+void add_detector(CLI::App& app, DatasetOptions& ds, TrainDetectorOptions& tr, DetectOptions& dt, EvalDetectionOptions& ev) {
+    auto* d = app.add_subcommand("dataset", "Simulated, labelled keyframes for the detector: drives through generated "
+                                            "scenes, 5 sweeps per keyframe, ground and ceiling removed");
+    d->add_option("--scenes", ds.scenes, "Scenes (sparse, medium, dense in turn)")->check(CLI::Range(1, 100000))->capture_default_str();
+    d->add_option("--seed", ds.seed, "Seed of the first scene")->capture_default_str();
+    d->add_option("--exclude-styles", ds.exclude_styles, "Styles replaced by another of their class (held out of training)")
+        ->delimiter(',')
+        ->capture_default_str();
+    d->add_option("--keyframe-every", ds.keyframe_every, "Sweeps between keyframes")->check(CLI::Range(1, 1000))->capture_default_str();
+    d->add_option("--max-keyframes", ds.max_keyframes, "Keyframes per scene at most")->check(CLI::Range(1, 10000))->capture_default_str();
+    d->add_option("--out", ds.out, "Output folder (clouds/, labels/, meta.json)")->required();
+    auto* t = app.add_subcommand("train-detector", "Train the detector from C++ (libtorch, CPU): augmentation, AdamW, "
+                                                   "warm-up + cosine schedule, checkpoints every epoch");
+    t->add_option("--data", tr.data, "Dataset folders (makeway dataset, or auto-labelled data)")->required();
+    t->add_option("--epochs", tr.epochs, "Epochs")->check(CLI::Range(1, 10000))->capture_default_str();
+    t->add_option("--batch", tr.batch, "Keyframes per batch")->check(CLI::Range(1, 512))->capture_default_str();
+    t->add_option("--lr", tr.learning_rate, "Peak learning rate")->check(CLI::Range(1e-6, 1.0))->capture_default_str();
+    t->add_option("--seed", tr.seed, "Seed of initialisation, shuffling and augmentation")->capture_default_str();
+    t->add_option("--threads", tr.threads, "Torch threads (0: default)")->check(CLI::Range(0, 256))->capture_default_str();
+    t->add_option("--width", tr.width, "Channels of the first network stage")->check(CLI::Range(4, 256))->capture_default_str();
+    t->add_flag("--resume", tr.resume, "Continue from OUT.ckpt when it exists");
+    t->add_option("--out", tr.out, "Model file (.pt)")->required();
+    auto* de = app.add_subcommand("detect", "Detect chairs and tables in a keyframe cloud (sensor frame); the ground "
+                                            "plane and ceiling are removed first when found");
+    de->add_option("--model", dt.model, "Model file (default: models/detector.pt)");
+    de->add_option("--cloud", dt.cloud, "Keyframe cloud (.pcd, .ply, .bin)")->required();
+    de->add_option("--out", dt.out, "Detections JSON (class, box, score, class_probabilities)")->required();
+    auto* e = app.add_subcommand("eval-detection", "AP/AR at 3D IoU 0.25 and 0.5, orientation accuracy and latency on "
+                                                   "held-out simulated scenes, and on styles left out of training");
+    e->add_option("--model", ev.model, "Model file (default: models/detector.pt)");
+    e->add_option("--scenes", ev.scenes, "Held-out scenes per set")->check(CLI::Range(1, 1000))->capture_default_str();
+    e->add_option("--seed", ev.seed, "Seed of the held-out scenes (training uses smaller seeds)")->capture_default_str();
+    e->add_option("--out", ev.out_dir, "Output folder (summary.json)")->capture_default_str();
+}
+
 void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchVerifyOptions& ver_o, BenchTrackOptions& trk_o) {
     auto* bench = app.add_subcommand("bench", "Benchmarks that print JSON");
     bench->require_subcommand(1);
@@ -210,6 +245,10 @@ int main(int argc, char** argv) {
     BenchNavOptions bench_nav;
     BenchVerifyOptions bench_verify;
     VerifyOptions verify;
+    DatasetOptions dataset;
+    TrainDetectorOptions train_detector;
+    DetectOptions detect;
+    EvalDetectionOptions eval_detection;
     TrackOptions track;
     EvalTrackingOptions eval_tracking;
     BenchTrackOptions bench_track;
@@ -222,6 +261,7 @@ int main(int argc, char** argv) {
     add_navigate(app, navigate);
     add_verify(app, verify);
     add_track(app, track, eval_tracking);
+    add_detector(app, dataset, train_detector, detect, eval_detection);
     add_bench(app, bench_sim, bench_nav, bench_verify, bench_track);
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
@@ -253,6 +293,10 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("navigate")) return run_navigate(navigate);
         if (app.got_subcommand("verify")) return run_verify(verify);
         if (app.got_subcommand("track")) return run_track(track);
+        if (app.got_subcommand("dataset")) return run_dataset(dataset);
+        if (app.got_subcommand("train-detector")) return run_train_detector(train_detector);
+        if (app.got_subcommand("detect")) return run_detect(detect);
+        if (app.got_subcommand("eval-detection")) return run_eval_detection(eval_detection);
         if (app.got_subcommand("eval-tracking")) return run_eval_tracking(eval_tracking);
         if (app.got_subcommand("bench")) {
             const CLI::App* bench = app.get_subcommand("bench");

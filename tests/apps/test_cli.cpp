@@ -338,5 +338,41 @@ TEST(Cli, TrackAndEvalTrackingInBothFormats) {
     EXPECT_EQ(run_makeway("track --format csv --detections x --out y", dir).exit_code, 2);
 }
 
+TEST(Cli, DatasetTrainDetectAndEvaluateATinyModel) {
+    const auto dir = testing_util::fresh_dir("detector");
+    CliRun r = run_makeway("dataset --scenes 1 --seed 3 --max-keyframes 4 --keyframe-every 5 --out " + (dir / "data").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "data" / "clouds" / "000003.bin"));
+    const io::Json meta = io::read_json(dir / "data" / "meta.json");
+    EXPECT_EQ(meta["keyframes"].get<int>(), 4);
+    EXPECT_GT(meta["objects"].get<int>(), 0);
+    r = run_makeway("train-detector --data " + (dir / "data").string() + " --epochs 2 --batch 2 --width 8 --out " +
+                        (dir / "model.pt").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "model.pt.ckpt"));  // removed once the model is written
+    r = run_makeway("detect --model " + (dir / "model.pt").string() + " --cloud " + (dir / "data" / "clouds" / "000000.bin").string() +
+                        " --out " + (dir / "dets.json").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(io::read_json(dir / "dets.json")["detections"].is_array());
+    r = run_makeway("eval-detection --model " + (dir / "model.pt").string() + " --scenes 1 --out " + (dir / "eval").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const io::Json s = io::read_json(dir / "eval" / "summary.json");
+    for (const char* key : {"map_25", "map_50", "latency_ms_median_2t"}) EXPECT_TRUE(s.contains(key)) << key;
+    EXPECT_TRUE(s["per_class"]["chair"].contains("ap_25"));
+    EXPECT_TRUE(s["left_out"]["per_class"]["table"].contains("yaw_within_10deg"));
+    // Bad model and bad data: one line naming the file, exit 2.
+    std::ofstream(dir / "junk.pt") << "junk";
+    r = run_makeway("detect --model " + (dir / "junk.pt").string() + " --cloud " + (dir / "data" / "clouds" / "000000.bin").string() +
+                        " --out " + (dir / "d2.json").string(), dir);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_EQ(r.err.rfind("makeway: " + (dir / "junk.pt").string() + ": ", 0), 0u) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "d2.json"));
+    r = run_makeway("train-detector --data " + (dir / "nowhere").string() + " --out " + (dir / "m2.pt").string(), dir);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("nowhere"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "m2.pt"));
+}
+
 }  // namespace
 }  // namespace makeway

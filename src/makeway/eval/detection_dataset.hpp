@@ -6,23 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "makeway/common/point_cloud.hpp"
-#include "makeway/common/semantic_label.hpp"
-#include "makeway/common/oriented_box.hpp"
+#include "makeway/common/labelled_keyframe.hpp"
 
 namespace makeway::eval {
-
-struct LabelledObject {
-    ObjectClass cls = ObjectClass::kChair;
-    std::string style;
-    OrientedBox box_sensor;
-    std::size_t points = 0;
-};
-
-struct LabelledKeyframe {
-    PointCloud cloud_sensor;
-    std::vector<LabelledObject> objects;
-};
 
 struct DatasetParams {
     int scenes = 10;

@@ -61,6 +61,7 @@ std::optional<NavMethod> nav_method(std::string_view name, const sim::RobotParam
     if (name == "con") return NavMethod{"con", 3.0 * r, false};
     if (name == "oppo") return NavMethod{"oppo", r, false};
     if (name == "gt-perc") return NavMethod{"gt-perc", r, true};
+    if (name == "ours") return NavMethod{"ours", r, true};  // gt-perc's planner, objects from the perception chain
     return std::nullopt;
 }
 

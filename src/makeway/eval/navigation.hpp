@@ -18,7 +18,9 @@
 namespace makeway::eval {
 
 /// con: no semantics, inflation 3x the robot radius; oppo: no semantics, inflation = robot radius;
-/// gt-perc: affordance zones from ground-truth objects. The robot radius is the circumscribed one.
+/// gt-perc: affordance zones from ground-truth objects; ours: the same from the perception chain
+/// (detector, verification, tracking; eval/perception_source.hpp). The robot radius is the
+/// circumscribed one. nav_method_names() lists the methods that need no trained model.
 struct NavMethod {
     std::string name;
     double inflation_radius_m = 0.333;

@@ -113,6 +113,10 @@ Detector Detector::load(const std::filesystem::path& path) {
     }
 }
 
+void set_inference_threads(int threads) {
+    if (threads > 0) torch::set_num_threads(threads);
+}
+
 std::vector<float> Detector::heads(const PointCloud& cloud) const {
     torch::NoGradGuard no_grad;
     if (params_.threads > 0) torch::set_num_threads(params_.threads);

@@ -51,6 +51,9 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+/// Threads torch uses for inference and training in this process.
+void set_inference_threads(int threads);
+
 /// A labelled training sample: a keyframe and its boxes in the sensor frame.
 struct TrainingSample {
     const PointCloud* cloud_sensor = nullptr;
