@@ -65,7 +65,10 @@ TEST(Navigation, MethodsDifferOnlyInInflationAndObjects) {
     EXPECT_NEAR(nav_method("oppo", robot)->inflation_radius_m, robot.circumscribed_radius_m(), 1e-12);
     EXPECT_TRUE(nav_method("gt-perc", robot)->affordance);
     EXPECT_FALSE(nav_method("con", robot)->affordance);
-    EXPECT_FALSE(nav_method("ours").has_value());  // arrives with the perception issue
+    // ours: gt-perc's planner and zones, objects from the perception chain.
+    EXPECT_TRUE(nav_method("ours", robot)->affordance);
+    EXPECT_NEAR(nav_method("ours", robot)->inflation_radius_m, nav_method("gt-perc", robot)->inflation_radius_m, 1e-12);
+    EXPECT_FALSE(nav_method("fast").has_value());
 }
 
 TEST(Navigation, GroundTruthSourceFollowsPushedChairs) {
