@@ -309,7 +309,8 @@ int main(int argc, char** argv) {
         print_error(e.what());
         return kExitBadInput;
     } catch (const std::exception& e) {
-        print_error(std::string("internal error: ") + e.what());
+        const std::string what = e.what();
+        print_error("internal error: " + what.substr(0, what.find('\n')));  // one line (torch appends backtraces)
         return 1;
     }
     return 1;

@@ -111,6 +111,7 @@ std::vector<EpochReport> train_detector(Detector& detector, const std::vector<Tr
     const BevGridParams& g = detector.params().grid;
     torch::optim::AdamW optimizer(net->parameters(), torch::optim::AdamWOptions(params.learning_rate).weight_decay(params.weight_decay));
     int start_epoch = 0;
+    if (!params.checkpoint.empty() && params.checkpoint.has_parent_path()) std::filesystem::create_directories(params.checkpoint.parent_path());
     if (!params.checkpoint.empty() && std::filesystem::exists(params.checkpoint)) {
         torch::serialize::InputArchive archive;
         archive.load_from(params.checkpoint.string());
