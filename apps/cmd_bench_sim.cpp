@@ -8,6 +8,7 @@
 #include "makeway/common/angles.hpp"
 #include "makeway/common/box_overlap.hpp"
 #include "makeway/common/random.hpp"
+#include "makeway/common/statistics.hpp"
 #include "makeway/sim/furniture.hpp"
 #include "makeway/sim/lidar.hpp"
 
@@ -38,11 +39,6 @@ sim::Scene bench_scene(std::uint64_t seed) {
         s.objects.push_back(o);
     }
     return s;
-}
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
 }
 
 }  // namespace

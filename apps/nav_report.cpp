@@ -3,14 +3,11 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "makeway/common/statistics.hpp"
+
 namespace makeway::apps {
 
-std::pair<double, double> median_p99(std::vector<double> v) {
-    if (v.empty()) return {0.0, 0.0};
-    std::sort(v.begin(), v.end());
-    const auto at = [&](double q) { return v[std::min(v.size() - 1, static_cast<std::size_t>(q * (v.size() - 1) + 0.5))]; };
-    return {at(0.5), at(0.99)};
-}
+std::pair<double, double> median_p99(const std::vector<double>& v) { return {median(v), percentile(v, 0.99)}; }
 
 eval::NavParams nav_params(const io::Config& config) {
     eval::NavParams p;

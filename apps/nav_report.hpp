@@ -18,7 +18,7 @@ io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory);
 io::Json aggregate_runs(const std::vector<eval::NavRunResult>& runs, const std::vector<std::string>& methods);
 
 /// Median and 99th percentile of a sample.
-std::pair<double, double> median_p99(std::vector<double> values);
+std::pair<double, double> median_p99(const std::vector<double>& values);
 
 std::string table_markdown(const io::Json& aggregate, const std::vector<std::string>& methods, int scenes);
 

@@ -22,6 +22,7 @@
 
 #include "makeway/common/angles.hpp"
 #include "makeway/common/random.hpp"
+#include "makeway/common/statistics.hpp"
 #include "makeway/eval/verify_bench.hpp"
 #include "makeway/sim/furniture.hpp"
 
@@ -36,12 +37,6 @@ struct Arm {
         yaw_err_deg.push_back(yaw_deg), centre_err_m.push_back(centre_m), ms.push_back(t_ms);
     }
 };
-
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
 
 double share_within(const std::vector<double>& v, double limit) {
     return v.empty() ? 0.0 : static_cast<double>(std::count_if(v.begin(), v.end(), [&](double x) { return x <= limit; })) / v.size();

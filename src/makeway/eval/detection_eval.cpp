@@ -3,17 +3,12 @@
 #include <algorithm>
 #include <chrono>
 
+#include "makeway/common/statistics.hpp"
 #include "makeway/eval/perception_source.hpp"
 #include "makeway/verification/verifier.hpp"
 
 namespace makeway::eval {
 namespace {
-
-double percentile(std::vector<double> v, double q) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v[std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5))];
-}
 
 std::vector<Detection> verify_all(const LabelledKeyframe& kf, const std::vector<Detection>& dets, const verification::CadLibrary& lib) {
     std::vector<Detection> out;

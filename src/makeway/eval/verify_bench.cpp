@@ -7,6 +7,7 @@
 
 #include "makeway/common/angles.hpp"
 #include "makeway/common/random.hpp"
+#include "makeway/common/statistics.hpp"
 #include "makeway/perception/accumulator.hpp"
 #include "makeway/perception/ground.hpp"
 #include "makeway/sim/furniture.hpp"
@@ -20,18 +21,6 @@ struct Sample {
     double yaw_before_deg, yaw_after_deg, centre_before_m, centre_after_m;
     bool accepted, scored_yaw;
 };
-
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
-
-double percentile(std::vector<double> v, double q) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v[std::min(v.size() - 1, static_cast<std::size_t>(q * (v.size() - 1) + 0.5))];
-}
 
 // Yaw error up to the object's symmetry: chairs 2 pi, rectangular tables pi; none for round
 // tables and stools (any yaw is right).
