@@ -69,10 +69,7 @@ int run_verify(const VerifyOptions& options) {
     std::size_t accepted = 0;
     for (const Detection& det : detections) {
         std::optional<double> floor_z;
-        if (ground.found) {
-            const Eigen::Vector3d c = det.box_sensor.centre_m;
-            floor_z = -(ground.normal.x() * c.x() + ground.normal.y() * c.y() + ground.offset) / ground.normal.z();
-        }
+        if (ground.found) floor_z = ground.floor_z_at(det.box_sensor.centre_m.x(), det.box_sensor.centre_m.y());
         const verification::VerifiedDetection v = verification::verify_detection(cloud, det, library, {}, floor_z);
         accepted += v.accepted;
         results.push_back({{"class", std::string(to_string(det.cls))},

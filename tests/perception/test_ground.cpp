@@ -34,6 +34,9 @@ TEST(Ground, FoundInTiltedNoisyScans) {
         EXPECT_LT(rad_to_deg(std::acos(std::min(1.0, g.normal.dot(up)))), 0.5) << tilt;
         EXPECT_NEAR(g.offset, 0.45, 0.01) << tilt;  // the sensor is 0.45 m above it
         EXPECT_GT(g.inliers, 5000u);
+        // The floor below a point lies on the plane; below the sensor it is 0.45 m down.
+        EXPECT_NEAR(g.height_of({2.0, -1.5, g.floor_z_at(2.0, -1.5)}), 0.0, 1e-12);
+        EXPECT_NEAR(g.floor_z_at(0.0, 0.0), -0.45, 0.02) << tilt;
     }
 }
 

@@ -35,10 +35,7 @@ std::vector<ObjectEstimate> PerceptionObjects::objects(const ObjectSourceInput& 
         std::vector<Detection> verified;
         for (const Detection& d : dets) {
             std::optional<double> floor_z;
-            if (ground_->found) {
-                const Eigen::Vector3d c = d.box_sensor.centre_m;
-                floor_z = -(ground_->normal.x() * c.x() + ground_->normal.y() * c.y() + ground_->offset) / ground_->normal.z();
-            }
+            if (ground_->found) floor_z = ground_->floor_z_at(d.box_sensor.centre_m.x(), d.box_sensor.centre_m.y());
             const verification::VerifiedDetection v = verification::verify_detection(cloud, d, *library_, {}, floor_z);
             if (!v.accepted) continue;
             Detection r = d;

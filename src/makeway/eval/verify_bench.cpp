@@ -83,7 +83,7 @@ private:
 }  // namespace
 
 double BenchKeyframe::floor_z_m(const Eigen::Vector3d& c) const {
-    return -(ground.normal.x() * c.x() + ground.normal.y() * c.y() + ground.offset) / ground.normal.z();
+    return ground.floor_z_at(c.x(), c.y());
 }
 
 BenchKeyframe simulate_bench_keyframe(std::uint64_t seed, int k) {

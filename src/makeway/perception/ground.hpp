@@ -32,6 +32,8 @@ struct GroundPlaneResult {
 
     /// Signed height of p above the plane [m].
     double height_of(const Eigen::Vector3d& p) const { return normal.dot(p) + offset; }
+    /// z of the plane below (x, y) [m]: where an object standing there has its origin.
+    double floor_z_at(double x_m, double y_m) const { return -(normal.x() * x_m + normal.y() * y_m + offset) / normal.z(); }
 };
 
 GroundPlaneResult fit_ground_plane(const PointCloud& points_sensor, const GroundPlaneParams& params);
