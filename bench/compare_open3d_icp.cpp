@@ -46,14 +46,6 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Yaw error up to the object's symmetry (rectangular tables: pi); none for round ones.
-std::optional<double> yaw_error_deg(const std::string& style, double a, double b) {
-    if (style == "round_table" || style == "stool") return std::nullopt;
-    double e = std::abs(angle_diff(a, b));
-    if (style == "rect_table" || style == "conference_table") e = std::min(e, kPi - e);
-    return rad_to_deg(e);
-}
-
 // Open3D, 3 levels with the same budget as makeway's IcpParams; returns T_sensor_object.
 reg::RegistrationResult open3d_align(const verification::LevelledSegment& seg, const std::vector<open3d::geometry::PointCloud>& targets,
                                      const Isometry3& T_sensor_object_init, const verification::IcpParams& p,
@@ -105,7 +97,7 @@ int main(int argc, char** argv) {
             const int flip = static_cast<int>(uniform_int(rng, 0, 3));
             const double floor_z = kf.floor_z_m(det.box_sensor.centre_m);
             const auto score = [&](Arm& arm, const Isometry3& T, double ms) {
-                const auto e = yaw_error_deg(o.style, yaw_of(T), yaw_of(T_sensor_object));
+                const auto e = eval::yaw_error_deg(o.style, yaw_of(T), yaw_of(T_sensor_object));
                 if (!e) return;
                 const OrientedBox b = model.box_object.transformed(T);
                 arm.add(*e, (b.centre_m - truth.centre_m).head<2>().norm(), ms);

@@ -22,15 +22,6 @@ struct Sample {
     bool accepted, scored_yaw;
 };
 
-// Yaw error up to the object's symmetry: chairs 2 pi, rectangular tables pi; none for round
-// tables and stools (any yaw is right).
-std::optional<double> yaw_error_deg(const std::string& style, double a, double b) {
-    if (style == "round_table" || style == "stool") return std::nullopt;
-    double e = std::abs(angle_diff(a, b));
-    if (style == "rect_table" || style == "conference_table") e = std::min(e, kPi - e);
-    return rad_to_deg(e);
-}
-
 OrientationStats stats(const std::vector<Sample>& samples, bool after) {
     OrientationStats s;
     std::vector<double> yaw, centre;
@@ -81,6 +72,13 @@ private:
 };
 
 }  // namespace
+
+std::optional<double> yaw_error_deg(const std::string& style, double a, double b) {
+    if (style == "round_table" || style == "stool") return std::nullopt;
+    double e = std::abs(angle_diff(a, b));
+    if (style == "rect_table" || style == "conference_table") e = std::min(e, kPi - e);
+    return rad_to_deg(e);
+}
 
 double BenchKeyframe::floor_z_m(const Eigen::Vector3d& c) const {
     return ground.floor_z_at(c.x(), c.y());

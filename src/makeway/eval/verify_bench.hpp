@@ -3,6 +3,7 @@
 // fail (centre, size and yaw noise; yaw flips by pi/2, pi, 3pi/2), plus false boxes on walls and
 // clutter; verification with CAD models that match the objects, and with models that do not.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,10 @@ struct VerifyBenchResult {
     std::size_t true_boxes = 0;
     std::size_t false_boxes = 0;
 };
+
+/// Yaw error [deg] up to the symmetry of a furniture style: chairs 2 pi, rectangular tables pi;
+/// none for round tables and stools (any yaw is right).
+std::optional<double> yaw_error_deg(const std::string& style, double yaw_a_rad, double yaw_b_rad);
 
 /// One benchmark scene: a keyframe of 5 static sweeps from the scene's waypoint, ground and ceiling
 /// removed, with the scene's ground truth.

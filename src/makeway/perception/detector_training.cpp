@@ -128,7 +128,6 @@ std::vector<EpochReport> train_detector(Detector& detector, const std::vector<Tr
     const int steps = batches * params.epochs;
     const int warmup = std::max(1, steps / 20);
     const int n = g.out_cells(), c = g.channels(), cells = g.cells();
-    const auto plane = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
     for (int epoch = start_epoch; epoch < params.epochs; ++epoch) {
         net->train();
         Rng rng = make_rng(params.seed, 1000 + static_cast<std::uint64_t>(epoch));  // resumable: one stream per epoch
@@ -152,7 +151,6 @@ std::vector<EpochReport> train_detector(Detector& detector, const std::vector<Tr
                 make_targets(boxes, g, heat[static_cast<std::int64_t>(i)].data_ptr<float>(), reg[static_cast<std::int64_t>(i)].data_ptr<float>(),
                              mask[static_cast<std::int64_t>(i)].data_ptr<float>());
             }
-            (void)plane;
             const int step = epoch * batches + b;
             const double lr = step < warmup ? params.learning_rate * (step + 1) / warmup
                                             : 0.5 * params.learning_rate * (1 + std::cos(kPi * (step - warmup) / std::max(1, steps - warmup)));
