@@ -81,7 +81,7 @@ int run_demo(const DemoOptions& options) {
     } else {
         std::cout << "  no detector weights (models/detector.pt; `make model`): skipping the full system `ours`\n";
     }
-    const verification::CadLibrary cad = eval::default_cad_library();
+    const verification::CadLibrary cad = eval::scene_cad_library(scene);  // the room's furniture models, as in the paper
     for (const std::string& name : methods) {
         const eval::NavMethod method = *eval::nav_method(name, nav.robot);
         eval::NoObjects none;

@@ -189,6 +189,7 @@ struct EvalDetectionOptions {
     int scenes = 6;
     std::uint64_t seed = 1000000;
     std::string out_dir = "out/eval_detection";
+    bool default_cad = false;  ///< verify against default-dimension models instead of the scene's own
 };
 int run_eval_detection(const EvalDetectionOptions& options);
 

@@ -184,6 +184,8 @@ void add_detector(CLI::App& app, DatasetOptions& ds, TrainDetectorOptions& tr, D
     e->add_option("--scenes", ev.scenes, "Held-out scenes per set")->check(CLI::Range(1, 1000))->capture_default_str();
     e->add_option("--seed", ev.seed, "Seed of the held-out scenes (training uses smaller seeds)")->capture_default_str();
     e->add_option("--out", ev.out_dir, "Output folder (summary.json)")->capture_default_str();
+    e->add_flag("--default-cad", ev.default_cad, "Verify against one default-dimension model per style instead of the "
+                                                 "CAD models of each scene's own furniture");
 }
 
 void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchVerifyOptions& ver_o, BenchTrackOptions& trk_o) {

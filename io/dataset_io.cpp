@@ -1,5 +1,6 @@
 #include "io/dataset_io.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 #include "io/error.hpp"
@@ -16,6 +17,45 @@ std::string frame_name(std::size_t index) {
     return buf;
 }
 
+Json labelled_objects_to_json(const std::vector<LabelledObject>& objects) {
+    Json out = Json::array();
+    for (const LabelledObject& o : objects) {
+        out.push_back({{"id", o.id}, {"class", std::string(to_string(o.cls))}, {"style", o.style}, {"box", to_json(o.box_sensor)}, {"points", o.points}});
+    }
+    return out;
+}
+
+LabelledObject object_from_json(const Json& o) {
+    LabelledObject lo;
+    if (!o.is_object() || !o.contains("class") || !o["class"].is_string() || !parse_object_class(o["class"].get<std::string>())) {
+        throw FormatError("'class' must be chair or table");
+    }
+    lo.cls = *parse_object_class(o["class"].get<std::string>());
+    if (!o.contains("box")) throw FormatError("missing 'box'");
+    lo.box_sensor = box_from_json(o["box"]);
+    if (o.contains("style") && o["style"].is_string()) lo.style = o["style"].get<std::string>();
+    if (o.contains("points") && o["points"].is_number_unsigned()) lo.points = o["points"].get<std::size_t>();
+    if (o.contains("id")) {
+        if (!o["id"].is_number_unsigned() || o["id"].get<std::uint64_t>() > 0xffffffffULL) throw FormatError("'id' must be an unsigned 32-bit integer");
+        lo.id = o["id"].get<std::uint32_t>();
+    }
+    return lo;
+}
+
+// Keyframe fields beyond the objects are optional: datasets written before they existed, and
+// hand-labelled data without poses, still load (as one sequence with identity poses).
+void read_keyframe_fields(const Json& j, LabelledKeyframe& kf) {
+    if (j.contains("sequence")) {
+        if (!j["sequence"].is_number_unsigned() || j["sequence"].get<std::uint64_t>() > 0xffffffffULL) throw FormatError("'sequence' must be an unsigned integer");
+        kf.sequence = j["sequence"].get<std::uint32_t>();
+    }
+    if (j.contains("stamp_s")) {
+        if (!j["stamp_s"].is_number() || !std::isfinite(j["stamp_s"].get<double>())) throw FormatError("'stamp_s' must be a finite number");
+        kf.stamp_s = j["stamp_s"].get<double>();
+    }
+    if (j.contains("T_world_sensor")) kf.T_world_sensor = pose_from_json(j["T_world_sensor"], "T_world_sensor");
+}
+
 }  // namespace
 
 void write_labelled_keyframe(const std::filesystem::path& dir, std::size_t index, const LabelledKeyframe& kf) {
@@ -25,11 +65,11 @@ void write_labelled_keyframe(const std::filesystem::path& dir, std::size_t index
     xyzi.intensity = kf.cloud_sensor.intensity.size() == kf.cloud_sensor.size() ? kf.cloud_sensor.intensity
                                                                                    : std::vector<float>(kf.cloud_sensor.size(), 0.0f);
     write_point_cloud(dir / "clouds" / (name + ".bin"), xyzi);
-    Json objects = Json::array();
-    for (const LabelledObject& o : kf.objects) {
-        objects.push_back({{"class", std::string(to_string(o.cls))}, {"style", o.style}, {"box", to_json(o.box_sensor)}, {"points", o.points}});
-    }
-    write_json(dir / "labels" / (name + ".json"), {{"objects", objects}});
+    write_json(dir / "labels" / (name + ".json"), {{"objects", labelled_objects_to_json(kf.objects)},
+                                                   {"unseen", labelled_objects_to_json(kf.unseen)},
+                                                   {"sequence", kf.sequence},
+                                                   {"stamp_s", kf.stamp_s},
+                                                   {"T_world_sensor", pose_to_json(kf.T_world_sensor)}});
 }
 
 std::vector<LabelledKeyframe> read_detection_dataset(const std::filesystem::path& dir,
@@ -42,22 +82,21 @@ std::vector<LabelledKeyframe> read_detection_dataset(const std::filesystem::path
         kf.cloud_sensor = read_point_cloud(cloud_file).cloud;
         const Json j = read_json(label_file);
         if (!j.is_object() || !j.contains("objects") || !j["objects"].is_array()) throw FileError(label_file.string(), "expected {\"objects\": [...]}");
-        for (std::size_t i = 0; i < j["objects"].size(); ++i) {
-            const Json& o = j["objects"][i];
-            try {
-                LabelledObject lo;
-                if (!o.is_object() || !o.contains("class") || !o["class"].is_string() || !parse_object_class(o["class"].get<std::string>())) {
-                    throw FormatError("'class' must be chair or table");
+        for (const char* list : {"objects", "unseen"}) {
+            if (!j.contains(list)) continue;
+            if (!j[list].is_array()) throw FileError(label_file.string(), std::string("'") + list + "' must be a list");
+            for (std::size_t i = 0; i < j[list].size(); ++i) {
+                try {
+                    (std::string(list) == "objects" ? kf.objects : kf.unseen).push_back(object_from_json(j[list][i]));
+                } catch (const FormatError& e) {
+                    throw FileError(label_file.string(), std::string(list) + " " + std::to_string(i) + ": " + e.what());
                 }
-                lo.cls = *parse_object_class(o["class"].get<std::string>());
-                if (!o.contains("box")) throw FormatError("missing 'box'");
-                lo.box_sensor = box_from_json(o["box"]);
-                if (o.contains("style") && o["style"].is_string()) lo.style = o["style"].get<std::string>();
-                if (o.contains("points") && o["points"].is_number_unsigned()) lo.points = o["points"].get<std::size_t>();
-                kf.objects.push_back(lo);
-            } catch (const FormatError& e) {
-                throw FileError(label_file.string(), "object " + std::to_string(i) + ": " + e.what());
             }
+        }
+        try {
+            read_keyframe_fields(j, kf);
+        } catch (const FormatError& e) {
+            throw FileError(label_file.string(), e.what());
         }
         out.push_back(std::move(kf));
         if (progress) progress(out.size(), labels.size());

@@ -1,7 +1,8 @@
 #pragma once
 // Detector datasets on disk: DIR/clouds/NNNNNN.bin (KITTI x y z intensity, sensor frame, ground
-// and ceiling removed) and DIR/labels/NNNNNN.json ({"objects": [{"class", "style", "box",
-// "points"}]}, boxes in the same frame). Auto-labelled real data uses the same layout.
+// and ceiling removed) and DIR/labels/NNNNNN.json ({"objects": [{"id", "class", "style", "box",
+// "points"}], "unseen": [...], "sequence", "stamp_s", "T_world_sensor": {"t_m", "q_wxyz"}}, boxes
+// in the same frame; all but "objects" optional). Auto-labelled real data uses the same layout.
 #include <filesystem>
 #include <functional>
 #include <vector>

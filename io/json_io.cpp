@@ -61,3 +61,43 @@ Json to_json(const PointBounds& b) {
 }
 
 }  // namespace makeway::io
+
+namespace makeway::io {
+
+Json pose_to_json(const Isometry3& T) {
+    const Eigen::Vector3d t = T.translation();
+    const Eigen::Quaterniond q(T.linear());
+    return {{"t_m", {t.x(), t.y(), t.z()}}, {"q_wxyz", {q.w(), q.x(), q.y(), q.z()}}};
+}
+
+Isometry3 pose_from_json(const Json& j, const std::string& name) {
+    const std::string form = "'" + name + "' must be {\"t_m\": [x, y, z], \"q_wxyz\": [w, x, y, z]} or {\"t_m\", \"yaw_rad\"}";
+    if (!j.is_object() || !j.contains("t_m")) throw FormatError(form);
+    Eigen::Vector3d t;
+    try {
+        t = vec3_from(j, "t_m");
+    } catch (const FormatError&) {
+        throw FormatError(form);
+    }
+    Isometry3 T = Isometry3::Identity();
+    if (j.contains("q_wxyz")) {
+        const Json& a = j["q_wxyz"];
+        if (!a.is_array() || a.size() != 4) throw FormatError(form);
+        Eigen::Vector4d c;
+        for (int i = 0; i < 4; ++i) {
+            if (!a[static_cast<std::size_t>(i)].is_number()) throw FormatError(form);
+            c[i] = a[static_cast<std::size_t>(i)].get<double>();
+        }
+        if (!c.allFinite() || !t.allFinite()) throw FormatError("'" + name + "' is NaN or infinite");
+        if (std::abs(c.norm() - 1.0) > 1e-3) throw FormatError("'" + name + ".q_wxyz' is not a unit quaternion");
+        T.linear() = Eigen::Quaterniond(c[0], c[1], c[2], c[3]).normalized().toRotationMatrix();
+        T.translation() = t;
+        return T;
+    }
+    if (!j.contains("yaw_rad") || !j["yaw_rad"].is_number()) throw FormatError(form);
+    const double yaw = j["yaw_rad"].get<double>();
+    if (!t.allFinite() || !std::isfinite(yaw)) throw FormatError("'" + name + "' is NaN or infinite");
+    return make_T_xyz_yaw(t, yaw);
+}
+
+}  // namespace makeway::io

@@ -5,6 +5,7 @@
 
 #include "makeway/common/oriented_box.hpp"
 #include "makeway/common/point_cloud.hpp"
+#include "makeway/common/transforms.hpp"
 
 namespace makeway::io {
 
@@ -19,5 +20,10 @@ Json to_json(const OrientedBox& box);
 /// Throws FormatError naming the missing or malformed key.
 OrientedBox box_from_json(const Json& j);
 Json to_json(const PointBounds& bounds);
+/// A pose as {"t_m": [x, y, z], "q_wxyz": [w, x, y, z]}.
+Json pose_to_json(const Isometry3& T);
+/// Reads {"t_m", "q_wxyz"} or the planar {"t_m", "yaw_rad"}; throws FormatError naming `name` when
+/// malformed, non-finite or not a unit quaternion.
+Isometry3 pose_from_json(const Json& j, const std::string& name = "pose");
 
 }  // namespace makeway::io

@@ -157,20 +157,6 @@ Detection detection_from_json(const Json& d) {
     return det;
 }
 
-Isometry3 pose_from_json(const Json& j) {
-    if (!j.is_object() || !j.contains("t_m") || !j["t_m"].is_array() || j["t_m"].size() != 3 || !j.contains("yaw_rad") ||
-        !j["yaw_rad"].is_number()) {
-        throw FormatError("'T_world_sensor' must be {\"t_m\": [x, y, z], \"yaw_rad\": yaw}");
-    }
-    Eigen::Vector3d t;
-    for (int a = 0; a < 3; ++a) {
-        if (!j["t_m"][static_cast<std::size_t>(a)].is_number()) throw FormatError("'T_world_sensor.t_m' must hold numbers");
-        t[a] = j["t_m"][static_cast<std::size_t>(a)].get<double>();
-    }
-    const double yaw = j["yaw_rad"].get<double>();
-    if (!t.allFinite() || !std::isfinite(yaw)) throw FormatError("'T_world_sensor' is NaN or infinite");
-    return make_T_xyz_yaw(t, yaw);
-}
 
 }  // namespace
 
@@ -184,7 +170,7 @@ DetectionFrame read_detection_frame(const std::filesystem::path& path) {
             if (!j["stamp_s"].is_number() || !std::isfinite(j["stamp_s"].get<double>())) throw FormatError("'stamp_s' must be a number");
             f.stamp_s = j["stamp_s"].get<double>();
         }
-        if (j.is_object() && j.contains("T_world_sensor")) f.T_world_sensor = pose_from_json(j["T_world_sensor"]);
+        if (j.is_object() && j.contains("T_world_sensor")) f.T_world_sensor = pose_from_json(j["T_world_sensor"], "T_world_sensor");
     } catch (const FormatError& e) {
         throw FileError(path.string(), e.what());
     }
@@ -208,8 +194,7 @@ Json to_json(const DetectionFrame& f) {
     }
     Json j = {{"stamp_s", f.stamp_s}, {"detections", dets}};
     if (f.T_world_sensor) {
-        const Eigen::Vector3d t = f.T_world_sensor->translation();
-        j["T_world_sensor"] = {{"t_m", {t.x(), t.y(), t.z()}}, {"yaw_rad", yaw_of(*f.T_world_sensor)}};
+        j["T_world_sensor"] = pose_to_json(*f.T_world_sensor);
     }
     return j;
 }

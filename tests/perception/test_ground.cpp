@@ -3,6 +3,11 @@
 #include "makeway/common/angles.hpp"
 #include "makeway/common/random.hpp"
 #include "makeway/perception/ground.hpp"
+#include "makeway/sim/lidar.hpp"
+#include "makeway/sim/robot.hpp"
+#include "makeway/sim/scene_dynamics.hpp"
+#include "makeway/sim/scene_generator.hpp"
+#include "makeway/sim/world.hpp"
 
 namespace makeway::perception {
 namespace {
@@ -74,6 +79,27 @@ TEST(Ground, BeamsAtTheHorizonDoNotMakeAGround) {
     const GroundPlaneResult g = fit_ground_plane(c, {});
     ASSERT_TRUE(g.found);
     EXPECT_NEAR(g.offset, 0.45, 0.02);
+}
+
+TEST(Ground, NearAWallTheFloorBeatsTheHorizonBandsAndTheFirstRing) {
+    // The demo's start: the study space, the robot 1.3 m from a wall. One keyframe of the real
+    // VLP-32C pattern has more points within 5 cm of a 13 deg plane (through the floor's first
+    // ring and the dense near-horizon bands on the walls) than on the floor itself.
+    const sim::Scene scene = sim::generate_scene({.layout = sim::Layout::kStudySpace});
+    sim::World world(scene, sim::models_of(scene));
+    const Isometry3 T_world_sensor = lift_to_3d(scene.start) * sim::RobotParams{}.T_robot_sensor();
+    PointCloud keyframe;
+    for (int k = 0; k < 5; ++k) keyframe.append(sim::simulate_sweep(world, {}, [&](double) { return T_world_sensor; }, 0.1 * k, 0, k));
+    std::size_t floor_points = 0;
+    for (const auto& p : keyframe.xyz) floor_points += std::abs(p.z() + 0.45f) < 0.05f;
+
+    const GroundPlaneResult by_area = fit_ground_plane(keyframe, {});
+    ASSERT_TRUE(by_area.found) << by_area.reason;
+    EXPECT_GT(by_area.normal.z(), std::cos(deg_to_rad(0.5)));
+    EXPECT_NEAR(by_area.floor_z_at(0.0, 0.0), -0.45, 0.01);
+    const GroundPlaneResult by_points = fit_ground_plane(keyframe, {.voxel_m = 0.0});
+    EXPECT_GT(by_points.inliers, floor_points);  // the trap this test is about is there
+    EXPECT_LT(by_points.normal.z(), std::cos(deg_to_rad(5.0)));
 }
 
 TEST(Ground, ClearResultWhenThereIsNoPlane) {

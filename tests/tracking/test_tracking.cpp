@@ -180,6 +180,28 @@ TEST(ObjectMap, FalsePositiveLeavesWithinThreeFramesAndIsNeverOutput) {
     ASSERT_EQ(map.objects().size(), 1u);
 }
 
+TEST(ObjectMap, MissesBeyondTheDetectorsReachDoNotCount) {
+    // Two chairs seen from 5 m, then the sensor backs off so one stands 8.5 m away (beyond the
+    // detector's 7.5 m reach, inside the 10 m sensor range) and the other 6 m away; neither is
+    // detected any more. Only the one the detector could have seen decays and goes.
+    TrackerParams params;
+    params.miss_range_m = 7.5;
+    ObjectMap map(params);
+    const OrientedBox far{{5.0, 0.0, 0.45}, {0.5, 0.45, 0.9}, 0.0};
+    const OrientedBox near{{2.5, 0.0, 0.45}, {0.5, 0.45, 0.9}, 0.0};
+    for (int k = 0; k < 3; ++k) map.update({detection(far), detection(near)}, Isometry3::Identity(), 0.1 * k);
+    ASSERT_EQ(map.objects().size(), 2u);
+    const Isometry3 T_world_sensor = make_T_xyz_yaw({-3.5, 0.0, 0.0}, 0.0);
+    for (int k = 3; k < 20; ++k) map.update({}, T_world_sensor, 0.1 * k);
+    const auto objects = map.objects();
+    ASSERT_EQ(objects.size(), 1u);
+    EXPECT_NEAR(objects[0].box_world.centre_m.x(), 5.0, 1e-6);
+    EXPECT_NEAR(objects[0].existence, 0.9, 1e-9);
+
+    params.miss_range_m = -1.0;
+    EXPECT_FALSE(params.validate().empty());
+}
+
 TEST(ObjectMap, WorksInTheWorldFrameWithAMovingSensor) {
     ObjectMap map;
     const OrientedBox chair_world = kChair;

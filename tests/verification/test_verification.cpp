@@ -191,6 +191,40 @@ TEST(Verification, RejectsBoxesOnWallsAndEmptySegments) {
     EXPECT_NE(verify_detection(scan.cloud_sensor, table, lib, {}).reason.find("no CAD model"), std::string::npos);
 }
 
+TEST(Verification, ARoomOfVariantsTriesOnlyTheClosestInSize) {
+    // The room's library: the true chair among eight variants of its style plus other styles.
+    const ChairScan scan = scan_chair(sim::FurnitureStyle::kFourLegChair, 4, 0.6, 5);
+    CadLibrary lib;
+    for (std::uint64_t seed : {11, 12, 13, 4, 14, 15, 16, 17}) {
+        lib.add("four_leg_" + std::to_string(seed), ObjectClass::kChair, sim::make_furniture(sim::FurnitureStyle::kFourLegChair, seed).mesh_object);
+    }
+    lib.add("office", ObjectClass::kChair, sim::make_furniture(sim::FurnitureStyle::kOfficeChair, 4).mesh_object);
+    Detection det;
+    det.cls = ObjectClass::kChair;
+    det.box_sensor = scan.box_sensor;  // the true size: the true model is the closest
+    det.box_sensor.yaw_rad = wrap_angle(scan.truth.yaw_rad + kPi / 2);
+    det.score = 0.7;
+    Detection wall = det;
+    wall.box_sensor = {{6.4, -2.0, 0.0}, {0.5, 0.5, 0.9}, 0.0};
+    VerifyParams params;
+    params.max_models = 2;
+    const auto verified = verify_detections(scan.cloud_sensor, {det, wall}, lib, params, [](double, double) { return -0.45; });
+    ASSERT_EQ(verified.size(), 2u);
+    ASSERT_TRUE(verified[0].accepted) << verified[0].reason;
+    EXPECT_FALSE(verified[1].accepted);
+    EXPECT_LT(std::abs(rad_to_deg(angle_diff(yaw_of(verified[0].T_sensor_object), scan.truth.yaw_rad))), 3.0);
+    EXPECT_LT((verified[0].box_sensor.size_m - scan.box_sensor.size_m).norm(), 0.02) << verified[0].model;
+
+    const auto by_existence = accepted_detections(verified);
+    const auto by_detector = accepted_detections(verified, ScoreFrom::kDetector);
+    ASSERT_EQ(by_existence.size(), 1u);
+    ASSERT_EQ(by_detector.size(), 1u);
+    EXPECT_DOUBLE_EQ(by_existence[0].score, verified[0].p_exist);
+    EXPECT_DOUBLE_EQ(by_detector[0].score, 0.7);
+    EXPECT_EQ(by_existence[0].box_sensor.centre_m, verified[0].box_sensor.centre_m);
+    EXPECT_FALSE(VerifyParams{.max_models = 0}.validate().empty());
+}
+
 TEST(Verification, ExistenceProbabilityFollowsEquationTwo) {
     EXPECT_DOUBLE_EQ(existence_probability(0.01, 0.01, 0.05), 1.0);
     EXPECT_DOUBLE_EQ(existence_probability(0.03, 0.01, 0.05), 0.75);

@@ -6,10 +6,12 @@
 #include "makeway/common/oriented_box.hpp"
 #include "makeway/common/point_cloud.hpp"
 #include "makeway/common/semantic_label.hpp"
+#include "makeway/common/transforms.hpp"
 
 namespace makeway {
 
 struct LabelledObject {
+    std::uint32_t id = 0;    ///< the object's identity across a sequence's keyframes (0: unknown)
     ObjectClass cls = ObjectClass::kChair;
     std::string style;       ///< CAD style name when known (simulated data)
     OrientedBox box_sensor;
@@ -18,7 +20,13 @@ struct LabelledObject {
 
 struct LabelledKeyframe {
     PointCloud cloud_sensor;  ///< ground and ceiling removed
-    std::vector<LabelledObject> objects;
+    std::vector<LabelledObject> objects;  ///< seen by enough points to be labelled
+    /// Objects in range but seen by too few points (hidden or in shadow): not detectable in this
+    /// keyframe, yet an object map that saw them before should still hold them.
+    std::vector<LabelledObject> unseen;
+    std::uint32_t sequence = 0;  ///< keyframes of one drive share it, stored in time order
+    double stamp_s = 0.0;
+    Isometry3 T_world_sensor = Isometry3::Identity();  ///< the keyframe's pose (drive's world frame)
 };
 
 }  // namespace makeway

@@ -47,7 +47,8 @@ void restyle(sim::Scene& scene, const DatasetParams& p) {
 
 }  // namespace
 
-std::vector<LabelledKeyframe> generate_detection_dataset(const DatasetParams& p, const std::function<void(int, int)>& progress) {
+std::vector<LabelledKeyframe> generate_detection_dataset(const DatasetParams& p, const std::function<void(int, int)>& progress,
+                                                         std::vector<sim::Scene>* scenes) {
     std::vector<LabelledKeyframe> out;
     for (int k = 0; k < p.scenes; ++k) {
         sim::SceneGenParams g;
@@ -58,6 +59,7 @@ std::vector<LabelledKeyframe> generate_detection_dataset(const DatasetParams& p,
         const sim::RobotParams robot;
         const sim::CollisionChecker checker(scene, sim::models_of(scene), robot);
         auto route = sim::drive_route(scene, checker, robot);
+        if (scenes) scenes->push_back(scene);
         if (!route) continue;
         sim::SequenceParams sp;
         sp.seed = p.seed * 7919 + static_cast<std::uint64_t>(k);
@@ -80,11 +82,15 @@ std::vector<LabelledKeyframe> generate_detection_dataset(const DatasetParams& p,
             std::map<std::uint32_t, std::size_t> points_of;
             for (std::uint32_t id : kf.cloud_sensor.instance) ++points_of[id];
             const Isometry3 T_keyframe_world = T_world_keyframe.inverse();
+            kf.sequence = static_cast<std::uint32_t>(k);
+            kf.stamp_s = frame.stamp_s;
+            kf.T_world_sensor = T_world_keyframe;
             for (const sim::ObjectState& o : frame.objects) {
                 const OrientedBox box = o.box_world.transformed(T_keyframe_world);
-                if (points_of[o.id] < p.min_points || std::abs(box.centre_m.x()) > p.range_m || std::abs(box.centre_m.y()) > p.range_m) continue;
+                if (std::abs(box.centre_m.x()) > p.range_m || std::abs(box.centre_m.y()) > p.range_m) continue;
                 const auto it = std::find_if(scene.objects.begin(), scene.objects.end(), [&](const sim::SceneObject& s) { return s.id == o.id; });
-                kf.objects.push_back({o.cls, it == scene.objects.end() ? "" : it->style, box, points_of[o.id]});
+                const LabelledObject label{o.id, o.cls, it == scene.objects.end() ? "" : it->style, box, points_of[o.id]};
+                (label.points >= p.min_points ? kf.objects : kf.unseen).push_back(label);
             }
             out.push_back(std::move(kf));
             ++made;

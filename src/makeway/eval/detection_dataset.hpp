@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "makeway/common/labelled_keyframe.hpp"
+#include "makeway/sim/scene.hpp"
 
 namespace makeway::eval {
 
@@ -15,7 +16,7 @@ struct DatasetParams {
     std::uint64_t seed = 0;
     int keyframe_every = 10;            ///< sweeps between keyframes along the drive
     int max_keyframes_per_scene = 30;
-    std::size_t min_points = 10;        ///< objects seen by fewer keyframe points are not labelled
+    std::size_t min_points = 10;        ///< objects seen by fewer keyframe points go to `unseen`
     double range_m = 8.0;               ///< objects whose centre is farther (|x| or |y|) are not labelled
     /// Styles replaced by another style of their class (training without them), or, with
     /// `only_styles`, the styles every object is given (evaluation on held-out styles).
@@ -23,8 +24,11 @@ struct DatasetParams {
     std::vector<std::string> only_styles;
 };
 
+/// Keyframes in time order, `sequence` = the scene's index. With `scenes`, the (restyled) scenes
+/// are appended to it, one per index, for CAD libraries of the furniture actually there.
 /// Throws std::invalid_argument on unknown style names.
 std::vector<LabelledKeyframe> generate_detection_dataset(const DatasetParams& params,
-                                                         const std::function<void(int, int)>& progress = {});
+                                                         const std::function<void(int, int)>& progress = {},
+                                                         std::vector<sim::Scene>* scenes = nullptr);
 
 }  // namespace makeway::eval

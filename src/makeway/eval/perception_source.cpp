@@ -1,6 +1,10 @@
 #include "makeway/eval/perception_source.hpp"
 
+#include <algorithm>
+#include <set>
+
 #include "makeway/sim/furniture.hpp"
+#include "makeway/sim/scene_dynamics.hpp"
 
 namespace makeway::eval {
 
@@ -12,9 +16,26 @@ verification::CadLibrary default_cad_library() {
     return lib;
 }
 
+verification::CadLibrary scene_cad_library(const sim::Scene& scene) {
+    verification::CadLibrary lib;
+    std::set<std::string> added;
+    for (const sim::SceneObject& o : scene.objects) {
+        const std::string name = o.style.empty() ? o.mesh_file + "@" + std::to_string(o.scale) : o.style + "_" + std::to_string(o.model_seed);
+        if (added.insert(name).second) lib.add(name, o.cls, sim::model_of(o).mesh_object);
+    }
+    return lib;
+}
+
+tracking::TrackerParams tracker_params_for(const perception::Detector& detector, tracking::TrackerParams params) {
+    // Misses count only where the detector can see: inside the circle its square grid contains,
+    // less half a large chair so that the whole object is inside.
+    params.miss_range_m = std::min(params.sensor_range_m, detector.params().grid.range_m - 0.5);
+    return params;
+}
+
 PerceptionObjects::PerceptionObjects(const perception::Detector& detector, const verification::CadLibrary* library,
                                      const PerceptionSourceParams& params)
-    : detector_(detector), library_(library), params_(params), map_(params.tracker) {}
+    : detector_(detector), library_(library), params_(params), map_(tracker_params_for(detector, params.tracker)) {}
 
 std::vector<ObjectEstimate> PerceptionObjects::objects(const ObjectSourceInput& in) {
     if (!in.points_sensor) return last_;
@@ -32,18 +53,11 @@ std::vector<ObjectEstimate> PerceptionObjects::objects(const ObjectSourceInput& 
     // Detect, verify, track.
     std::vector<Detection> dets = detector_.detect(cloud);
     if (params_.verification && library_) {
-        std::vector<Detection> verified;
-        for (const Detection& d : dets) {
-            std::optional<double> floor_z;
-            if (ground_->found) floor_z = ground_->floor_z_at(d.box_sensor.centre_m.x(), d.box_sensor.centre_m.y());
-            const verification::VerifiedDetection v = verification::verify_detection(cloud, d, *library_, {}, floor_z);
-            if (!v.accepted) continue;
-            Detection r = d;
-            r.box_sensor = v.box_sensor;
-            r.score = v.p_exist;  // eq. (2): the existence evidence the map fuses
-            verified.push_back(r);
-        }
-        dets = std::move(verified);
+        const perception::GroundPlaneResult& ground = *ground_;
+        dets = verification::accepted_detections(verification::verify_detections(cloud, dets, *library_, {}, [&](double x, double y) -> std::optional<double> {
+            if (!ground.found) return std::nullopt;
+            return ground.floor_z_at(x, y);
+        }));
     }
     ++keyframes_;
     last_ = map_.update(dets, T_world_keyframe, in.t_s).objects_world;

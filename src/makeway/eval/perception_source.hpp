@@ -8,6 +8,7 @@
 #include "makeway/perception/accumulator.hpp"
 #include "makeway/perception/detector.hpp"
 #include "makeway/perception/ground.hpp"
+#include "makeway/sim/scene.hpp"
 #include "makeway/tracking/object_map.hpp"
 #include "makeway/verification/verifier.hpp"
 
@@ -38,7 +39,14 @@ private:
     std::size_t sweeps_ = 0, keyframes_ = 0;
 };
 
-/// Every furniture style of the simulator at its default dimensions, as a verification library.
+/// The tracker's parameters with misses judged only within what the detector covers.
+tracking::TrackerParams tracker_params_for(const perception::Detector& detector, tracking::TrackerParams params);
+
+/// Every furniture style of the simulator at its default dimensions, as a verification library:
+/// for furniture whose CAD models are not known.
 verification::CadLibrary default_cad_library();
+/// The CAD models of the furniture in the scene, one per distinct model (the paper's setting: the
+/// robot's owner has the models of the room's chairs and tables).
+verification::CadLibrary scene_cad_library(const sim::Scene& scene);
 
 }  // namespace makeway::eval

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <unordered_set>
 
 #include "makeway/common/angles.hpp"
 #include "makeway/common/random.hpp"
@@ -13,6 +14,7 @@ std::vector<std::string> GroundPlaneParams::validate() const {
     if (!(inlier_distance_m > 0.0 && inlier_distance_m < 1.0)) p.push_back("inlier_distance_m must be in (0, 1)");
     if (iterations < 1 || iterations > 100000) p.push_back("iterations must be in [1, 100000]");
     if (!(max_tilt_deg > 0.0 && max_tilt_deg <= 90.0)) p.push_back("max_tilt_deg must be in (0, 90]");
+    if (!(voxel_m >= 0.0 && voxel_m < 1.0)) p.push_back("voxel_m must be in [0, 1)");
     return p;
 }
 
@@ -21,6 +23,23 @@ std::vector<std::string> GroundFilterParams::validate() const {
     if (!(ground_band_m >= 0.0 && ground_band_m < ceiling_height_m)) p.push_back("need 0 <= ground_band_m < ceiling_height_m");
     return p;
 }
+
+namespace {
+
+std::vector<Eigen::Vector3d> one_point_per_voxel(const std::vector<Eigen::Vector3d>& pts, double voxel_m) {
+    std::unordered_set<std::uint64_t> taken;
+    std::vector<Eigen::Vector3d> out;
+    for (const auto& p : pts) {
+        const Eigen::Vector3d v = (p / voxel_m).array().floor();
+        if (!(v.cwiseAbs().maxCoeff() < 1e6)) continue;
+        const auto key = (static_cast<std::uint64_t>(v.x() + 1048576.0) << 42) | (static_cast<std::uint64_t>(v.y() + 1048576.0) << 21) |
+                         static_cast<std::uint64_t>(v.z() + 1048576.0);
+        if (taken.insert(key).second) out.push_back(p);
+    }
+    return out;
+}
+
+}  // namespace
 
 GroundPlaneResult fit_ground_plane(const PointCloud& cloud, const GroundPlaneParams& params) {
     GroundPlaneResult best;
@@ -33,13 +52,18 @@ GroundPlaneResult fit_ground_plane(const PointCloud& cloud, const GroundPlanePar
         best.reason = "fewer than 3 finite points";
         return best;
     }
+    // Hypotheses are scored on one point per voxel, so a plane's score is its area, not its point
+    // count: a spinning LiDAR packs its beams near the horizon, and the dense bands they draw on
+    // nearby walls, joined with the first floor ring, otherwise make a tilted "plane" with more
+    // points than the floor.
+    const std::vector<Eigen::Vector3d> cells = params.voxel_m > 0.0 ? one_point_per_voxel(pts, params.voxel_m) : pts;
     Rng rng = make_rng(params.seed, 31);
     const double cos_tilt = std::cos(deg_to_rad(params.max_tilt_deg));
-    const auto n_pts = static_cast<std::int64_t>(pts.size());
+    const auto n_cells = static_cast<std::int64_t>(cells.size());
     for (int it = 0; it < params.iterations; ++it) {
-        const Eigen::Vector3d& a = pts[uniform_int(rng, 0, n_pts - 1)];
-        const Eigen::Vector3d& b = pts[uniform_int(rng, 0, n_pts - 1)];
-        const Eigen::Vector3d& c = pts[uniform_int(rng, 0, n_pts - 1)];
+        const Eigen::Vector3d& a = cells[uniform_int(rng, 0, n_cells - 1)];
+        const Eigen::Vector3d& b = cells[uniform_int(rng, 0, n_cells - 1)];
+        const Eigen::Vector3d& c = cells[uniform_int(rng, 0, n_cells - 1)];
         Eigen::Vector3d n = (b - a).cross(c - a);
         if (n.norm() < 1e-9) continue;
         n.normalize();
@@ -48,7 +72,7 @@ GroundPlaneResult fit_ground_plane(const PointCloud& cloud, const GroundPlanePar
         const double d = -n.dot(a);
         if (d < params.min_sensor_height_m) continue;  // d is the sensor's height above the plane
         std::size_t inliers = 0;
-        for (const auto& p : pts) inliers += std::abs(n.dot(p) + d) < params.inlier_distance_m;
+        for (const auto& p : cells) inliers += std::abs(n.dot(p) + d) < params.inlier_distance_m;
         // The ground is the largest plane; among ties, the lowest (a table top has fewer points).
         if (inliers > best.inliers || (inliers == best.inliers && d > best.offset)) {
             best.inliers = inliers;
@@ -57,7 +81,7 @@ GroundPlaneResult fit_ground_plane(const PointCloud& cloud, const GroundPlanePar
         }
     }
     if (best.inliers < params.min_inliers) {
-        best.reason = "no plane with at least " + std::to_string(params.min_inliers) + " points within " +
+        best.reason = "no plane with at least " + std::to_string(params.min_inliers) + " occupied voxels within " +
                       std::to_string(params.max_tilt_deg) + " deg of horizontal";
         best.inliers = 0;
         return best;

@@ -14,7 +14,8 @@ struct GroundPlaneParams {
     double inlier_distance_m = 0.05;
     int iterations = 300;
     double max_tilt_deg = 25.0;  ///< the ground is roughly below a robot's sensor
-    std::size_t min_inliers = 200;
+    double voxel_m = 0.1;        ///< hypotheses are scored by inlier voxels of this size (area); 0: by points
+    std::size_t min_inliers = 200;  ///< inlier voxels (points when voxel_m = 0) for a plane to count
     /// The ground lies at least this far below the sensor. Without it, the returns of the beams
     /// near 0 deg elevation on the walls (the VLP-32C packs 20 of its 32 beams within +-4 deg) form
     /// a "plane" through the sensor that can out-vote the floor in a small room.

@@ -12,6 +12,7 @@ std::vector<std::string> TrackerParams::validate() const {
     std::vector<std::string> p = kalman.validate();
     if (!(min_giou >= -1.0 && min_giou <= 1.0)) p.push_back("min_giou must be in [-1, 1]");
     if (!(sensor_range_m > 0.0)) p.push_back("sensor_range_m must be > 0");
+    if (!(miss_range_m >= 0.0)) p.push_back("miss_range_m must be >= 0");
     if (!(association_gate_m >= 0.0)) p.push_back("association_gate_m must be >= 0");
     if (min_hits < 1) p.push_back("min_hits must be >= 1");
     if (max_misses < 1) p.push_back("max_misses must be >= 1");
@@ -114,8 +115,10 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
         if (out.track_of_detection[i] < 0 && usable[i]) all_boxes.push_back(det_world[i]);
     }
     std::optional<ScanOcclusion> scan;  // binned only when an object needs it
+    const double miss_range_m = params_.miss_range_m > 0.0 ? std::min(params_.miss_range_m, params_.sensor_range_m) : params_.sensor_range_m;
     for (std::size_t j = 0; j < candidates.size(); ++j) {
         if (matched_track[j]) continue;
+        if ((tracks_.at(candidates[j]).filter.box().centre_m - sensor).head<2>().norm() > miss_range_m) continue;  // the detector can't see it
         if (keyframe_sensor && !scan) scan.emplace(*keyframe_sensor, T_world_sensor, params_.occlusion);
         Track& t = tracks_.at(candidates[j]);
         std::vector<OrientedBox> others;

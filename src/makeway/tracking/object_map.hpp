@@ -22,6 +22,9 @@ struct TrackerParams {
     OcclusionParams occlusion;
     double min_giou = -0.1;          ///< associated pairs need at least this 3D GIoU
     double sensor_range_m = 10.0;    ///< objects farther from the sensor are neither matched nor penalised
+    /// Unmatched objects farther than this are not penalised either: where the detector cannot see
+    /// (its grid's reach), a miss says nothing. 0: sensor_range_m.
+    double miss_range_m = 0.0;
     /// Pairs whose footprints (circumscribed circles) are farther apart than this are not scored:
     /// at 1 m even two 1.8 m tables have a GIoU near -0.2, below any sensible min_giou.
     double association_gate_m = 1.0;

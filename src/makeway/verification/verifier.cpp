@@ -13,6 +13,7 @@ std::vector<std::string> VerifyParams::validate() const {
     if (!(box_margin_m >= 0.0 && box_margin_m < 2.0)) p.push_back("box_margin_m must be in [0, 2)");
     if (!(e_min_m >= 0.0 && e_min_m < e_max_m)) p.push_back("need 0 <= e_min_m < e_max_m");
     if (candidate_iterations < 0 || candidate_iterations > 100) p.push_back("candidate_iterations must be in [0, 100]");
+    if (max_models < 1) p.push_back("max_models must be at least 1");
     return p;
 }
 
@@ -59,14 +60,16 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
         const double turned = std::max({std::abs(std::log(a.x() / b.y())), std::abs(std::log(a.y() / b.x()))});
         return std::max(std::min(straight, turned), std::abs(std::log(a.z() / b.z())));
     };
+    // Closest in size first; a room's library may hold many variants of one style, and only the
+    // `max_models` closest are worth the alignments.
+    std::vector<std::pair<double, const CadModel*>> by_size;
+    for (const CadModel* m : models) by_size.emplace_back(size_mismatch(m), m);
+    std::stable_sort(by_size.begin(), by_size.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     std::vector<const CadModel*> sized;
-    for (const CadModel* m : models) {
-        if (size_mismatch(m) <= params.max_size_mismatch) sized.push_back(m);
+    for (const auto& [mismatch, m] : by_size) {
+        if (mismatch <= params.max_size_mismatch && static_cast<int>(sized.size()) < params.max_models) sized.push_back(m);
     }
-    if (sized.empty()) {
-        sized.push_back(*std::min_element(models.begin(), models.end(),
-                                          [&](const auto* a, const auto* b) { return size_mismatch(a) < size_mismatch(b); }));
-    }
+    if (sized.empty()) sized.push_back(by_size.front().second);
     // The four yaw candidates of every model, ranked by their residual after a short coarse
     // alignment; the best two are refined fully and the lower final residual wins.
     struct Candidate {
@@ -122,6 +125,29 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
     }
     out.accepted = true;
     out.p_exist = existence_probability(fit.residual_m, params.e_min_m, params.e_max_m);
+    return out;
+}
+
+std::vector<VerifiedDetection> verify_detections(const PointCloud& cloud, const std::vector<Detection>& detections, const CadLibrary& library,
+                                                 const VerifyParams& params, const std::function<std::optional<double>(double, double)>& floor_z_at) {
+    std::vector<VerifiedDetection> out;
+    out.reserve(detections.size());
+    for (const Detection& d : detections) {
+        const std::optional<double> floor_z = floor_z_at ? floor_z_at(d.box_sensor.centre_m.x(), d.box_sensor.centre_m.y()) : std::nullopt;
+        out.push_back(verify_detection(cloud, d, library, params, floor_z));
+    }
+    return out;
+}
+
+std::vector<Detection> accepted_detections(const std::vector<VerifiedDetection>& verified, ScoreFrom score) {
+    std::vector<Detection> out;
+    for (const VerifiedDetection& v : verified) {
+        if (!v.accepted) continue;
+        Detection d = v.detection;
+        d.box_sensor = v.box_sensor;
+        if (score == ScoreFrom::kExistence) d.score = v.p_exist;
+        out.push_back(d);
+    }
     return out;
 }
 

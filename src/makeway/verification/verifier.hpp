@@ -4,6 +4,7 @@
 // the best of the four yaw candidates theta + k pi/2; the best fit is kept, rejected when its
 // residual exceeds e_max, and otherwise given p_exist = 1 - (e - e_min) / (2 (e_max - e_min))
 // (eq. 2, clamped to [0.5, 1]).
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@ struct VerifyParams {
     double box_margin_m = 0.15;      ///< the box is grown by this on every side to cut the segment
     int candidate_iterations = 4;    ///< coarse Gauss-Newton steps per yaw candidate before ranking
     double max_size_mismatch = 0.3;  ///< |log(model / detected size)| per dimension for a model to be tried
+    int max_models = 4;              ///< at most this many models (closest in size) are tried
     int refined_candidates = 4;      ///< best-ranked candidates aligned fully; the lowest residual wins
     double e_min_m = 0.01;           ///< residual at or below which p_exist = 1
     double e_max_m = 0.035;          ///< residual above which the detection is rejected
@@ -50,5 +52,20 @@ double existence_probability(double residual_m, double e_min_m, double e_max_m);
 /// where the object's origin sits; without it the detection box's bottom is used.
 VerifiedDetection verify_detection(const PointCloud& cloud_sensor, const Detection& detection, const CadLibrary& library,
                                    const VerifyParams& params, std::optional<double> floor_z_m = std::nullopt);
+
+/// verify_detection() of every detection, in order; `floor_z_at(x_m, y_m)` gives the floor height
+/// under a detection (none: the box bottom).
+std::vector<VerifiedDetection> verify_detections(const PointCloud& cloud_sensor, const std::vector<Detection>& detections,
+                                                 const CadLibrary& library, const VerifyParams& params,
+                                                 const std::function<std::optional<double>(double, double)>& floor_z_at = {});
+
+/// Which score an accepted detection carries on.
+enum class ScoreFrom {
+    kExistence,  ///< p_exist (eq. 2): the per-frame existence evidence the object map fuses
+    kDetector,   ///< the network's confidence
+};
+
+/// The accepted detections with the CAD model's box at the refined pose.
+std::vector<Detection> accepted_detections(const std::vector<VerifiedDetection>& verified, ScoreFrom score = ScoreFrom::kExistence);
 
 }  // namespace makeway::verification
