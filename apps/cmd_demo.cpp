@@ -9,6 +9,7 @@
 #include "apps/commands.hpp"
 #include "apps/model_path.hpp"
 #include "apps/nav_report.hpp"
+#include "apps/nav_run.hpp"
 #include "apps/recording.hpp"
 #include "io/config_reader.hpp"
 #include "io/error.hpp"
@@ -16,7 +17,6 @@
 #include "io/json_io.hpp"
 #include "io/nav_png.hpp"
 #include "io/point_cloud_io.hpp"
-#include "makeway/eval/perception_source.hpp"
 
 namespace makeway::apps {
 namespace {
@@ -68,7 +68,6 @@ int run_demo(const DemoOptions& options) {
 
     // Navigation: every method on the same scene, with the same planners.
     const eval::NavParams nav = nav_params(cfg);
-    const std::vector<sim::ObjectModel> models = sim::models_of(scene);
     std::vector<eval::NavRunResult> runs;
     std::vector<io::DrivenPath> paths;
     io::Json runs_json = io::Json::array();
@@ -76,21 +75,13 @@ int run_demo(const DemoOptions& options) {
     std::vector<std::string> methods = eval::nav_method_names();
     std::optional<perception::Detector> detector;
     if (const auto model = default_model_path()) {
-        detector = perception::Detector::load(*model);
+        detector = load_detector(model->string());
         methods.push_back("ours");
     } else {
         std::cout << "  no detector weights (models/detector.pt; `make model`): skipping the full system `ours`\n";
     }
-    const verification::CadLibrary cad = eval::scene_cad_library(scene);  // the room's furniture models, as in the paper
     for (const std::string& name : methods) {
-        const eval::NavMethod method = *eval::nav_method(name, nav.robot);
-        eval::NoObjects none;
-        eval::GroundTruthObjects truth(scene, models);
-        std::optional<eval::PerceptionObjects> perceived;
-        if (name == "ours") perceived.emplace(*detector, &cad);
-        eval::ObjectSource& source = perceived ? static_cast<eval::ObjectSource&>(*perceived)
-                                     : method.affordance ? static_cast<eval::ObjectSource&>(truth) : none;
-        eval::NavRunResult r = eval::run_navigation(scene, method, source, nav);
+        eval::NavRunResult r = run_nav_method(scene, name, nav, detector ? &*detector : nullptr);
         const std::string line = name + ": " + (r.success ? "success" : "failed (" + r.failure + ")") + ", " +
                                  std::to_string(r.time_s).substr(0, 5) + " s, risk " +
                                  std::to_string(r.risk_time_s).substr(0, 4) + " s, " +

@@ -19,20 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path resolve_model(const std::string& given) {
-    if (!given.empty()) return given;
-    return default_model_path().value_or(fs::path("models") / "detector.pt");  // load() reports it missing
-}
-
-perception::Detector load_detector(const std::string& given) {
-    const fs::path path = resolve_model(given);
-    try {
-        return perception::Detector::load(path);
-    } catch (const std::runtime_error& e) {
-        throw io::FileError(path.string(), std::string(e.what()).substr(path.string().size() + 2));
-    }
-}
-
 io::Json metrics_json(const eval::DetectionMetrics& m) {
     io::Json j = {{"map_25", m.map_25}, {"map_50", m.map_50}, {"mar_25", m.mar_25}, {"mar_50", m.mar_50}};
     for (const auto& [cls, c] : m.per_class) {

@@ -6,9 +6,12 @@
 #include <fstream>
 #include <iostream>
 #include <mutex>
+#include <optional>
 
 #include "apps/commands.hpp"
+#include "apps/model_path.hpp"
 #include "apps/nav_report.hpp"
+#include "apps/nav_run.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
 #include "io/map_server_io.hpp"
@@ -18,18 +21,6 @@
 #include "makeway/sim/scene_generator.hpp"
 
 namespace makeway::apps {
-namespace {
-
-eval::NavRunResult run_method(const sim::Scene& scene, const std::string& method_name, const eval::NavParams& params) {
-    const eval::NavMethod method = *eval::nav_method(method_name, params.robot);  // CLI11 checked the name
-    const std::vector<sim::ObjectModel> models = sim::models_of(scene);
-    eval::NoObjects none;
-    eval::GroundTruthObjects truth(scene, models);
-    eval::ObjectSource& source = method.affordance ? static_cast<eval::ObjectSource&>(truth) : none;
-    return eval::run_navigation(scene, method, source, params);
-}
-
-}  // namespace
 
 int run_navigate(const NavigateOptions& options) {
     const io::Config cfg = options.config.empty() ? io::Config{} : io::load_config(options.config);
@@ -38,7 +29,9 @@ int run_navigate(const NavigateOptions& options) {
     params.seed = options.seed;
     params.time_limit_s = options.time_limit_s;
     if (!options.map.empty()) params.static_map = io::read_map_server(options.map);
-    const eval::NavRunResult r = run_method(scene, options.method, params);
+    std::optional<perception::Detector> detector;
+    if (options.method == "ours") detector = load_detector(options.model);
+    const eval::NavRunResult r = run_nav_method(scene, options.method, params, detector ? &*detector : nullptr);
     const std::filesystem::path out = options.out_dir;
     io::Json j = run_to_json(r, true);
     j["scene"] = options.scene;
@@ -56,7 +49,16 @@ int run_navigate(const NavigateOptions& options) {
 int run_bench_nav(const BenchNavOptions& options) {
     const io::Config cfg = options.config.empty() ? io::Config{} : io::load_config(options.config);
     const std::filesystem::path out = options.out_dir;
-    const std::vector<std::string>& methods = eval::nav_method_names();
+    // The full system `ours` joins when detector weights are there (given, or the default ones).
+    std::vector<std::string> methods = eval::nav_method_names();
+    std::optional<perception::Detector> detector;
+    if (!options.model.empty() || default_model_path()) {
+        detector = load_detector(options.model);
+        perception::set_inference_threads(1);  // runs go in parallel instead
+        methods.push_back("ours");
+    } else {
+        std::cout << "no detector weights (models/detector.pt; `make model`): the full system `ours` is left out\n";
+    }
     const sim::Density densities[] = {sim::Density::kSparse, sim::Density::kMedium, sim::Density::kDense};
     std::vector<sim::Scene> scenes;
     for (int i = 0; i < options.scenes; ++i) {
@@ -77,7 +79,7 @@ int run_bench_nav(const BenchNavOptions& options) {
         eval::NavParams params = nav_params(cfg);
         params.seed = options.seed + s;
         params.time_limit_s = options.time_limit_s;
-        eval::NavRunResult r = run_method(scenes[s], methods[m], params);
+        eval::NavRunResult r = run_nav_method(scenes[s], methods[m], params, detector ? &*detector : nullptr);
         std::lock_guard<std::mutex> lock(mutex);
         results[s].resize(methods.size());
         results[s][m] = std::move(r);

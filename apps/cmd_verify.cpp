@@ -96,11 +96,13 @@ int run_bench_verify(const BenchVerifyOptions& options) {
     eval::VerifyBenchParams p;
     p.scenes = options.scenes;
     p.seed = options.seed;
+    p.verify.min_yaw_margin = options.min_yaw_margin;
     io::ProgressBar bar("bench verify", static_cast<std::size_t>(p.scenes));
     const eval::VerifyBenchResult r = eval::run_verify_bench(p, [&](int done, int) { bar.update(static_cast<std::size_t>(done)); });
     bar.finish();
     const io::Json j = {{"scenes", p.scenes},
                         {"seed", p.seed},
+                        {"min_yaw_margin", p.verify.min_yaw_margin},
                         {"true_boxes", r.true_boxes},
                         {"false_boxes", r.false_boxes},
                         {"matched", to_json(r.matched)},

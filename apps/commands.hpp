@@ -82,6 +82,7 @@ struct NavigateOptions {
     std::string scene;
     std::string method = "gt-perc";
     std::string map;  ///< optional map_server YAML for the static layer
+    std::string model;  ///< detector weights for `ours`; empty: the default ones
     std::string out_dir;
     std::uint64_t seed = 0;
     double time_limit_s = 180.0;
@@ -93,6 +94,7 @@ struct BenchNavOptions {
     int scenes = 25;
     std::uint64_t seed = 0;
     std::string out_dir = "out/bench_nav";
+    std::string model;  ///< detector weights for `ours`; empty: the default ones when present
     int threads = 2;
     double time_limit_s = 180.0;
 };
@@ -106,6 +108,7 @@ struct BenchVerifyOptions {
     int scenes = 5;
     std::uint64_t seed = 0;
     std::string out_dir = "out/bench_verify";
+    double min_yaw_margin = 0.0;  ///< VerifyParams::min_yaw_margin
 };
 int run_bench_verify(const BenchVerifyOptions& options);
 

@@ -101,9 +101,11 @@ void add_navigate(CLI::App& app, NavigateOptions& o) {
                                                "layered costmap, A* and DWA at 10 Hz; writes run.json and route.png");
     sub->add_option("--scene", o.scene, "Scene file (.yaml)")->required();
     sub->add_option("--method", o.method, "con (no semantics, inflation 3x robot radius), oppo (no semantics, "
-                                          "inflation = robot radius), gt-perc (affordance zones from ground truth)")
-        ->check(CLI::IsMember({"con", "oppo", "gt-perc"}))
+                                          "inflation = robot radius), gt-perc (affordance zones from ground truth), "
+                                          "ours (the full system: detector, verification, object map)")
+        ->check(CLI::IsMember({"con", "oppo", "gt-perc", "ours"}))
         ->capture_default_str();
+    sub->add_option("--model", o.model, "Detector weights for ours (default: models/detector.pt)");
     sub->add_option("--config", o.config, "YAML configuration: lidar, robot and affordance sections "
                                           "(default: built-in; see config/default.yaml)");
     sub->add_option("--map", o.map, "Static map in map_server format (YAML + PGM) instead of the scene's walls "
@@ -207,6 +209,10 @@ void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchV
         ->capture_default_str();
     ver->add_option("--seed", ver_o.seed, "Seed of scenes and corruption")->capture_default_str();
     ver->add_option("--out", ver_o.out_dir, "Output folder (summary.json)")->capture_default_str();
+    ver->add_option("--min-yaw-margin", ver_o.min_yaw_margin, "Reject fits whose best rival orientation is within this "
+                                                              "fraction of the winner's residual (0: off)")
+        ->check(CLI::Range(0.0, 10.0))
+        ->capture_default_str();
     auto* nav = bench->add_subcommand("nav", "The navigation benchmark (the paper's Table II): every method on "
                                              "generated scenes of varied density; writes results.json, table.md "
                                              "and one PNG per scene");
@@ -217,6 +223,8 @@ void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchV
     nav->add_option("--seed", nav_o.seed, "Seed of the first scene")->capture_default_str();
     nav->add_option("--out", nav_o.out_dir, "Output folder")->capture_default_str();
     nav->add_option("--threads", nav_o.threads, "Runs in parallel")->check(CLI::Range(1, 256))->capture_default_str();
+    nav->add_option("--model", nav_o.model, "Detector weights for the full system ours (default: models/detector.pt "
+                                            "when present; without weights ours is left out)");
     nav->add_option("--time-limit", nav_o.time_limit_s, "Seconds per run before it counts as failed [s]")
         ->check(CLI::Range(1.0, 3600.0))
         ->capture_default_str();

@@ -3,7 +3,12 @@
 // source tree the program was built in (build/bin/makeway -> ../../models/detector.pt).
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <system_error>
+
+#include "io/error.hpp"
+#include "makeway/perception/detector.hpp"
 
 namespace makeway::apps {
 
@@ -18,6 +23,18 @@ inline std::optional<std::filesystem::path> default_model_path() {
         if (fs::exists(beside)) return beside;
     }
     return std::nullopt;
+}
+
+/// The given model file, else the default weights; throws io::FileError naming the file when it is
+/// missing or not a detector.
+inline perception::Detector load_detector(const std::string& given) {
+    const std::filesystem::path path = !given.empty() ? std::filesystem::path(given)
+                                                      : default_model_path().value_or(std::filesystem::path("models") / "detector.pt");
+    try {
+        return perception::Detector::load(path);
+    } catch (const std::runtime_error& e) {
+        throw io::FileError(path.string(), std::string(e.what()).substr(path.string().size() + 2));
+    }
 }
 
 }  // namespace makeway::apps

@@ -223,6 +223,17 @@ TEST(Cli, NavigateWritesRunRouteAndCostmap) {
     EXPECT_NE(r.err.find((dir / "nope.yaml").string() + ": no such file"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "run3"));
     EXPECT_EQ(run_makeway("navigate --scene x.yaml --method fast --out y", dir).exit_code, 2);
+    // The full system with the committed weights; a missing model file is named, nothing written.
+    r = run_makeway("navigate --scene " + (dir / "room.yaml").string() + " --method ours --out " + (dir / "ours").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const io::Json ours = io::read_json(dir / "ours" / "run.json");
+    EXPECT_EQ(ours["method"].get<std::string>(), "ours");
+    EXPECT_TRUE(ours["success"].get<bool>());
+    r = run_makeway("navigate --scene " + (dir / "room.yaml").string() + " --method ours --model " + (dir / "nope.pt").string() +
+                        " --out " + (dir / "ours2").string(), dir);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find((dir / "nope.pt").string()), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "ours2"));
 }
 
 TEST(Cli, VerifyRefinesAFlippedDetectionAndRejectsAWallBox) {

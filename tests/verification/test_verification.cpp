@@ -225,6 +225,44 @@ TEST(Verification, ARoomOfVariantsTriesOnlyTheClosestInSize) {
     EXPECT_FALSE(VerifyParams{.max_models = 0}.validate().empty());
 }
 
+TEST(CadLibrary, FindsEachModelsQuarterTurnSymmetries) {
+    CadLibrary lib;
+    for (sim::FurnitureStyle style : {sim::FurnitureStyle::kRoundTable, sim::FurnitureStyle::kRectTable, sim::FurnitureStyle::kOfficeChair,
+                                      sim::FurnitureStyle::kFourLegChair}) {
+        lib.add(std::string(sim::to_string(style)), sim::class_of(style), sim::make_furniture(style, 3).mesh_object);
+    }
+    using Turns = std::array<bool, 4>;
+    EXPECT_EQ(lib.models()[0].quarter_turn_symmetric, (Turns{true, true, true, true}));     // round table
+    EXPECT_EQ(lib.models()[1].quarter_turn_symmetric, (Turns{true, false, true, false}));   // rectangular table
+    EXPECT_EQ(lib.models()[2].quarter_turn_symmetric, (Turns{true, false, false, false}));  // a back rest breaks them
+    EXPECT_EQ(lib.models()[3].quarter_turn_symmetric, (Turns{true, false, false, false}));
+}
+
+TEST(Verification, AmbiguousOrientationsAreRejectedOnRequestSymmetricOnesNever) {
+    // With an absurd margin every chair fit has a rival orientation "close enough"; a round
+    // table has no rival at all, since every quarter turn maps it onto itself.
+    VerifyParams strict;
+    strict.min_yaw_margin = 10.0;
+    const ChairScan chair = scan_chair(sim::FurnitureStyle::kFourLegChair, 4, 0.6, 7);
+    Detection det;
+    det.cls = ObjectClass::kChair;
+    det.box_sensor = chair.box_sensor;
+    const CadLibrary chairs = library_with(sim::FurnitureStyle::kFourLegChair, 4);
+    const VerifiedDetection loose = verify_detection(chair.cloud_sensor, det, chairs, {}, -0.45);
+    ASSERT_TRUE(loose.accepted) << loose.reason;
+    EXPECT_GT(loose.yaw_margin, 0.0);
+    const VerifiedDetection picky = verify_detection(chair.cloud_sensor, det, chairs, strict, -0.45);
+    EXPECT_FALSE(picky.accepted);
+    EXPECT_NE(picky.reason.find("ambiguous yaw"), std::string::npos) << picky.reason;
+
+    const ChairScan table = scan_chair(sim::FurnitureStyle::kRoundTable, 2, 0.3, 7);
+    det.cls = ObjectClass::kTable;
+    det.box_sensor = table.box_sensor;
+    const VerifiedDetection round = verify_detection(table.cloud_sensor, det, library_with(sim::FurnitureStyle::kRoundTable, 2), strict, -0.45);
+    EXPECT_TRUE(round.accepted) << round.reason;
+    EXPECT_TRUE(std::isinf(round.yaw_margin));
+}
+
 TEST(Verification, ExistenceProbabilityFollowsEquationTwo) {
     EXPECT_DOUBLE_EQ(existence_probability(0.01, 0.01, 0.05), 1.0);
     EXPECT_DOUBLE_EQ(existence_probability(0.03, 0.01, 0.05), 0.75);

@@ -120,7 +120,8 @@ void set_inference_threads(int threads) {
 std::vector<float> Detector::heads(const PointCloud& cloud) const {
     torch::NoGradGuard no_grad;
     if (params_.threads > 0) torch::set_num_threads(params_.threads);
-    impl_->net->eval();
+    // The network is in eval mode since construction, load() or the end of training: nothing here
+    // writes to it, so several threads may detect at once.
     const torch::Tensor out = activate_heads(impl_->net->forward(bev_tensor(cloud, params_.grid))).contiguous();
     return std::vector<float>(out.data_ptr<float>(), out.data_ptr<float>() + out.numel());
 }

@@ -36,6 +36,7 @@ public:
     void save(const std::filesystem::path& path) const;
 
     /// Detections in the cloud's (sensor) frame; the cloud should be ground- and ceiling-filtered.
+    /// Safe to call from several threads at once.
     std::vector<Detection> detect(const PointCloud& cloud_sensor) const;
     /// The decoded head maps for a cloud (channel-major, see bev_grid.hpp).
     std::vector<float> heads(const PointCloud& cloud_sensor) const;

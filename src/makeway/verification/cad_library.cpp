@@ -7,6 +7,7 @@
 #include <map>
 #include <tuple>
 
+#include "makeway/common/angles.hpp"
 #include "makeway/common/random.hpp"
 
 namespace makeway::verification {
@@ -119,6 +120,22 @@ void CadLibrary::add(const std::string& name, ObjectClass cls, const TriangleMes
                                                             params_.lookup_margin_m[l]);
         }
         model.levels.push_back(std::move(level));
+    }
+    if (!model.levels.empty()) {
+        const ModelLevel& fine = model.levels.back();
+        const Eigen::Vector3d c(model.box_object.centre_m.x(), model.box_object.centre_m.y(), 0.0);
+        for (int k = 1; k < 4; ++k) {
+            const Eigen::Matrix3d R = Eigen::AngleAxisd(k * kPi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+            const double cap_m = 0.2;
+            double sum2 = 0.0;
+            for (const auto& p : fine.points_object) {
+                double d2 = 0.0;
+                (void)fine.nearest(c + R * (p - c), cap_m, &d2);
+                sum2 += std::min(d2, cap_m * cap_m);
+            }
+            model.quarter_turn_symmetric[static_cast<std::size_t>(k)] =
+                !fine.points_object.empty() && std::sqrt(sum2 / static_cast<double>(fine.points_object.size())) <= params_.symmetry_rms_m;
+        }
     }
     models_.push_back(std::move(model));
 }

@@ -1,6 +1,7 @@
 #pragma once
 // CAD models for verification: each mesh densely sampled into surface points with normals, thinned
 // on voxel grids of several sizes (one per coarse-to-fine level), each with a k-d tree (nanoflann).
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,6 +33,10 @@ struct CadModel {
     ObjectClass cls = ObjectClass::kChair;
     OrientedBox box_object;            ///< extent of the mesh in the object frame
     std::vector<ModelLevel> levels;    ///< coarse to fine
+    /// Whether turning the model by k quarter turns about its box centre's vertical axis leaves its
+    /// surface in place (k = 0 always; a rectangular table k = 2; a round one every k): yaw
+    /// candidates that differ by such a turn are the same fit, not rivals.
+    std::array<bool, 4> quarter_turn_symmetric{true, false, false, false};
 };
 
 struct CadLibraryParams {
@@ -42,6 +47,9 @@ struct CadLibraryParams {
     /// without an entry, use the exact k-d tree.
     std::vector<double> lookup_margin_m{0.30, 0.15};
     double lookup_cell_fraction = 0.5;                      ///< grid cell size / level voxel size
+    /// A quarter turn is a symmetry when the finest level's points, turned, lie within this RMS
+    /// distance of the model [m].
+    double symmetry_rms_m = 0.015;
     std::uint64_t seed = 0;
     std::vector<std::string> validate() const;
 };

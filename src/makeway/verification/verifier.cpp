@@ -14,6 +14,7 @@ std::vector<std::string> VerifyParams::validate() const {
     if (!(e_min_m >= 0.0 && e_min_m < e_max_m)) p.push_back("need 0 <= e_min_m < e_max_m");
     if (candidate_iterations < 0 || candidate_iterations > 100) p.push_back("candidate_iterations must be in [0, 100]");
     if (max_models < 1) p.push_back("max_models must be at least 1");
+    if (!(min_yaw_margin >= 0.0)) p.push_back("min_yaw_margin must be >= 0");
     return p;
 }
 
@@ -104,13 +105,25 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
     const int levels = static_cast<int>(sized.front()->levels.size());
     const int rank_level = std::max(0, levels - 2);  // candidates compete at the second-finest level
     const std::vector<Eigen::Vector3d>& ranked_points = levelled.per_level_sensor[static_cast<std::size_t>(rank_level)];
+    std::vector<Candidate> refined;
     for (std::size_t i = 0; i < std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(params.refined_candidates)); ++i) {
         const IcpResult r = align(levelled, *candidates[i].model, candidates[i].pose, params.icp, 0, rank_level);
         // Ranked on every point: a back rest seen by few points tells the yaw flips apart.
         const double e = geometric_residual(ranked_points, *candidates[i].model, rank_level, r.pose,
                                             params.icp.max_correspondence_m[static_cast<std::size_t>(rank_level)]);
+        refined.push_back({candidates[i].model, r.pose, e});
         if (e < best_e) best_e = e, best_pose = r.pose, best_model = candidates[i].model;
     }
+    // A rival orientation that fits almost as well: the yaw is a guess (one side of a chair seen).
+    // Turns that map the winning model onto itself (a table's half turn) are not rivals.
+    double rival_e = std::numeric_limits<double>::infinity();
+    for (const Candidate& c : refined) {
+        const double turn = angle_diff(c.pose.yaw_rad, best_pose.yaw_rad);
+        if (std::abs(turn) < kPi / 4) continue;
+        const auto k = static_cast<std::size_t>((std::lround(turn / (kPi / 2)) % 4 + 4) % 4);
+        if (!best_model->quarter_turn_symmetric[k]) rival_e = std::min(rival_e, c.e);
+    }
+    out.yaw_margin = rival_e / std::max(best_e, 1e-9) - 1.0;
     // Only the winner is refined at the finest level; acceptance uses its trimmed residual.
     IcpResult fit = align(levelled, *best_model, best_pose, params.icp, rank_level + 1 < levels ? rank_level + 1 : rank_level);
     out.model = best_model->name;
@@ -121,6 +134,10 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
     out.box_sensor = best_model->box_object.transformed(out.T_sensor_object);
     if (fit.residual_m > params.e_max_m) {
         out.reason = "residual " + std::to_string(fit.residual_m) + " m above e_max";
+        return out;
+    }
+    if (out.yaw_margin < params.min_yaw_margin) {
+        out.reason = "ambiguous yaw: another orientation fits within " + std::to_string(100.0 * out.yaw_margin) + " %";
         return out;
     }
     out.accepted = true;

@@ -22,6 +22,11 @@ struct VerifyParams {
     double max_size_mismatch = 0.3;  ///< |log(model / detected size)| per dimension for a model to be tried
     int max_models = 4;              ///< at most this many models (closest in size) are tried
     int refined_candidates = 4;      ///< best-ranked candidates aligned fully; the lowest residual wins
+    /// Rejected when another orientation's residual is within this fraction of the winner's (the
+    /// paper keeps only detections with a confident orientation). Off by default: 0.1 lifts the
+    /// accepted yaw within 10 deg from 94 to 95 % but rejects 5 % more true objects, and the
+    /// navigation benchmark's risk time rose with it (see README).
+    double min_yaw_margin = 0.0;
     double e_min_m = 0.01;           ///< residual at or below which p_exist = 1
     double e_max_m = 0.035;          ///< residual above which the detection is rejected
     std::size_t min_points = 15;     ///< fewer segment points: rejected without fitting
@@ -35,6 +40,9 @@ struct VerifiedDetection {
     Isometry3 T_sensor_object = Isometry3::Identity();
     OrientedBox box_sensor;              ///< the CAD model's extent at the refined pose
     double residual_m = 0.0;
+    /// How much worse the best rival orientation fits: its residual / the winner's - 1 (infinite
+    /// when no refined candidate was a rival).
+    double yaw_margin = 0.0;
     int iterations = 0;
     bool converged = false;
     double p_exist = 0.0;

@@ -1,0 +1,16 @@
+#pragma once
+// One closed-loop navigation run of a named method with the object source it needs: none (con,
+// oppo), the ground truth (gt-perc) or the full perception chain (ours: keyframes, ground plane,
+// detector, verification against the CAD models of the scene's furniture, object map).
+#include <string>
+
+#include "makeway/eval/navigation.hpp"
+#include "makeway/perception/detector.hpp"
+
+namespace makeway::apps {
+
+/// `detector` is needed by `ours` only (std::invalid_argument without it).
+eval::NavRunResult run_nav_method(const sim::Scene& scene, const std::string& method, const eval::NavParams& params,
+                                  const perception::Detector* detector);
+
+}  // namespace makeway::apps
