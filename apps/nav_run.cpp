@@ -11,9 +11,14 @@ eval::NavRunResult run_nav_method(const sim::Scene& scene, const std::string& na
                                   const perception::Detector* detector) {
     const std::optional<eval::NavMethod> method = eval::nav_method(name, params.robot);
     if (!method) throw std::invalid_argument("unknown navigation method '" + name + "'");
-    eval::NoObjects none;
-    eval::GroundTruthObjects truth(scene, sim::models_of(scene));
-    if (name != "ours") return eval::run_navigation(scene, *method, method->affordance ? static_cast<eval::ObjectSource&>(truth) : none, params);
+    if (!method->affordance) {
+        eval::NoObjects none;
+        return eval::run_navigation(scene, *method, none, params);
+    }
+    if (name != "ours") {
+        eval::GroundTruthObjects truth(scene, sim::models_of(scene));
+        return eval::run_navigation(scene, *method, truth, params);
+    }
     if (!detector) throw std::invalid_argument("the full system 'ours' needs detector weights");
     const verification::CadLibrary cad = eval::scene_cad_library(scene);  // the room's furniture models, as in the paper
     eval::PerceptionObjects perceived(*detector, &cad);

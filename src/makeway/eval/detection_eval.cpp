@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <optional>
 
 #include "makeway/common/statistics.hpp"
 #include "makeway/eval/perception_source.hpp"
@@ -28,7 +29,8 @@ std::pair<double, double> latency_ms(const perception::Detector& detector, const
 DetectionEvalResult run_detection_eval(const perception::Detector& detector, const DetectionEvalParams& p,
                                        const std::function<void(const std::string&, int, int)>& progress) {
     DetectionEvalResult r;
-    const verification::CadLibrary default_library = default_cad_library();
+    std::optional<verification::CadLibrary> default_library;  // built only when asked for
+    if (p.cad == CadSource::kDefault) default_library = default_cad_library();
     for (int arm = 0; arm < 2; ++arm) {
         DatasetParams dp;
         dp.scenes = p.scenes;
@@ -48,8 +50,8 @@ DetectionEvalResult run_detection_eval(const perception::Detector& detector, con
         std::vector<std::vector<Detection>> net, ver, evidence;
         for (const LabelledKeyframe& kf : kfs) {
             net.push_back(detector.detect(kf.cloud_sensor));
-            const verification::CadLibrary* lib = &default_library;
-            if (p.cad == CadSource::kScene) {
+            const verification::CadLibrary* lib = default_library ? &*default_library : nullptr;
+            if (!lib) {
                 auto it = scene_libraries.find(kf.sequence);
                 if (it == scene_libraries.end()) it = scene_libraries.emplace(kf.sequence, scene_cad_library(scenes.at(kf.sequence))).first;
                 lib = &it->second;

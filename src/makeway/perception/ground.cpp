@@ -2,10 +2,10 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
-#include <unordered_set>
 
 #include "makeway/common/angles.hpp"
 #include "makeway/common/random.hpp"
+#include "makeway/common/voxel_thin.hpp"
 
 namespace makeway::perception {
 
@@ -24,23 +24,6 @@ std::vector<std::string> GroundFilterParams::validate() const {
     return p;
 }
 
-namespace {
-
-std::vector<Eigen::Vector3d> one_point_per_voxel(const std::vector<Eigen::Vector3d>& pts, double voxel_m) {
-    std::unordered_set<std::uint64_t> taken;
-    std::vector<Eigen::Vector3d> out;
-    for (const auto& p : pts) {
-        const Eigen::Vector3d v = (p / voxel_m).array().floor();
-        if (!(v.cwiseAbs().maxCoeff() < 1e6)) continue;
-        const auto key = (static_cast<std::uint64_t>(v.x() + 1048576.0) << 42) | (static_cast<std::uint64_t>(v.y() + 1048576.0) << 21) |
-                         static_cast<std::uint64_t>(v.z() + 1048576.0);
-        if (taken.insert(key).second) out.push_back(p);
-    }
-    return out;
-}
-
-}  // namespace
-
 GroundPlaneResult fit_ground_plane(const PointCloud& cloud, const GroundPlaneParams& params) {
     GroundPlaneResult best;
     std::vector<Eigen::Vector3d> pts;
@@ -56,7 +39,7 @@ GroundPlaneResult fit_ground_plane(const PointCloud& cloud, const GroundPlanePar
     // count: a spinning LiDAR packs its beams near the horizon, and the dense bands they draw on
     // nearby walls, joined with the first floor ring, otherwise make a tilted "plane" with more
     // points than the floor.
-    const std::vector<Eigen::Vector3d> cells = params.voxel_m > 0.0 ? one_point_per_voxel(pts, params.voxel_m) : pts;
+    const std::vector<Eigen::Vector3d> cells = params.voxel_m > 0.0 ? voxel_thin(pts, params.voxel_m) : pts;
     Rng rng = make_rng(params.seed, 31);
     const double cos_tilt = std::cos(deg_to_rad(params.max_tilt_deg));
     const auto n_cells = static_cast<std::int64_t>(cells.size());

@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
-#include <unordered_set>
 
 #include "makeway/common/angles.hpp"
 
@@ -22,25 +20,6 @@ std::vector<std::string> IcpParams::validate(std::size_t levels) const {
     }
     if (!(cauchy_scale_m > 0.0)) p.push_back("cauchy_scale_m must be > 0");
     return p;
-}
-
-std::vector<Eigen::Vector3d> voxel_thin(const std::vector<Eigen::Vector3d>& points, double voxel) {
-    // Voxel keys packed into 64 bits (21 bits per axis: +-1 million voxels) in a hash set.
-    auto key = [voxel](const Eigen::Vector3d& p) {
-        std::uint64_t k = 0;
-        for (int a = 0; a < 3; ++a) {
-            const auto v = static_cast<std::int64_t>(std::floor(p[a] / voxel)) & ((std::int64_t{1} << 21) - 1);
-            k = (k << 21) | static_cast<std::uint64_t>(v);
-        }
-        return k;
-    };
-    std::unordered_set<std::uint64_t> seen;
-    seen.reserve(points.size());
-    std::vector<Eigen::Vector3d> out;
-    for (const auto& p : points) {
-        if (p.allFinite() && seen.insert(key(p)).second) out.push_back(p);
-    }
-    return out;
 }
 
 LevelledSegment thin_to_levels(const std::vector<Eigen::Vector3d>& segment, const CadModel& model) {

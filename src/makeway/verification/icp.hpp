@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "makeway/common/voxel_thin.hpp"
 #include "makeway/verification/cad_library.hpp"
 
 namespace makeway::verification {
@@ -43,9 +44,6 @@ struct IcpResult {
 /// rejection test compare.
 double geometric_residual(const std::vector<Eigen::Vector3d>& segment_sensor, const CadModel& model, int level,
                           const Pose4& pose, double max_correspondence_m, double keep_fraction = 1.0);
-
-/// Keeps one point per voxel (the first), for the coarse levels.
-std::vector<Eigen::Vector3d> voxel_thin(const std::vector<Eigen::Vector3d>& points, double voxel_m);
 
 /// A scan segment thinned to one point per voxel of every level of a library (accumulated
 /// keyframes repeat surfaces five times over); computed once and shared by every candidate.
