@@ -88,12 +88,12 @@ int run_demo(const DemoOptions& options) {
                                  std::to_string(r.distance_m).substr(0, 5) + " m";
         std::cout << "  navigate " << line << "\n";
         io::write_nav_png(out / "routes" / (name + ".png"), scene, r.final_costmap, {{name, r.trajectory}}, r.last_plan,
-                          scene.name + " / " + line, nav.affordance);
+                          scene.name + " / " + line, nav.system.navigator.affordance);
         paths.push_back({line, r.trajectory});
         runs_json.push_back(run_to_json(r, true));
         runs.push_back(std::move(r));
     }
-    io::write_nav_png(out / "routes" / "all_methods.png", scene, Costmap{}, paths, {}, scene.name + ": every method", nav.affordance);
+    io::write_nav_png(out / "routes" / "all_methods.png", scene, Costmap{}, paths, {}, scene.name + ": every method", nav.system.navigator.affordance);
     const io::Json agg = aggregate_runs(runs, methods);
     const std::string report =
         "# makeway demo report\n\nScene `" + scene.name + "` (" + std::to_string(scene.objects.size()) +

@@ -12,7 +12,7 @@
 #include "io/point_cloud_io.hpp"
 #include "io/progress.hpp"
 #include "makeway/eval/detection_eval.hpp"
-#include "makeway/perception/ground.hpp"
+#include "makeway/pipeline/keyframe.hpp"
 
 namespace makeway::apps {
 namespace {
@@ -67,6 +67,7 @@ int run_train_detector(const TrainDetectorOptions& o) {
     }
     perception::DetectorParams dp;
     dp.width = o.width;
+    dp.grid.intensity = o.intensity;
     dp.seed = o.seed;
     perception::Detector detector(dp);
     perception::TrainParams tp;
@@ -103,8 +104,7 @@ int run_train_detector(const TrainDetectorOptions& o) {
 int run_detect(const DetectOptions& o) {
     const perception::Detector detector = load_detector(o.model);
     const PointCloud raw = io::read_point_cloud(o.cloud, {.non_finite = io::NonFinitePolicy::kDrop}).cloud;
-    const perception::GroundPlaneResult ground = perception::fit_ground_plane(raw, {});
-    const PointCloud cloud = ground.found ? perception::remove_ground_and_ceiling(raw, ground, {}) : raw;
+    const PointCloud cloud = pipeline::prepare_keyframe(raw, {}).cloud_sensor;
     io::Json dets = io::Json::array();
     const auto found = detector.detect(cloud);
     for (const Detection& d : found) {

@@ -41,7 +41,7 @@ int run_navigate(const NavigateOptions& options) {
                       scene.name + " / " + options.method + ": " + (r.success ? "success" : "failed (" + r.failure + ")") +
                           ", " + std::to_string(r.time_s).substr(0, 5) + " s, risk " +
                           std::to_string(r.risk_time_s).substr(0, 4) + " s",
-                      params.affordance);
+                      params.system.navigator.affordance);
     std::cout << j.dump() << "\n";
     return 0;
 }

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "apps/commands.hpp"
+#include "io/cad_folder.hpp"
 #include "io/json_io.hpp"
 #include "io/tracking_io.hpp"
 #include "io/progress.hpp"
@@ -13,7 +14,7 @@
 #include "io/point_cloud_io.hpp"
 #include "makeway/common/angles.hpp"
 #include "makeway/eval/verify_bench.hpp"
-#include "makeway/perception/ground.hpp"
+#include "makeway/pipeline/keyframe.hpp"
 
 namespace makeway::apps {
 namespace {
@@ -35,41 +36,20 @@ io::Json to_json(const eval::VerifyBenchArm& a) {
             {"ms_per_object_p99", a.ms_per_object_p99}};
 }
 
-// Every mesh in the folder, its class from its name: chair_*.obj, table_*.ply, ...
-verification::CadLibrary read_cad_folder(const std::string& dir) {
-    if (!std::filesystem::is_directory(dir)) throw io::FileError(dir, "not a folder of CAD meshes");
-    std::vector<std::filesystem::path> files;
-    for (const auto& e : std::filesystem::directory_iterator(dir)) {
-        const std::string ext = io::lower_extension(e.path());
-        if (e.is_regular_file() && (ext == "obj" || ext == "ply" || ext == "stl" || ext == "dae")) files.push_back(e.path());
-    }
-    std::sort(files.begin(), files.end());
-    verification::CadLibrary lib;
-    for (const auto& f : files) {
-        const std::string name = f.stem().string();
-        const auto cls = parse_object_class(name.substr(0, name.find('_')));
-        if (!cls) throw io::FileError(f.string(), "CAD file names must start with chair_ or table_");
-        lib.add(name, *cls, io::read_mesh(f));
-    }
-    if (lib.models().empty()) throw io::FileError(dir, "no CAD meshes (.obj, .ply, .stl, .dae) in the folder");
-    return lib;
-}
-
 }  // namespace
 
 int run_verify(const VerifyOptions& options) {
     const PointCloud raw = io::read_point_cloud(options.cloud, {.non_finite = io::NonFinitePolicy::kDrop}).cloud;
     const std::vector<Detection> detections = io::read_detection_frame(options.detections).detections_sensor;
-    const verification::CadLibrary library = read_cad_folder(options.cad_dir);
+    const verification::CadLibrary library = io::read_cad_folder(options.cad_dir);
     // The floor under each object from the ground plane, when the cloud still holds the ground;
     // ground and ceiling points are then removed, as the pipeline does before detection.
-    const perception::GroundPlaneResult ground = perception::fit_ground_plane(raw, {});
-    const PointCloud cloud = perception::remove_ground_and_ceiling(raw, ground, {});
+    const pipeline::PreparedKeyframe keyframe = pipeline::prepare_keyframe(raw, {});
+    const PointCloud& cloud = keyframe.cloud_sensor;
     io::Json results = io::Json::array();
     std::size_t accepted = 0;
     for (const Detection& det : detections) {
-        std::optional<double> floor_z;
-        if (ground.found) floor_z = ground.floor_z_at(det.box_sensor.centre_m.x(), det.box_sensor.centre_m.y());
+        const std::optional<double> floor_z = keyframe.floor_z_at(det.box_sensor.centre_m.x(), det.box_sensor.centre_m.y());
         const verification::VerifiedDetection v = verification::verify_detection(cloud, det, library, {}, floor_z);
         accepted += v.accepted;
         results.push_back({{"class", std::string(to_string(det.cls))},
@@ -87,7 +67,7 @@ int run_verify(const VerifyOptions& options) {
                                                           v.T_sensor_object.translation().z()}},
                                                 {"yaw_rad", yaw_of(v.T_sensor_object)}}}});
     }
-    io::write_json(options.out, {{"cloud", options.cloud}, {"ground_found", ground.found}, {"verified", results}});
+    io::write_json(options.out, {{"cloud", options.cloud}, {"ground_found", keyframe.ground.found}, {"verified", results}});
     std::cout << "verified " << detections.size() << " detections: " << accepted << " accepted; wrote " << options.out << "\n";
     return 0;
 }

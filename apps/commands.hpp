@@ -175,6 +175,7 @@ struct TrainDetectorOptions {
     std::uint64_t seed = 0;
     int threads = 0;
     int width = 32;
+    bool intensity = false;
     bool resume = false;
     std::string out;
 };

@@ -173,6 +173,7 @@ void add_detector(CLI::App& app, DatasetOptions& ds, TrainDetectorOptions& tr, D
     t->add_option("--seed", tr.seed, "Seed of initialisation, shuffling and augmentation")->capture_default_str();
     t->add_option("--threads", tr.threads, "Torch threads (0: default)")->check(CLI::Range(0, 256))->capture_default_str();
     t->add_option("--width", tr.width, "Channels of the first network stage")->check(CLI::Range(4, 256))->capture_default_str();
+    t->add_flag("--intensity", tr.intensity, "Add a mean-intensity input channel (off: geometry only)");
     t->add_flag("--resume", tr.resume, "Continue from OUT.ckpt when it exists");
     t->add_option("--out", tr.out, "Model file (.pt)")->required();
     auto* de = app.add_subcommand("detect", "Detect chairs and tables in a keyframe cloud (sensor frame); the ground "

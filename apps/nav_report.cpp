@@ -13,13 +13,17 @@ eval::NavParams nav_params(const io::Config& config) {
     eval::NavParams p;
     p.lidar = config.lidar;
     p.robot = config.robot;
-    p.affordance = config.affordance;
-    p.inflation.inscribed_radius_m = config.robot.inscribed_radius_m();
-    p.dwa.footprint_length_m = config.robot.length_m;
-    p.dwa.footprint_width_m = config.robot.width_m;
-    p.dwa.max_w_radps = config.robot.max_w_radps;
-    p.dwa.acc_v_mps2 = config.robot.max_acc_mps2;
-    p.dwa.acc_w_radps2 = config.robot.max_ang_acc_radps2;
+    p.odometry = config.odometry;
+    p.system = config.system;
+    pipeline::NavigatorParams& n = p.system.navigator;
+    n.affordance = config.affordance;
+    n.inflation.inscribed_radius_m = config.robot.inscribed_radius_m();
+    n.dwa.footprint_length_m = config.robot.length_m;
+    n.dwa.footprint_width_m = config.robot.width_m;
+    n.dwa.max_w_radps = config.robot.max_w_radps;
+    n.dwa.acc_v_mps2 = config.robot.max_acc_mps2;
+    n.dwa.acc_w_radps2 = config.robot.max_ang_acc_radps2;
+    p.system.T_base_sensor = config.robot.T_robot_sensor();
     p.seed = config.simulation.seed;
     return p;
 }
@@ -42,7 +46,22 @@ io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory) {
                   {"replans", r.replans},
                   {"recoveries", r.recoveries},
                   {"cycle_ms_median", median},
-                  {"cycle_ms_p99", p99}};
+                  {"cycle_ms_p99", p99},
+                  {"final_pose_error_m", r.final_pose_error_m}};
+    if (!r.keyframes.empty()) {
+        std::vector<double> total, detect, verify;
+        for (const auto& t : r.keyframe_timing) {
+            total.push_back(t.total_ms);
+            detect.push_back(t.detect_ms);
+            verify.push_back(t.verify_ms);
+        }
+        j["keyframes"] = r.keyframes.size();
+        j["final_objects"] = r.keyframes.back().objects.size();
+        j["keyframe_ms_median"] = median_p99(total).first;
+        j["keyframe_ms_p99"] = median_p99(total).second;
+        j["detect_ms_median"] = median_p99(detect).first;
+        j["verify_ms_median"] = median_p99(verify).first;
+    }
     if (with_trajectory) {
         io::Json traj = io::Json::array();
         for (const Pose2& p : r.trajectory) traj.push_back({p.x_m, p.y_m, p.yaw_rad});

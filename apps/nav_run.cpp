@@ -3,7 +3,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "makeway/eval/perception_source.hpp"
+#include "makeway/eval/scene_cad.hpp"
 
 namespace makeway::apps {
 
@@ -11,18 +11,18 @@ eval::NavRunResult run_nav_method(const sim::Scene& scene, const std::string& na
                                   const perception::Detector* detector) {
     const std::optional<eval::NavMethod> method = eval::nav_method(name, params.robot);
     if (!method) throw std::invalid_argument("unknown navigation method '" + name + "'");
+    if (method->online) {
+        if (!detector) throw std::invalid_argument("the full system 'ours' needs detector weights");
+        // The room's furniture models, as in the paper: a deployment's CAD files.
+        const verification::CadLibrary cad = eval::scene_cad_library(scene);
+        return eval::run_navigation_online(scene, *method, *detector, &cad, params);
+    }
     if (!method->affordance) {
         eval::NoObjects none;
         return eval::run_navigation(scene, *method, none, params);
     }
-    if (name != "ours") {
-        eval::GroundTruthObjects truth(scene, sim::models_of(scene));
-        return eval::run_navigation(scene, *method, truth, params);
-    }
-    if (!detector) throw std::invalid_argument("the full system 'ours' needs detector weights");
-    const verification::CadLibrary cad = eval::scene_cad_library(scene);  // the room's furniture models, as in the paper
-    eval::PerceptionObjects perceived(*detector, &cad);
-    return eval::run_navigation(scene, *method, perceived, params);
+    eval::GroundTruthObjects truth(scene, sim::models_of(scene));
+    return eval::run_navigation(scene, *method, truth, params);
 }
 
 }  // namespace makeway::apps

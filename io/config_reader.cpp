@@ -128,6 +128,93 @@ std::string join_problems(const std::vector<std::string>& problems) {
     return msg;
 }
 
+namespace {
+
+// The online system's sections; each Params struct's validate() reports under its section.
+void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vector<std::string>& problems) {
+    {
+        YamlSection s(root["perception"], "perception", problems);
+        pipeline::KeyframeParams& k = sys.keyframe;
+        s.read("keyframe_window", k.window);
+        s.read("keyframe_every", k.every);
+        s.read("deskew", k.deskew);
+        s.read("ground_inlier_distance_m", k.ground.inlier_distance_m);
+        s.read("ground_iterations", k.ground.iterations);
+        s.read("ground_max_tilt_deg", k.ground.max_tilt_deg);
+        s.read("ground_voxel_m", k.ground.voxel_m);
+        s.read("ground_min_sensor_height_m", k.ground.min_sensor_height_m);
+        s.read("ground_seed", k.ground.seed);
+        s.read("ground_band_m", k.ground_filter.ground_band_m);
+        s.read("ceiling_height_m", k.ground_filter.ceiling_height_m);
+        s.finish();
+        s.add_validation(k.validate());
+    }
+    {
+        YamlSection s(root["verification"], "verification", problems);
+        verification::VerifyParams& v = sys.verify;
+        s.read("enabled", sys.verification);
+        s.read("box_margin_m", v.box_margin_m);
+        s.read("max_size_mismatch", v.max_size_mismatch);
+        s.read("max_models", v.max_models);
+        s.read("refined_candidates", v.refined_candidates);
+        s.read("min_yaw_margin", v.min_yaw_margin);
+        s.read("e_min_m", v.e_min_m);
+        s.read("e_max_m", v.e_max_m);
+        s.read("min_points", v.min_points);
+        s.finish();
+        s.add_validation(v.validate());
+    }
+    {
+        YamlSection s(root["tracking"], "tracking", problems);
+        tracking::TrackerParams& t = sys.tracker;
+        s.read("min_giou", t.min_giou);
+        s.read("sensor_range_m", t.sensor_range_m);
+        s.read("association_gate_m", t.association_gate_m);
+        s.read("min_hits", t.min_hits);
+        s.read("max_misses", t.max_misses);
+        s.read("min_existence", t.min_existence);
+        s.read("existence_grace_frames", t.existence_grace_frames);
+        s.finish();
+        s.add_validation(t.validate());
+    }
+    pipeline::NavigatorParams& n = sys.navigator;
+    {
+        YamlSection s(root["costmap"], "costmap", problems);
+        s.read("obstacle_min_height_m", n.obstacle.min_height_m);
+        s.read("obstacle_max_height_m", n.obstacle.max_height_m);
+        s.read("mark_range_m", n.obstacle.mark_range_m);
+        s.read("clear_range_m", n.obstacle.clear_range_m);
+        s.read("inflation_cost_scaling", n.inflation.cost_scaling);
+        s.finish();
+        s.add_validation(n.obstacle.validate());
+        s.add_validation(n.inflation.validate());
+    }
+    {
+        YamlSection s(root["planning"], "planning", problems);
+        s.read("astar_cost_weight", n.astar.cost_weight);
+        s.read("astar_allow_unknown", n.astar.allow_unknown);
+        s.read("dwa_horizon_s", n.dwa.horizon_s);
+        s.read("dwa_lookahead_m", n.dwa.lookahead_m);
+        s.read("replan_period_s", n.replan_period_s);
+        s.read("blocked_lookahead_m", n.blocked_lookahead_m);
+        s.read("blocked_ignore_m", n.blocked_ignore_m);
+        s.read("turn_target_index", n.turn_target_index);
+        s.read("turn_rate_radps", n.turn_rate_radps);
+        s.read("stuck_progress_m", n.stuck_progress_m);
+        s.read("stuck_timeout_s", n.stuck_timeout_s);
+        s.read("backup_speed_mps", n.backup_speed_mps);
+        s.read("backup_duration_s", n.backup_duration_s);
+        s.read("waypoint_tolerance_m", n.waypoint_tolerance_m);
+        s.read("goal_tolerance_m", n.goal_tolerance_m);
+        s.finish();
+        s.add_validation(n.astar.validate());
+        s.add_validation(n.dwa.validate());
+        s.add_validation(n.validate_policy());
+    }
+}
+
+}  // namespace
+
 Config parse_config(std::string_view yaml_text) {
     YAML::Node root;
     try {
@@ -141,7 +228,8 @@ Config parse_config(std::string_view yaml_text) {
         throw FormatError("the top level must be a mapping of section names");
     }
     Config cfg;
-    const std::vector<std::string> sections{"scene", "lidar", "robot", "odometry", "simulation", "affordance"};
+    const std::vector<std::string> sections{"scene",      "lidar",        "robot",    "odometry", "simulation",
+                                            "affordance", "perception", "verification", "tracking", "costmap", "planning"};
     if (root.IsMap()) {
         for (const auto& kv : root) {
             const std::string name = kv.first.as<std::string>("");
@@ -180,6 +268,9 @@ Config parse_config(std::string_view yaml_text) {
         s.read("max_range_m", l.max_range_m);
         s.read("range_noise_m", l.range_noise_m);
         s.read("dropout", l.dropout);
+        s.read("intensity_falloff_m", l.intensity_falloff_m);
+        s.read("intensity_speckle", l.intensity_speckle);
+        s.read("intensity_noise", l.intensity_noise);
         s.read("time_slices", l.time_slices);
         s.read("num_threads", l.num_threads);
         s.read("use_packets", l.use_packets);
@@ -241,6 +332,8 @@ Config parse_config(std::string_view yaml_text) {
         s.finish();
         s.add_validation(a.validate());
     }
+    read_system(const_root, cfg.system, problems);
+    cfg.system.navigator.affordance = cfg.affordance;
     cfg.scene.robot = cfg.robot;
     if (!problems.empty()) throw FormatError(join_problems(problems));
     return cfg;

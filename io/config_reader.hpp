@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "makeway/costmap/affordance.hpp"
+#include "makeway/pipeline/system_params.hpp"
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/robot.hpp"
 #include "makeway/sim/scene_generator.hpp"
@@ -74,6 +75,9 @@ struct Config {
     sim::OdometryNoiseParams odometry;
     SimulationConfig simulation;
     costmap::AffordanceParams affordance;  ///< zone shapes and cost profiles per class
+    /// The online system: sections perception, verification, tracking, costmap, planning
+    /// (system.navigator.affordance is filled from `affordance` by the commands).
+    pipeline::SystemParams system;
 };
 
 /// Throws FormatError listing every problem ("3 problems: a; b; c").

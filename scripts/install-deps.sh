@@ -5,7 +5,7 @@
 set -euo pipefail
 
 packages=(
-    build-essential cmake ninja-build pkg-config
+    build-essential cmake ninja-build pkg-config ccache
     libeigen3-dev libnanoflann-dev libtbb-dev libembree-dev
     libassimp-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev liblzf-dev
     libcairo2-dev

@@ -3,6 +3,8 @@
 #include "makeway/common/angles.hpp"
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/mesh_primitives.hpp"
+#include "makeway/sim/route.hpp"
+#include "makeway/sim/sequence.hpp"
 #include "makeway/sim/scene_generator.hpp"
 #include "sim_test_util.hpp"
 
@@ -170,6 +172,77 @@ TEST(Lidar, UserMeshInASceneIsHitAndLabelled) {
         EXPECT_LT(testing_util::mesh_distance(placed, c.xyz[i].cast<double>() + Eigen::Vector3d(0, 0, 0.45)), 1e-3);
     }
     EXPECT_GT(hits, 100u);
+}
+
+// Best balanced accuracy of any threshold on one number telling class a from class b (either side).
+double best_threshold_balanced_accuracy(std::vector<float> a, std::vector<float> b) {
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    std::vector<float> cuts = a;
+    cuts.insert(cuts.end(), b.begin(), b.end());
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    double best = 0.5;
+    for (float c : cuts) {
+        const double a_below = static_cast<double>(std::lower_bound(a.begin(), a.end(), c) - a.begin()) / a.size();
+        const double b_below = static_cast<double>(std::lower_bound(b.begin(), b.end(), c) - b.begin()) / b.size();
+        best = std::max({best, 0.5 * (a_below + 1.0 - b_below), 0.5 * (b_below + 1.0 - a_below)});
+    }
+    return best;
+}
+
+// Intensity reveals the material, not the class: over a drive through a furnished room, no
+// threshold on a return's intensity tells chair points from table points much better than chance.
+// (With the old per-class reflectivity the same drive separated them perfectly.)
+TEST(Lidar, IntensityDoesNotGiveTheClassAway) {
+    for (std::uint64_t seed : {3, 8}) {
+        SceneGenParams g;
+        g.seed = seed;
+        g.density = Density::kDense;
+        g.people = false;
+        const Scene scene = generate_scene(g);
+        const RobotParams robot;
+        const CollisionChecker checker(scene, models_of(scene), robot);
+        const auto route = drive_route(scene, checker, robot);
+        ASSERT_TRUE(route.has_value());
+        SequenceParams sp;
+        sp.seed = seed;
+        sp.lidar.azimuth_step_deg = 0.4;
+        SequenceSimulator drive(scene, *route, sp);
+        std::vector<float> chair, table;
+        for (int f = 0; f < 40 && !drive.reached_goal(); ++f) {
+            const SimFrame frame = drive.next();
+            for (std::size_t i = 0; i < frame.points_sensor.size(); ++i) {
+                const auto label = static_cast<SemanticLabel>(frame.points_sensor.label[i]);
+                if (label == SemanticLabel::kChair) chair.push_back(frame.points_sensor.intensity[i]);
+                if (label == SemanticLabel::kTable) table.push_back(frame.points_sensor.intensity[i]);
+            }
+        }
+        ASSERT_GT(chair.size(), 1000u);
+        ASSERT_GT(table.size(), 1000u);
+        const double accuracy = best_threshold_balanced_accuracy(chair, table);
+        EXPECT_LE(accuracy, 0.6) << "seed " << seed;
+        RecordProperty("balanced_accuracy_seed_" + std::to_string(seed), std::to_string(accuracy));
+    }
+}
+
+// Intensity falls with the incidence angle: the floor far from the sensor (grazing) returns less
+// than the floor below it.
+TEST(Lidar, IntensityFallsWithIncidence) {
+    World world(testing_util::box_room(15.0), {});
+    const Isometry3 T = make_T_xyz_yaw({0.0, 0.0, 1.0}, 0.0);
+    const PointCloud c = simulate_sweep(world, exact_lidar(), fixed(T), 0.0, 1, 0);
+    double steep = 0, grazing = 0;
+    int n_steep = 0, n_grazing = 0;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        if (static_cast<SemanticLabel>(c.label[i]) != SemanticLabel::kGround) continue;
+        const double r = c.xyz[i].head<2>().norm();
+        if (r < 2.5) steep += c.intensity[i], ++n_steep;
+        if (r > 6.0) grazing += c.intensity[i], ++n_grazing;
+    }
+    ASSERT_GT(n_steep, 100);
+    ASSERT_GT(n_grazing, 100);
+    EXPECT_LT(grazing / n_grazing, 0.6 * steep / n_steep);
 }
 
 TEST(Lidar, ParamsValidation) {

@@ -1,5 +1,6 @@
 #pragma once
 // A keyframe with its labelled chairs and tables: detector training and evaluation data.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,7 +27,9 @@ struct LabelledKeyframe {
     std::vector<LabelledObject> unseen;
     std::uint32_t sequence = 0;  ///< keyframes of one drive share it, stored in time order
     double stamp_s = 0.0;
-    Isometry3 T_world_sensor = Isometry3::Identity();  ///< the keyframe's pose (drive's world frame)
+    Isometry3 T_world_sensor = Isometry3::Identity();  ///< the keyframe's pose as the online system estimates it
+    /// The front end's ground plane in the sensor frame (normal, offset: n.p + d = 0), when found.
+    std::optional<Eigen::Vector4d> ground_plane_sensor;
 };
 
 }  // namespace makeway

@@ -4,8 +4,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "makeway/perception/accumulator.hpp"
-#include "makeway/perception/ground.hpp"
+#include "makeway/pipeline/front_end.hpp"
 #include "makeway/sim/furniture.hpp"
 #include "makeway/sim/route.hpp"
 #include "makeway/sim/scene_dynamics.hpp"
@@ -63,28 +62,32 @@ std::vector<LabelledKeyframe> generate_detection_dataset(const DatasetParams& p,
         if (!route) continue;
         sim::SequenceParams sp;
         sp.seed = p.seed * 7919 + static_cast<std::uint64_t>(k);
+        sp.odometry = p.odometry;
         sim::SequenceSimulator simulator(scene, *route, sp);
-        perception::KeyframeAccumulator acc;
+        // The online system's front end on the drive's sweeps and wheel odometry.
+        pipeline::SystemParams system = p.system;
+        system.keyframe.every = p.keyframe_every;
+        system.T_base_sensor = sp.robot.T_robot_sensor();
+        pipeline::FrontEnd front_end(system, scene.start);
         int made = 0;
         for (int f = 0; made < p.max_keyframes_per_scene && !simulator.reached_goal() && f < 2000; ++f) {
             const sim::SimFrame frame = simulator.next();
-            perception::StampedSweep sw;
-            sw.points_sensor = frame.points_sensor;
-            sw.stamp_s = frame.stamp_s;
-            sw.T_world_sensor_start = sw.T_world_sensor_end = frame.T_world_sensor;
-            acc.add(std::move(sw));
-            if (!acc.full() || f % p.keyframe_every != 0) continue;
-            Isometry3 T_world_keyframe;
-            const PointCloud raw = acc.keyframe(&T_world_keyframe);
-            const perception::GroundPlaneResult ground = perception::fit_ground_plane(raw, {.seed = p.seed});
+            const pipeline::FrontEndResult front = front_end.add({frame.points_sensor, frame.stamp_s, sp.lidar.sweep_duration_s(),
+                                                                 frame.odometry_pose, frame.odometry_end_pose});
+            if (!front.keyframe) continue;
             LabelledKeyframe kf;
-            kf.cloud_sensor = ground.found ? perception::remove_ground_and_ceiling(raw, ground, {}) : raw;
+            kf.cloud_sensor = front.keyframe->prepared.cloud_sensor;
             std::map<std::uint32_t, std::size_t> points_of;
             for (std::uint32_t id : kf.cloud_sensor.instance) ++points_of[id];
-            const Isometry3 T_keyframe_world = T_world_keyframe.inverse();
+            // Labels in the keyframe's true frame (the newest sweep's start); the pose the map gets is the estimate.
+            const Isometry3 T_keyframe_world = frame.T_world_sensor.inverse();
             kf.sequence = static_cast<std::uint32_t>(k);
             kf.stamp_s = frame.stamp_s;
-            kf.T_world_sensor = T_world_keyframe;
+            kf.T_world_sensor = front.keyframe->T_world_keyframe;
+            if (front.keyframe->prepared.ground.found) {
+                const perception::GroundPlaneResult& g = front.keyframe->prepared.ground;
+                kf.ground_plane_sensor = Eigen::Vector4d(g.normal.x(), g.normal.y(), g.normal.z(), g.offset);
+            }
             for (const sim::ObjectState& o : frame.objects) {
                 const OrientedBox box = o.box_world.transformed(T_keyframe_world);
                 if (std::abs(box.centre_m.x()) > p.range_m || std::abs(box.centre_m.y()) > p.range_m) continue;

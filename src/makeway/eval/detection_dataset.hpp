@@ -1,12 +1,15 @@
 #pragma once
-// Labelled keyframes for the detector, from simulated drives: the last 5 sweeps accumulated with
-// the true poses, ground and ceiling removed, and every chair and table seen by enough points
-// labelled with its box in the keyframe's sensor frame.
+// Labelled keyframes for the detector, from simulated drives: the online system's own keyframes
+// (pipeline/front_end: wheel odometry from the start pose, de-skewed sweeps, ground plane, ground
+// and ceiling removed), and every chair and table seen by enough points labelled with its true box
+// in the keyframe's sensor frame.
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "makeway/common/labelled_keyframe.hpp"
+#include "makeway/pipeline/system_params.hpp"
+#include "makeway/sim/robot.hpp"
 #include "makeway/sim/scene.hpp"
 
 namespace makeway::eval {
@@ -22,6 +25,9 @@ struct DatasetParams {
     /// `only_styles`, the styles every object is given (evaluation on held-out styles).
     std::vector<std::string> exclude_styles;
     std::vector<std::string> only_styles;
+    /// The front end's parameters (keyframe.every is overridden by keyframe_every).
+    pipeline::SystemParams system;
+    sim::OdometryNoiseParams odometry;  ///< the wheel odometry the front end runs on
 };
 
 /// Keyframes in time order, `sequence` = the scene's index. With `scenes`, the (restyled) scenes

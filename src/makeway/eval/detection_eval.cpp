@@ -6,7 +6,8 @@
 #include <optional>
 
 #include "makeway/common/statistics.hpp"
-#include "makeway/eval/perception_source.hpp"
+#include "makeway/eval/scene_cad.hpp"
+#include "makeway/pipeline/pipeline.hpp"
 #include "makeway/verification/verifier.hpp"
 
 namespace makeway::eval {
@@ -37,6 +38,7 @@ DetectionEvalResult run_detection_eval(const perception::Detector& detector, con
         dp.seed = p.seed + static_cast<std::uint64_t>(arm) * 1000;
         dp.keyframe_every = p.keyframe_every;
         dp.max_keyframes_per_scene = p.max_keyframes_per_scene;
+        dp.system = p.system;
         if (arm == 0) dp.exclude_styles = p.left_out_styles;
         else dp.only_styles = p.left_out_styles;
         const std::string what = arm == 0 ? "held-out scenes" : "left-out styles";
@@ -56,8 +58,18 @@ DetectionEvalResult run_detection_eval(const perception::Detector& detector, con
                 if (it == scene_libraries.end()) it = scene_libraries.emplace(kf.sequence, scene_cad_library(scenes.at(kf.sequence))).first;
                 lib = &it->second;
             }
-            const double floor_z = -kf.T_world_sensor.translation().z();  // level sensor over a level floor at z = 0
-            const auto verified = verification::verify_detections(kf.cloud_sensor, net.back(), *lib, {}, [&](double, double) { return floor_z; });
+            // The floor under a detection from the front end's fitted plane, as the pipeline does.
+            perception::GroundPlaneResult ground;
+            if (kf.ground_plane_sensor) {
+                ground.found = true;
+                ground.normal = kf.ground_plane_sensor->head<3>();
+                ground.offset = (*kf.ground_plane_sensor)(3);
+            }
+            const auto floor_z = [&](double x, double y) -> std::optional<double> {
+                if (!ground.found) return std::nullopt;
+                return ground.floor_z_at(x, y);
+            };
+            const auto verified = verification::verify_detections(kf.cloud_sensor, net.back(), *lib, p.system.verify, floor_z);
             ver.push_back(verification::accepted_detections(verified, verification::ScoreFrom::kDetector));
             evidence.push_back(verification::accepted_detections(verified, verification::ScoreFrom::kExistence));
         }
@@ -66,7 +78,7 @@ DetectionEvalResult run_detection_eval(const perception::Detector& detector, con
         for (const LabelledKeyframe& kf : kfs) gt.push_back(ground_truth_of(kf));
         s.network = evaluate_detections(net, gt);
         s.verified = evaluate_detections(ver, gt);
-        s.tracked = evaluate_detections(track_keyframes(kfs, evidence, tracker_params_for(detector, p.tracker), dp.range_m), map_ground_truth_of(kfs));
+        s.tracked = evaluate_detections(track_keyframes(kfs, evidence, pipeline::tracker_params_for(&detector, p.system.tracker), dp.range_m), map_ground_truth_of(kfs));
         s.keyframes = kfs.size();
         if (arm == 0) {
             std::tie(r.latency_ms_median_1t, r.latency_ms_p99_1t) = latency_ms(detector, kfs, p.latency_keyframes, 1);

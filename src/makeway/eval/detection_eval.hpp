@@ -12,7 +12,7 @@
 #include "makeway/eval/detection_metrics.hpp"
 #include "makeway/eval/keyframe_stages.hpp"
 #include "makeway/perception/detector.hpp"
-#include "makeway/tracking/object_map.hpp"
+#include "makeway/pipeline/system_params.hpp"
 
 namespace makeway::eval {
 
@@ -30,7 +30,7 @@ struct DetectionEvalParams {
     int keyframe_every = 5;
     int max_keyframes_per_scene = 60;
     CadSource cad = CadSource::kScene;
-    tracking::TrackerParams tracker;
+    pipeline::SystemParams system;           ///< the online system's front end, verification and tracker
     int latency_keyframes = 20;              ///< timed on 1 and 2 threads
 };
 

@@ -1,12 +1,13 @@
 #include "makeway/eval/navigation.hpp"
 
-#include <chrono>
 #include <cmath>
+#include <functional>
 
 #include "makeway/common/angles.hpp"
-#include "makeway/costmap/affordance_layer.hpp"
-#include "makeway/costmap/layered_costmap.hpp"
+#include "makeway/costmap/affordance.hpp"
 #include "makeway/costmap/static_layer.hpp"
+#include "makeway/perception/accumulator.hpp"
+#include "makeway/pipeline/navigator.hpp"
 #include "makeway/sim/route.hpp"
 #include "makeway/sim/world.hpp"
 
@@ -35,18 +36,146 @@ double distance_to_box(const OrientedBox& box, const Eigen::Vector2d& p) {
     return q.cwiseMax(0.0).norm();
 }
 
-bool path_blocked(const Costmap& m, const std::vector<Eigen::Vector2d>& path, const Eigen::Vector2d& robot, double ahead_m) {
-    double travelled = 0.0;
-    std::size_t nearest = 0;
-    for (std::size_t i = 1; i < path.size(); ++i) {
-        if ((path[i] - robot).squaredNorm() < (path[nearest] - robot).squaredNorm()) nearest = i;
+Pose2 lerp(const Pose2& a, const Pose2& b, double alpha) {
+    return {a.x_m + alpha * (b.x_m - a.x_m), a.y_m + alpha * (b.y_m - a.y_m),
+            wrap_angle(a.yaw_rad + alpha * angle_diff(b.yaw_rad, a.yaw_rad))};
+}
+
+// One sweep as the simulator made it: what a robot receives, and the truth the baselines get.
+struct SimSweep {
+    const PointCloud* points_sensor = nullptr;
+    double stamp_s = 0.0, duration_s = 0.1;
+    Pose2 odometry_start, odometry_end;          // wheel odometry (drifting)
+    Isometry3 T_world_sensor_start, T_world_sensor_end;  // truth
+};
+
+// What the robot's software makes of a sweep: where it believes it is, the sweep in its world
+// frame, and the objects it feeds the costmap.
+struct Belief {
+    Pose2 pose;
+    PointCloud points_world;
+    Eigen::Vector3d sensor_world_m = Eigen::Vector3d::Zero();
+    std::vector<ObjectEstimate> objects;
+};
+using Perceive = std::function<Belief(const SimSweep&)>;
+
+// Scores one physics step against the truth.
+struct Scorer {
+    const sim::Scene& scene;
+    const std::vector<sim::ObjectModel>& models;
+    const sim::CollisionChecker& checker;
+    const NavParams& params;
+    NavRunResult& out;
+    bool in_collision = false, touching_person = false;
+    std::vector<bool> near_chair;
+
+    void step(const Pose2& pose, double ts, double dt) {
+        using Against = sim::CollisionChecker::Against;
+        const bool colliding = checker.collides(pose, ts, Against::kStructureAndFurniture);
+        out.collisions += colliding && !in_collision;
+        in_collision = colliding;
+        const bool person = !scene.walkers.empty() && checker.collides(pose, ts, Against::kPeople);
+        out.person_contacts += person && !touching_person;
+        touching_person = person;
+        const Eigen::Vector2d c(pose.x_m, pose.y_m);
+        const auto truth = ground_truth_objects(scene, models, ts);
+        bool risky = false;
+        near_chair.resize(truth.size(), false);
+        for (std::size_t j = 0; j < truth.size(); ++j) {
+            risky |= costmap::in_affordance_zone(truth[j], params.system.navigator.affordance, c);  // the same zones for every method
+            const bool moving = truth[j].velocity_mps.norm() > 0.02;
+            const bool near = moving && distance_to_box(truth[j].box_world, c) < params.robot.inscribed_radius_m() + params.near_miss_m;
+            out.near_misses += near && !near_chair[j] && !colliding;
+            near_chair[j] = near;
+        }
+        if (risky) out.risk_time_s += dt;
     }
-    for (std::size_t i = nearest; i < path.size() && travelled < ahead_m; ++i) {
-        if (i > nearest) travelled += (path[i] - path[i - 1]).norm();
-        const auto c = m.cost_at(path[i]);
-        if (c && *c >= cost::kInscribed && *c != cost::kUnknown && (path[i] - robot).norm() > 0.3) return true;
+};
+
+pipeline::NavigatorParams navigator_params(const NavMethod& method, const NavParams& params) {
+    pipeline::NavigatorParams n = params.system.navigator;
+    n.inflation.inflation_radius_m = method.inflation_radius_m;
+    n.affordance_layer = method.affordance;
+    n.dwa.max_v_mps = std::min(n.dwa.max_v_mps, params.robot.max_v_mps);
+    return n;
+}
+
+// The simulator's loop: act on the last command while the LiDAR sweeps (the robot moves within
+// the sweep), score every physics step, then let the robot's software see the sweep and decide.
+NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavParams& params, const Perceive& perceive) {
+    NavRunResult out;
+    out.method = method.name;
+    const std::vector<sim::ObjectModel> models = sim::models_of(scene);
+    const sim::CollisionChecker checker(scene, models, params.robot);
+    if (auto shortest = sim::mission_route(scene, sim::make_nav_grid(scene, checker, params.robot))) {
+        out.shortest_m = sim::route_length_m(*shortest);
     }
-    return false;
+    sim::World world(scene, models);
+    pipeline::Navigator navigator(params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m),
+                                  navigator_params(method, params));
+    navigator.set_route({{scene.waypoint.x_m, scene.waypoint.y_m}, {scene.goal.x_m, scene.goal.y_m}});
+    sim::WheelOdometry odometry(scene.start, params.odometry, params.seed ^ 0x0D0ULL);
+    Scorer scorer{scene, models, checker, params, out};
+    sim::RobotState state;
+    state.pose = scene.start;
+    VelocityCommand cmd;
+    const double period = 1.0 / params.lidar.rate_hz, dt = period / params.physics_steps;
+    const Isometry3 T_robot_sensor = params.robot.T_robot_sensor();
+    out.min_clearance_m = 1e9;
+    for (int k = 0; k * period < params.time_limit_s; ++k) {
+        const double t = k * period;
+        out.trajectory.push_back(state.pose);
+        // Act for one sweep period, scoring each physics step; keep the poses for the sweep.
+        std::vector<Pose2> poses{state.pose};
+        const Pose2 odometry_start = odometry.pose();
+        for (int i = 0; i < params.physics_steps; ++i) {
+            const Pose2 before = state.pose;
+            state = sim::step_diff_drive(state, cmd, dt, params.robot);
+            odometry.update(before, state.pose);
+            out.distance_m += std::hypot(state.pose.x_m - before.x_m, state.pose.y_m - before.y_m);
+            poses.push_back(state.pose);
+            scorer.step(state.pose, t + (i + 1) * dt, dt);
+        }
+        out.min_clearance_m = std::min(out.min_clearance_m, checker.clearance_m(state.pose, t + period, 2.0));
+        // Sense: the sweep over that period, from the moving sensor.
+        auto T_world_sensor_at = [&](double ts) {
+            const double u = std::clamp((ts - t) / dt, 0.0, static_cast<double>(params.physics_steps));
+            const int i = std::min(static_cast<int>(u), params.physics_steps - 1);
+            return lift_to_3d(lerp(poses[static_cast<std::size_t>(i)], poses[static_cast<std::size_t>(i) + 1], u - i)) * T_robot_sensor;
+        };
+        const PointCloud sweep = sim::simulate_sweep(world, params.lidar, T_world_sensor_at, t, params.seed, static_cast<std::uint64_t>(k));
+        const Belief belief = perceive({&sweep, t, period, odometry_start, odometry.pose(), T_world_sensor_at(t), T_world_sensor_at(t + period)});
+        out.estimated_trajectory.push_back(belief.pose);
+        // Think: costmap, plan, DWA on the robot's own belief.
+        const pipeline::NavigatorStep step = navigator.step(
+            {t + period, belief.pose, state.v_mps, state.w_radps, &belief.points_world, belief.sensor_world_m, belief.objects});
+        out.replans += step.replanned;
+        out.recoveries += step.started_recovery;
+        if (step.arrived) {
+            out.time_s = t + period;
+            break;
+        }
+        out.cycle_ms.push_back(step.update_ms);
+        cmd = step.command;
+    }
+    out.trajectory.push_back(state.pose);
+    const Pose2 believed = out.estimated_trajectory.empty() ? state.pose : out.estimated_trajectory.back();
+    out.final_pose_error_m = std::hypot(believed.x_m - state.pose.x_m, believed.y_m - state.pose.y_m);
+    const double to_goal = std::hypot(state.pose.x_m - scene.goal.x_m, state.pose.y_m - scene.goal.y_m);
+    out.reached_goal = navigator.arrived() && to_goal < params.system.navigator.goal_tolerance_m;
+    if (!navigator.arrived()) {
+        out.time_s = params.time_limit_s;
+        out.failure = "time limit";
+    } else if (!out.reached_goal) {
+        out.failure = "stopped " + std::to_string(to_goal).substr(0, 4) + " m from the goal (pose estimate)";
+    } else if (out.collisions > 0) {
+        out.failure = "collision";
+    }
+    out.success = out.reached_goal && out.collisions == 0;
+    out.spl = out.success && out.shortest_m > 0 ? out.shortest_m / std::max(out.distance_m, out.shortest_m) : 0.0;
+    out.final_costmap = navigator.costmap();
+    out.last_plan = navigator.plan();
+    return out;
 }
 
 }  // namespace
@@ -58,155 +187,51 @@ const std::vector<std::string>& nav_method_names() {
 
 std::optional<NavMethod> nav_method(std::string_view name, const sim::RobotParams& robot) {
     const double r = robot.circumscribed_radius_m();
-    if (name == "con") return NavMethod{"con", 3.0 * r, false};
-    if (name == "oppo") return NavMethod{"oppo", r, false};
-    if (name == "gt-perc") return NavMethod{"gt-perc", r, true};
-    if (name == "ours") return NavMethod{"ours", r, true};  // gt-perc's planner, objects from the perception chain
+    if (name == "con") return NavMethod{"con", 3.0 * r, false, false};
+    if (name == "oppo") return NavMethod{"oppo", r, false, false};
+    if (name == "gt-perc") return NavMethod{"gt-perc", r, true, false};
+    if (name == "ours") return NavMethod{"ours", r, true, true};  // gt-perc's planner on the online system
     return std::nullopt;
 }
 
 NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, ObjectSource& source,
                             const NavParams& params) {
-    NavRunResult out;
-    out.method = method.name;
-    const std::vector<sim::ObjectModel> models = sim::models_of(scene);
-    const sim::CollisionChecker checker(scene, models, params.robot);
-    if (auto shortest = sim::mission_route(scene, sim::make_nav_grid(scene, checker, params.robot))) {
-        out.shortest_m = sim::route_length_m(*shortest);
-    }
-    sim::World world(scene, models);
+    const Isometry3 T_sensor_robot = params.robot.T_robot_sensor().inverse();
+    return drive(scene, method, params, [&](const SimSweep& s) {
+        Belief b;
+        b.pose = project_to_plane(s.T_world_sensor_end * T_sensor_robot);
+        b.points_world = perception::deskew_to_world({*s.points_sensor, s.stamp_s, s.duration_s, s.T_world_sensor_start, s.T_world_sensor_end});
+        b.sensor_world_m = s.T_world_sensor_end.translation();
+        b.objects = source.objects({s.stamp_s + s.duration_s, s.T_world_sensor_end, s.points_sensor});
+        return b;
+    });
+}
 
-    // The stack: static (the known building), obstacle (LiDAR), affordance (objects), inflation.
-    const Costmap geometry = params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m);
-    costmap::LayeredCostmap layered(Costmap(geometry.origin_m, geometry.resolution_m, geometry.width, geometry.height));
-    layered.add_layer(std::make_unique<costmap::StaticLayer>(geometry));
-    layered.add_layer(std::make_unique<costmap::ObstacleLayer>(geometry, params.obstacle));
-    if (method.affordance) layered.add_layer(std::make_unique<costmap::AffordanceLayer>(params.affordance));
-    costmap::InflationParams inflation = params.inflation;
-    inflation.inflation_radius_m = std::max(method.inflation_radius_m, inflation.inscribed_radius_m);
-    layered.add_layer(std::make_unique<costmap::InflationLayer>(inflation));
-
-    sim::RobotState state;
-    state.pose = scene.start;
-    const std::vector<Eigen::Vector2d> legs{{scene.waypoint.x_m, scene.waypoint.y_m}, {scene.goal.x_m, scene.goal.y_m}};
-    std::size_t leg = 0;
-    std::vector<Eigen::Vector2d> plan;
-    double last_plan_t = -1e9;
-    const costmap::AffordanceParams& risk_zones = params.affordance;  // the same zones for every method
-    const double control_dt = 1.0 / params.lidar.rate_hz;
-    const int physics_steps = 10;
-    bool in_collision = false, touching_person = false;
-    std::vector<bool> near_chair;
-    Eigen::Vector2d progress_anchor(state.pose.x_m, state.pose.y_m);
-    double progress_t = 0.0, recovery_until = -1.0;
-    out.min_clearance_m = 1e9;
-    const Isometry3 T_robot_sensor = params.robot.T_robot_sensor();
-
-    double t = 0.0;
-    for (int k = 0; t < params.time_limit_s; ++k, t = k * control_dt) {
-        out.trajectory.push_back(state.pose);
-        // Sense: one sweep from the current pose.
-        const Isometry3 T_world_sensor = lift_to_3d(state.pose) * T_robot_sensor;
-        const PointCloud sweep = sim::simulate_sweep(
-            world, params.lidar, [&](double) { return T_world_sensor; }, t, params.seed, static_cast<std::uint64_t>(k));
-        const PointCloud points_world = sweep.transformed(T_world_sensor);
-        const auto objects = source.objects({t, T_world_sensor, &sweep});
-
-        // Think: costmap update, global plan when due or blocked, DWA.
-        const auto t0 = std::chrono::steady_clock::now();
-        costmap::LayerInput input;
-        input.points_world = &points_world;
-        input.sensor_world_m = T_world_sensor.translation();
-        input.objects = objects;
-        layered.update(input);
-        const Costmap& master = layered.master();
-        const Eigen::Vector2d here(state.pose.x_m, state.pose.y_m);
-        if (plan.empty() || t - last_plan_t >= params.replan_period_s || path_blocked(master, plan, here, 3.0)) {
-            const planning::PlanResult p = planning::plan_astar(master, here, legs[leg], params.astar);
-            if (p.status == planning::PlanStatus::kOk) plan = p.path_m;
-            last_plan_t = t;
-            ++out.replans;
+NavRunResult run_navigation_online(const sim::Scene& scene, const NavMethod& method,
+                                   const perception::ObjectDetector& detector,
+                                   const verification::CadLibrary* library, const NavParams& params) {
+    pipeline::SystemParams system = params.system;
+    system.T_base_sensor = params.robot.T_robot_sensor();
+    // What a robot has: its start pose, its sweeps and its wheel odometry. Nothing else passes.
+    pipeline::Pipeline online(system, scene.start, &detector, library);
+    std::vector<KeyframeObjects> keyframes;
+    std::vector<pipeline::StageTiming> timing;
+    NavRunResult out = drive(scene, method, params, [&](const SimSweep& s) {
+        pipeline::SweepResult r = online.process_sweep({*s.points_sensor, s.stamp_s, s.duration_s, s.odometry_start, s.odometry_end});
+        if (r.keyframe) {
+            keyframes.push_back({r.keyframe->stamp_s, r.keyframe->T_world_keyframe, r.keyframe->detections.size(),
+                                 r.keyframe->evidence.size(), r.objects});
+            timing.push_back(r.timing);
         }
-        VelocityCommand cmd;
-        if (t < recovery_until) {
-            cmd = {-0.15, 0.0};  // back up, then try again
-        } else if (!plan.empty()) {
-            planning::DwaParams dwa = params.dwa;
-            dwa.max_v_mps = std::min(dwa.max_v_mps, params.robot.max_v_mps);
-            const planning::DwaResult r = planning::dwa_step(master, {state.pose, state.v_mps, state.w_radps}, plan, dwa);
-            if (r.found) {
-                cmd = r.command;
-            } else {  // every velocity collides: turn toward the path on the spot
-                const Eigen::Vector2d target = plan.size() > 3 ? plan[3] : plan.back();
-                cmd = {0.0, std::copysign(1.0, angle_diff(std::atan2(target.y() - here.y(), target.x() - here.x()),
-                                                          state.pose.yaw_rad))};
-            }
-        }
-        out.cycle_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-
-        // Act: the robot moves for one control period; score every physics step.
-        const double dt = control_dt / physics_steps;
-        for (int i = 0; i < physics_steps; ++i) {
-            const double ts = t + (i + 1) * dt;
-            const Pose2 before = state.pose;
-            state = sim::step_diff_drive(state, cmd, dt, params.robot);
-            out.distance_m += std::hypot(state.pose.x_m - before.x_m, state.pose.y_m - before.y_m);
-            using Against = sim::CollisionChecker::Against;
-            const bool colliding = checker.collides(state.pose, ts, Against::kStructureAndFurniture);
-            out.collisions += colliding && !in_collision;
-            in_collision = colliding;
-            const bool person = !scene.walkers.empty() && checker.collides(state.pose, ts, Against::kPeople);
-            out.person_contacts += person && !touching_person;
-            touching_person = person;
-            const Eigen::Vector2d c(state.pose.x_m, state.pose.y_m);
-            const auto truth = ground_truth_objects(scene, models, ts);
-            bool risky = false;
-            near_chair.resize(truth.size(), false);
-            for (std::size_t j = 0; j < truth.size(); ++j) {
-                risky |= costmap::in_affordance_zone(truth[j], risk_zones, c);
-                const bool moving = truth[j].velocity_mps.norm() > 0.02;
-                const bool near = moving && distance_to_box(truth[j].box_world, c) < params.robot.inscribed_radius_m() + params.near_miss_m;
-                out.near_misses += near && !near_chair[j] && !colliding;
-                near_chair[j] = near;
-            }
-            if (risky) out.risk_time_s += dt;
-        }
-        out.min_clearance_m = std::min(out.min_clearance_m, checker.clearance_m(state.pose, t + control_dt, 2.0));
-
-        // Legs: waypoint, then goal.
-        const Eigen::Vector2d now(state.pose.x_m, state.pose.y_m);
-        const double tol = leg == 0 ? params.waypoint_tolerance_m : params.goal_tolerance_m;
-        if ((now - legs[leg]).norm() < tol) {
-            if (leg + 1 == legs.size()) {
-                out.reached_goal = true;
-                out.time_s = t + control_dt;
-                break;
-            }
-            ++leg;
-            plan.clear();
-        }
-        // Stuck: little progress for 6 s -> back up for 1 s and replan.
-        if ((now - progress_anchor).norm() > 0.3) {
-            progress_anchor = now;
-            progress_t = t;
-        } else if (t - progress_t > 6.0 && t >= recovery_until) {
-            recovery_until = t + 1.0;
-            progress_t = t + 1.0;
-            plan.clear();
-            ++out.recoveries;
-        }
-    }
-    out.trajectory.push_back(state.pose);
-    if (!out.reached_goal) {
-        out.time_s = params.time_limit_s;
-        out.failure = "time limit";
-    } else if (out.collisions > 0) {
-        out.failure = "collision";
-    }
-    out.success = out.reached_goal && out.collisions == 0;
-    out.spl = out.success && out.shortest_m > 0 ? out.shortest_m / std::max(out.distance_m, out.shortest_m) : 0.0;
-    out.final_costmap = layered.master();
-    out.last_plan = plan;
+        Belief b;
+        b.pose = r.pose;
+        b.sensor_world_m = r.T_world_sensor_end.translation();
+        b.points_world = std::move(r.points_world);
+        b.objects = std::move(r.objects);
+        return b;
+    });
+    out.keyframes = std::move(keyframes);
+    out.keyframe_timing = std::move(timing);
     return out;
 }
 

@@ -1,30 +1,34 @@
 #pragma once
-// Closed-loop navigation on the simulator: the Jackal drives start -> waypoint -> goal at 10 Hz
-// with the layered costmap, A* and DWA, while the LiDAR sweeps. One method differs from another
-// only in its inflation radius and its object source (none or ground truth, later perception).
+// Closed-loop navigation on the simulator: the Jackal drives start -> waypoint -> goal while the
+// LiDAR sweeps (the robot moves during each sweep, as a real one does). Every method shares the
+// online Navigator (pipeline/navigator.hpp); they differ in inflation, in whether the costmap is
+// object-aware, and in what feeds it:
+//   con, oppo, gt-perc: the simulator's true pose (and, for gt-perc, its true objects);
+//   ours: the online Pipeline, fed only what a robot has (sweeps, drifting wheel odometry, the
+//         start pose, the map of walls, the CAD models of the room's furniture).
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "makeway/costmap/affordance.hpp"
-#include "makeway/costmap/inflation_layer.hpp"
-#include "makeway/costmap/obstacle_layer.hpp"
 #include "makeway/eval/object_source.hpp"
-#include "makeway/planning/astar.hpp"
-#include "makeway/planning/dwa.hpp"
+#include "makeway/perception/object_detector.hpp"
+#include "makeway/pipeline/pipeline.hpp"
+#include "makeway/pipeline/system_params.hpp"
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/robot.hpp"
+#include "makeway/verification/cad_library.hpp"
 
 namespace makeway::eval {
 
 /// con: no semantics, inflation 3x the robot radius; oppo: no semantics, inflation = robot radius;
-/// gt-perc: affordance zones from ground-truth objects; ours: the same from the perception chain
-/// (detector, verification, tracking; eval/perception_source.hpp). The robot radius is the
-/// circumscribed one. nav_method_names() lists the methods that need no trained model.
+/// gt-perc: affordance zones from ground-truth objects; ours: the same zones from the online
+/// pipeline on its own pose. The robot radius is the circumscribed one. nav_method_names() lists
+/// the methods that need no trained model.
 struct NavMethod {
     std::string name;
     double inflation_radius_m = 0.333;
     bool affordance = false;
+    bool online = false;  ///< the full system: pipeline perception and pose, no ground truth
 };
 std::optional<NavMethod> nav_method(std::string_view name, const sim::RobotParams& robot = {});
 const std::vector<std::string>& nav_method_names();
@@ -32,27 +36,30 @@ const std::vector<std::string>& nav_method_names();
 struct NavParams {
     sim::LidarParams lidar;
     sim::RobotParams robot;
-    costmap::ObstacleLayerParams obstacle;
-    costmap::InflationParams inflation;  ///< inflation_radius_m is the method's
-    costmap::AffordanceParams affordance;
-    planning::AStarParams astar;
-    planning::DwaParams dwa;
+    sim::OdometryNoiseParams odometry;  ///< the wheel odometry's drift (what `ours` drives on)
+    pipeline::SystemParams system;      ///< the online system; navigator.inflation radius is the method's
     double resolution_m = 0.05;
-    double replan_period_s = 1.0;
     double time_limit_s = 180.0;
-    double waypoint_tolerance_m = 0.5;
-    double goal_tolerance_m = 0.3;
     double near_miss_m = 0.25;  ///< robot body this close to a chair being moved: a near-miss
+    int physics_steps = 10;     ///< robot and scoring steps per sweep
     std::uint64_t seed = 0;
     /// The static layer's map (e.g. a map_server map); its geometry becomes the costmap's. When
     /// absent, the scene's walls and pillars are rasterised at resolution_m.
     std::optional<Costmap> static_map;
 };
 
+/// The map's objects after one keyframe of the online system.
+struct KeyframeObjects {
+    double stamp_s = 0.0;
+    Isometry3 T_world_keyframe = Isometry3::Identity();  ///< estimated
+    std::size_t detections = 0, accepted = 0;
+    std::vector<ObjectEstimate> objects;
+};
+
 struct NavRunResult {
     std::string method;
     bool success = false;       ///< goal reached in time without colliding with structure or furniture
-    bool reached_goal = false;
+    bool reached_goal = false;  ///< the robot stopped within goal tolerance of the goal (true position)
     std::string failure;        ///< why not, when not
     double time_s = 0.0;        ///< total time to goal (or to the end of the run)
     double distance_m = 0.0;
@@ -65,13 +72,22 @@ struct NavRunResult {
     double spl = 0.0;           ///< success weighted by shortest / driven length
     int replans = 0;
     int recoveries = 0;
-    std::vector<Pose2> trajectory;   ///< at 10 Hz
-    std::vector<double> cycle_ms;    ///< costmap update + planning + DWA per control cycle
+    std::vector<Pose2> trajectory;          ///< true, one per sweep
+    std::vector<Pose2> estimated_trajectory;  ///< what the robot believed, one per sweep
+    double final_pose_error_m = 0.0;        ///< |estimated - true| position at the end
+    std::vector<double> cycle_ms;           ///< costmap update + planning + DWA per control cycle
+    std::vector<pipeline::StageTiming> keyframe_timing;  ///< online system only
+    std::vector<KeyframeObjects> keyframes;              ///< online system only
     Costmap final_costmap;
     std::vector<Eigen::Vector2d> last_plan;
 };
 
+/// A truth-fed method (con, oppo, gt-perc): the true pose and `source`'s objects.
 NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, ObjectSource& source,
                             const NavParams& params);
+/// The full system (ours): the online pipeline with `detector` and the CAD `library` (may be null).
+NavRunResult run_navigation_online(const sim::Scene& scene, const NavMethod& method,
+                                   const perception::ObjectDetector& detector,
+                                   const verification::CadLibrary* library, const NavParams& params);
 
 }  // namespace makeway::eval

@@ -1,5 +1,7 @@
 #include "makeway/eval/verify_bench.hpp"
 
+#include "makeway/pipeline/keyframe.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -103,8 +105,11 @@ BenchKeyframe simulate_bench_keyframe(std::uint64_t seed, int k) {
         acc.add(std::move(sw));
     }
     const PointCloud raw = acc.keyframe();
-    kf.ground = perception::fit_ground_plane(raw, {.seed = seed});
-    kf.cloud_sensor = perception::remove_ground_and_ceiling(raw, kf.ground, {});
+    pipeline::KeyframeParams keyframe;
+    keyframe.ground.seed = seed;
+    pipeline::PreparedKeyframe prepared = pipeline::prepare_keyframe(raw, keyframe);
+    kf.ground = prepared.ground;
+    kf.cloud_sensor = std::move(prepared.cloud_sensor);
     return kf;
 }
 

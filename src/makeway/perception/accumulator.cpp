@@ -15,6 +15,23 @@ void KeyframeAccumulator::add(StampedSweep sweep) {
     while (static_cast<int>(sweeps_.size()) > params_.window) sweeps_.pop_front();
 }
 
+PointCloud deskew_sweep(const StampedSweep& s, const Isometry3& T_target_world, bool deskew) {
+    PointCloud c = s.points_sensor;
+    const bool moved = !s.T_world_sensor_start.isApprox(s.T_world_sensor_end, 1e-12);
+    const bool per_point = deskew && moved && c.time_s.size() == c.size() && s.duration_s > 0.0;
+    const Isometry3 T_target_start = T_target_world * s.T_world_sensor_start;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        if (per_point) {
+            const double alpha = std::clamp(c.time_s[i] / s.duration_s, 0.0, 1.0);
+            const Isometry3 T_target_point = T_target_world * interpolate(s.T_world_sensor_start, s.T_world_sensor_end, alpha);
+            c.xyz[i] = (T_target_point * c.xyz[i].cast<double>()).cast<float>();
+        } else {
+            c.xyz[i] = (T_target_start * c.xyz[i].cast<double>()).cast<float>();
+        }
+    }
+    return c;
+}
+
 PointCloud KeyframeAccumulator::keyframe(Isometry3* T_world_keyframe) const {
     PointCloud out;
     if (sweeps_.empty()) return out;
@@ -22,20 +39,8 @@ PointCloud KeyframeAccumulator::keyframe(Isometry3* T_world_keyframe) const {
     const Isometry3 T_keyframe_world = newest.T_world_sensor_start.inverse();
     if (T_world_keyframe) *T_world_keyframe = newest.T_world_sensor_start;
     for (const StampedSweep& s : sweeps_) {
-        PointCloud c = s.points_sensor;
-        const bool have_time = !c.time_s.empty();
-        const bool deskew = params_.deskew && have_time && !s.T_world_sensor_start.isApprox(s.T_world_sensor_end, 1e-12);
-        const Isometry3 T_kf_start = T_keyframe_world * s.T_world_sensor_start;
-        for (std::size_t i = 0; i < c.size(); ++i) {
-            if (deskew) {
-                const double alpha = std::clamp(c.time_s[i] / s.duration_s, 0.0, 1.0);
-                const Isometry3 T_kf_point = T_keyframe_world * interpolate(s.T_world_sensor_start, s.T_world_sensor_end, alpha);
-                c.xyz[i] = (T_kf_point * c.xyz[i].cast<double>()).cast<float>();
-            } else {
-                c.xyz[i] = (T_kf_start * c.xyz[i].cast<double>()).cast<float>();
-            }
-            if (have_time) c.time_s[i] = static_cast<float>(c.time_s[i] + s.stamp_s - newest.stamp_s);
-        }
+        PointCloud c = deskew_sweep(s, T_keyframe_world, params_.deskew);
+        for (float& t : c.time_s) t = static_cast<float>(t + s.stamp_s - newest.stamp_s);
         out.append(c);
     }
     return out;

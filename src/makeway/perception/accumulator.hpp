@@ -26,6 +26,15 @@ struct AccumulatorParams {
     std::vector<std::string> validate() const;
 };
 
+/// The sweep's points in a target frame (T_target_world), each moved with the sensor pose at its own
+/// time (linear in translation, slerp in rotation between the start and end poses) when `deskew`
+/// and the sweep has per-point time and moved; otherwise all with the start pose. Channels kept.
+PointCloud deskew_sweep(const StampedSweep& sweep, const Isometry3& T_target_world, bool deskew = true);
+/// deskew_sweep into the world frame.
+inline PointCloud deskew_to_world(const StampedSweep& sweep, bool deskew = true) {
+    return deskew_sweep(sweep, Isometry3::Identity(), deskew);
+}
+
 class KeyframeAccumulator {
 public:
     explicit KeyframeAccumulator(const AccumulatorParams& params = {}) : params_(params) {}

@@ -23,7 +23,7 @@ std::vector<float> encode_bev(const PointCloud& cloud, const BevGridParams& g) {
     std::vector<float> out(static_cast<std::size_t>(c) * plane, 0.0f);
     std::vector<float> intensity_sum(plane, 0.0f), count(plane, 0.0f);
     const double slice = (g.z_max_m - g.z_min_m) / g.height_slices;
-    const bool has_intensity = cloud.intensity.size() == cloud.size();
+    const bool has_intensity = g.intensity && cloud.intensity.size() == cloud.size();
     for (std::size_t i = 0; i < cloud.size(); ++i) {
         const Eigen::Vector3f& p = cloud.xyz[i];
         if (!p.allFinite() || p.z() < g.z_min_m || p.z() >= g.z_max_m) continue;
@@ -40,7 +40,7 @@ std::vector<float> encode_bev(const PointCloud& cloud, const BevGridParams& g) {
         if (has_intensity) intensity_sum[cell] += cloud.intensity[i];
     }
     for (std::size_t k = 0; k < static_cast<std::size_t>(g.height_slices) * plane; ++k) out[k] = std::log1p(out[k]);
-    for (std::size_t cell = 0; cell < plane; ++cell) {
+    for (std::size_t cell = 0; g.intensity && cell < plane; ++cell) {
         if (count[cell] > 0) out[static_cast<std::size_t>(g.height_slices + 1) * plane + cell] = intensity_sum[cell] / count[cell];
     }
     return out;

@@ -18,11 +18,14 @@ struct BevGridParams {
     double z_max_m = 1.3;
     int height_slices = 9;
     int output_stride = 2;        ///< output cells are stride x input cells
+    /// A mean-intensity channel. Off by default: with intensity that reveals only material (see
+    /// sim/world.hpp), it did not help (README, "Intensity channel"), and sensors differ in it.
+    bool intensity = false;
     std::vector<std::string> validate() const;
 
     int cells() const { return static_cast<int>(2.0 * range_m / cell_m + 0.5); }   ///< per side, input
     int out_cells() const { return cells() / output_stride; }                      ///< per side, output
-    int channels() const { return height_slices + 2; }
+    int channels() const { return height_slices + 1 + (intensity ? 1 : 0); }
     double out_cell_m() const { return cell_m * output_stride; }
 };
 

@@ -67,7 +67,7 @@ namespace {
 torch::Tensor params_tensor(const DetectorParams& p) {
     return torch::tensor({p.grid.range_m, p.grid.cell_m, p.grid.z_min_m, p.grid.z_max_m, static_cast<double>(p.grid.height_slices),
                           static_cast<double>(p.grid.output_stride), static_cast<double>(p.width), p.decode.score_threshold,
-                          p.decode.nms_bev_iou},
+                          p.decode.nms_bev_iou, p.grid.intensity ? 1.0 : 0.0},
                          torch::kFloat64);
 }
 
@@ -89,7 +89,7 @@ Detector Detector::load(const std::filesystem::path& path) {
         torch::serialize::InputArchive archive;
         archive.load_from(path.string());
         torch::Tensor t;
-        if (!archive.try_read("makeway_detector_params", t) || t.numel() != 9) {
+        if (!archive.try_read("makeway_detector_params", t) || (t.numel() != 9 && t.numel() != 10)) {
             throw std::runtime_error("not a makeway detector (no parameters)");
         }
         const auto v = t.to(torch::kFloat64).contiguous();
@@ -100,6 +100,7 @@ Detector Detector::load(const std::filesystem::path& path) {
         p.width = static_cast<int>(d[6]);
         p.decode.score_threshold = d[7];
         p.decode.nms_bev_iou = d[8];
+        p.grid.intensity = t.numel() == 9 || d[9] != 0.0;  // files before the flag had the channel
         if (!p.grid.validate().empty() || p.width < 1 || p.width > 512) throw std::runtime_error("impossible parameters in the file");
         Detector det(p);
         det.impl_->net->load(archive);

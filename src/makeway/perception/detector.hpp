@@ -11,6 +11,7 @@
 #include "makeway/common/detection.hpp"
 #include "makeway/common/point_cloud.hpp"
 #include "makeway/perception/bev_grid.hpp"
+#include "makeway/perception/object_detector.hpp"
 
 namespace makeway::perception {
 
@@ -22,11 +23,11 @@ struct DetectorParams {
     std::uint64_t seed = 0;  ///< weight initialisation
 };
 
-class Detector {
+class Detector : public ObjectDetector {
 public:
     /// A freshly initialised network (seeded).
     explicit Detector(const DetectorParams& params = {});
-    ~Detector();
+    ~Detector() override;
     Detector(Detector&&) noexcept;
     Detector& operator=(Detector&&) noexcept;
 
@@ -37,7 +38,8 @@ public:
 
     /// Detections in the cloud's (sensor) frame; the cloud should be ground- and ceiling-filtered.
     /// Safe to call from several threads at once.
-    std::vector<Detection> detect(const PointCloud& cloud_sensor) const;
+    std::vector<Detection> detect(const PointCloud& cloud_sensor) const override;
+    double reach_m() const override { return params_.grid.range_m; }
     /// The decoded head maps for a cloud (channel-major, see bev_grid.hpp).
     std::vector<float> heads(const PointCloud& cloud_sensor) const;
 

@@ -15,17 +15,15 @@
 namespace makeway::sim {
 namespace {
 
-// Return strength by surface class (unitless, 0..255 like Velodyne's calibrated reflectivity).
-float reflectivity(SemanticLabel label) {
-    switch (label) {
-        case SemanticLabel::kGround: return 20.0f;
-        case SemanticLabel::kCeiling: return 40.0f;
-        case SemanticLabel::kStructure: return 60.0f;
-        case SemanticLabel::kChair: return 35.0f;
-        case SemanticLabel::kTable: return 80.0f;
-        case SemanticLabel::kPerson: return 15.0f;
-        default: return 50.0f;
-    }
+// The return's intensity as a Velodyne reports it (0..255): the surface's reflectivity, weakened
+// by the incidence angle (Lambertian) and by range beyond the sensor's near-field compensation,
+// with speckle (multiplicative) and electronic (additive) noise. Nothing here knows the class.
+float return_intensity(const RayHit& h, const LidarParams& p, double n_speckle, double n_electronic) {
+    const double range_gain = std::clamp(1.0 - h.range_m / p.intensity_falloff_m, 0.2, 1.0);
+    const double lambert = std::max(0.05, static_cast<double>(h.cos_incidence));
+    const double value = h.reflectivity * lambert * range_gain * (1.0 + p.intensity_speckle * n_speckle) +
+                         p.intensity_noise * n_electronic;
+    return static_cast<float>(std::clamp(std::round(value), 0.0, 255.0));
 }
 
 // One ray's outcome, in a flat per-sweep buffer (no allocation inside the ray loop).
@@ -64,6 +62,9 @@ std::vector<std::string> LidarParams::validate() const {
     if (!(range_noise_m >= 0.0 && range_noise_m <= 1.0)) p.push_back("range_noise_m must be in [0, 1]");
     if (!(dropout >= 0.0 && dropout <= 1.0)) p.push_back("dropout must be in [0, 1]");
     if (time_slices < 1 || time_slices > 3600) p.push_back("time_slices must be in [1, 3600]");
+    if (!(intensity_falloff_m > 0.0 && intensity_falloff_m <= 1000.0)) p.push_back("intensity_falloff_m must be in (0, 1000]");
+    if (!(intensity_speckle >= 0.0 && intensity_speckle <= 1.0)) p.push_back("intensity_speckle must be in [0, 1]");
+    if (!(intensity_noise >= 0.0 && intensity_noise <= 50.0)) p.push_back("intensity_noise must be in [0, 50]");
     if (num_threads < 1 || num_threads > 256) p.push_back("num_threads must be in [1, 256]");
     return p;
 }
@@ -82,6 +83,7 @@ PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtT
     }
     std::vector<RayResult> out(static_cast<std::size_t>(columns) * beams);
     const std::uint64_t stream = seed ^ (sweep_index * 0xA24BAED4963EE407ULL);
+    constexpr std::uint64_t kIntensityStream = 0x1A7E5171ULL;
 
     constexpr int kMaxBeams = 256;  // validate() caps the beam count
     constexpr int kPacket = World::kPacketSize;
@@ -116,6 +118,8 @@ PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtT
             // One normal pair serves two beams; the uniform decides dropout.
             const std::uint64_t ray_id = static_cast<std::uint64_t>(c) * beams + b;
             const auto [n0, n1] = counter_normal_pair(stream, ray_id);
+            const auto [m0, m1] = counter_normal_pair(stream ^ kIntensityStream, ray_id);
+            const auto [e0, e1] = counter_normal_pair(stream ^ kIntensityStream, ~ray_id);
             for (int k = 0; k < 2 && b + k < beams; ++k) {
                 const RayHit& h = hits[b + k];
                 RayResult& r = o[b + k];
@@ -126,7 +130,7 @@ PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtT
                 if (range < params.min_range_m || range > params.max_range_m) continue;
                 r.keep = true;
                 r.xyz = static_cast<float>(range) * dirs_sensor[b + k];
-                r.intensity = reflectivity(h.label) * std::clamp(1.0f - h.range_m / 60.0f, 0.2f, 1.0f);
+                r.intensity = return_intensity(h, params, k == 0 ? m0 : m1, k == 0 ? e0 : e1);
                 r.label = static_cast<std::uint8_t>(h.label);
                 r.instance = h.instance;
             }

@@ -23,6 +23,9 @@ struct LidarParams {
     double max_range_m = 100.0;
     double range_noise_m = 0.015;   ///< Gaussian sigma (datasheet accuracy +-3 cm)
     double dropout = 0.005;         ///< probability that a return is lost
+    double intensity_falloff_m = 60.0;  ///< intensity falls linearly to 20 % at this range
+    double intensity_speckle = 0.1;     ///< relative sigma of the intensity's multiplicative noise
+    double intensity_noise = 2.0;       ///< sigma of the additive intensity noise (0..255 scale)
     int time_slices = 10;           ///< the world is moved this many times per sweep
     int num_threads = 1;            ///< 1: serial; > 1: TBB with this many threads
     bool use_packets = true;        ///< Embree 8-ray packets (false: one ray at a time)

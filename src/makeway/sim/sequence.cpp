@@ -83,6 +83,7 @@ SimFrame SequenceSimulator::next() {
         poses.push_back(state_.pose);
         f.collided |= checker_.collides(state_.pose, f.stamp_s + (i + 1) * dt);
     }
+    f.odometry_end_pose = odometry_.pose();
     const Isometry3 T_robot_sensor = params_.robot.T_robot_sensor();
     const double t0 = f.stamp_s;
     auto T_world_sensor_at = [&](double t_s) {

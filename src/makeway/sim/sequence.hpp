@@ -29,6 +29,7 @@ struct SimFrame {
     Isometry3 T_world_sensor;               ///< true sensor pose at stamp_s
     Pose2 true_pose;                        ///< robot base at stamp_s
     Pose2 odometry_pose;                    ///< wheel odometry of the base at stamp_s
+    Pose2 odometry_end_pose;                ///< wheel odometry of the base at the sweep's end
     std::vector<ObjectState> objects;       ///< ground truth at stamp_s
     std::vector<Eigen::Vector2d> people_m;  ///< walker positions at stamp_s
     bool collided = false;                  ///< the footprint touched something during the sweep

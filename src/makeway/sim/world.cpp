@@ -2,9 +2,11 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
+#include "makeway/common/random.hpp"
 #include "makeway/sim/mesh_primitives.hpp"
 
 namespace makeway::sim {
@@ -36,7 +38,35 @@ void set_instance_pose(RTCGeometry inst, const Isometry3& T) {
     rtcCommitGeometry(inst);
 }
 
+// Surfaces are told apart by their triangles in groups of 12 (one box: a wall, a pillar, a leg).
+constexpr unsigned kTrianglesPerPart = 12;
+
+// Surface keys for the material draws: one range per kind of surface, so no two collide.
+constexpr std::uint64_t kFloorSurface = 1, kCeilingSurface = 2;
+std::uint64_t structure_surface(unsigned part) { return (1ULL << 32) + part; }
+std::uint64_t object_surface(std::uint32_t instance, int which) { return (2ULL << 32) + 2ULL * instance + static_cast<std::uint64_t>(which); }
+
 }  // namespace
+
+float draw_reflectivity(std::uint64_t seed, std::uint64_t surface) {
+    // Typical calibrated reflectivities of indoor materials (Velodyne scale): fabric and dark
+    // plastic low, wood and paint middle, light paint and bare metal high. Every class of surface
+    // draws from this one list.
+    struct Material {
+        float lo, hi;
+    };
+    static constexpr Material kMaterials[] = {
+        {5.0f, 30.0f},    // fabric, upholstery
+        {15.0f, 45.0f},   // dark plastic, rubber
+        {25.0f, 60.0f},   // wood, laminate
+        {40.0f, 85.0f},   // paint, plaster
+        {60.0f, 120.0f},  // light paint, bare and brushed metal
+    };
+    constexpr int kCount = static_cast<int>(sizeof(kMaterials) / sizeof(kMaterials[0]));
+    const int type = std::min(kCount - 1, static_cast<int>(counter_uniform(seed, 2 * surface) * kCount));
+    const Material& m = kMaterials[type];
+    return m.lo + static_cast<float>(counter_uniform(seed, 2 * surface + 1)) * (m.hi - m.lo);
+}
 
 TriangleMesh structure_mesh(const Scene& scene) {
     TriangleMesh m;
@@ -63,18 +93,34 @@ struct World::Impl {
     std::vector<unsigned> person_inst_ids;
     std::vector<SemanticLabel> geom_labels;              // static geometry id -> label
     std::vector<std::pair<SemanticLabel, std::uint32_t>> inst_labels;  // instance geometry id -> label
+    std::vector<Eigen::Matrix3f> inst_rotation;          // instance geometry id -> R_world_object now
+    std::uint64_t material_seed = 0;
 
-    RayHit to_hit(unsigned geom_id, unsigned inst_id, float t) const {
+    // Ng is Embree's unnormalised geometric normal, in the object frame for instances.
+    RayHit to_hit(unsigned geom_id, unsigned inst_id, unsigned prim_id, float t, const Eigen::Vector3f& Ng,
+                  const Eigen::Vector3f& direction) const {
         RayHit h;
         if (geom_id == RTC_INVALID_GEOMETRY_ID) return h;
         h.hit = true;
         h.range_m = t;
+        const unsigned part = prim_id / kTrianglesPerPart;
+        Eigen::Vector3f normal = Ng;
         if (inst_id != RTC_INVALID_GEOMETRY_ID) {
             h.label = inst_labels[inst_id].first;
             h.instance = inst_labels[inst_id].second;
+            normal = inst_rotation[inst_id] * Ng;
+            // A part takes the frame or the surface material of its object.
+            const int which = static_cast<int>(counter_uniform(material_seed ^ h.instance, part) < 0.5);
+            h.reflectivity = draw_reflectivity(material_seed, object_surface(h.instance, which));
         } else {
             h.label = geom_labels[geom_id];
+            const std::uint64_t surface = h.label == SemanticLabel::kGround    ? kFloorSurface
+                                          : h.label == SemanticLabel::kCeiling ? kCeilingSurface
+                                                                               : structure_surface(part);
+            h.reflectivity = draw_reflectivity(material_seed, surface);
         }
+        const float n = normal.norm(), d = direction.norm();
+        h.cos_incidence = n > 0.0f && d > 0.0f ? std::abs(normal.dot(direction)) / (n * d) : 1.0f;
         return h;
     }
 };
@@ -83,6 +129,7 @@ World::World(const Scene& scene, std::vector<ObjectModel> models)
     : impl_(std::make_unique<Impl>()), scene_(scene), models_(std::move(models)) {
     if (models_.size() != scene_.objects.size()) throw std::invalid_argument("World: one model per object");
     Impl& w = *impl_;
+    w.material_seed = scene_.seed * 0x9E3779B97F4A7C15ULL + 0x6D617465726961ULL;  // "materia"
     w.device = rtcNewDevice(nullptr);
     if (!w.device) throw std::runtime_error("Embree device creation failed");
     w.top = rtcNewScene(w.device);
@@ -119,6 +166,7 @@ World::World(const Scene& scene, std::vector<ObjectModel> models)
         w.inst_labels.resize(std::max<std::size_t>(w.inst_labels.size(), id + 1));
         w.geom_labels.resize(std::max<std::size_t>(w.geom_labels.size(), id + 1));
         w.inst_labels[id] = {label, instance};
+        w.inst_rotation.resize(w.inst_labels.size(), Eigen::Matrix3f::Identity());
         return id;
     };
     for (std::size_t i = 0; i < models_.size(); ++i) {
@@ -164,14 +212,16 @@ void World::set_time(double t_s) {
     if (!first && scene_.pushers.empty() && scene_.walkers.empty()) return;  // nothing moves
     Impl& w = *impl_;
     for (std::size_t i = 0; i < scene_.objects.size(); ++i) {
-        set_instance_pose(rtcGetGeometry(w.top, w.object_inst_ids[i]),
-                          lift_to_3d(object_pose_at(scene_, i, t_s)));
+        const Isometry3 T_world_object = lift_to_3d(object_pose_at(scene_, i, t_s));
+        set_instance_pose(rtcGetGeometry(w.top, w.object_inst_ids[i]), T_world_object);
+        w.inst_rotation[w.object_inst_ids[i]] = T_world_object.linear().cast<float>();
     }
     for (std::size_t k = 0; k < scene_.walkers.size(); ++k) {
         double heading = 0.0;
         const Eigen::Vector2d p = walker_position_at(scene_.walkers[k], t_s, &heading);
-        set_instance_pose(rtcGetGeometry(w.top, w.person_inst_ids[k]),
-                          make_T_xyz_yaw(Eigen::Vector3d(p.x(), p.y(), 0.0), heading));
+        const Isometry3 T_world_person = make_T_xyz_yaw(Eigen::Vector3d(p.x(), p.y(), 0.0), heading);
+        set_instance_pose(rtcGetGeometry(w.top, w.person_inst_ids[k]), T_world_person);
+        w.inst_rotation[w.person_inst_ids[k]] = T_world_person.linear().cast<float>();
     }
     rtcCommitScene(w.top);
 }
@@ -194,7 +244,8 @@ RayHit World::cast(const Eigen::Vector3f& origin_m, const Eigen::Vector3f& direc
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->top, &context, &rh);
-    return impl_->to_hit(rh.hit.geomID, rh.hit.instID[0], rh.ray.tfar);
+    return impl_->to_hit(rh.hit.geomID, rh.hit.instID[0], rh.hit.primID, rh.ray.tfar,
+                         {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z}, d);
 }
 
 void World::cast_packet(const Eigen::Vector3f& origin_m, const Eigen::Vector3f* directions, float max_range_m,
@@ -224,7 +275,9 @@ void World::cast_packet(const Eigen::Vector3f& origin_m, const Eigen::Vector3f* 
     }
     rtcIntersect16(valid_mask, impl_->top, &context, &rh);
     for (int i = 0; i < kPacketSize; ++i) {
-        hits[i] = valid[i] ? impl_->to_hit(rh.hit.geomID[i], rh.hit.instID[0][i], rh.ray.tfar[i]) : RayHit{};
+        hits[i] = valid[i] ? impl_->to_hit(rh.hit.geomID[i], rh.hit.instID[0][i], rh.hit.primID[i], rh.ray.tfar[i],
+                                           {rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]}, directions[i])
+                           : RayHit{};
     }
 }
 

@@ -19,7 +19,21 @@ struct RayHit {
     float range_m = 0.0f;
     SemanticLabel label = SemanticLabel::kUnlabelled;
     std::uint32_t instance = 0;
+    /// Diffuse reflectivity of the surface hit (0..255, Velodyne's calibrated scale): its
+    /// material's, which says nothing about what the surface belongs to (see SurfaceMaterials).
+    float reflectivity = 0.0f;
+    float cos_incidence = 1.0f;  ///< |cos| of the angle between the ray and the surface normal
 };
+
+/// Surface materials: every surface (each wall and pillar, the floor, the ceiling, each person,
+/// each furniture part) draws its material from one distribution shared by every class, as in a
+/// real building (wood, fabric, metal, plastic and paint on chairs, tables and walls alike), so
+/// that intensity says no more about the class than a real sensor's does. Furniture has a frame
+/// material and a surface material; each of its parts (a box of 12 triangles, or a cylinder's
+/// share) takes one of the two. Seeded by the scene's seed: the same room looks the same in every
+/// drive through it.
+/// One draw from the shared material distribution (0..255): a material type, then its spread.
+float draw_reflectivity(std::uint64_t seed, std::uint64_t surface);
 
 class World {
 public:

@@ -1,0 +1,21 @@
+#pragma once
+// What the pipeline needs of a 3D detector: boxes from a ground-filtered keyframe, and how far it
+// sees. The neural network (detector.hpp, the only code that includes torch) is one; tests and
+// other detectors can be others, without linking libtorch.
+#include <vector>
+
+#include "makeway/common/detection.hpp"
+#include "makeway/common/point_cloud.hpp"
+
+namespace makeway::perception {
+
+class ObjectDetector {
+public:
+    virtual ~ObjectDetector() = default;
+    /// Detections in the cloud's (sensor) frame; the cloud is ground- and ceiling-filtered.
+    virtual std::vector<Detection> detect(const PointCloud& cloud_sensor) const = 0;
+    /// Half the side of the square around the sensor that the detector looks at [m].
+    virtual double reach_m() const = 0;
+};
+
+}  // namespace makeway::perception

@@ -1,0 +1,52 @@
+#include "makeway/pipeline/front_end.hpp"
+
+#include <chrono>
+
+namespace makeway::pipeline {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+}  // namespace
+
+FrontEnd::FrontEnd(const SystemParams& params, const Pose2& start_pose)
+    : params_(params), start_pose_(start_pose), accumulator_({.window = params.keyframe.window, .deskew = params.keyframe.deskew}) {}
+
+Isometry3 FrontEnd::T_world_sensor_at(const Pose2& odometry) const {
+    return lift_to_3d(to_pose2(*T_world_odom_ * to_isometry(odometry))) * params_.T_base_sensor;
+}
+
+FrontEndResult FrontEnd::add(const Sweep& sweep) {
+    FrontEndResult out;
+    // Pose: the start pose plus the wheel odometry's motion since the first reading (the odometry
+    // frame's origin is wherever the robot was switched on). Start and end poses let every point
+    // be de-skewed by its own time.
+    const Pose2 odom_start = sweep.odometry_start.value_or(last_odometry_);
+    const Pose2 odom_end = sweep.odometry_end.value_or(odom_start);
+    if (!T_world_odom_) T_world_odom_ = to_isometry(start_pose_) * to_isometry(odom_start).inverse();
+    last_odometry_ = odom_end;
+    out.T_world_sensor_start = T_world_sensor_at(odom_start);
+    out.T_world_sensor_end = T_world_sensor_at(odom_end);
+    out.pose = to_pose2(*T_world_odom_ * to_isometry(odom_end));
+    perception::StampedSweep stamped{sweep.points_sensor, sweep.stamp_s, sweep.duration_s, out.T_world_sensor_start,
+                                     out.T_world_sensor_end};
+    out.points_world = perception::deskew_to_world(stamped, params_.keyframe.deskew);
+    accumulator_.add(std::move(stamped));
+    if (!accumulator_.full() || sweeps_++ % static_cast<std::size_t>(params_.keyframe.every) != 0) return out;
+
+    // Keyframe: the window in the newest sweep's frame, then the ground plane (fitted once: the
+    // sensor is rigid on the robot) and the ground and ceiling removed.
+    FrontEndKeyframe kf;
+    Clock::time_point t = Clock::now();
+    const PointCloud raw = accumulator_.keyframe(&kf.T_world_keyframe);
+    kf.accumulate_ms = ms_since(t);
+    t = Clock::now();
+    kf.prepared = prepare_keyframe(raw, params_.keyframe, ground_ ? &*ground_ : nullptr);
+    if (kf.prepared.ground.found) ground_ = kf.prepared.ground;
+    kf.ground_ms = ms_since(t);
+    out.keyframe = std::move(kf);
+    return out;
+}
+
+}  // namespace makeway::pipeline

@@ -1,0 +1,121 @@
+#include "makeway/pipeline/navigator.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+#include "makeway/common/angles.hpp"
+#include "makeway/costmap/affordance_layer.hpp"
+#include "makeway/costmap/inflation_layer.hpp"
+#include "makeway/costmap/obstacle_layer.hpp"
+#include "makeway/costmap/static_layer.hpp"
+#include "makeway/planning/dwa.hpp"
+
+namespace makeway::pipeline {
+
+Navigator::Navigator(const Costmap& static_map, const NavigatorParams& params)
+    : params_(params),
+      layered_(Costmap(static_map.origin_m, static_map.resolution_m, static_map.width, static_map.height)) {
+    if (const auto problems = params.validate(); !problems.empty()) {
+        std::string all;
+        for (const std::string& p : problems) all += (all.empty() ? "" : "; ") + p;
+        throw std::invalid_argument(all);
+    }
+    // The stack: static (the known building), obstacle (LiDAR), affordance (objects), inflation last.
+    layered_.add_layer(std::make_unique<costmap::StaticLayer>(static_map));
+    layered_.add_layer(std::make_unique<costmap::ObstacleLayer>(static_map, params.obstacle));
+    if (params.affordance_layer) layered_.add_layer(std::make_unique<costmap::AffordanceLayer>(params.affordance));
+    costmap::InflationParams inflation = params.inflation;
+    inflation.inflation_radius_m = std::max(inflation.inflation_radius_m, inflation.inscribed_radius_m);
+    layered_.add_layer(std::make_unique<costmap::InflationLayer>(inflation));
+}
+
+void Navigator::set_route(std::vector<Eigen::Vector2d> legs_m) {
+    legs_ = std::move(legs_m);
+    leg_ = 0;
+    plan_.clear();
+}
+
+NavigatorStep Navigator::step(const NavigatorInput& in) {
+    const auto t0 = std::chrono::steady_clock::now();
+    NavigatorStep out;
+    const Eigen::Vector2d here(in.pose.x_m, in.pose.y_m);
+    // Legs: waypoints, then the goal, judged on the pose estimate.
+    if (leg_ < legs_.size() && (here - legs_[leg_]).norm() < (leg_ + 1 == legs_.size() ? params_.goal_tolerance_m : params_.waypoint_tolerance_m)) {
+        ++leg_;
+        plan_.clear();
+        out.reached_waypoint = true;
+    }
+    if (arrived()) {
+        out.arrived = true;
+        return out;
+    }
+    check_progress(in, out);
+    // Costmap: every layer grows the update window, then writes inside it.
+    costmap::LayerInput layer_input;
+    layer_input.points_world = in.points_world;
+    layer_input.sensor_world_m = in.sensor_world_m;
+    layer_input.objects = in.objects;
+    layered_.update(layer_input);
+    // Global plan when there is none, when it is due, or when something now blocks it.
+    if (plan_.empty() || in.t_s - last_plan_t_ >= params_.replan_period_s || plan_blocked(here)) {
+        const planning::PlanResult p = planning::plan_astar(layered_.master(), here, legs_[leg_], params_.astar);
+        if (p.status == planning::PlanStatus::kOk) plan_ = p.path_m;
+        out.plan_status = p.status;
+        last_plan_t_ = in.t_s;
+        out.replanned = true;
+    }
+    // Local control: back up while recovering, else DWA along the plan.
+    out.recovering = in.t_s < recovery_until_;
+    if (out.recovering) {
+        out.command = {-params_.backup_speed_mps, 0.0};
+    } else if (!plan_.empty()) {
+        out.command = follow_plan(in, out);
+    }
+    out.update_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+}
+
+bool Navigator::plan_blocked(const Eigen::Vector2d& robot) const {
+    const Costmap& m = layered_.master();
+    std::size_t nearest = 0;
+    for (std::size_t i = 1; i < plan_.size(); ++i) {
+        if ((plan_[i] - robot).squaredNorm() < (plan_[nearest] - robot).squaredNorm()) nearest = i;
+    }
+    double travelled = 0.0;
+    for (std::size_t i = nearest; i < plan_.size() && travelled < params_.blocked_lookahead_m; ++i) {
+        if (i > nearest) travelled += (plan_[i] - plan_[i - 1]).norm();
+        const auto c = m.cost_at(plan_[i]);
+        if (c && *c >= cost::kInscribed && *c != cost::kUnknown && (plan_[i] - robot).norm() > params_.blocked_ignore_m) return true;
+    }
+    return false;
+}
+
+VelocityCommand Navigator::follow_plan(const NavigatorInput& in, NavigatorStep& out) const {
+    const planning::DwaResult r = planning::dwa_step(layered_.master(), {in.pose, in.v_mps, in.w_radps}, plan_, params_.dwa);
+    out.dwa_found = r.found;
+    if (r.found) return r.command;
+    // Every velocity collides: turn toward the path on the spot.
+    const auto k = static_cast<std::size_t>(params_.turn_target_index);
+    const Eigen::Vector2d target = plan_.size() > k ? plan_[k] : plan_.back();
+    const double heading = std::atan2(target.y() - in.pose.y_m, target.x() - in.pose.x_m);
+    return {0.0, std::copysign(params_.turn_rate_radps, angle_diff(heading, in.pose.yaw_rad))};
+}
+
+void Navigator::check_progress(const NavigatorInput& in, NavigatorStep& out) {
+    // Stuck: little progress for stuck_timeout_s -> back up for backup_duration_s, then replan.
+    const Eigen::Vector2d here(in.pose.x_m, in.pose.y_m);
+    if (!started_ || (here - progress_anchor_).norm() > params_.stuck_progress_m) {
+        started_ = true;
+        progress_anchor_ = here;
+        progress_t_ = in.t_s;
+    } else if (in.t_s - progress_t_ > params_.stuck_timeout_s && in.t_s >= recovery_until_) {
+        recovery_until_ = in.t_s + params_.backup_duration_s;
+        progress_t_ = in.t_s + params_.backup_duration_s;
+        plan_.clear();
+        out.started_recovery = true;
+    }
+}
+
+}  // namespace makeway::pipeline

@@ -1,0 +1,72 @@
+#pragma once
+// The navigation half of the online system: the layered costmap (static map of walls, LiDAR
+// obstacles, object affordance zones, inflation), A* on it, DWA to follow the plan, and the policy
+// around them (replan when due or when the plan is blocked; turn on the spot when DWA finds no
+// safe velocity; back up when stuck). One `step` per sweep, on the robot's own pose estimate.
+#include <cstddef>
+#include <vector>
+
+#include "makeway/common/costmap.hpp"
+#include "makeway/common/object_estimate.hpp"
+#include "makeway/common/point_cloud.hpp"
+#include "makeway/common/transforms.hpp"
+#include "makeway/common/velocity_command.hpp"
+#include "makeway/costmap/layered_costmap.hpp"
+#include "makeway/pipeline/system_params.hpp"
+#include "makeway/planning/astar.hpp"
+
+namespace makeway::pipeline {
+
+struct NavigatorInput {
+    double t_s = 0.0;
+    Pose2 pose;                                ///< the base, estimated
+    double v_mps = 0.0, w_radps = 0.0;         ///< current velocity (the commanded one, or wheel odometry)
+    const PointCloud* points_world = nullptr;  ///< the latest sweep, world frame (may be null)
+    Eigen::Vector3d sensor_world_m = Eigen::Vector3d::Zero();
+    std::vector<ObjectEstimate> objects;       ///< the object map (empty for the classic costmap)
+};
+
+struct NavigatorStep {
+    VelocityCommand command;
+    bool replanned = false;
+    planning::PlanStatus plan_status = planning::PlanStatus::kOk;  ///< of the last A* call
+    bool dwa_found = true;        ///< false: every velocity collided, turning on the spot
+    bool recovering = false;      ///< backing up
+    bool started_recovery = false;
+    bool reached_waypoint = false;
+    bool arrived = false;         ///< the last leg's goal is reached (by the pose estimate)
+    double update_ms = 0.0;       ///< costmap update + planning + DWA
+};
+
+class Navigator {
+public:
+    /// `static_map`: the prebuilt map of walls (its geometry becomes the costmap's). Throws
+    /// std::invalid_argument listing every problem of `params`.
+    Navigator(const Costmap& static_map, const NavigatorParams& params);
+
+    /// The legs to drive (waypoints, then the goal).
+    void set_route(std::vector<Eigen::Vector2d> legs_m);
+    NavigatorStep step(const NavigatorInput& input);
+
+    const Costmap& costmap() const { return layered_.master(); }
+    const std::vector<Eigen::Vector2d>& plan() const { return plan_; }
+    std::size_t leg() const { return leg_; }
+    bool arrived() const { return leg_ >= legs_.size(); }
+
+private:
+    bool plan_blocked(const Eigen::Vector2d& robot_m) const;
+    VelocityCommand follow_plan(const NavigatorInput& input, NavigatorStep& step) const;
+    void check_progress(const NavigatorInput& input, NavigatorStep& step);
+
+    NavigatorParams params_;
+    costmap::LayeredCostmap layered_;
+    std::vector<Eigen::Vector2d> legs_;
+    std::size_t leg_ = 0;
+    std::vector<Eigen::Vector2d> plan_;
+    double last_plan_t_ = -1e9;
+    Eigen::Vector2d progress_anchor_ = Eigen::Vector2d::Zero();
+    double progress_t_ = 0.0, recovery_until_ = -1.0;
+    bool started_ = false;
+};
+
+}  // namespace makeway::pipeline

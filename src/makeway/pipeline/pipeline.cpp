@@ -1,0 +1,91 @@
+#include "makeway/pipeline/pipeline.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+namespace makeway::pipeline {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+const SystemParams& validated(const SystemParams& params) {
+    const std::vector<std::string> problems = params.validate();
+    if (problems.empty()) return params;
+    std::string all;
+    for (const std::string& p : problems) all += (all.empty() ? "" : "; ") + p;
+    throw std::invalid_argument(all);
+}
+
+}  // namespace
+
+tracking::TrackerParams tracker_params_for(const perception::ObjectDetector* detector, tracking::TrackerParams params) {
+    // Misses count only where the detector can see: inside the circle its square grid contains,
+    // less half a large chair so that the whole object is inside.
+    if (detector) params.miss_range_m = std::min(params.sensor_range_m, detector->reach_m() - 0.5);
+    return params;
+}
+
+Pipeline::Pipeline(const SystemParams& params, const Pose2& start_pose, const perception::ObjectDetector* detector,
+                   const verification::CadLibrary* library)
+    : params_(validated(params)),
+      detector_(detector),
+      library_(library),
+      front_end_(params, start_pose),
+      map_(tracker_params_for(detector, params.tracker)) {}
+
+SweepResult Pipeline::process_sweep(const Sweep& sweep) {
+    const Clock::time_point t0 = Clock::now();
+    SweepResult out;
+    // Front end: pose from the start pose and the wheel odometry, the sweep de-skewed, and every
+    // `every` sweeps a keyframe (accumulated, ground plane, ground and ceiling removed). The
+    // simulator's labels and instance ids are dropped first: only what a sensor measures enters.
+    Sweep measured = sweep;
+    measured.points_sensor = sensor_channels_only(std::move(measured.points_sensor));
+    FrontEndResult front = front_end_.add(measured);
+    out.T_world_sensor_start = front.T_world_sensor_start;
+    out.T_world_sensor_end = front.T_world_sensor_end;
+    out.pose = front.pose;
+    out.points_world = std::move(front.points_world);
+    out.timing.pose_ms = ms_since(t0);
+    // Keyframe: detect, verify, track.
+    if (front.keyframe) {
+        out.keyframe = process_keyframe(std::move(*front.keyframe), sweep.stamp_s, out.timing);
+        objects_ = out.keyframe->tracking.objects_world;
+    }
+    out.objects = objects_;
+    out.timing.total_ms = ms_since(t0);
+    return out;
+}
+
+KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s, StageTiming& timing) {
+    KeyframeResult kf;
+    kf.index = keyframes_++;
+    kf.stamp_s = stamp_s;
+    kf.T_world_keyframe = front.T_world_keyframe;
+    kf.prepared = std::move(front.prepared);
+    timing.accumulate_ms = front.accumulate_ms;
+    timing.ground_ms = front.ground_ms;
+    // Detect (eq. network heads -> peaks -> rotated NMS).
+    Clock::time_point t = Clock::now();
+    if (detector_) kf.detections = detector_->detect(kf.prepared.cloud_sensor);
+    timing.detect_ms = ms_since(t);
+    // Verify against the CAD models: accepted boxes become the aligned model's, scored by p_exist (eq. 2).
+    t = Clock::now();
+    kf.evidence = kf.detections;
+    if (params_.verification && library_ && !library_->models().empty()) {
+        const PreparedKeyframe& prepared = kf.prepared;
+        kf.verified = verification::verify_detections(prepared.cloud_sensor, kf.detections, *library_, params_.verify,
+                                                      [&](double x, double y) { return prepared.floor_z_at(x, y); });
+        kf.evidence = verification::accepted_detections(kf.verified);
+    }
+    timing.verify_ms = ms_since(t);
+    // Track: associate (GIoU + Hungarian), filter, fuse class and existence (eqs. 3-5), prune.
+    t = Clock::now();
+    kf.tracking = map_.update(kf.evidence, kf.T_world_keyframe, stamp_s);
+    timing.track_ms = ms_since(t);
+    return kf;
+}
+
+}  // namespace makeway::pipeline

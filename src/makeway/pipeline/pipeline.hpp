@@ -1,0 +1,88 @@
+#pragma once
+// The online system (the paper's method, "ours"), one sweep at a time, fed only what a robot has:
+// sweeps with per-point time, wheel odometry, the start pose, the extrinsics, and the CAD models of
+// the room's furniture (the static map of walls goes to the Navigator). No simulator type can
+// reach it: this library links no sim/ or eval/ code (a test checks the rule), and the sensor's
+// points enter without the simulator's labels and instance ids.
+//
+//   sweep + wheel odometry -> pose at sweep start and end (start pose + odometry increments)
+//   every `keyframe.every` sweeps:
+//     keyframe: the last `window` sweeps de-skewed and accumulated into the newest sweep's frame
+//     ground plane (RANSAC, first keyframe), ground and ceiling removed
+//     detector -> verification against the CAD models (p_exist) -> object map (tracker)
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "makeway/common/detection.hpp"
+#include "makeway/common/object_estimate.hpp"
+#include "makeway/common/point_cloud.hpp"
+#include "makeway/common/transforms.hpp"
+#include "makeway/perception/object_detector.hpp"
+#include "makeway/pipeline/front_end.hpp"
+#include "makeway/pipeline/keyframe.hpp"
+#include "makeway/pipeline/system_params.hpp"
+#include "makeway/tracking/object_map.hpp"
+#include "makeway/verification/cad_library.hpp"
+#include "makeway/verification/verifier.hpp"
+
+namespace makeway::pipeline {
+
+/// Wall-clock time of each stage [ms] (zero for stages that did not run).
+struct StageTiming {
+    double pose_ms = 0.0, accumulate_ms = 0.0, ground_ms = 0.0, detect_ms = 0.0, verify_ms = 0.0, track_ms = 0.0;
+    double total_ms = 0.0;
+};
+
+/// Everything one keyframe produced, for tests, evaluation and pictures (no side channels).
+struct KeyframeResult {
+    std::size_t index = 0;
+    double stamp_s = 0.0;
+    Isometry3 T_world_keyframe = Isometry3::Identity();  ///< the pipeline's estimate
+    PreparedKeyframe prepared;                           ///< ground-filtered cloud and plane
+    std::vector<Detection> detections;                   ///< the network's, sensor frame
+    std::vector<verification::VerifiedDetection> verified;  ///< empty without a CAD library
+    std::vector<Detection> evidence;                     ///< what the tracker was fed
+    tracking::TrackerFrameResult tracking;
+};
+
+struct SweepResult {
+    Isometry3 T_world_sensor_start = Isometry3::Identity();  ///< estimated
+    Isometry3 T_world_sensor_end = Isometry3::Identity();
+    Pose2 pose;                 ///< the base at the sweep's end, estimated
+    PointCloud points_world;    ///< this sweep de-skewed into the world frame (the obstacle layer's input)
+    std::optional<KeyframeResult> keyframe;
+    std::vector<ObjectEstimate> objects;  ///< the object map after this sweep, world frame
+    StageTiming timing;
+};
+
+class Pipeline {
+public:
+    /// `detector` and `library` may be null (no detection / no verification); both must outlive
+    /// the pipeline. Throws std::invalid_argument listing every problem of `params`.
+    Pipeline(const SystemParams& params, const Pose2& start_pose, const perception::ObjectDetector* detector,
+             const verification::CadLibrary* library);
+
+    /// The whole method for one sweep, top to bottom. Never throws on degenerate input (an empty
+    /// sweep gives an empty keyframe and no detections).
+    SweepResult process_sweep(const Sweep& sweep);
+
+    const SystemParams& params() const { return params_; }
+    std::size_t keyframes() const { return keyframes_; }
+
+private:
+    KeyframeResult process_keyframe(FrontEndKeyframe front, double stamp_s, StageTiming& timing);
+
+    SystemParams params_;
+    const perception::ObjectDetector* detector_;
+    const verification::CadLibrary* library_;
+    FrontEnd front_end_;
+    tracking::ObjectMap map_;
+    std::vector<ObjectEstimate> objects_;
+    std::size_t keyframes_ = 0;
+};
+
+/// The tracker's parameters with misses judged only within what the detector covers.
+tracking::TrackerParams tracker_params_for(const perception::ObjectDetector* detector, tracking::TrackerParams params);
+
+}  // namespace makeway::pipeline

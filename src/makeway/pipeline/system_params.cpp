@@ -1,0 +1,61 @@
+#include "makeway/pipeline/system_params.hpp"
+
+namespace makeway::pipeline {
+namespace {
+
+void add(std::vector<std::string>& out, const std::string& prefix, const std::vector<std::string>& problems) {
+    for (const std::string& p : problems) out.push_back(prefix + "." + p);
+}
+
+}  // namespace
+
+std::vector<std::string> KeyframeParams::validate() const {
+    std::vector<std::string> p;
+    if (window < 1 || window > 100) p.push_back("window must be in [1, 100]");
+    if (every < 1 || every > 1000) p.push_back("every must be in [1, 1000]");
+    add(p, "ground", ground.validate());
+    add(p, "ground_filter", ground_filter.validate());
+    return p;
+}
+
+std::vector<std::string> NavigatorParams::validate() const {
+    std::vector<std::string> p;
+    add(p, "obstacle", obstacle.validate());
+    add(p, "inflation", inflation.validate());
+    add(p, "affordance", affordance.validate());
+    add(p, "astar", astar.validate());
+    add(p, "dwa", dwa.validate());
+    for (std::string& m : validate_policy()) p.push_back(std::move(m));
+    return p;
+}
+
+std::vector<std::string> NavigatorParams::validate_policy() const {
+    std::vector<std::string> p;
+    auto positive = [&](double v, const char* name, double hi) {
+        if (!(v > 0.0 && v <= hi)) p.push_back(std::string(name) + " must be in (0, " + std::to_string(static_cast<int>(hi)) + "]");
+    };
+    positive(replan_period_s, "replan_period_s", 600);
+    positive(blocked_lookahead_m, "blocked_lookahead_m", 100);
+    if (!(blocked_ignore_m >= 0.0 && blocked_ignore_m < blocked_lookahead_m)) p.push_back("blocked_ignore_m must be in [0, blocked_lookahead_m)");
+    if (turn_target_index < 1 || turn_target_index > 1000) p.push_back("turn_target_index must be in [1, 1000]");
+    positive(turn_rate_radps, "turn_rate_radps", 10);
+    positive(stuck_progress_m, "stuck_progress_m", 10);
+    positive(stuck_timeout_s, "stuck_timeout_s", 600);
+    positive(backup_speed_mps, "backup_speed_mps", 5);
+    positive(backup_duration_s, "backup_duration_s", 60);
+    positive(waypoint_tolerance_m, "waypoint_tolerance_m", 10);
+    positive(goal_tolerance_m, "goal_tolerance_m", 10);
+    return p;
+}
+
+std::vector<std::string> SystemParams::validate() const {
+    std::vector<std::string> p;
+    if (!T_base_sensor.matrix().allFinite()) p.push_back("T_base_sensor must be finite");
+    add(p, "keyframe", keyframe.validate());
+    add(p, "verification", verify.validate());
+    add(p, "tracking", tracker.validate());
+    add(p, "navigation", navigator.validate());
+    return p;
+}
+
+}  // namespace makeway::pipeline

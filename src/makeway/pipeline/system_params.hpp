@@ -1,0 +1,65 @@
+#pragma once
+// Every parameter of the online system in one struct (KISS-ICP's one config with defaults),
+// validated once at start-up with every problem listed. config/default.yaml documents each key.
+#include <string>
+#include <vector>
+
+#include "makeway/common/transforms.hpp"
+#include "makeway/costmap/affordance.hpp"
+#include "makeway/costmap/inflation_layer.hpp"
+#include "makeway/costmap/obstacle_layer.hpp"
+#include "makeway/perception/ground.hpp"
+#include "makeway/planning/astar.hpp"
+#include "makeway/planning/dwa.hpp"
+#include "makeway/tracking/object_map.hpp"
+#include "makeway/verification/verifier.hpp"
+
+namespace makeway::pipeline {
+
+/// Sweeps into keyframes (paper, front end): the last `window` sweeps, de-skewed and accumulated
+/// into the newest sweep's frame, every `every` sweeps (10 Hz sweeps: 2 Hz keyframes).
+struct KeyframeParams {
+    int window = 5;
+    int every = 5;
+    bool deskew = true;
+    perception::GroundPlaneParams ground;          ///< RANSAC, once, at the first keyframe
+    perception::GroundFilterParams ground_filter;  ///< ground band and ceiling removed
+    std::vector<std::string> validate() const;
+};
+
+/// The navigation policy around the costmap, A* and DWA: when to replan and how to recover.
+struct NavigatorParams {
+    costmap::ObstacleLayerParams obstacle;
+    costmap::InflationParams inflation;   ///< inflation_radius_m: the method's (con: 3x the robot)
+    bool affordance_layer = true;         ///< object-aware zones (false: the classic costmap)
+    costmap::AffordanceParams affordance;
+    planning::AStarParams astar;
+    planning::DwaParams dwa;
+    double replan_period_s = 1.0;         ///< the global plan is renewed at least this often
+    double blocked_lookahead_m = 3.0;     ///< a lethal cell on the plan this far ahead forces a replan ...
+    double blocked_ignore_m = 0.3;        ///< ... unless it is this close to the robot (under its own body)
+    int turn_target_index = 3;            ///< DWA finds nothing: turn on the spot toward this plan point (cells from its start)
+    double turn_rate_radps = 1.0;
+    double stuck_progress_m = 0.3;        ///< moving less than this ...
+    double stuck_timeout_s = 6.0;         ///< ... for this long means stuck: back up and replan
+    double backup_speed_mps = 0.15;
+    double backup_duration_s = 1.0;
+    double waypoint_tolerance_m = 0.5;    ///< a waypoint counts as reached this close
+    double goal_tolerance_m = 0.3;        ///< the goal counts as reached this close (own pose estimate)
+    std::vector<std::string> validate() const;         ///< everything, layers and planners included
+    std::vector<std::string> validate_policy() const;  ///< the policy constants alone
+};
+
+struct SystemParams {
+    /// The sensor on the robot's base (extrinsics): odometry poses the base, the points are the sensor's.
+    Isometry3 T_base_sensor = Isometry3::Identity();
+    KeyframeParams keyframe;
+    bool verification = true;  ///< with a CAD library: 4-DoF ICP, p_exist as existence evidence
+    verification::VerifyParams verify;
+    tracking::TrackerParams tracker;
+    NavigatorParams navigator;
+    /// Every problem, prefixed by its section ("tracker.min_hits must be >= 1").
+    std::vector<std::string> validate() const;
+};
+
+}  // namespace makeway::pipeline

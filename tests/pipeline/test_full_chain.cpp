@@ -1,0 +1,96 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "makeway/eval/scene_cad.hpp"
+#include "makeway/perception/detector.hpp"
+#include "makeway/pipeline/pipeline.hpp"
+#include "makeway/sim/route.hpp"
+#include "makeway/sim/scene_generator.hpp"
+#include "makeway/sim/sequence.hpp"
+
+namespace makeway::pipeline {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kWeights = fs::path(MAKEWAY_SOURCE_DIR) / "models" / "detector.pt";
+
+// The whole online system with the committed weights on a simulated drive it never trained on
+// (held-out seed, honest intensity, drifting wheel odometry): the final map holds the furniture
+// the robot passed, where it stands, and little else.
+TEST(FullChain, FindsTheFurnitureWhereItStands) {
+    ASSERT_TRUE(fs::exists(kWeights)) << "the default weights are committed: " << kWeights;
+    const perception::Detector detector = perception::Detector::load(kWeights);
+    // A trained network on an empty keyframe: nothing (it does fire below, so this says something).
+    EXPECT_TRUE(detector.detect(PointCloud{}).empty());
+
+    sim::SceneGenParams g;
+    g.seed = 1000021;  // held out: training seeds stay below 1000000
+    g.density = sim::Density::kMedium;
+    g.people = false;
+    const sim::Scene scene = sim::generate_scene(g);
+    const sim::RobotParams robot;
+    const auto route = sim::drive_route(scene, sim::CollisionChecker(scene, sim::models_of(scene), robot), robot);
+    ASSERT_TRUE(route.has_value());
+    sim::SequenceParams sp;
+    sp.seed = 5;
+    sim::SequenceSimulator drive(scene, *route, sp);
+
+    SystemParams params;
+    params.T_base_sensor = robot.T_robot_sensor();
+    const verification::CadLibrary cad = eval::scene_cad_library(scene);
+    Pipeline pipeline(params, scene.start, &detector, &cad);
+    std::vector<ObjectEstimate> objects;
+    std::vector<sim::ObjectState> truth;
+    std::vector<Eigen::Vector2d> path;
+    std::size_t detections = 0;
+    for (int f = 0; f < 80 && !drive.reached_goal(); ++f) {
+        const sim::SimFrame frame = drive.next();
+        const SweepResult r = pipeline.process_sweep({frame.points_sensor, frame.stamp_s, 0.1, frame.odometry_pose, frame.odometry_end_pose});
+        if (r.keyframe) {
+            detections += r.keyframe->detections.size();
+            path.emplace_back(frame.true_pose.x_m, frame.true_pose.y_m);
+        }
+        objects = r.objects;
+        truth = frame.objects;
+    }
+    ASSERT_GT(detections, 10u);
+    // Precision: every object in the map is a real one of its class, where it stands.
+    int correct = 0;
+    for (const ObjectEstimate& o : objects) {
+        for (const sim::ObjectState& t : truth) {
+            const bool near = (o.box_world.centre_m.head<2>() - t.box_world.centre_m.head<2>()).norm() < 0.3;
+            if (near && o.cls == t.cls) {
+                ++correct;
+                break;
+            }
+        }
+    }
+    // Recall: the furniture within 3 m of where the robot made keyframes.
+    int passed = 0, found = 0;
+    for (const sim::ObjectState& t : truth) {
+        double closest = 1e9;
+        for (const Eigen::Vector2d& p : path) closest = std::min(closest, (p - t.box_world.centre_m.head<2>()).norm());
+        if (closest > 3.0) continue;
+        ++passed;
+        for (const ObjectEstimate& o : objects) {
+            if ((o.box_world.centre_m.head<2>() - t.box_world.centre_m.head<2>()).norm() < 0.3 && o.cls == t.cls) {
+                ++found;
+                break;
+            }
+        }
+    }
+    ASSERT_GT(passed, 3);
+    ASSERT_FALSE(objects.empty());
+    EXPECT_GE(static_cast<double>(correct) / static_cast<double>(objects.size()), 0.8)
+        << correct << " of " << objects.size() << " map objects are real";
+    EXPECT_GE(static_cast<double>(found) / static_cast<double>(passed), 0.6) << found << " of " << passed << " passed objects found";
+    RecordProperty("map_objects", static_cast<int>(objects.size()));
+    RecordProperty("correct", correct);
+    RecordProperty("passed", passed);
+    RecordProperty("found", found);
+}
+
+}  // namespace
+}  // namespace makeway::pipeline

@@ -1,0 +1,197 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "../sim/sim_test_util.hpp"
+#include "makeway/common/angles.hpp"
+#include "makeway/common/statistics.hpp"
+#include "makeway/perception/accumulator.hpp"
+#include "makeway/pipeline/navigator.hpp"
+#include "makeway/pipeline/pipeline.hpp"
+#include "makeway/sim/lidar.hpp"
+
+namespace makeway::pipeline {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The no-truth rule, part 1: nothing in pipeline/ includes or links the simulator, the evaluation
+// or file formats (the CMake configure step refuses such a link too).
+TEST(NoTruthRule, PipelineSourcesReachNoSimulatorEvaluationOrIo) {
+    const fs::path dir = fs::path(MAKEWAY_SOURCE_DIR) / "src" / "makeway" / "pipeline";
+    const std::regex forbidden(R"((#include\s*["<](makeway/(sim|eval)/|io/))|makeway(::|_)(sim|eval|io)\b)");
+    int files = 0;
+    for (const auto& e : fs::directory_iterator(dir)) {
+        std::ifstream in(e.path());
+        std::string line;
+        for (int n = 1; std::getline(in, line); ++n) {
+            EXPECT_FALSE(std::regex_search(line, forbidden)) << e.path().filename() << ":" << n << ": " << line;
+        }
+        ++files;
+    }
+    EXPECT_GE(files, 9);
+}
+
+// A detector that records what it was given.
+class SpyDetector : public perception::ObjectDetector {
+public:
+    std::vector<Detection> detect(const PointCloud& cloud) const override {
+        seen.push_back(cloud.fields());
+        points.push_back(cloud.size());
+        return {};
+    }
+    double reach_m() const override { return 8.0; }
+    mutable std::vector<PointFields> seen;
+    mutable std::vector<std::size_t> points;
+};
+
+PointCloud labelled_sweep(std::size_t n) {
+    PointCloud c;
+    c.resize(n, PointFields::all());
+    for (std::size_t i = 0; i < n; ++i) {
+        const double a = 2.0 * kPi * static_cast<double>(i) / static_cast<double>(n);
+        c.xyz[i] = Eigen::Vector3f(static_cast<float>(3.0 * std::cos(a)), static_cast<float>(3.0 * std::sin(a)), 0.3f);
+        c.label[i] = 4;
+        c.instance[i] = 7;
+        c.time_s[i] = static_cast<float>(0.1 * static_cast<double>(i) / static_cast<double>(n));
+    }
+    return c;
+}
+
+// The no-truth rule, part 2: the simulator's labels and instance ids never reach perception.
+TEST(NoTruthRule, PerceptionNeverSeesLabelsOrInstanceIds) {
+    SpyDetector spy;
+    Pipeline pipeline({}, {}, &spy, nullptr);
+    for (int k = 0; k < 10; ++k) {
+        const SweepResult r = pipeline.process_sweep({labelled_sweep(2000), 0.1 * k, 0.1, Pose2{}, Pose2{}});
+        EXPECT_TRUE(r.points_world.label.empty());
+        EXPECT_TRUE(r.points_world.instance.empty());
+        if (r.keyframe) {
+            EXPECT_TRUE(r.keyframe->prepared.cloud_sensor.label.empty());
+            EXPECT_TRUE(r.keyframe->prepared.cloud_sensor.instance.empty());
+        }
+    }
+    ASSERT_EQ(spy.seen.size(), 2u);  // sweeps 5 and 10 (window full at 5, then every 5)
+    for (const PointFields& f : spy.seen) {
+        EXPECT_FALSE(f.label);
+        EXPECT_FALSE(f.instance);
+        EXPECT_TRUE(f.time);
+    }
+}
+
+TEST(Pipeline, KeyframeEveryFifthSweepOnceTheWindowIsFull) {
+    SpyDetector spy;
+    Pipeline pipeline({}, {}, &spy, nullptr);
+    std::vector<int> keyframes;
+    for (int k = 0; k < 16; ++k) {
+        if (pipeline.process_sweep({labelled_sweep(100), 0.1 * k, 0.1, Pose2{}, Pose2{}}).keyframe) keyframes.push_back(k);
+    }
+    EXPECT_EQ(keyframes, (std::vector<int>{4, 9, 14}));
+    EXPECT_EQ(pipeline.keyframes(), 3u);
+    EXPECT_EQ(spy.points.front(), 500u);  // five sweeps of 100 points (no plane: nothing removed)
+}
+
+TEST(Pipeline, EmptySweepsGiveDefinedEmptyResults) {
+    SpyDetector spy;
+    Pipeline pipeline({}, {1.0, 2.0, 0.5}, &spy, nullptr);
+    for (int k = 0; k < 6; ++k) {
+        const SweepResult r = pipeline.process_sweep({PointCloud{}, 0.1 * k, 0.1, std::nullopt, std::nullopt});
+        EXPECT_TRUE(r.objects.empty());
+        EXPECT_NEAR(r.pose.x_m, 1.0, 1e-12);  // no odometry: standing still at the start pose
+        if (r.keyframe) {
+            EXPECT_FALSE(r.keyframe->prepared.ground.found);
+            EXPECT_TRUE(r.keyframe->detections.empty());
+        }
+    }
+}
+
+TEST(Pipeline, InvalidParamsAreAllListedAtOnce) {
+    SystemParams p;
+    p.keyframe.window = 0;
+    p.tracker.min_hits = 0;
+    p.navigator.stuck_timeout_s = -1.0;
+    try {
+        Pipeline pipeline(p, {}, nullptr, nullptr);
+        ADD_FAILURE() << "accepted";
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("keyframe.window"), std::string::npos) << what;
+        EXPECT_NE(what.find("tracking."), std::string::npos) << what;
+        EXPECT_NE(what.find("navigation.stuck_timeout_s"), std::string::npos) << what;
+    }
+}
+
+// The pose is the start pose composed with the wheel odometry's motion since its first reading,
+// whatever the odometry frame's origin.
+TEST(Pipeline, PoseIsTheStartPosePlusTheOdometryIncrement) {
+    const Pose2 start{2.0, -1.0, kPi / 2};
+    Pipeline pipeline({}, start, nullptr, nullptr);
+    const Pose2 odom0{10.0, 10.0, kPi}, odom1{9.0, 10.0, kPi};  // 1 m forward in the odometry frame
+    (void)pipeline.process_sweep({PointCloud{}, 0.0, 0.1, odom0, odom0});
+    const SweepResult r = pipeline.process_sweep({PointCloud{}, 0.1, 0.1, odom0, odom1});
+    EXPECT_NEAR(r.pose.x_m, 2.0, 1e-9);
+    EXPECT_NEAR(r.pose.y_m, 0.0, 1e-9);  // forward from a start facing +y
+    EXPECT_NEAR(r.pose.yaw_rad, kPi / 2, 1e-9);
+}
+
+// De-skewing: a sweep cast while the robot drives an arc (0.75 m/s, 1 rad/s), de-skewed with the
+// sweep's start and end poses, lies on the room's surfaces; without de-skewing it does not.
+TEST(Deskew, SweepFromAKnownMotionMatchesTheStaticGeometry) {
+    const double half = 4.9, ceiling = 3.0;
+    sim::World world(sim::testing_util::box_room(half), {});
+    sim::LidarParams lidar;
+    lidar.range_noise_m = 0.0;
+    lidar.dropout = 0.0;
+    lidar.time_slices = 100;
+    const double v = 0.75, w = 1.0, height = 0.45;
+    auto T_world_sensor_at = [&](double t) {  // exact arc from (-1, 0.5) heading +x
+        const Eigen::Vector2d p(-1.0 + v / w * std::sin(w * t), 0.5 + v / w * (1.0 - std::cos(w * t)));
+        return make_T_xyz_yaw({p.x(), p.y(), height}, w * t);
+    };
+    const PointCloud sweep = sim::simulate_sweep(world, lidar, T_world_sensor_at, 0.0, 1, 0);
+    const perception::StampedSweep stamped{sweep, 0.0, 0.1, T_world_sensor_at(0.0), T_world_sensor_at(0.1)};
+    // Distance to the room's surfaces: inner wall faces at +-half, floor at 0, ceiling at 3 m.
+    auto surface_distance = [&](const Eigen::Vector3f& p) {
+        return std::min({std::abs(half - std::abs(p.x())), std::abs(half - std::abs(p.y())), std::abs(p.z()), std::abs(ceiling - p.z())});
+    };
+    std::vector<double> deskewed, skewed;
+    for (const Eigen::Vector3f& p : perception::deskew_to_world(stamped, true).xyz) deskewed.push_back(surface_distance(p));
+    for (const Eigen::Vector3f& p : perception::deskew_to_world(stamped, false).xyz) skewed.push_back(surface_distance(p));
+    ASSERT_EQ(deskewed.size(), 1800u * 32u);
+    EXPECT_LT(percentile(deskewed, 0.99), 0.01);
+    EXPECT_LT(percentile(deskewed, 1.0), 0.03);
+    EXPECT_GT(percentile(skewed, 0.9), 0.1);  // the same sweep taken as instantaneous is smeared
+}
+
+// The navigator: drives a hand-made empty room to its goal on a perfect pose, and gives a defined
+// answer when the goal lies inside a wall.
+TEST(Navigator, ReachesTheGoalInAnEmptyRoomAndReportsBlockedGoals) {
+    Costmap map({-3.0, -3.0}, 0.05, 120, 120, cost::kFree);
+    for (int i = 0; i < 120; ++i) {
+        for (int j : {0, 1, 118, 119}) map.at(i, j) = map.at(j, i) = cost::kLethal;
+    }
+    NavigatorParams params;
+    params.affordance_layer = false;
+    Navigator nav(map, params);
+    nav.set_route({{2.0, 2.0}});
+    Pose2 pose{-2.0, -2.0, 0.0};
+    double v = 0, w = 0;
+    bool arrived = false;
+    for (int k = 0; k < 300 && !arrived; ++k) {
+        const NavigatorStep s = nav.step({0.1 * k, pose, v, w, nullptr, Eigen::Vector3d::Zero(), {}});
+        arrived = s.arrived;
+        v = s.command.v_mps, w = s.command.w_radps;
+        pose = {pose.x_m + 0.1 * v * std::cos(pose.yaw_rad), pose.y_m + 0.1 * v * std::sin(pose.yaw_rad), wrap_angle(pose.yaw_rad + 0.1 * w)};
+    }
+    EXPECT_TRUE(arrived);
+    Navigator blocked(map, params);
+    blocked.set_route({{-2.96, 0.0}});  // inside the wall
+    const NavigatorStep s = blocked.step({0.0, {0.0, 0.0, 0.0}, 0, 0, nullptr, Eigen::Vector3d::Zero(), {}});
+    EXPECT_EQ(s.plan_status, planning::PlanStatus::kGoalBlocked);
+    EXPECT_EQ(s.command.v_mps, 0.0);
+}
+
+}  // namespace
+}  // namespace makeway::pipeline
