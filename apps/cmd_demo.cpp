@@ -87,7 +87,9 @@ int run_demo(const DemoOptions& options) {
                                  std::to_string(r.risk_time_s).substr(0, 4) + " s, " +
                                  std::to_string(r.distance_m).substr(0, 5) + " m";
         std::cout << "  navigate " << line << "\n";
-        io::write_nav_png(out / "routes" / (name + ".png"), scene, r.final_costmap, {{name, r.trajectory}}, r.last_plan,
+        std::vector<io::DrivenPath> drawn{{name, r.trajectory}};
+        if (!r.estimated_trajectory.empty() && r.method == "ours") drawn.push_back({"ours, believed (wheel odometry)", r.estimated_trajectory});
+        io::write_nav_png(out / "routes" / (name + ".png"), scene, r.final_costmap, drawn, r.last_plan,
                           scene.name + " / " + line, nav.system.navigator.affordance);
         paths.push_back({line, r.trajectory});
         runs_json.push_back(run_to_json(r, true));

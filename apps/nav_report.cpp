@@ -62,10 +62,31 @@ io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory) {
         j["detect_ms_median"] = median_p99(detect).first;
         j["verify_ms_median"] = median_p99(verify).first;
     }
+    if (!r.keyframes.empty()) {  // the online system: its keyframes, timing and final object map
+        std::vector<double> total, detect, verify;
+        for (const auto& t : r.keyframe_timing) {
+            total.push_back(t.total_ms);
+            detect.push_back(t.detect_ms);
+            verify.push_back(t.verify_ms);
+        }
+        j["keyframes"] = r.keyframes.size();
+        j["keyframe_ms_median"] = median_p99(total).first;
+        j["keyframe_ms_p99"] = median_p99(total).second;
+        j["detect_ms_median"] = median_p99(detect).first;
+        j["verify_ms_median"] = median_p99(verify).first;
+        io::Json objects = io::Json::array();
+        for (const ObjectEstimate& o : r.keyframes.back().objects) {
+            objects.push_back({{"id", o.id}, {"class", std::string(to_string(o.cls))}, {"box_world", io::to_json(o.box_world)}, {"existence", o.existence}});
+        }
+        j["final_objects"] = objects;
+    }
     if (with_trajectory) {
         io::Json traj = io::Json::array();
         for (const Pose2& p : r.trajectory) traj.push_back({p.x_m, p.y_m, p.yaw_rad});
         j["trajectory_xyyaw"] = traj;
+        io::Json believed = io::Json::array();
+        for (const Pose2& p : r.estimated_trajectory) believed.push_back({p.x_m, p.y_m, p.yaw_rad});
+        j["estimated_trajectory_xyyaw"] = believed;
     }
     return j;
 }
@@ -75,10 +96,12 @@ io::Json aggregate_runs(const std::vector<eval::NavRunResult>& runs, const std::
     for (const std::string& m : methods) {
         int n = 0, success = 0, collisions = 0, near = 0, people = 0;
         double t = 0, risk = 0, dist = 0, spl = 0;
-        std::vector<double> cycles;
+        std::vector<double> cycles, keyframe_ms, pose_error;
         for (const auto& r : runs) {
             if (r.method != m) continue;
             ++n;
+            for (const auto& k : r.keyframe_timing) keyframe_ms.push_back(k.total_ms);
+            pose_error.push_back(r.final_pose_error_m);
             collisions += r.collisions;
             people += r.person_contacts;
             near += r.near_misses;
@@ -105,7 +128,13 @@ io::Json aggregate_runs(const std::vector<eval::NavRunResult>& runs, const std::
                   {"near_misses", near},
                   {"spl_mean", n ? spl / n : 0.0},
                   {"cycle_ms_median", median},
-                  {"cycle_ms_p99", p99}};
+                  {"cycle_ms_p99", p99},
+                  {"final_pose_error_m_median", pose_error.empty() ? 0.0 : percentile(pose_error, 0.5)},
+                  {"final_pose_error_m_max", pose_error.empty() ? 0.0 : percentile(pose_error, 1.0)}};
+        if (!keyframe_ms.empty()) {  // the online system's keyframe chain (front end to object map)
+            agg[m]["keyframe_ms_median"] = median_p99(keyframe_ms).first;
+            agg[m]["keyframe_ms_p99"] = median_p99(keyframe_ms).second;
+        }
     }
     return agg;
 }

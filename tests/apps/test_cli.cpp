@@ -2,6 +2,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -153,6 +154,8 @@ TEST(Cli, DemoWritesItsOutputs) {
     ASSERT_EQ(s["navigation"].size(), weights ? 4u : 3u);
     if (weights) {
         EXPECT_EQ(s["navigation"][3]["method"], "ours");
+        // The full system's map holds the room's furniture (the study space: 34 pieces).
+        EXPECT_GE(s["navigation"][3]["final_objects"].size(), 8u) << s["navigation"][3].dump();
         EXPECT_TRUE(std::filesystem::exists(dir / "out" / "routes" / "ours.png"));
     }
     for (const auto& run : s["navigation"]) EXPECT_TRUE(run["reached_goal"].get<bool>()) << run["method"];
@@ -229,6 +232,14 @@ TEST(Cli, NavigateWritesRunRouteAndCostmap) {
     const io::Json ours = io::read_json(dir / "ours" / "run.json");
     EXPECT_EQ(ours["method"].get<std::string>(), "ours");
     EXPECT_TRUE(ours["success"].get<bool>());
+    // ... and its perception found the chair where it stands (0, 0.3), from its own pose.
+    bool chair_found = false;
+    for (const auto& o : ours["final_objects"]) {
+        const auto c = o["box_world"]["centre_m"];
+        chair_found |= o["class"] == "chair" && std::hypot(c[0].get<double>(), c[1].get<double>() - 0.3) < 0.3;
+    }
+    EXPECT_TRUE(chair_found) << ours["final_objects"].dump();
+    EXPECT_GT(ours["keyframes"].get<int>(), 5);
     r = run_makeway("navigate --scene " + (dir / "room.yaml").string() + " --method ours --model " + (dir / "nope.pt").string() +
                         " --out " + (dir / "ours2").string(), dir);
     EXPECT_EQ(r.exit_code, 2);

@@ -51,7 +51,7 @@ TEST(Navigation, EveryMethodReachesTheGoalWithoutCollisions) {
         EXPECT_TRUE(r.success) << name << ": " << r.failure;
         EXPECT_EQ(r.collisions, 0) << name;
         EXPECT_GT(r.min_clearance_m, 0.0) << name;
-        EXPECT_GT(r.distance_m, r.shortest_m - fast_params().goal_tolerance_m - 0.05) << name;  // stops within tolerance
+        EXPECT_GT(r.distance_m, r.shortest_m - fast_params().system.navigator.goal_tolerance_m - 0.05) << name;  // stops within tolerance
         EXPECT_LT(r.time_s, 40.0) << name;
         EXPECT_GT(r.spl, 0.5) << name;
         EXPECT_LE(r.spl, 1.0) << name;
@@ -68,6 +68,8 @@ TEST(Navigation, MethodsDifferOnlyInInflationAndObjects) {
     // ours: gt-perc's planner and zones, objects from the perception chain.
     EXPECT_TRUE(nav_method("ours", robot)->affordance);
     EXPECT_NEAR(nav_method("ours", robot)->inflation_radius_m, nav_method("gt-perc", robot)->inflation_radius_m, 1e-12);
+    EXPECT_TRUE(nav_method("ours", robot)->online);  // the only method on its own pose and perception
+    EXPECT_FALSE(nav_method("gt-perc", robot)->online);
     EXPECT_FALSE(nav_method("fast").has_value());
 }
 

@@ -8,7 +8,8 @@ namespace makeway::perception {
 namespace {
 
 TEST(BevGrid, PointsLandInTheirCellAndSlice) {
-    const BevGridParams g;  // 8 m, 0.1 m cells, 9 slices over [-0.5, 1.3) m
+    BevGridParams g;  // 8 m, 0.1 m cells, 9 slices over [-0.5, 1.3) m
+    g.intensity = true;
     PointCloud c;
     c.xyz = {{1.05f, -2.05f, 0.0f}, {1.05f, -2.05f, 0.05f}, {20.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 5.0f}};
     c.intensity = {0.4f, 0.6f, 1.0f, 1.0f};
@@ -24,6 +25,12 @@ TEST(BevGrid, PointsLandInTheirCellAndSlice) {
         for (int k = 0; k < n * n; ++k) total += bev[static_cast<std::size_t>(ch * n * n + k)];
     }
     EXPECT_FLOAT_EQ(static_cast<float>(total), std::log1p(2.0f));  // out-of-range points dropped
+    // The default grid is geometry only: no intensity channel, and intensity changes nothing.
+    const BevGridParams geometry;
+    EXPECT_EQ(geometry.channels(), geometry.height_slices + 1);
+    PointCloud brighter = c;
+    for (float& i : brighter.intensity) i *= 100.0f;
+    EXPECT_EQ(encode_bev(c, geometry), encode_bev(brighter, geometry));
 }
 
 TEST(BevGrid, DecodesPeaksIntoBoxesAndSuppressesDuplicates) {

@@ -153,7 +153,8 @@ TEST(Deskew, SweepFromAKnownMotionMatchesTheStaticGeometry) {
     const PointCloud sweep = sim::simulate_sweep(world, lidar, T_world_sensor_at, 0.0, 1, 0);
     const perception::StampedSweep stamped{sweep, 0.0, 0.1, T_world_sensor_at(0.0), T_world_sensor_at(0.1)};
     // Distance to the room's surfaces: inner wall faces at +-half, floor at 0, ceiling at 3 m.
-    auto surface_distance = [&](const Eigen::Vector3f& p) {
+    auto surface_distance = [&](const Eigen::Vector3f& q) {
+        const Eigen::Vector3d p = q.cast<double>();
         return std::min({std::abs(half - std::abs(p.x())), std::abs(half - std::abs(p.y())), std::abs(p.z()), std::abs(ceiling - p.z())});
     };
     std::vector<double> deskewed, skewed;

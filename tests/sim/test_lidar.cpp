@@ -191,11 +191,14 @@ double best_threshold_balanced_accuracy(std::vector<float> a, std::vector<float>
     return best;
 }
 
-// Intensity reveals the material, not the class: over a drive through a furnished room, no
-// threshold on a return's intensity tells chair points from table points much better than chance.
-// (With the old per-class reflectivity the same drive separated them perfectly.)
+// Intensity reveals the material, not the class: over drives through six furnished rooms (every
+// fourth sweep of each whole drive), no threshold on a return's intensity tells chair points from
+// table points much better than chance. (With the old per-class reflectivity, chairs 35 and tables
+// 80, one threshold separated them almost perfectly.) One room alone can be luckier or unluckier:
+// its few tables may all be of one material, as in a real room.
 TEST(Lidar, IntensityDoesNotGiveTheClassAway) {
-    for (std::uint64_t seed : {3, 8}) {
+    std::vector<float> chair, table;
+    for (std::uint64_t seed : {3, 8, 13, 21, 34, 55}) {
         SceneGenParams g;
         g.seed = seed;
         g.density = Density::kDense;
@@ -207,23 +210,23 @@ TEST(Lidar, IntensityDoesNotGiveTheClassAway) {
         ASSERT_TRUE(route.has_value());
         SequenceParams sp;
         sp.seed = seed;
-        sp.lidar.azimuth_step_deg = 0.4;
+        sp.lidar.azimuth_step_deg = 0.8;
         SequenceSimulator drive(scene, *route, sp);
-        std::vector<float> chair, table;
-        for (int f = 0; f < 40 && !drive.reached_goal(); ++f) {
+        for (int f = 0; f < 1000 && !drive.reached_goal(); ++f) {
             const SimFrame frame = drive.next();
+            if (f % 4 != 0) continue;
             for (std::size_t i = 0; i < frame.points_sensor.size(); ++i) {
                 const auto label = static_cast<SemanticLabel>(frame.points_sensor.label[i]);
                 if (label == SemanticLabel::kChair) chair.push_back(frame.points_sensor.intensity[i]);
                 if (label == SemanticLabel::kTable) table.push_back(frame.points_sensor.intensity[i]);
             }
         }
-        ASSERT_GT(chair.size(), 1000u);
-        ASSERT_GT(table.size(), 1000u);
-        const double accuracy = best_threshold_balanced_accuracy(chair, table);
-        EXPECT_LE(accuracy, 0.6) << "seed " << seed;
-        RecordProperty("balanced_accuracy_seed_" + std::to_string(seed), std::to_string(accuracy));
     }
+    ASSERT_GT(chair.size(), 10000u);
+    ASSERT_GT(table.size(), 10000u);
+    const double accuracy = best_threshold_balanced_accuracy(chair, table);
+    EXPECT_LE(accuracy, 0.6);
+    RecordProperty("balanced_accuracy", std::to_string(accuracy));
 }
 
 // Intensity falls with the incidence angle: the floor far from the sensor (grazing) returns less

@@ -47,12 +47,14 @@ struct SimSweep {
     double stamp_s = 0.0, duration_s = 0.1;
     Pose2 odometry_start, odometry_end;          // wheel odometry (drifting)
     Isometry3 T_world_sensor_start, T_world_sensor_end;  // truth
+    double v_mps = 0.0, w_radps = 0.0;                   // truth, at the sweep's end
 };
 
 // What the robot's software makes of a sweep: where it believes it is, the sweep in its world
 // frame, and the objects it feeds the costmap.
 struct Belief {
     Pose2 pose;
+    double v_mps = 0.0, w_radps = 0.0;
     PointCloud points_world;
     Eigen::Vector3d sensor_world_m = Eigen::Vector3d::Zero();
     std::vector<ObjectEstimate> objects;
@@ -144,11 +146,12 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
             return lift_to_3d(lerp(poses[static_cast<std::size_t>(i)], poses[static_cast<std::size_t>(i) + 1], u - i)) * T_robot_sensor;
         };
         const PointCloud sweep = sim::simulate_sweep(world, params.lidar, T_world_sensor_at, t, params.seed, static_cast<std::uint64_t>(k));
-        const Belief belief = perceive({&sweep, t, period, odometry_start, odometry.pose(), T_world_sensor_at(t), T_world_sensor_at(t + period)});
+        const Belief belief = perceive({&sweep, t, period, odometry_start, odometry.pose(), T_world_sensor_at(t),
+                                        T_world_sensor_at(t + period), state.v_mps, state.w_radps});
         out.estimated_trajectory.push_back(belief.pose);
         // Think: costmap, plan, DWA on the robot's own belief.
         const pipeline::NavigatorStep step = navigator.step(
-            {t + period, belief.pose, state.v_mps, state.w_radps, &belief.points_world, belief.sensor_world_m, belief.objects});
+            {t + period, belief.pose, belief.v_mps, belief.w_radps, &belief.points_world, belief.sensor_world_m, belief.objects});
         out.replans += step.replanned;
         out.recoveries += step.started_recovery;
         if (step.arrived) {
@@ -200,6 +203,8 @@ NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, Ob
     return drive(scene, method, params, [&](const SimSweep& s) {
         Belief b;
         b.pose = project_to_plane(s.T_world_sensor_end * T_sensor_robot);
+        b.v_mps = s.v_mps;
+        b.w_radps = s.w_radps;
         b.points_world = perception::deskew_to_world({*s.points_sensor, s.stamp_s, s.duration_s, s.T_world_sensor_start, s.T_world_sensor_end});
         b.sensor_world_m = s.T_world_sensor_end.translation();
         b.objects = source.objects({s.stamp_s + s.duration_s, s.T_world_sensor_end, s.points_sensor});
@@ -225,6 +230,10 @@ NavRunResult run_navigation_online(const sim::Scene& scene, const NavMethod& met
         }
         Belief b;
         b.pose = r.pose;
+        // Velocity from the wheel odometry's increment over the sweep, as the robot measures it.
+        const Isometry2 delta = to_isometry(s.odometry_start).inverse() * to_isometry(s.odometry_end);
+        b.v_mps = delta.translation().x() / s.duration_s;
+        b.w_radps = std::atan2(delta.linear()(1, 0), delta.linear()(0, 0)) / s.duration_s;
         b.sensor_world_m = r.T_world_sensor_end.translation();
         b.points_world = std::move(r.points_world);
         b.objects = std::move(r.objects);
