@@ -104,7 +104,8 @@ int run_demo(const DemoOptions& options) {
         table_markdown(agg, methods, 1) +
         "\n![every method](routes/all_methods.png)\n\nPer method, with its final costmap: "
         "[con](routes/con.png), [oppo](routes/oppo.png), [gt-perc](routes/gt-perc.png)" +
-        (detector ? std::string(", [ours](routes/ours.png) (detector, verification and tracking)") : std::string()) + ".\n";
+        (detector ? std::string(", [ours](routes/ours.png) (the online system on wheel odometry: detector, verification, object map; "
+                                    "its believed path drawn beside the true one)") : std::string()) + ".\n";
     io::write_file_atomic(out / "report.md", report);
     io::write_json(out / "summary.json", {{"scene", scene.name},
                                           {"objects", scene.objects.size()},

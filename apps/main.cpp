@@ -102,7 +102,7 @@ void add_navigate(CLI::App& app, NavigateOptions& o) {
     sub->add_option("--scene", o.scene, "Scene file (.yaml)")->required();
     sub->add_option("--method", o.method, "con (no semantics, inflation 3x robot radius), oppo (no semantics, "
                                           "inflation = robot radius), gt-perc (affordance zones from ground truth), "
-                                          "ours (the full system: detector, verification, object map)")
+                                          "ours (the online system on its own pose from wheel odometry: detector, verification, object map)")
         ->check(CLI::IsMember({"con", "oppo", "gt-perc", "ours"}))
         ->capture_default_str();
     sub->add_option("--model", o.model, "Detector weights for ours (default: models/detector.pt)");

@@ -48,20 +48,6 @@ io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory) {
                   {"cycle_ms_median", median},
                   {"cycle_ms_p99", p99},
                   {"final_pose_error_m", r.final_pose_error_m}};
-    if (!r.keyframes.empty()) {
-        std::vector<double> total, detect, verify;
-        for (const auto& t : r.keyframe_timing) {
-            total.push_back(t.total_ms);
-            detect.push_back(t.detect_ms);
-            verify.push_back(t.verify_ms);
-        }
-        j["keyframes"] = r.keyframes.size();
-        j["final_objects"] = r.keyframes.back().objects.size();
-        j["keyframe_ms_median"] = median_p99(total).first;
-        j["keyframe_ms_p99"] = median_p99(total).second;
-        j["detect_ms_median"] = median_p99(detect).first;
-        j["verify_ms_median"] = median_p99(verify).first;
-    }
     if (!r.keyframes.empty()) {  // the online system: its keyframes, timing and final object map
         std::vector<double> total, detect, verify;
         for (const auto& t : r.keyframe_timing) {

@@ -1,6 +1,6 @@
 #pragma once
-// One closed-loop navigation run of a named method with the object source it needs: none (con,
-// oppo), the ground truth (gt-perc) or the full perception chain (ours: keyframes, ground plane,
+// One closed-loop navigation run of a named method with what it needs: no objects (con, oppo), the
+// ground truth (gt-perc) or the online pipeline on wheel odometry (ours: keyframes, ground plane,
 // detector, verification against the CAD models of the scene's furniture, object map).
 #include <string>
 

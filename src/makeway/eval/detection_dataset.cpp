@@ -68,7 +68,7 @@ std::vector<LabelledKeyframe> generate_detection_dataset(const DatasetParams& p,
         pipeline::SystemParams system = p.system;
         system.keyframe.every = p.keyframe_every;
         system.T_base_sensor = sp.robot.T_robot_sensor();
-        pipeline::FrontEnd front_end(system, scene.start);
+        pipeline::FrontEnd front_end(system, simulator.start_pose());
         int made = 0;
         for (int f = 0; made < p.max_keyframes_per_scene && !simulator.reached_goal() && f < 2000; ++f) {
             const sim::SimFrame frame = simulator.next();

@@ -1,6 +1,6 @@
 #pragma once
-// Where the navigation stack gets its objects from. The benchmark swaps only this: none (the
-// classic planners), the simulator's ground truth (gt-perc), or later the perception chain (ours).
+// Where the truth-fed navigation methods get their objects from: none (the classic planners) or the
+// simulator's ground truth (gt-perc). The full system (ours) runs the online pipeline instead.
 #include <memory>
 #include <string>
 #include <vector>

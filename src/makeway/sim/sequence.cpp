@@ -38,6 +38,8 @@ SequenceSimulator::SequenceSimulator(const Scene& scene, std::vector<Eigen::Vect
         const Eigen::Vector2d next = route_.size() > 1 ? route_[1] : route_[0];
         state_.pose.yaw_rad = std::atan2(next.y() - scene.start.y_m, next.x() - scene.start.x_m);
     }
+    start_pose_ = state_.pose;
+    odometry_ = WheelOdometry(start_pose_, params.odometry, params.seed);  // the odometry frame is the world at the start
 }
 
 VelocityCommand SequenceSimulator::pure_pursuit(const RobotState& state) {

@@ -46,6 +46,8 @@ public:
     bool reached_goal() const { return reached_goal_; }
     const std::vector<Pose2>& trajectory() const { return trajectory_; }
     const World& world() const { return world_; }
+    /// Where the robot starts: the scene's start, turned to face the route (what a robot is told).
+    const Pose2& start_pose() const { return start_pose_; }
 
 private:
     VelocityCommand pure_pursuit(const RobotState& state);
@@ -56,6 +58,7 @@ private:
     World world_;
     CollisionChecker checker_;
     RobotState state_;
+    Pose2 start_pose_;
     WheelOdometry odometry_;
     std::size_t route_index_ = 0;
     int frame_index_ = 0;
