@@ -47,7 +47,8 @@ io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory) {
                   {"recoveries", r.recoveries},
                   {"cycle_ms_median", median},
                   {"cycle_ms_p99", p99},
-                  {"final_pose_error_m", r.final_pose_error_m}};
+                  {"final_pose_error_m", r.final_pose_error_m},
+                  {"stop_distance_m", r.stop_distance_m}};
     if (!r.keyframes.empty()) {  // the online system: its keyframes, timing and final object map
         std::vector<double> total, detect, verify;
         for (const auto& t : r.keyframe_timing) {

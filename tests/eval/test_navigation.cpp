@@ -52,6 +52,7 @@ TEST(Navigation, EveryMethodReachesTheGoalWithoutCollisions) {
         EXPECT_EQ(r.collisions, 0) << name;
         EXPECT_GT(r.min_clearance_m, 0.0) << name;
         EXPECT_GT(r.distance_m, r.shortest_m - fast_params().system.navigator.goal_tolerance_m - 0.05) << name;  // stops within tolerance
+        EXPECT_LT(r.stop_distance_m, fast_params().system.navigator.goal_tolerance_m) << name;  // truth-fed: stops for real
         EXPECT_LT(r.time_s, 40.0) << name;
         EXPECT_GT(r.spl, 0.5) << name;
         EXPECT_LE(r.spl, 1.0) << name;

@@ -191,6 +191,40 @@ TEST(Verification, RejectsBoxesOnWallsAndEmptySegments) {
     EXPECT_NE(verify_detection(scan.cloud_sensor, table, lib, {}).reason.find("no CAD model"), std::string::npos);
 }
 
+// The parallel path gives the serial path's answers, detection by detection.
+TEST(Verification, SerialAndParallelVerificationAgree) {
+    const ChairScan scan = scan_chair(sim::FurnitureStyle::kFourLegChair, 4, 0.6, 3);
+    const CadLibrary lib = library_with(sim::FurnitureStyle::kFourLegChair, 4);
+    std::vector<Detection> dets;
+    Rng rng = make_rng(9);
+    for (int k = 0; k < 12; ++k) {
+        Detection d;
+        d.cls = ObjectClass::kChair;
+        d.box_sensor = scan.box_sensor;
+        d.box_sensor.centre_m.x() += uniform(rng, -0.15, 0.15);
+        d.box_sensor.yaw_rad += uniform(rng, -3.1, 3.1);
+        dets.push_back(d);
+    }
+    dets.push_back(dets.front());
+    dets.back().box_sensor.centre_m = {6.4, -2.0, 0.0};  // on the wall: rejected in both
+    VerifyParams serial, parallel;
+    serial.num_threads = 1;
+    parallel.num_threads = 2;
+    const auto a = verify_detections(scan.cloud_sensor, dets, lib, serial);
+    const auto b = verify_detections(scan.cloud_sensor, dets, lib, parallel);
+    ASSERT_EQ(a.size(), dets.size());
+    ASSERT_EQ(b.size(), dets.size());
+    int accepted = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i].accepted, b[i].accepted) << i;
+        EXPECT_EQ(a[i].residual_m, b[i].residual_m) << i;
+        EXPECT_TRUE(a[i].T_sensor_object.isApprox(b[i].T_sensor_object, 0.0)) << i;
+        accepted += a[i].accepted;
+    }
+    EXPECT_GE(accepted, 6);
+    EXPECT_FALSE(a.back().accepted);
+}
+
 TEST(Verification, ARoomOfVariantsTriesOnlyTheClosestInSize) {
     // The room's library: the true chair among eight variants of its style plus other styles.
     const ChairScan scan = scan_chair(sim::FurnitureStyle::kFourLegChair, 4, 0.6, 5);

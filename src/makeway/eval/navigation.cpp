@@ -165,7 +165,8 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
     const Pose2 believed = out.estimated_trajectory.empty() ? state.pose : out.estimated_trajectory.back();
     out.final_pose_error_m = std::hypot(believed.x_m - state.pose.x_m, believed.y_m - state.pose.y_m);
     const double to_goal = std::hypot(state.pose.x_m - scene.goal.x_m, state.pose.y_m - scene.goal.y_m);
-    out.reached_goal = navigator.arrived() && to_goal < params.system.navigator.goal_tolerance_m;
+    out.stop_distance_m = to_goal;
+    out.reached_goal = navigator.arrived() && to_goal < params.arrival_radius_m;
     if (!navigator.arrived()) {
         out.time_s = params.time_limit_s;
         out.failure = "time limit";

@@ -1,5 +1,8 @@
 #include "makeway/verification/verifier.hpp"
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -15,6 +18,7 @@ std::vector<std::string> VerifyParams::validate() const {
     if (candidate_iterations < 0 || candidate_iterations > 100) p.push_back("candidate_iterations must be in [0, 100]");
     if (max_models < 1) p.push_back("max_models must be at least 1");
     if (!(min_yaw_margin >= 0.0)) p.push_back("min_yaw_margin must be >= 0");
+    if (num_threads < 1 || num_threads > 256) p.push_back("num_threads must be in [1, 256]");
     return p;
 }
 
@@ -147,12 +151,22 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
 
 std::vector<VerifiedDetection> verify_detections(const PointCloud& cloud, const std::vector<Detection>& detections, const CadLibrary& library,
                                                  const VerifyParams& params, const std::function<std::optional<double>(double, double)>& floor_z_at) {
-    std::vector<VerifiedDetection> out;
-    out.reserve(detections.size());
-    for (const Detection& d : detections) {
+    std::vector<VerifiedDetection> out(detections.size());
+    auto verify_one = [&](std::size_t i) {
+        const Detection& d = detections[i];
         const std::optional<double> floor_z = floor_z_at ? floor_z_at(d.box_sensor.centre_m.x(), d.box_sensor.centre_m.y()) : std::nullopt;
-        out.push_back(verify_detection(cloud, d, library, params, floor_z));
+        out[i] = verify_detection(cloud, d, library, params, floor_z);
+    };
+    if (params.num_threads <= 1 || detections.size() < 2) {
+        for (std::size_t i = 0; i < detections.size(); ++i) verify_one(i);
+        return out;
     }
+    // Detections are independent and each writes its own slot: the result does not depend on the
+    // schedule. The arena caps the threads without touching the process-wide TBB settings.
+    tbb::task_arena arena(params.num_threads);
+    arena.execute([&] {
+        tbb::parallel_for(std::size_t{0}, detections.size(), [&](std::size_t i) { verify_one(i); });
+    });
     return out;
 }
 
