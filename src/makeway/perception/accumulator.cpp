@@ -1,6 +1,7 @@
 #include "makeway/perception/accumulator.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace makeway::perception {
 
@@ -10,24 +11,34 @@ std::vector<std::string> AccumulatorParams::validate() const {
     return p;
 }
 
-void KeyframeAccumulator::add(StampedSweep sweep) {
-    sweeps_.push_back(std::move(sweep));
+void KeyframeAccumulator::add(const StampedSweep& sweep) {
+    sweeps_.push_back({deskew_sweep(sweep, Isometry3::Identity(), params_.deskew), sweep.stamp_s, sweep.T_world_sensor_start});
     while (static_cast<int>(sweeps_.size()) > params_.window) sweeps_.pop_front();
+}
+
+const PointCloud& KeyframeAccumulator::newest_world() const {
+    static const PointCloud kEmpty;
+    return sweeps_.empty() ? kEmpty : sweeps_.back().points_world;
 }
 
 PointCloud deskew_sweep(const StampedSweep& s, const Isometry3& T_target_world, bool deskew) {
     PointCloud c = s.points_sensor;
     const bool moved = !s.T_world_sensor_start.isApprox(s.T_world_sensor_end, 1e-12);
     const bool per_point = deskew && moved && c.time_s.size() == c.size() && s.duration_s > 0.0;
-    const Isometry3 T_target_start = T_target_world * s.T_world_sensor_start;
+    // Points fired together share a time (a column of the scan): the pose is computed once per
+    // distinct time, in float for the per-point product.
+    float last_time = std::numeric_limits<float>::quiet_NaN();
+    Eigen::Matrix3f R = (T_target_world * s.T_world_sensor_start).linear().cast<float>();
+    Eigen::Vector3f t = (T_target_world * s.T_world_sensor_start).translation().cast<float>();
     for (std::size_t i = 0; i < c.size(); ++i) {
-        if (per_point) {
+        if (per_point && !(c.time_s[i] == last_time)) {
+            last_time = c.time_s[i];
             const double alpha = std::clamp(c.time_s[i] / s.duration_s, 0.0, 1.0);
-            const Isometry3 T_target_point = T_target_world * interpolate(s.T_world_sensor_start, s.T_world_sensor_end, alpha);
-            c.xyz[i] = (T_target_point * c.xyz[i].cast<double>()).cast<float>();
-        } else {
-            c.xyz[i] = (T_target_start * c.xyz[i].cast<double>()).cast<float>();
+            const Isometry3 T = T_target_world * interpolate(s.T_world_sensor_start, s.T_world_sensor_end, alpha);
+            R = T.linear().cast<float>();
+            t = T.translation().cast<float>();
         }
+        c.xyz[i] = R * c.xyz[i] + t;
     }
     return c;
 }
@@ -35,12 +46,16 @@ PointCloud deskew_sweep(const StampedSweep& s, const Isometry3& T_target_world, 
 PointCloud KeyframeAccumulator::keyframe(Isometry3* T_world_keyframe) const {
     PointCloud out;
     if (sweeps_.empty()) return out;
-    const StampedSweep& newest = sweeps_.back();
-    const Isometry3 T_keyframe_world = newest.T_world_sensor_start.inverse();
+    const WorldSweep& newest = sweeps_.back();
     if (T_world_keyframe) *T_world_keyframe = newest.T_world_sensor_start;
-    for (const StampedSweep& s : sweeps_) {
-        PointCloud c = deskew_sweep(s, T_keyframe_world, params_.deskew);
-        for (float& t : c.time_s) t = static_cast<float>(t + s.stamp_s - newest.stamp_s);
+    const Isometry3 T_keyframe_world = newest.T_world_sensor_start.inverse();
+    const Eigen::Matrix3f R = T_keyframe_world.linear().cast<float>();
+    const Eigen::Vector3f t = T_keyframe_world.translation().cast<float>();
+    for (const WorldSweep& s : sweeps_) {
+        PointCloud c = s.points_world;
+        for (Eigen::Vector3f& p : c.xyz) p = R * p + t;
+        const auto dt = static_cast<float>(s.stamp_s - newest.stamp_s);
+        for (float& time : c.time_s) time += dt;
         out.append(c);
     }
     return out;

@@ -38,17 +38,26 @@ inline PointCloud deskew_to_world(const StampedSweep& sweep, bool deskew = true)
 class KeyframeAccumulator {
 public:
     explicit KeyframeAccumulator(const AccumulatorParams& params = {}) : params_(params) {}
-    void add(StampedSweep sweep);
+    /// De-skews the sweep into the world frame once, on arrival: a keyframe is then one rigid
+    /// transform per point, not one interpolated pose per point for every keyframe it is part of.
+    void add(const StampedSweep& sweep);
     bool full() const { return static_cast<int>(sweeps_.size()) >= params_.window; }
     std::size_t size() const { return sweeps_.size(); }
+    /// The newest sweep de-skewed into the world frame (empty before the first add).
+    const PointCloud& newest_world() const;
 
     /// Every point of the window in the newest sweep's start frame (T_world_keyframe), channels kept;
     /// `time_s` becomes time relative to the keyframe stamp. Empty when no sweep was added.
     PointCloud keyframe(Isometry3* T_world_keyframe = nullptr) const;
 
 private:
+    struct WorldSweep {
+        PointCloud points_world;
+        double stamp_s = 0.0;
+        Isometry3 T_world_sensor_start = Isometry3::Identity();
+    };
     AccumulatorParams params_;
-    std::deque<StampedSweep> sweeps_;
+    std::deque<WorldSweep> sweeps_;
 };
 
 }  // namespace makeway::perception

@@ -19,6 +19,7 @@ Isometry3 FrontEnd::T_world_sensor_at(const Pose2& odometry) const {
 
 FrontEndResult FrontEnd::add(const Sweep& sweep) {
     FrontEndResult out;
+    const Clock::time_point t0 = Clock::now();
     // Pose: the start pose plus the wheel odometry's motion since the first reading (the odometry
     // frame's origin is wherever the robot was switched on). Start and end poses let every point
     // be de-skewed by its own time.
@@ -31,8 +32,9 @@ FrontEndResult FrontEnd::add(const Sweep& sweep) {
     out.pose = to_pose2(*T_world_odom_ * to_isometry(odom_end));
     perception::StampedSweep stamped{sweep.points_sensor, sweep.stamp_s, sweep.duration_s, out.T_world_sensor_start,
                                      out.T_world_sensor_end};
-    out.points_world = perception::deskew_to_world(stamped, params_.keyframe.deskew);
-    accumulator_.add(std::move(stamped));
+    accumulator_.add(stamped);
+    out.points_world = accumulator_.newest_world();
+    out.deskew_ms = ms_since(t0);
     if (!accumulator_.full() || sweeps_++ % static_cast<std::size_t>(params_.keyframe.every) != 0) return out;
 
     // Keyframe: the window in the newest sweep's frame, then the ground plane (fitted once: the

@@ -36,6 +36,7 @@ struct FrontEndResult {
     Pose2 pose;              ///< the base at the sweep's end, estimated
     PointCloud points_world; ///< the sweep de-skewed into the world frame
     std::optional<FrontEndKeyframe> keyframe;
+    double deskew_ms = 0.0;  ///< pose and de-skewing of this sweep
 };
 
 class FrontEnd {

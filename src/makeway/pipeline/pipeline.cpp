@@ -48,7 +48,7 @@ SweepResult Pipeline::process_sweep(const Sweep& sweep) {
     out.T_world_sensor_end = front.T_world_sensor_end;
     out.pose = front.pose;
     out.points_world = std::move(front.points_world);
-    out.timing.pose_ms = ms_since(t0);
+    out.timing.deskew_ms = front.deskew_ms;
     // Keyframe: detect, verify, track.
     if (front.keyframe) {
         out.keyframe = process_keyframe(std::move(*front.keyframe), sweep.stamp_s, out.timing);

@@ -30,8 +30,11 @@ namespace makeway::pipeline {
 
 /// Wall-clock time of each stage [ms] (zero for stages that did not run).
 struct StageTiming {
-    double pose_ms = 0.0, accumulate_ms = 0.0, ground_ms = 0.0, detect_ms = 0.0, verify_ms = 0.0, track_ms = 0.0;
-    double total_ms = 0.0;
+    double deskew_ms = 0.0;  ///< every sweep: its pose and de-skewing into the world
+    double accumulate_ms = 0.0, ground_ms = 0.0, detect_ms = 0.0, verify_ms = 0.0, track_ms = 0.0;  ///< keyframes
+    double total_ms = 0.0;   ///< the whole process_sweep
+    /// The keyframe chain: accumulation to the object map.
+    double keyframe_ms() const { return accumulate_ms + ground_ms + detect_ms + verify_ms + track_ms; }
 };
 
 /// Everything one keyframe produced, for tests, evaluation and pictures (no side channels).
