@@ -2,7 +2,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <regex>
 
 #include "../sim/sim_test_util.hpp"
 #include "makeway/common/angles.hpp"
@@ -21,13 +20,16 @@ namespace fs = std::filesystem;
 // or file formats (the CMake configure step refuses such a link too).
 TEST(NoTruthRule, PipelineSourcesReachNoSimulatorEvaluationOrIo) {
     const fs::path dir = fs::path(MAKEWAY_SOURCE_DIR) / "src" / "makeway" / "pipeline";
-    const std::regex forbidden(R"((#include\s*["<](makeway/(sim|eval)/|io/))|makeway(::|_)(sim|eval|io)\b)");
+    const std::vector<std::string> forbidden{"\"makeway/sim/", "\"makeway/eval/", "\"io/",          "makeway::sim",
+                                             "makeway::eval", "makeway::io",    "makeway_sim", "makeway_eval"};
     int files = 0;
     for (const auto& e : fs::directory_iterator(dir)) {
         std::ifstream in(e.path());
         std::string line;
         for (int n = 1; std::getline(in, line); ++n) {
-            EXPECT_FALSE(std::regex_search(line, forbidden)) << e.path().filename() << ":" << n << ": " << line;
+            for (const std::string& f : forbidden) {
+                EXPECT_EQ(line.find(f), std::string::npos) << e.path().filename() << ":" << n << ": " << line;
+            }
         }
         ++files;
     }

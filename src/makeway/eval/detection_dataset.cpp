@@ -85,8 +85,8 @@ std::vector<LabelledKeyframe> generate_detection_dataset(const DatasetParams& p,
             kf.stamp_s = frame.stamp_s;
             kf.T_world_sensor = front.keyframe->T_world_keyframe;
             if (front.keyframe->prepared.ground.found) {
-                const perception::GroundPlaneResult& g = front.keyframe->prepared.ground;
-                kf.ground_plane_sensor = Eigen::Vector4d(g.normal.x(), g.normal.y(), g.normal.z(), g.offset);
+                const perception::GroundPlaneResult& plane = front.keyframe->prepared.ground;
+                kf.ground_plane_sensor = Eigen::Vector4d(plane.normal.x(), plane.normal.y(), plane.normal.z(), plane.offset);
             }
             for (const sim::ObjectState& o : frame.objects) {
                 const OrientedBox box = o.box_world.transformed(T_keyframe_world);
