@@ -123,6 +123,13 @@ TEST(Pipeline, InvalidParamsAreAllListedAtOnce) {
         EXPECT_NE(what.find("tracking."), std::string::npos) << what;
         EXPECT_NE(what.find("navigation.stuck_timeout_s"), std::string::npos) << what;
     }
+    // ICP levels that do not match the CAD library's are caught before the first sweep.
+    SystemParams icp;
+    icp.verify.icp.iterations = {10};
+    icp.verify.icp.max_correspondence_m = {0.1};
+    const verification::CadLibrary library;
+    EXPECT_THROW(Pipeline(icp, {}, nullptr, &library), std::invalid_argument);
+    EXPECT_NO_THROW(Pipeline(icp, {}, nullptr, nullptr));
 }
 
 // The pose is the start pose composed with the wheel odometry's motion since its first reading,

@@ -10,8 +10,15 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
-const SystemParams& validated(const SystemParams& params) {
-    const std::vector<std::string> problems = params.validate();
+// Every problem of the parameters, and of the ICP levels against the CAD library's.
+const SystemParams& validated(const SystemParams& params, const verification::CadLibrary* library) {
+    std::vector<std::string> problems = params.validate();
+    if (library) {
+        for (const std::string& p : library->params().validate()) problems.push_back("cad_library." + p);
+        for (const std::string& p : params.verify.icp.validate(library->params().voxel_sizes_m.size())) {
+            problems.push_back("verification.icp." + p);
+        }
+    }
     if (problems.empty()) return params;
     std::string all;
     for (const std::string& p : problems) all += (all.empty() ? "" : "; ") + p;
@@ -29,7 +36,7 @@ tracking::TrackerParams tracker_params_for(const perception::ObjectDetector* det
 
 Pipeline::Pipeline(const SystemParams& params, const Pose2& start_pose, const perception::ObjectDetector* detector,
                    const verification::CadLibrary* library)
-    : params_(validated(params)),
+    : params_(validated(params, library)),
       detector_(detector),
       library_(library),
       front_end_(params, start_pose),

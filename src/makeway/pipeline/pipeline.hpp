@@ -62,7 +62,8 @@ struct SweepResult {
 class Pipeline {
 public:
     /// `detector` and `library` may be null (no detection / no verification); both must outlive
-    /// the pipeline. Throws std::invalid_argument listing every problem of `params`.
+    /// the pipeline. Throws std::invalid_argument listing every problem of `params` (and of its ICP levels against
+    /// the library's).
     Pipeline(const SystemParams& params, const Pose2& start_pose, const perception::ObjectDetector* detector,
              const verification::CadLibrary* library);
 

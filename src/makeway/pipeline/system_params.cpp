@@ -1,5 +1,7 @@
 #include "makeway/pipeline/system_params.hpp"
 
+#include "makeway/perception/accumulator.hpp"
+
 namespace makeway::pipeline {
 namespace {
 
@@ -11,7 +13,7 @@ void add(std::vector<std::string>& out, const std::string& prefix, const std::ve
 
 std::vector<std::string> KeyframeParams::validate() const {
     std::vector<std::string> p;
-    if (window < 1 || window > 100) p.push_back("window must be in [1, 100]");
+    p = perception::AccumulatorParams{.window = window, .deskew = deskew}.validate();
     if (every < 1 || every > 1000) p.push_back("every must be in [1, 1000]");
     add(p, "ground", ground.validate());
     add(p, "ground_filter", ground_filter.validate());
