@@ -36,11 +36,6 @@ double distance_to_box(const OrientedBox& box, const Eigen::Vector2d& p) {
     return q.cwiseMax(0.0).norm();
 }
 
-Pose2 lerp(const Pose2& a, const Pose2& b, double alpha) {
-    return {a.x_m + alpha * (b.x_m - a.x_m), a.y_m + alpha * (b.y_m - a.y_m),
-            wrap_angle(a.yaw_rad + alpha * angle_diff(b.yaw_rad, a.yaw_rad))};
-}
-
 // One sweep as the simulator made it: what a robot receives, and the truth the baselines get.
 struct SimSweep {
     const PointCloud* points_sensor = nullptr;
@@ -140,11 +135,7 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
         }
         out.min_clearance_m = std::min(out.min_clearance_m, checker.clearance_m(state.pose, t + period, 2.0));
         // Sense: the sweep over that period, from the moving sensor.
-        auto T_world_sensor_at = [&](double ts) {
-            const double u = std::clamp((ts - t) / dt, 0.0, static_cast<double>(params.physics_steps));
-            const int i = std::min(static_cast<int>(u), params.physics_steps - 1);
-            return lift_to_3d(lerp(poses[static_cast<std::size_t>(i)], poses[static_cast<std::size_t>(i) + 1], u - i)) * T_robot_sensor;
-        };
+        const sim::PoseAtTime T_world_sensor_at = sim::sensor_pose_along(std::move(poses), t, dt, T_robot_sensor);
         const PointCloud sweep = sim::simulate_sweep(world, params.lidar, T_world_sensor_at, t, params.seed, static_cast<std::uint64_t>(k));
         const Belief belief = perceive({&sweep, t, period, odometry_start, odometry.pose(), T_world_sensor_at(t),
                                         T_world_sensor_at(t + period), state.v_mps, state.w_radps});

@@ -17,7 +17,7 @@ Isometry3 FrontEnd::T_world_sensor_at(const Pose2& odometry) const {
     return lift_to_3d(to_pose2(*T_world_odom_ * to_isometry(odometry))) * params_.T_base_sensor;
 }
 
-FrontEndResult FrontEnd::add(const Sweep& sweep) {
+FrontEndResult FrontEnd::add(Sweep sweep) {
     FrontEndResult out;
     const Clock::time_point t0 = Clock::now();
     // Pose: the start pose plus the wheel odometry's motion since the first reading (the odometry
@@ -30,7 +30,7 @@ FrontEndResult FrontEnd::add(const Sweep& sweep) {
     out.T_world_sensor_start = T_world_sensor_at(odom_start);
     out.T_world_sensor_end = T_world_sensor_at(odom_end);
     out.pose = to_pose2(*T_world_odom_ * to_isometry(odom_end));
-    perception::StampedSweep stamped{sweep.points_sensor, sweep.stamp_s, sweep.duration_s, out.T_world_sensor_start,
+    const perception::StampedSweep stamped{std::move(sweep.points_sensor), sweep.stamp_s, sweep.duration_s, out.T_world_sensor_start,
                                      out.T_world_sensor_end};
     accumulator_.add(stamped);
     out.points_world = accumulator_.newest_world();

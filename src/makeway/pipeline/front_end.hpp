@@ -44,7 +44,7 @@ public:
     /// `params.validate()` is the caller's (the Pipeline checks it once).
     FrontEnd(const SystemParams& params, const Pose2& start_pose);
     /// Channels are kept as given (the Pipeline strips the simulator's before).
-    FrontEndResult add(const Sweep& sweep);
+    FrontEndResult add(Sweep sweep);
 
 private:
     Isometry3 T_world_sensor_at(const Pose2& odometry) const;

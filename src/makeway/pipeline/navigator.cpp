@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <stdexcept>
 
 #include "makeway/common/angles.hpp"
 #include "makeway/costmap/affordance_layer.hpp"
@@ -17,11 +16,7 @@ namespace makeway::pipeline {
 Navigator::Navigator(const Costmap& static_map, const NavigatorParams& params)
     : params_(params),
       layered_(Costmap(static_map.origin_m, static_map.resolution_m, static_map.width, static_map.height)) {
-    if (const auto problems = params.validate(); !problems.empty()) {
-        std::string all;
-        for (const std::string& p : problems) all += (all.empty() ? "" : "; ") + p;
-        throw std::invalid_argument(all);
-    }
+    throw_if_problems(params.validate());
     // The stack: static (the known building), obstacle (LiDAR), affordance (objects), inflation last.
     layered_.add_layer(std::make_unique<costmap::StaticLayer>(static_map));
     layered_.add_layer(std::make_unique<costmap::ObstacleLayer>(static_map, params.obstacle));

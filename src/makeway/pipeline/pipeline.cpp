@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <stdexcept>
 
 namespace makeway::pipeline {
 namespace {
@@ -19,10 +18,8 @@ const SystemParams& validated(const SystemParams& params, const verification::Ca
             problems.push_back("verification.icp." + p);
         }
     }
-    if (problems.empty()) return params;
-    std::string all;
-    for (const std::string& p : problems) all += (all.empty() ? "" : "; ") + p;
-    throw std::invalid_argument(all);
+    throw_if_problems(problems);
+    return params;
 }
 
 }  // namespace
@@ -50,7 +47,7 @@ SweepResult Pipeline::process_sweep(const Sweep& sweep) {
     // simulator's labels and instance ids are dropped first: only what a sensor measures enters.
     Sweep measured = sweep;
     measured.points_sensor = sensor_channels_only(std::move(measured.points_sensor));
-    FrontEndResult front = front_end_.add(measured);
+    FrontEndResult front = front_end_.add(std::move(measured));
     out.T_world_sensor_start = front.T_world_sensor_start;
     out.T_world_sensor_end = front.T_world_sensor_end;
     out.pose = front.pose;

@@ -1,5 +1,7 @@
 #include "makeway/pipeline/system_params.hpp"
 
+#include <stdexcept>
+
 #include "makeway/perception/accumulator.hpp"
 
 namespace makeway::pipeline {
@@ -10,6 +12,13 @@ void add(std::vector<std::string>& out, const std::string& prefix, const std::ve
 }
 
 }  // namespace
+
+void throw_if_problems(const std::vector<std::string>& problems) {
+    if (problems.empty()) return;
+    std::string all;
+    for (const std::string& p : problems) all += (all.empty() ? "" : "; ") + p;
+    throw std::invalid_argument(all);
+}
 
 std::vector<std::string> KeyframeParams::validate() const {
     std::vector<std::string> p;

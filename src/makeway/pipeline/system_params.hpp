@@ -62,4 +62,7 @@ struct SystemParams {
     std::vector<std::string> validate() const;
 };
 
+/// Throws std::invalid_argument with every problem on one line ("a; b; c"); nothing when empty.
+void throw_if_problems(const std::vector<std::string>& problems);
+
 }  // namespace makeway::pipeline

@@ -37,6 +37,20 @@ struct RayResult {
 
 }  // namespace
 
+PoseAtTime sensor_pose_along(std::vector<Pose2> base_poses, double t0_s, double dt_s, const Isometry3& T_robot_sensor) {
+    return [poses = std::move(base_poses), t0_s, dt_s, T_robot_sensor](double t_s) {
+        const int steps = static_cast<int>(poses.size()) - 1;
+        const double u = std::clamp((t_s - t0_s) / dt_s, 0.0, static_cast<double>(steps));
+        const int i = std::min(static_cast<int>(u), steps - 1);
+        const Pose2& a = poses[static_cast<std::size_t>(i)];
+        const Pose2& b = poses[static_cast<std::size_t>(i) + 1];
+        const double alpha = u - i;
+        const Pose2 p{a.x_m + alpha * (b.x_m - a.x_m), a.y_m + alpha * (b.y_m - a.y_m),
+                      wrap_angle(a.yaw_rad + alpha * angle_diff(b.yaw_rad, a.yaw_rad))};
+        return lift_to_3d(p) * T_robot_sensor;
+    };
+}
+
 const std::vector<double>& vlp32c_elevations_deg() {
     static const std::vector<double> kAngles{
         -25.0,  -15.639, -11.31, -8.843, -7.254, -6.148, -5.333, -4.667, -4.0,  -3.667, -3.333,

@@ -39,6 +39,11 @@ struct LidarParams {
 /// Sensor pose at an absolute time [s] (T_world_sensor).
 using PoseAtTime = std::function<Isometry3(double t_s)>;
 
+/// The sensor's pose through a stretch of driving: the robot's base at `base_poses[i]` at time
+/// t0_s + i dt_s, linear in between (yaw along the shorter turn), held at the ends; the sensor
+/// mounted at T_robot_sensor. Needs at least two poses.
+PoseAtTime sensor_pose_along(std::vector<Pose2> base_poses, double t0_s, double dt_s, const Isometry3& T_robot_sensor);
+
 struct SweepStats {
     std::size_t rays = 0;
     std::size_t returns = 0;

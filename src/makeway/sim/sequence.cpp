@@ -5,14 +5,6 @@
 #include "makeway/common/angles.hpp"
 
 namespace makeway::sim {
-namespace {
-
-Pose2 lerp(const Pose2& a, const Pose2& b, double alpha) {
-    return {a.x_m + alpha * (b.x_m - a.x_m), a.y_m + alpha * (b.y_m - a.y_m),
-            wrap_angle(a.yaw_rad + alpha * angle_diff(b.yaw_rad, a.yaw_rad))};
-}
-
-}  // namespace
 
 std::vector<std::string> SequenceParams::validate() const {
     std::vector<std::string> p;
@@ -86,13 +78,8 @@ SimFrame SequenceSimulator::next() {
         f.collided |= checker_.collides(state_.pose, f.stamp_s + (i + 1) * dt);
     }
     f.odometry_end_pose = odometry_.pose();
-    const Isometry3 T_robot_sensor = params_.robot.T_robot_sensor();
     const double t0 = f.stamp_s;
-    auto T_world_sensor_at = [&](double t_s) {
-        const double u = std::clamp((t_s - t0) / dt, 0.0, static_cast<double>(steps));
-        const int i = std::min(static_cast<int>(u), steps - 1);
-        return lift_to_3d(lerp(poses[i], poses[i + 1], u - i)) * T_robot_sensor;
-    };
+    const PoseAtTime T_world_sensor_at = sensor_pose_along(std::move(poses), t0, dt, params_.robot.T_robot_sensor());
     f.T_world_sensor = T_world_sensor_at(t0);
     f.points_sensor = simulate_sweep(world_, params_.lidar, T_world_sensor_at, t0, params_.seed,
                                      static_cast<std::uint64_t>(frame_index_), &f.sweep);
