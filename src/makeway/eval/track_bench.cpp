@@ -110,7 +110,8 @@ TrackBenchResult run_track_bench(const TrackBenchParams& p, const std::function<
             detections += dets.size();
 
             const auto t0 = std::chrono::steady_clock::now();
-            const tracking::TrackerFrameResult r = map.update(dets, frame.T_world_sensor, frame.stamp_s, p.use_scan_occlusion ? &frame.points_sensor : nullptr);
+            const Eigen::Vector4d floor(0, 0, 1, 0);  // the simulator's floor is z = 0
+            const tracking::TrackerFrameResult r = map.update(dets, frame.T_world_sensor, frame.stamp_s, p.use_scan_occlusion ? &frame.points_sensor : nullptr, &floor);
             update_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
             // False-positive tracks: removed, or taken over by a true detection, within 3 frames?

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 namespace makeway::pipeline {
 namespace {
@@ -87,7 +88,13 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
     timing.verify_ms = ms_since(t);
     // Track: associate (GIoU + Hungarian), filter, fuse class and existence (eqs. 3-5), prune.
     t = Clock::now();
-    kf.tracking = map_.update(kf.evidence, kf.T_world_keyframe, stamp_s);
+    // Objects stand on the floor: the keyframe's plane, in the world frame, is the tracker's z prior.
+    std::optional<Eigen::Vector4d> floor;
+    if (kf.prepared.ground.found) {
+        const Eigen::Vector3d n = kf.T_world_keyframe.linear() * kf.prepared.ground.normal;
+        floor = Eigen::Vector4d(n.x(), n.y(), n.z(), kf.prepared.ground.offset - n.dot(kf.T_world_keyframe.translation()));
+    }
+    kf.tracking = map_.update(kf.evidence, kf.T_world_keyframe, stamp_s, nullptr, floor ? &*floor : nullptr);
     timing.track_ms = ms_since(t);
     return kf;
 }

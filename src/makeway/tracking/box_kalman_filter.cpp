@@ -84,6 +84,19 @@ int BoxKalmanFilter::update(const OrientedBox& det, double weight) {
     return k;
 }
 
+void BoxKalmanFilter::scale_velocity(const Eigen::Vector3d& f) {
+    for (int a = 0; a < 3; ++a) {
+        x_[7 + a] *= f[a];
+        P_.row(7 + a) *= f[a];
+        P_.col(7 + a) *= f[a];
+    }
+}
+
+void BoxKalmanFilter::clamp_speed(double max_mps) {
+    const double speed = x_.segment<2>(7).norm();
+    if (speed > max_mps) x_.segment<2>(7) *= max_mps / speed;
+}
+
 OrientedBox BoxKalmanFilter::box() const { return OrientedBox{x_.head<3>(), x_.segment<3>(4), x_[3]}; }
 
 }  // namespace makeway::tracking

@@ -42,6 +42,11 @@ public:
     /// detection's yaw differed from the track's (0 = agreed; 2 = flipped by pi).
     int update(const OrientedBox& detection_world, double weight = 1.0);
 
+    /// Velocity <- diag(factors) velocity, covariance alike (D P D^T): a motion prior's decay.
+    void scale_velocity(const Eigen::Vector3d& factors);
+    /// Horizontal speed clamped to max_mps (the state only: a bound, not a measurement).
+    void clamp_speed(double max_mps);
+
     OrientedBox box() const;
     Eigen::Vector3d velocity_mps() const { return x_.tail<3>(); }
     const BoxState& state() const { return x_; }

@@ -1,15 +1,29 @@
 #include "makeway/tracking/object_map.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
+#include <stdexcept>
 
 #include "makeway/common/box_overlap.hpp"
 #include "makeway/tracking/hungarian.hpp"
 
 namespace makeway::tracking {
 
+std::vector<std::string> MotionPrior::validate() const {
+    std::vector<std::string> p;
+    if (!(velocity_decay_s >= 0.0)) p.push_back("velocity_decay_s must be >= 0 (inf: no decay)");
+    if (!(max_speed_mps > 0.0)) p.push_back("max_speed_mps must be > 0");
+    return p;
+}
+
 std::vector<std::string> TrackerParams::validate() const {
     std::vector<std::string> p = kalman.validate();
+    for (const MotionPrior& m : motion) {
+        for (std::string& e : m.validate()) p.push_back(std::move(e));
+    }
+    if (std::none_of(tracked_classes.begin(), tracked_classes.end(), [](bool b) { return b; })) p.push_back("no class is tracked");
+    if (!std::isfinite(min_score)) p.push_back("min_score must be finite");
     if (!(min_giou >= -1.0 && min_giou <= 1.0)) p.push_back("min_giou must be in [-1, 1]");
     if (!(sensor_range_m > 0.0)) p.push_back("sensor_range_m must be > 0");
     if (!(miss_range_m >= 0.0)) p.push_back("miss_range_m must be >= 0");
@@ -18,6 +32,9 @@ std::vector<std::string> TrackerParams::validate() const {
     if (max_misses < 1) p.push_back("max_misses must be >= 1");
     if (!(min_existence >= 0.0 && min_existence <= 1.0)) p.push_back("min_existence must be in [0, 1]");
     if (existence_grace_frames < 1) p.push_back("existence_grace_frames must be >= 1");
+    if (!(max_unobserved_s > 0.0)) p.push_back("max_unobserved_s must be > 0 (inf: never)");
+    if (!(max_floor_gap_m > 0.0)) p.push_back("max_floor_gap_m must be > 0 (inf: no floor prior)");
+    if (!(merge_iou > 0.0 && merge_iou <= 1.0)) p.push_back("merge_iou must be in (0, 1]");
     if (!(occlusion.blocked_fraction > 0.0 && occlusion.blocked_fraction <= 1.0)) p.push_back("blocked_fraction must be in (0, 1]");
     return p;
 }
@@ -42,35 +59,114 @@ double Track::class_confidence() const {
 
 double Track::existence() const { return existence_frames ? existence_sum / existence_frames : 0.0; }
 
+namespace {
+
+double footprint_radius(const OrientedBox& b) { return 0.5 * b.size_m.head<2>().norm(); }
+
+}  // namespace
+
+bool ObjectMap::in_range(const OrientedBox& b, const Eigen::Vector3d& sensor) const {
+    return (b.centre_m - sensor).head<2>().norm() <= params_.sensor_range_m;
+}
+
+std::vector<bool> ObjectMap::usable_detections(const std::vector<Detection>& dets, const std::vector<OrientedBox>& det_world,
+                                               const Eigen::Vector3d& sensor, const Eigen::Vector4d* floor) const {
+    std::vector<bool> usable(dets.size());
+    for (std::size_t i = 0; i < dets.size(); ++i) {
+        const OrientedBox& b = det_world[i];
+        // Beyond the range an object born could never be judged; off the floor it is not furniture
+        // a robot could hit (or it is a part of the furniture below it).
+        bool ok = b.is_valid() && in_range(b, sensor) && dets[i].score >= params_.min_score &&
+                  params_.tracked_classes[static_cast<std::size_t>(dets[i].cls)];
+        if (ok && floor && std::isfinite(params_.max_floor_gap_m)) {
+            const Eigen::Vector3d bottom = b.centre_m - Eigen::Vector3d(0, 0, b.size_m.z() / 2);
+            ok = std::abs(floor->head<3>().dot(bottom) + floor->w()) <= params_.max_floor_gap_m;
+        }
+        usable[i] = ok;
+    }
+    return usable;
+}
+
+void ObjectMap::predict(double dt, const Eigen::Vector3d& sensor, TrackerFrameResult& out) {
+    for (auto it = tracks_.begin(); it != tracks_.end();) {
+        Track& t = it->second;
+        ++t.age_frames;
+        if (in_range(t.filter.box(), sensor)) {
+            t.filter.predict(dt);
+        } else if (params_.out_of_range == OutOfRange::kDrop) {
+            out.removed.push_back(it->first);
+            it = tracks_.erase(it);
+            continue;
+        } else {
+            t.filter.scale_velocity(Eigen::Vector3d::Zero());  // held where it was last believed
+            out.frozen.push_back(it->first);
+        }
+        ++it;
+    }
+}
+
+void ObjectMap::apply_motion_prior(const std::vector<std::uint32_t>& unobserved, double dt) {
+    for (auto& [id, t] : tracks_) {
+        const MotionPrior& m = params_.motion[static_cast<std::size_t>(t.cls())];
+        if (std::find(unobserved.begin(), unobserved.end(), id) != unobserved.end() && std::isfinite(m.velocity_decay_s)) {
+            const double f = m.velocity_decay_s > 0.0 ? std::exp(-dt / m.velocity_decay_s) : 0.0;
+            t.filter.scale_velocity(Eigen::Vector3d::Constant(f));
+        }
+        if (m.planar) t.filter.scale_velocity({1.0, 1.0, 0.0});
+        t.filter.clamp_speed(m.max_speed_mps);
+    }
+}
+
+void ObjectMap::merge_duplicates(TrackerFrameResult& out) {
+    std::vector<const Track*> confirmed;
+    for (const auto& [id, t] : tracks_) {
+        if (t.confirmed(params_.min_hits)) confirmed.push_back(&t);
+    }
+    std::sort(confirmed.begin(), confirmed.end(), [](const Track* a, const Track* b) { return a->id < b->id; });
+    std::vector<std::uint32_t> gone;
+    for (std::size_t i = 0; i < confirmed.size(); ++i) {
+        for (std::size_t j = i + 1; j < confirmed.size(); ++j) {
+            const Track &a = *confirmed[i], &b = *confirmed[j];
+            const OrientedBox ba = a.filter.box(), bb = b.filter.box();
+            if (a.cls() != b.cls() || (ba.centre_m - bb.centre_m).head<2>().norm() > footprint_radius(ba) + footprint_radius(bb)) continue;
+            if (iou_bev(ba, bb) <= params_.merge_iou) continue;
+            gone.push_back(b.hits > a.hits ? a.id : b.id);  // the better-supported one stays; ties: the older
+        }
+    }
+    std::sort(gone.begin(), gone.end());
+    gone.erase(std::unique(gone.begin(), gone.end()), gone.end());
+    for (std::uint32_t id : gone) {
+        tracks_.erase(id);
+        out.removed.push_back(id);
+    }
+}
+
 TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const Isometry3& T_world_sensor, double stamp_s,
-                                     const PointCloud* keyframe_sensor) {
+                                     const PointCloud* keyframe_sensor, const Eigen::Vector4d* floor_plane_world) {
+    if (started_ && stamp_s < last_stamp_s_) {
+        throw std::invalid_argument("tracker: frame stamp " + std::to_string(stamp_s) + " s is before the previous " + std::to_string(last_stamp_s_) + " s");
+    }
     TrackerFrameResult out;
     const double dt = started_ ? stamp_s - last_stamp_s_ : 0.0;
     started_ = true;
     last_stamp_s_ = stamp_s;
     const Eigen::Vector3d sensor = T_world_sensor.translation();
-    auto in_range = [&](const OrientedBox& b) { return (b.centre_m - sensor).head<2>().norm() <= params_.sensor_range_m; };
 
-    // Predict every object to this frame.
+    // Predict every object in range to this frame; the rest are frozen or dropped.
+    predict(dt, sensor, out);
     std::vector<std::uint32_t> ids;
-    for (auto& [id, t] : tracks_) {
-        t.filter.predict(dt);
-        ++t.age_frames;
-        ids.push_back(id);
-    }
+    for (const auto& [id, t] : tracks_) ids.push_back(id);
     std::sort(ids.begin(), ids.end());  // deterministic order
     std::vector<OrientedBox> det_world;
     for (const Detection& d : dets) det_world.push_back(d.box_sensor.transformed(T_world_sensor));
-    // Detections beyond the sensor range are ignored: an object born there could never be judged.
-    std::vector<bool> usable(dets.size());
-    for (std::size_t i = 0; i < dets.size(); ++i) usable[i] = in_range(det_world[i]) && det_world[i].is_valid();
-    auto radius = [](const OrientedBox& b) { return 0.5 * b.size_m.head<2>().norm(); };
+    const std::vector<bool> usable = usable_detections(dets, det_world, sensor, floor_plane_world);
+    out.unused_detections = static_cast<std::size_t>(std::count(usable.begin(), usable.end(), false));
 
     // Associate: GIoU between every detection and every predicted object in range; Hungarian on
     // 1 - GIoU; pairs below the threshold are rejected afterwards.
     std::vector<std::uint32_t> candidates;
     for (std::uint32_t id : ids) {
-        if (in_range(tracks_.at(id).filter.box())) candidates.push_back(id);
+        if (in_range(tracks_.at(id).filter.box(), sensor)) candidates.push_back(id);
     }
     out.track_of_detection.assign(dets.size(), -1);
     std::vector<bool> matched_track(candidates.size(), false);
@@ -82,7 +178,7 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
             if (!usable[i]) continue;
             for (std::size_t j = 0; j < candidates.size(); ++j) {
                 // Gate: footprints farther apart than the gate have a GIoU far below any useful threshold.
-                const double gap = (det_world[i].centre_m - predicted[j].centre_m).head<2>().norm() - radius(det_world[i]) - radius(predicted[j]);
+                const double gap = (det_world[i].centre_m - predicted[j].centre_m).head<2>().norm() - footprint_radius(det_world[i]) - footprint_radius(predicted[j]);
                 if (gap > params_.association_gate_m) continue;
                 giou(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = giou_3d(det_world[i], predicted[j]);
             }
@@ -134,14 +230,22 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
         ++t.existence_frames;  // adds 0 to the sum
         ++t.misses;
     }
+    // Every object not associated this frame: its velocity is no longer believed.
+    std::vector<std::uint32_t> unobserved;
+    for (std::uint32_t id : ids) {
+        if (tracks_.at(id).last_stamp_s != stamp_s) unobserved.push_back(id);
+    }
+    apply_motion_prior(unobserved, dt);
     for (std::uint32_t id : ids) {
         const Track& t = tracks_.at(id);
         const bool judged = t.existence_frames >= params_.existence_grace_frames;
-        if (t.misses >= params_.max_misses || (judged && t.existence() < params_.min_existence)) {
+        if (t.misses >= params_.max_misses || (judged && t.existence() < params_.min_existence) ||
+            stamp_s - t.last_stamp_s > params_.max_unobserved_s) {
             out.removed.push_back(id);
             tracks_.erase(id);
         }
     }
+    merge_duplicates(out);
 
     // Births: unmatched detections start objects in their own frame, anchored in the world.
     for (std::size_t i = 0; i < dets.size(); ++i) {

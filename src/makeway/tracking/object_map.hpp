@@ -3,6 +3,11 @@
 // and the Hungarian algorithm, a box Kalman filter per object, class distributions and existence
 // probabilities fused by averaging (eqs. 3-5), occluded objects not penalised, and objects removed
 // after repeated unexplained misses or when their existence falls below 0.5.
+//
+// The lifecycle beyond the paper, so that no object outlives its evidence: a velocity is believed
+// only while observed (MotionPrior), an object out of range is frozen or dropped (OutOfRange), any
+// object unobserved for max_unobserved_s leaves, detections off the floor are not used, and two
+// confirmed objects on one footprint are merged.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -17,11 +22,35 @@
 
 namespace makeway::tracking {
 
+/// What a class's objects do between observations. Furniture stands on the floor and is still
+/// most of the time; it moves only while someone pushes it, and then it is being observed or it
+/// soon will be. A velocity estimate is therefore believed only while measurements support it:
+/// without them it decays toward zero, so a track that stops being detected stays near where it
+/// was last seen instead of drifting away (through a wall) at its last speed.
+struct MotionPrior {
+    /// Time constant of the velocity's decay while unobserved [s]: v <- v exp(-dt / tau).
+    /// 0: zeroed at the first unobserved frame; infinity: kept (constant velocity, as AB3DMOT).
+    double velocity_decay_s = 0.5;
+    double max_speed_mps = 1.5;  ///< horizontal speed estimates are clamped to this
+    bool planar = true;          ///< no vertical motion (vz held at 0): things that stand on a floor
+    std::vector<std::string> validate() const;
+};
+
+/// What happens to a track whose predicted box leaves the sensor range: nothing can confirm or
+/// refute it there. kFreeze keeps it where it was last believed, velocity zero (a map remembers the
+/// room behind the robot); kDrop removes it (a tracker of traffic, whose objects do not come back).
+enum class OutOfRange { kFreeze, kDrop };
+
 struct TrackerParams {
     KalmanParams kalman;
     OcclusionParams occlusion;
+    /// Indexed by ObjectClass (chair, table).
+    std::array<MotionPrior, kNumObjectClasses> motion{MotionPrior{0.5, 1.5, true}, MotionPrior{0.5, 1.0, true}};
+    std::array<bool, kNumObjectClasses> tracked_classes{true, true};  ///< detections of other classes are not used
+    double min_score = 0.0;          ///< detections scoring below this are not used
     double min_giou = -0.1;          ///< associated pairs need at least this 3D GIoU
     double sensor_range_m = 10.0;    ///< objects farther from the sensor are neither matched nor penalised
+    OutOfRange out_of_range = OutOfRange::kFreeze;
     /// Unmatched objects farther than this are not penalised either: where the detector cannot see
     /// (its grid's reach), a miss says nothing. 0: sensor_range_m.
     double miss_range_m = 0.0;
@@ -32,6 +61,16 @@ struct TrackerParams {
     int max_misses = 10;             ///< consecutive unexplained misses that remove an object
     double min_existence = 0.5;      ///< fused existence below this removes an object ...
     int existence_grace_frames = 3;  ///< ... once it has been judged on this many frames
+    /// Any object not associated with a detection for this long leaves the map, wherever it is
+    /// (occluded, out of range): memory of an unseen room expires. Infinity: never.
+    double max_unobserved_s = 60.0;
+    /// With a floor plane given: detections whose box bottom is farther than this from the floor
+    /// are not used (a chair-sized box on a table top is a part of the table, or a chair on it
+    /// that nobody will walk into). Infinity: no floor prior.
+    double max_floor_gap_m = 0.3;
+    /// Two confirmed objects of one class whose footprints overlap by more than this (BEV IoU) are
+    /// one object seen twice: the one with fewer detections is removed. 1: never merge.
+    double merge_iou = 0.4;
     std::vector<std::string> validate() const;
 };
 
@@ -60,6 +99,8 @@ struct Track {
 struct TrackerFrameResult {
     std::vector<int> track_of_detection;       ///< track id per detection (new or matched; -1: out of range or invalid)
     std::vector<std::uint32_t> born, removed, occluded;
+    std::vector<std::uint32_t> frozen;          ///< out of range and held in place this frame
+    std::size_t unused_detections = 0;          ///< below min_score, untracked class, out of range, invalid or off the floor
     std::vector<ObjectEstimate> objects_world;  ///< the confirmed map after the update
 };
 
@@ -70,8 +111,10 @@ public:
     /// One keyframe: detections in the sensor frame, the sensor pose, the keyframe's time.
     /// Detection scores are the per-frame existence evidence (verified p_exist where available).
     /// With the keyframe cloud (sensor frame), returns in front of an object also count as occlusion.
+    /// With the floor plane (world frame, n . p + d = 0, n up), detections must stand on it.
+    /// Throws std::invalid_argument when stamp_s goes back in time.
     TrackerFrameResult update(const std::vector<Detection>& detections_sensor, const Isometry3& T_world_sensor, double stamp_s,
-                              const PointCloud* keyframe_sensor = nullptr);
+                              const PointCloud* keyframe_sensor = nullptr, const Eigen::Vector4d* floor_plane_world = nullptr);
 
     /// Confirmed objects, world frame.
     std::vector<ObjectEstimate> objects() const;
@@ -79,6 +122,13 @@ public:
     const TrackerParams& params() const { return params_; }
 
 private:
+    std::vector<bool> usable_detections(const std::vector<Detection>& dets, const std::vector<OrientedBox>& det_world,
+                                        const Eigen::Vector3d& sensor, const Eigen::Vector4d* floor) const;
+    void predict(double dt, const Eigen::Vector3d& sensor, TrackerFrameResult& out);
+    void apply_motion_prior(const std::vector<std::uint32_t>& unobserved, double dt);
+    void merge_duplicates(TrackerFrameResult& out);
+    bool in_range(const OrientedBox& box, const Eigen::Vector3d& sensor) const;
+
     TrackerParams params_;
     std::unordered_map<std::uint32_t, Track> tracks_;
     std::uint32_t next_id_ = 1;
