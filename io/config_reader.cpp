@@ -59,11 +59,20 @@ void YamlSection::read_scalar(const char* key, T& value, const char* type_name) 
         return;
     }
     if constexpr (std::is_floating_point_v<T>) {
-        if (!std::isfinite(value)) problems_.push_back(prefix_ + "." + key + ": must be finite");
+        if (std::isnan(value) || (!allow_infinity_ && !std::isfinite(value))) {
+            problems_.push_back(prefix_ + "." + key + (allow_infinity_ ? ": must be a number or .inf" : ": must be finite"));
+        }
     }
 }
 
 void YamlSection::read(const char* key, double& value) { read_scalar(key, value, "a number"); }
+void YamlSection::read_or_infinity(const char* key, double& value) {
+    double v = value;
+    allow_infinity_ = true;
+    read_scalar(key, v, "a number or .inf");
+    allow_infinity_ = false;
+    if (!std::isnan(v)) value = v;
+}
 void YamlSection::read(const char* key, int& value) { read_scalar(key, value, "an integer"); }
 void YamlSection::read(const char* key, std::uint64_t& value) {
     read_scalar(key, value, "a non-negative integer");
@@ -167,6 +176,42 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
     {
         YamlSection s(root["tracking"], "tracking", problems);
         tracking::TrackerParams& t = sys.tracker;
+        if (const YAML::Node classes = s.take("classes")) {
+            t.tracked_classes.fill(false);
+            const bool is_list = classes.IsSequence() && classes.size() > 0;
+            if (!is_list) s.problem("classes: must be a list of class names, e.g. [chair, table]");
+            for (std::size_t i = 0; is_list && i < classes.size(); ++i) {
+                const auto cls = parse_object_class(classes[i].IsScalar() ? classes[i].Scalar() : "");
+                if (cls) t.tracked_classes[static_cast<std::size_t>(*cls)] = true;
+                else s.problem("classes: unknown class '" + (classes[i].IsScalar() ? classes[i].Scalar() : "?") + "' (the map knows chair, table)");
+            }
+        }
+        s.read("min_score", t.min_score);
+        std::string transform = t.score_transform == tracking::ScoreTransform::kSigmoid ? "sigmoid" : "none";
+        s.read("score_transform", transform);
+        if (transform == "none" || transform == "sigmoid") {
+            t.score_transform = transform == "none" ? tracking::ScoreTransform::kNone : tracking::ScoreTransform::kSigmoid;
+        } else {
+            s.problem("score_transform: must be none or sigmoid");
+        }
+        std::string out_of_range = t.out_of_range == tracking::OutOfRange::kFreeze ? "freeze" : "drop";
+        s.read("out_of_range", out_of_range);
+        if (out_of_range == "freeze" || out_of_range == "drop") {
+            t.out_of_range = out_of_range == "freeze" ? tracking::OutOfRange::kFreeze : tracking::OutOfRange::kDrop;
+        } else {
+            s.problem("out_of_range: must be freeze or drop");
+        }
+        s.read_or_infinity("max_unobserved_s", t.max_unobserved_s);
+        s.read_or_infinity("max_floor_gap_m", t.max_floor_gap_m);
+        s.read("merge_iou", t.merge_iou);
+        for (ObjectClass c : kAllObjectClasses) {
+            tracking::MotionPrior& m = t.motion[static_cast<std::size_t>(c)];
+            const std::string name(to_string(c));
+            const std::string decay = name + "_velocity_decay_s", speed = name + "_max_speed_mps", planar = name + "_planar";
+            s.read_or_infinity(decay.c_str(), m.velocity_decay_s);
+            s.read(speed.c_str(), m.max_speed_mps);
+            s.read(planar.c_str(), m.planar);
+        }
         s.read("min_giou", t.min_giou);
         s.read("sensor_range_m", t.sensor_range_m);
         s.read("association_gate_m", t.association_gate_m);

@@ -30,6 +30,8 @@ public:
     YamlSection& operator=(const YamlSection&) = delete;
 
     void read(const char* key, double& value);
+    /// A number that may also be `.inf` (YAML's infinity), for "never" limits.
+    void read_or_infinity(const char* key, double& value);
     void read(const char* key, int& value);
     void read(const char* key, std::uint64_t& value);
     void read(const char* key, bool& value);
@@ -56,6 +58,7 @@ private:
     std::string prefix_;
     std::vector<std::string>& problems_;
     std::vector<std::string> known_keys_;
+    bool allow_infinity_ = false;
 };
 
 /// The `simulation` section: how long and with which seed `makeway demo` records.

@@ -63,14 +63,21 @@ std::vector<KittiTrackingRecord> parse_kitti_tracking(std::string_view text) {
         r.location_cam_m = {v[10], v[11], v[12]};
         r.rotation_y_rad = v[13];
         if (w.size() == base + 16) r.score = number(w[base + 15], where);
-        if (!(r.h_m > 0 && r.w_m > 0 && r.l_m > 0)) throw FormatError(where + "box dimensions must be > 0");
+        // DontCare regions have a 2D box only (size -1, location -1000): they are kept as such.
+        if (!r.is_dont_care() && !(r.h_m > 0 && r.w_m > 0 && r.l_m > 0)) throw FormatError(where + "box dimensions must be > 0");
         out.push_back(r);
     }
     return out;
 }
 
+bool KittiTrackingRecord::is_dont_care() const {
+    std::string lower(type);
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return lower == "dontcare";
+}
+
 std::vector<KittiTrackingRecord> read_kitti_tracking(const std::filesystem::path& path) {
-    const std::string text = read_file(path);
+    const std::string text = read_file(path, /*allow_empty=*/true);  // a sequence without objects is valid
     try {
         return parse_kitti_tracking(text);
     } catch (const FormatError& e) {
@@ -105,10 +112,14 @@ std::optional<ObjectClass> class_of_kitti_type(std::string_view type) {
 }
 
 KittiTrackingRecord to_kitti(const OrientedBox& b, ObjectClass cls, int frame, int track_id, std::optional<double> score) {
+    return to_kitti(b, cls == ObjectClass::kChair ? "Chair" : "Table", frame, track_id, score);
+}
+
+KittiTrackingRecord to_kitti(const OrientedBox& b, const std::string& type, int frame, int track_id, std::optional<double> score) {
     KittiTrackingRecord r;
     r.frame = frame;
     r.track_id = track_id;
-    r.type = cls == ObjectClass::kChair ? "Chair" : "Table";
+    r.type = type;
     r.l_m = b.size_m.x(), r.w_m = b.size_m.y(), r.h_m = b.size_m.z();
     r.location_cam_m = {-b.centre_m.y(), -(b.centre_m.z() - 0.5 * b.size_m.z()), b.centre_m.x()};
     r.rotation_y_rad = wrap_angle(-b.yaw_rad - kPi / 2);

@@ -31,16 +31,19 @@ struct KittiTrackingRecord {
     Eigen::Vector3d location_cam_m = Eigen::Vector3d::Zero();  ///< bottom centre
     double rotation_y_rad = 0.0;
     std::optional<double> score;
+    bool is_dont_care() const;   ///< a DontCare region (2D box only): ignored by evaluations
 };
 
 std::vector<KittiTrackingRecord> parse_kitti_tracking(std::string_view text);
-/// Throws FileError "PATH: line N: problem".
+/// Throws FileError "PATH: line N: problem". An empty file is a sequence without objects.
 std::vector<KittiTrackingRecord> read_kitti_tracking(const std::filesystem::path& path);
 void write_kitti_tracking(const std::filesystem::path& path, const std::vector<KittiTrackingRecord>& records);
 
 /// chair/table from a KITTI type name (any case), nullopt for other types.
 std::optional<ObjectClass> class_of_kitti_type(std::string_view type);
+/// A box as a KITTI record: camera-frame 3D fields and alpha; bbox_px -1 (no camera model here).
 KittiTrackingRecord to_kitti(const OrientedBox& box, ObjectClass cls, int frame, int track_id, std::optional<double> score);
+KittiTrackingRecord to_kitti(const OrientedBox& box, const std::string& type, int frame, int track_id, std::optional<double> score);
 /// The record's box in makeway's frame convention (x forward, y left, z up).
 OrientedBox box_from_kitti(const KittiTrackingRecord& r);
 

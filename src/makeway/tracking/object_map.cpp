@@ -69,14 +69,15 @@ bool ObjectMap::in_range(const OrientedBox& b, const Eigen::Vector3d& sensor) co
     return (b.centre_m - sensor).head<2>().norm() <= params_.sensor_range_m;
 }
 
-std::vector<bool> ObjectMap::usable_detections(const std::vector<Detection>& dets, const std::vector<OrientedBox>& det_world,
-                                               const Eigen::Vector3d& sensor, const Eigen::Vector4d* floor) const {
+std::vector<bool> ObjectMap::usable_detections(const std::vector<Detection>& dets, const std::vector<double>& scores,
+                                               const std::vector<OrientedBox>& det_world, const Eigen::Vector3d& sensor,
+                                               const Eigen::Vector4d* floor) const {
     std::vector<bool> usable(dets.size());
     for (std::size_t i = 0; i < dets.size(); ++i) {
         const OrientedBox& b = det_world[i];
         // Beyond the range an object born could never be judged; off the floor it is not furniture
         // a robot could hit (or it is a part of the furniture below it).
-        bool ok = b.is_valid() && in_range(b, sensor) && dets[i].score >= params_.min_score &&
+        bool ok = b.is_valid() && in_range(b, sensor) && scores[i] >= params_.min_score &&
                   params_.tracked_classes[static_cast<std::size_t>(dets[i].cls)];
         if (ok && floor && std::isfinite(params_.max_floor_gap_m)) {
             const Eigen::Vector3d bottom = b.centre_m - Eigen::Vector3d(0, 0, b.size_m.z() / 2);
@@ -146,6 +147,18 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
     if (started_ && stamp_s < last_stamp_s_) {
         throw std::invalid_argument("tracker: frame stamp " + std::to_string(stamp_s) + " s is before the previous " + std::to_string(last_stamp_s_) + " s");
     }
+    // Scores first: a bad one is refused before the map changes.
+    std::vector<OrientedBox> det_world;
+    std::vector<double> scores;
+    for (const Detection& d : dets) {
+        det_world.push_back(d.box_sensor.transformed(T_world_sensor));
+        const double s = params_.score_transform == ScoreTransform::kSigmoid ? 1.0 / (1.0 + std::exp(-d.score)) : d.score;
+        if (!(s >= 0.0 && s <= 1.0)) {
+            throw std::invalid_argument("tracker: detection score " + std::to_string(d.score) + " is not in [0, 1]" +
+                                        (params_.score_transform == ScoreTransform::kNone ? " (raw logits need the sigmoid score transform)" : ""));
+        }
+        scores.push_back(s);
+    }
     TrackerFrameResult out;
     const double dt = started_ ? stamp_s - last_stamp_s_ : 0.0;
     started_ = true;
@@ -157,9 +170,7 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
     std::vector<std::uint32_t> ids;
     for (const auto& [id, t] : tracks_) ids.push_back(id);
     std::sort(ids.begin(), ids.end());  // deterministic order
-    std::vector<OrientedBox> det_world;
-    for (const Detection& d : dets) det_world.push_back(d.box_sensor.transformed(T_world_sensor));
-    const std::vector<bool> usable = usable_detections(dets, det_world, sensor, floor_plane_world);
+    const std::vector<bool> usable = usable_detections(dets, scores, det_world, sensor, floor_plane_world);
     out.unused_detections = static_cast<std::size_t>(std::count(usable.begin(), usable.end(), false));
 
     // Associate: GIoU between every detection and every predicted object in range; Hungarian on
@@ -193,7 +204,7 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
                 t.class_probability_sum[static_cast<std::size_t>(c)] += dets[i].class_probabilities[static_cast<std::size_t>(c)];
             }
             ++t.class_frames;
-            t.existence_sum += dets[i].score;
+            t.existence_sum += scores[i];
             ++t.existence_frames;
             ++t.hits;
             t.misses = 0;
@@ -254,7 +265,7 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
         t.T_world_object_birth = det_world[i].T_frame_box();
         t.class_probability_sum = dets[i].class_probabilities;
         t.class_frames = 1;
-        t.existence_sum = dets[i].score;
+        t.existence_sum = scores[i];
         t.existence_frames = 1;
         t.hits = 1;
         t.last_stamp_s = stamp_s;

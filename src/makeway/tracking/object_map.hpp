@@ -41,13 +41,18 @@ struct MotionPrior {
 /// room behind the robot); kDrop removes it (a tracker of traffic, whose objects do not come back).
 enum class OutOfRange { kFreeze, kDrop };
 
+/// How detection scores become existence evidence in [0, 1]: as they are (probabilities), or
+/// through the logistic function (raw logits, as many detectors write them).
+enum class ScoreTransform { kNone, kSigmoid };
+
 struct TrackerParams {
     KalmanParams kalman;
     OcclusionParams occlusion;
     /// Indexed by ObjectClass (chair, table).
     std::array<MotionPrior, kNumObjectClasses> motion{MotionPrior{0.5, 1.5, true}, MotionPrior{0.5, 1.0, true}};
     std::array<bool, kNumObjectClasses> tracked_classes{true, true};  ///< detections of other classes are not used
-    double min_score = 0.0;          ///< detections scoring below this are not used
+    ScoreTransform score_transform = ScoreTransform::kNone;
+    double min_score = 0.0;          ///< detections scoring below this (after the transform) are not used
     double min_giou = -0.1;          ///< associated pairs need at least this 3D GIoU
     double sensor_range_m = 10.0;    ///< objects farther from the sensor are neither matched nor penalised
     OutOfRange out_of_range = OutOfRange::kFreeze;
@@ -112,7 +117,8 @@ public:
     /// Detection scores are the per-frame existence evidence (verified p_exist where available).
     /// With the keyframe cloud (sensor frame), returns in front of an object also count as occlusion.
     /// With the floor plane (world frame, n . p + d = 0, n up), detections must stand on it.
-    /// Throws std::invalid_argument when stamp_s goes back in time.
+    /// Throws std::invalid_argument when stamp_s goes back in time or a score is not in [0, 1]
+    /// after the score transform (never clamped: a logit read as a probability is a setup error).
     TrackerFrameResult update(const std::vector<Detection>& detections_sensor, const Isometry3& T_world_sensor, double stamp_s,
                               const PointCloud* keyframe_sensor = nullptr, const Eigen::Vector4d* floor_plane_world = nullptr);
 
@@ -122,8 +128,9 @@ public:
     const TrackerParams& params() const { return params_; }
 
 private:
-    std::vector<bool> usable_detections(const std::vector<Detection>& dets, const std::vector<OrientedBox>& det_world,
-                                        const Eigen::Vector3d& sensor, const Eigen::Vector4d* floor) const;
+    std::vector<bool> usable_detections(const std::vector<Detection>& dets, const std::vector<double>& scores,
+                                        const std::vector<OrientedBox>& det_world, const Eigen::Vector3d& sensor,
+                                        const Eigen::Vector4d* floor) const;
     void predict(double dt, const Eigen::Vector3d& sensor, TrackerFrameResult& out);
     void apply_motion_prior(const std::vector<std::uint32_t>& unobserved, double dt);
     void merge_duplicates(TrackerFrameResult& out);
