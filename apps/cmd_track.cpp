@@ -1,14 +1,23 @@
 // makeway track, eval-tracking and bench track.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <map>
+#include <set>
+#include <unordered_map>
 
 #include "apps/commands.hpp"
 #include "io/error.hpp"
 #include "io/pose_io.hpp"
 #include "io/progress.hpp"
 #include "io/tracking_io.hpp"
+#include "io/config_reader.hpp"
+#include "makeway/common/angles.hpp"
+#include "makeway/eval/kitti_tracking_eval.hpp"
 #include "makeway/eval/track_bench.hpp"
 #include "makeway/tracking/object_map.hpp"
 
@@ -16,6 +25,12 @@ namespace makeway::apps {
 namespace {
 
 namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
 
 // KITTI inputs: one file, or every .txt of a folder (one sequence each).
 std::vector<fs::path> kitti_sequences(const std::string& path) {
@@ -23,50 +38,203 @@ std::vector<fs::path> kitti_sequences(const std::string& path) {
     return io::frame_files(path, "txt");
 }
 
-std::vector<io::KittiTrackingRecord> track_kitti_sequence(const fs::path& file, double rate_hz) {
-    std::map<int, std::vector<Detection>> frames;
-    int last = -1;
-    for (const auto& r : io::read_kitti_tracking(file)) {
-        last = std::max(last, r.frame);
-        const auto cls = io::class_of_kitti_type(r.type);
-        if (!cls) continue;  // only chairs and tables are tracked
-        Detection d;
-        d.cls = *cls;
-        d.box_sensor = io::box_from_kitti(r);
-        d.score = std::clamp(r.score.value_or(1.0), 0.0, 1.0);
-        d.class_probabilities.fill(0.0);
-        d.class_probabilities[static_cast<std::size_t>(*cls)] = 1.0;
-        frames[r.frame].push_back(d);
+// KITTI's objects are traffic seen from a moving car, in the camera frame of each frame (no
+// ego-motion): parked cars move in it, nothing stands on a known floor, objects leave for good.
+tracking::TrackerParams kitti_preset() {
+    tracking::TrackerParams p;
+    p.sensor_range_m = 80.0;
+    p.out_of_range = tracking::OutOfRange::kDrop;
+    p.motion.fill({std::numeric_limits<double>::infinity(), 60.0, false});
+    p.max_floor_gap_m = std::numeric_limits<double>::infinity();
+    p.max_misses = 3;
+    return p;
+}
+
+std::string_view name_of(tracking::ScoreTransform t) { return t == tracking::ScoreTransform::kSigmoid ? "sigmoid" : "none"; }
+
+// The tracker's settings: the configuration (or the format's preset), then the command line.
+tracking::TrackerParams tracker_params(const TrackOptions& o) {
+    tracking::TrackerParams p = o.format == "kitti" ? kitti_preset() : tracking::TrackerParams{};
+    if (!o.config.empty()) p = io::load_config(o.config).system.tracker;
+    if (o.range_m) p.sensor_range_m = *o.range_m;
+    if (o.min_score) p.min_score = *o.min_score;
+    if (!o.out_of_range.empty()) p.out_of_range = o.out_of_range == "drop" ? tracking::OutOfRange::kDrop : tracking::OutOfRange::kFreeze;
+    if (o.format == "makeway" && !o.classes.empty()) {
+        p.tracked_classes.fill(false);
+        for (const std::string& c : o.classes) {
+            const auto cls = parse_object_class(lower(c));
+            if (!cls) throw io::FileError("--classes", "unknown class '" + c + "' (makeway detections are chair or table)");
+            p.tracked_classes[static_cast<std::size_t>(*cls)] = true;
+        }
     }
-    tracking::ObjectMap map;
+    if (const auto problems = p.validate(); !problems.empty()) throw io::FileError(o.config.empty() ? "track options" : o.config, problems.front());
+    return p;
+}
+
+// sigmoid: as asked. none: a score outside [0, 1] is an error (never clamped). auto: the
+// configuration's transform, or the sigmoid when any score lies outside [0, 1] (raw logits).
+tracking::ScoreTransform resolve_score_transform(const TrackOptions& o, tracking::ScoreTransform configured,
+                                                 const std::vector<std::pair<std::string, double>>& scores) {
+    if (o.score_transform == "sigmoid") return tracking::ScoreTransform::kSigmoid;
+    const auto outside = std::find_if(scores.begin(), scores.end(), [](const auto& s) { return !(s.second >= 0.0 && s.second <= 1.0); });
+    if (o.score_transform == "none") {
+        if (outside != scores.end()) {
+            throw io::FileError(outside->first, "score " + std::to_string(outside->second) +
+                                                    " is not in [0, 1]; raw logits need --score-transform sigmoid");
+        }
+        return tracking::ScoreTransform::kNone;
+    }
+    if (configured == tracking::ScoreTransform::kSigmoid || outside == scores.end()) return configured;
+    std::cout << "scores outside [0, 1] (" << outside->first << ": " << outside->second
+              << "): read as logits through the sigmoid (--score-transform none refuses them)\n";
+    return tracking::ScoreTransform::kSigmoid;
+}
+
+struct KittiSequenceInput {
+    fs::path file;
+    std::vector<io::KittiTrackingRecord> records;
+};
+
+struct TrackRun {
+    std::size_t frames = 0;
+    double update_s = 0.0;  // tracker updates only: reading and writing excluded
+    std::map<std::string, std::size_t> tracks_per_class;
+};
+
+// One sequence, one object map per class (as AB3DMOT): every frame, also those without
+// detections; each output box carries its last detection's 2D box, truncation and occlusion.
+std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInput& in, const std::vector<std::string>& types,
+                                                          const tracking::TrackerParams& params, const TrackOptions& o, TrackRun& run) {
+    int last = -1;
+    for (const auto& r : in.records) last = std::max(last, r.frame);
+    std::map<std::pair<std::string, std::uint32_t>, int> out_id;  // (type, map id) -> id in the output
     std::vector<io::KittiTrackingRecord> out;
-    for (int f = 0; f <= last; ++f) {  // every frame, also those without detections
-        const auto it = frames.find(f);
-        const auto r = map.update(it == frames.end() ? std::vector<Detection>{} : it->second, Isometry3::Identity(), f / rate_hz);
-        for (const ObjectEstimate& o : r.objects_world) out.push_back(io::to_kitti(o.box_world, o.cls, f, static_cast<int>(o.id), o.existence));
+    const double half_fov = deg_to_rad(o.fov_deg) / 2;
+    for (const std::string& type : types) {
+        std::map<int, std::vector<std::size_t>> frames;  // frame -> record indices of this type
+        for (std::size_t i = 0; i < in.records.size(); ++i) {
+            if (lower(in.records[i].type) == lower(type)) frames[in.records[i].frame].push_back(i);
+        }
+        if (frames.empty()) continue;
+        tracking::ObjectMap map(params);
+        std::unordered_map<std::uint32_t, std::size_t> last_record;  // map id -> its last detection
+        for (int f = 0; f <= last; ++f) {
+            std::vector<Detection> dets;
+            const auto it = frames.find(f);
+            const std::vector<std::size_t> idx = it == frames.end() ? std::vector<std::size_t>{} : it->second;
+            for (std::size_t i : idx) {
+                Detection d;
+                d.cls = ObjectClass::kChair;  // one class per map: its index 0
+                d.class_probabilities = {1.0, 0.0};
+                d.box_sensor = io::box_from_kitti(in.records[i]);
+                d.score = in.records[i].score.value_or(1.0);
+                dets.push_back(d);
+            }
+            const Clock::time_point t0 = Clock::now();
+            const tracking::TrackerFrameResult r = map.update(dets, Isometry3::Identity(), f / o.rate_hz);
+            run.update_s += std::chrono::duration<double>(Clock::now() - t0).count();
+            for (std::size_t k = 0; k < idx.size(); ++k) {
+                if (r.track_of_detection[k] >= 0) last_record[static_cast<std::uint32_t>(r.track_of_detection[k])] = idx[k];
+            }
+            for (const ObjectEstimate& obj : r.objects_world) {
+                const Eigen::Vector3d& c = obj.box_world.centre_m;
+                if (o.fov_deg > 0.0 && (c.x() <= 0.0 || std::abs(std::atan2(c.y(), c.x())) > half_fov)) continue;
+                const auto [id_it, fresh] = out_id.try_emplace({type, obj.id}, static_cast<int>(out_id.size()));
+                if (fresh) ++run.tracks_per_class[type];
+                io::KittiTrackingRecord rec = io::to_kitti(obj.box_world, type, f, id_it->second, obj.existence);
+                if (const auto lr = last_record.find(obj.id); lr != last_record.end()) {
+                    const io::KittiTrackingRecord& d = in.records[lr->second];
+                    rec.bbox_px = d.bbox_px, rec.truncated = d.truncated, rec.occluded = d.occluded;
+                }
+                out.push_back(rec);
+            }
+        }
+    }
+    run.frames += static_cast<std::size_t>(last + 1);
+    std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.frame < b.frame; });
+    return out;
+}
+
+// The classes to track: the requested ones, or every type in the input but DontCare.
+std::vector<std::string> kitti_types(const std::vector<KittiSequenceInput>& inputs, const TrackOptions& o) {
+    std::vector<std::string> present;
+    for (const auto& in : inputs) {
+        for (const auto& r : in.records) {
+            if (!r.is_dont_care() && std::find(present.begin(), present.end(), r.type) == present.end()) present.push_back(r.type);
+        }
+    }
+    if (o.classes.empty()) return present;
+    std::vector<std::string> out;
+    for (const std::string& c : o.classes) {
+        const auto it = std::find_if(present.begin(), present.end(), [&](const std::string& t) { return lower(t) == lower(c); });
+        if (it == present.end()) std::cout << "class " << c << ": no detections in the input\n";
+        out.push_back(it == present.end() ? c : *it);
     }
     return out;
+}
+
+void write_summary(const fs::path& file, const TrackOptions& o, const tracking::TrackerParams& p, const TrackRun& run, std::size_t sequences) {
+    const double fps = run.update_s > 0.0 ? static_cast<double>(run.frames) / run.update_s : 0.0;
+    io::Json j{{"format", o.format}, {"sequences", sequences}, {"frames", run.frames}, {"tracker_seconds", run.update_s},
+               {"frames_per_second", fps}, {"tracks_per_class", run.tracks_per_class},
+               {"tracker", {{"sensor_range_m", p.sensor_range_m}, {"min_score", p.min_score},
+                            {"score_transform", name_of(p.score_transform)},
+                            {"out_of_range", p.out_of_range == tracking::OutOfRange::kDrop ? "drop" : "freeze"},
+                            {"min_hits", p.min_hits}, {"max_misses", p.max_misses}, {"min_giou", p.min_giou}}}};
+    if (o.format == "kitti") j["rate_hz"] = o.rate_hz, j["fov_deg"] = o.fov_deg;
+    io::write_json(file, j);
+    std::cout << std::fixed << std::setprecision(1) << "tracked " << run.frames << " frames in " << std::setprecision(3) << run.update_s
+              << " s of tracker updates: " << std::setprecision(0) << fps << " frames per second (one core)\n";
+}
+
+int run_track_kitti(const TrackOptions& o) {
+    tracking::TrackerParams params = tracker_params(o);
+    std::vector<KittiSequenceInput> inputs;
+    std::vector<std::pair<std::string, double>> scores;
+    for (const auto& f : kitti_sequences(o.detections)) {
+        inputs.push_back({f, io::read_kitti_tracking(f)});
+        for (const auto& r : inputs.back().records) {
+            if (r.score && !r.is_dont_care()) scores.emplace_back(f.string(), *r.score);
+        }
+    }
+    params.score_transform = resolve_score_transform(o, params.score_transform, scores);
+    const std::vector<std::string> types = kitti_types(inputs, o);
+    // Every input is read and tracked before anything is written: bad input leaves no output.
+    TrackRun run;
+    std::vector<std::vector<io::KittiTrackingRecord>> tracks;
+    io::ProgressBar bar("track", inputs.size());
+    for (const auto& in : inputs) {
+        tracks.push_back(track_kitti_sequence(in, types, params, o, run));
+        bar.update(tracks.size());
+    }
+    bar.finish();
+    fs::create_directories(o.out);
+    for (std::size_t k = 0; k < inputs.size(); ++k) {
+        io::write_kitti_tracking(fs::path(o.out) / inputs[k].file.filename(), tracks[k]);  // empty: an empty file
+    }
+    std::cout << "classes:";
+    for (const auto& t : types) std::cout << " " << t << " (" << run.tracks_per_class[t] << " tracks)";
+    std::cout << "\nwrote " << inputs.size() << " sequence(s) to " << o.out << "\n";
+    write_summary(fs::path(o.out) / "summary.json", o, params, run, inputs.size());
+    return 0;
 }
 
 }  // namespace
 
 int run_track(const TrackOptions& o) {
-    // Every input is read and tracked before anything is written: bad input leaves no output.
-    if (o.format == "kitti") {
-        const auto files = kitti_sequences(o.detections);
-        std::vector<std::vector<io::KittiTrackingRecord>> tracks;
-        for (const auto& f : files) tracks.push_back(track_kitti_sequence(f, o.rate_hz));
-        fs::create_directories(o.out);
-        for (std::size_t k = 0; k < files.size(); ++k) {
-            io::write_kitti_tracking(fs::path(o.out) / files[k].filename(), tracks[k]);
-            std::cout << files[k].filename().string() << ": " << tracks[k].size() << " track boxes\n";
-        }
-        std::cout << "wrote " << files.size() << " sequence(s) to " << o.out << "\n";
-        return 0;
+    if (o.format == "kitti") return run_track_kitti(o);
+    tracking::TrackerParams params = tracker_params(o);
+    std::vector<fs::path> files;
+    for (const auto& f : io::frame_files(o.detections, "json")) {
+        if (f.filename() != "summary.json") files.push_back(f);
     }
-    const auto files = io::frame_files(o.detections, "json");
     std::vector<io::DetectionFrame> frames;
-    for (const auto& f : files) frames.push_back(io::read_detection_frame(f));
+    std::vector<std::pair<std::string, double>> scores;
+    for (const auto& f : files) {
+        frames.push_back(io::read_detection_frame(f, /*any_score=*/true));
+        for (const Detection& d : frames.back().detections_sensor) scores.emplace_back(f.string(), d.score);
+    }
+    params.score_transform = resolve_score_transform(o, params.score_transform, scores);
     if (!o.poses.empty()) {
         const auto poses = io::read_tum(o.poses);
         if (poses.size() < frames.size()) {
@@ -74,8 +242,9 @@ int run_track(const TrackOptions& o) {
         }
         for (std::size_t k = 0; k < frames.size(); ++k) frames[k].T_world_sensor = poses[k].T_world_sensor;
     }
-    tracking::ObjectMap map;
+    tracking::ObjectMap map(params);
     std::vector<io::Json> results;
+    TrackRun run;
     io::ProgressBar bar("track", frames.size());
     double last_stamp = -1e300;
     for (std::size_t k = 0; k < frames.size(); ++k) {
@@ -83,30 +252,103 @@ int run_track(const TrackOptions& o) {
         const double stamp = frames[k].stamp_s != 0.0 || k == 0 ? frames[k].stamp_s : static_cast<double>(k) / 10.0;
         if (stamp < last_stamp) throw io::FileError(files[k].string(), "stamp_s goes back in time");
         last_stamp = stamp;
+        const Clock::time_point t0 = Clock::now();
         const auto r = map.update(frames[k].detections_sensor, frames[k].T_world_sensor.value_or(Isometry3::Identity()), stamp);
+        run.update_s += std::chrono::duration<double>(Clock::now() - t0).count();
+        for (std::uint32_t id : r.born) ++run.tracks_per_class[std::string(to_string(map.tracks().at(id).cls()))];
         results.push_back(io::objects_to_json(static_cast<int>(k), stamp, r.objects_world));
         bar.update(k + 1);
     }
     bar.finish();
+    run.frames = frames.size();
     const fs::path out(o.out);
     fs::create_directories(out);
     for (std::size_t k = 0; k < frames.size(); ++k) io::write_json(out / files[k].filename(), results[k]);
     std::cout << "tracked " << frames.size() << " frames: " << map.objects().size() << " objects in the map; wrote " << o.out << "\n";
+    write_summary(out / "summary.json", o, params, run, 1);
     return 0;
 }
 
 namespace {
 
-std::vector<eval::TrackingFrame> kitti_frames(const fs::path& file, bool use_track_ids) {
-    std::vector<eval::TrackingFrame> frames;
+// A KITTI file as the evaluation's boxes, per frame (types lower case, as the devkit compares).
+eval::KittiSequence kitti_boxes(const fs::path& file, bool tracker) {
+    eval::KittiSequence seq;
+    std::set<std::pair<int, int>> seen;
     for (const auto& r : io::read_kitti_tracking(file)) {
-        const auto cls = io::class_of_kitti_type(r.type);
-        if (!cls) continue;
-        if (r.track_id < 0 && use_track_ids) throw io::FileError(file.string(), "frame " + std::to_string(r.frame) + ": a line without a track id");
-        if (frames.size() <= static_cast<std::size_t>(r.frame)) frames.resize(static_cast<std::size_t>(r.frame) + 1);
-        frames[static_cast<std::size_t>(r.frame)].push_back({static_cast<std::uint32_t>(r.track_id), *cls, io::box_from_kitti(r)});
+        if (seq.size() <= static_cast<std::size_t>(r.frame)) seq.resize(static_cast<std::size_t>(r.frame) + 1);
+        eval::KittiBox b;
+        b.track_id = r.track_id;
+        b.type = lower(r.type);
+        b.truncation = static_cast<int>(r.truncated);
+        b.occlusion = static_cast<int>(r.occluded);
+        b.bbox_px = r.bbox_px;
+        if (!r.is_dont_care()) b.box = io::box_from_kitti(r);
+        b.score = r.score.value_or(-1.0);  // the devkit's value for a missing score
+        if (tracker && !r.is_dont_care()) {
+            if (r.track_id < 0) throw io::FileError(file.string(), "frame " + std::to_string(r.frame) + ": a track line without a track id");
+            if (!seen.insert({r.frame, r.track_id}).second) {
+                throw io::FileError(file.string(), "frame " + std::to_string(r.frame) + ": track id " + std::to_string(r.track_id) + " twice");
+            }
+        }
+        seq[static_cast<std::size_t>(r.frame)].push_back(b);
     }
-    return frames;
+    return seq;
+}
+
+io::Json kitti_clear_json(const eval::KittiClear& m) {
+    return {{"threshold", m.threshold}, {"recall_target", m.recall_target}, {"mota", m.mota}, {"motp", m.motp}, {"moda", m.moda},
+            {"smota", m.smota}, {"recall", m.recall}, {"precision", m.precision}, {"f1", m.f1}, {"mt", m.mostly_tracked},
+            {"pt", m.partly_tracked}, {"ml", m.mostly_lost}, {"tp", m.tp}, {"fp", m.fp}, {"fn", m.fn}, {"ignored_tp", m.ignored_tp},
+            {"ignored_fn", m.ignored_fn}, {"ignored_tracker", m.ignored_tracker}, {"id_switches", m.id_switches},
+            {"fragmentations", m.fragmentations}, {"gt", m.gt}};
+}
+
+int run_eval_tracking_kitti(const EvalTrackingOptions& o) {
+    std::vector<eval::KittiSequence> gt, tracks;
+    for (const auto& g : kitti_sequences(o.gt)) {
+        const fs::path t = fs::is_regular_file(o.tracks) ? fs::path(o.tracks) : fs::path(o.tracks) / g.filename();
+        if (!fs::exists(t)) throw io::FileError(t.string(), "no tracks for ground-truth sequence " + g.filename().string());
+        gt.push_back(kitti_boxes(g, false));
+        tracks.push_back(kitti_boxes(t, true));
+    }
+    std::vector<std::string> classes;
+    for (const std::string& c : o.classes) classes.push_back(lower(c));
+    if (classes.empty()) {  // those in the tracks; a neighbouring class is scored with its main one
+        std::set<std::string> present;
+        for (const auto& seq : tracks) for (const auto& f : seq) for (const auto& b : f) present.insert(b.type);
+        for (const std::string& c : present) {
+            if ((c == "van" && present.count("car")) || (c == "person_sitting" && present.count("pedestrian")) || c == "dontcare") continue;
+            classes.push_back(c);
+        }
+    }
+    io::Json j;
+    std::cout << "| class | sAMOTA | AMOTA | AMOTP | MOTA | MOTP | IDS | FRAG | MT | ML | TP | FP | FN | GT boxes |\n"
+                 "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const std::string& c : classes) {
+        eval::KittiEvalParams p;
+        p.cls = c;
+        p.min_iou_3d = o.min_iou;
+        p.fov_deg = o.fov_deg;
+        const eval::KittiEvalResult r = eval::evaluate_kitti(gt, tracks, p);
+        const eval::KittiClear& b = r.best;
+        std::cout << std::fixed << std::setprecision(4) << "| " << c << " | " << r.samota << " | " << r.amota << " | " << r.amotp << " | "
+                  << b.mota << " | " << b.motp << " | " << b.id_switches << " | " << b.fragmentations << " | " << b.mostly_tracked << " | "
+                  << b.mostly_lost << " | " << b.tp << " | " << b.fp << " | " << b.fn << " | " << r.gt_boxes << " |\n";
+        io::Json curve = io::Json::array();
+        for (const auto& m : r.curve) curve.push_back(kitti_clear_json(m));
+        j["classes"][c] = {{"samota", r.samota}, {"amota", r.amota}, {"amotp", r.amotp}, {"best_threshold", kitti_clear_json(b)},
+                           {"all_boxes", kitti_clear_json(r.all)}, {"curve", curve}, {"gt_boxes", r.gt_boxes},
+                           {"tracker_boxes", r.tracker_boxes}};
+    }
+    std::cout << "MOTA..FN at the score threshold of best MOTA; 3D IoU >= " << o.min_iou
+              << (o.fov_deg > 0 ? ", field of view " + std::to_string(o.fov_deg).substr(0, 5) + " deg" : std::string()) << "\n";
+    if (!o.out.empty()) {
+        j["protocol"] = {{"min_iou_3d", o.min_iou}, {"fov_deg", o.fov_deg}, {"recall_steps", 40}, {"max_truncation", 0},
+                         {"max_occlusion", 2}, {"min_height_px", 25}};
+        io::write_json(o.out, j);
+    }
+    return 0;
 }
 
 io::Json metrics_json(const eval::TrackingMetrics& m) {
@@ -129,35 +371,26 @@ void print_table(const eval::TrackingMetrics& all, const std::map<ObjectClass, e
 }  // namespace
 
 int run_eval_tracking(const EvalTrackingOptions& o) {
+    if (o.format == "kitti") return run_eval_tracking_kitti(o);
     std::vector<eval::TrackingFrame> gt, tracks;
-    if (o.format == "kitti") {
-        const auto gt_files = kitti_sequences(o.gt);
-        std::uint32_t offset = 0;
-        for (const auto& g : gt_files) {
-            const fs::path t = fs::is_regular_file(o.tracks) ? fs::path(o.tracks) : fs::path(o.tracks) / g.filename();
-            if (!fs::exists(t)) throw io::FileError(t.string(), "no tracks for ground-truth sequence " + g.filename().string());
-            auto gf = kitti_frames(g, true), tf = kitti_frames(t, true);
-            gf.resize(std::max(gf.size(), tf.size())), tf.resize(gf.size());
-            for (auto* v : {&gf, &tf}) {
-                for (auto& f : *v) for (auto& b : f) b.id += offset;  // ids unique across sequences
-            }
-            offset += 1000000u;
-            gt.insert(gt.end(), gf.begin(), gf.end());
-            tracks.insert(tracks.end(), tf.begin(), tf.end());
+    auto json_frames = [](const std::string& dir) {
+        std::vector<fs::path> out;
+        for (const auto& f : io::frame_files(dir, "json")) {
+            if (f.filename() != "summary.json") out.push_back(f);
         }
-    } else {
-        const auto gt_files = io::frame_files(o.gt, "json");
-        const auto tr_files = io::frame_files(o.tracks, "json");
-        if (gt_files.size() != tr_files.size()) {
-            throw io::FileError(o.tracks, "holds " + std::to_string(tr_files.size()) + " frames, the ground truth " + std::to_string(gt_files.size()));
-        }
-        auto frame = [](const fs::path& f) {
-            eval::TrackingFrame out;
-            for (const ObjectEstimate& e : io::read_object_frame(f)) out.push_back({e.id, e.cls, e.box_world});
-            return out;
-        };
-        for (std::size_t k = 0; k < gt_files.size(); ++k) gt.push_back(frame(gt_files[k])), tracks.push_back(frame(tr_files[k]));
+        return out;
+    };
+    const auto gt_files = json_frames(o.gt);
+    const auto tr_files = json_frames(o.tracks);
+    if (gt_files.size() != tr_files.size()) {
+        throw io::FileError(o.tracks, "holds " + std::to_string(tr_files.size()) + " frames, the ground truth " + std::to_string(gt_files.size()));
     }
+    auto frame = [](const fs::path& f) {
+        eval::TrackingFrame out;
+        for (const ObjectEstimate& e : io::read_object_frame(f)) out.push_back({e.id, e.cls, e.box_world});
+        return out;
+    };
+    for (std::size_t k = 0; k < gt_files.size(); ++k) gt.push_back(frame(gt_files[k])), tracks.push_back(frame(tr_files[k]));
     const auto all = eval::evaluate_tracking(gt, tracks);
     const auto per = eval::evaluate_tracking_per_class(gt, tracks);
     print_table(all, per);

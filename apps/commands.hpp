@@ -2,6 +2,7 @@
 // One function per subcommand. main.cpp alone parses the command line (CLI11 is slow to compile)
 // and fills these option structs. Each returns the process exit code: 0 success, 2 bad input.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -132,7 +133,13 @@ struct TrackOptions {
     std::string detections;      ///< folder of per-frame JSON (makeway) or KITTI file / folder of files
     std::string format = "makeway";
     std::string poses;           ///< TUM sensor poses per frame (makeway format, optional)
+    std::string config;          ///< YAML; its tracking section (default: built-in, KITTI preset for kitti)
     double rate_hz = 10.0;       ///< frame rate for KITTI files (stamps = frame / rate)
+    std::optional<double> range_m, min_score;
+    std::vector<std::string> classes;    ///< empty: every class in the input (kitti), chair and table (makeway)
+    std::string score_transform = "auto";  ///< auto, none or sigmoid
+    std::string out_of_range;    ///< freeze or drop; empty: the configuration's
+    double fov_deg = 0.0;        ///< > 0: KITTI output only within this horizontal field of view
     std::string out;
 };
 int run_track(const TrackOptions& options);
@@ -141,6 +148,9 @@ struct EvalTrackingOptions {
     std::string gt;
     std::string tracks;
     std::string format = "makeway";
+    std::vector<std::string> classes;  ///< kitti: classes evaluated (default: those in the tracks)
+    double min_iou = 0.25;             ///< kitti: 3D IoU of a match
+    double fov_deg = 0.0;              ///< kitti: > 0 scores only this horizontal field of view
     std::string out;             ///< optional JSON
 };
 int run_eval_tracking(const EvalTrackingOptions& options);

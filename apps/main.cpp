@@ -143,13 +143,36 @@ void add_track(CLI::App& app, TrackOptions& o, EvalTrackingOptions& e) {
         ->required();
     sub->add_option("--format", o.format, "makeway or kitti")->check(CLI::IsMember({"makeway", "kitti"}))->capture_default_str();
     sub->add_option("--poses", o.poses, "TUM file of T_world_sensor, one per frame (makeway format)");
+    sub->add_option("--config", o.config, "YAML configuration: its tracking section (default: built-in; for kitti a "
+                                          "traffic preset: 80 m range, drop out of range, constant velocity)");
     sub->add_option("--rate", o.rate_hz, "Frame rate of KITTI sequences [Hz]")->check(CLI::Range(0.1, 1000.0))->capture_default_str();
-    sub->add_option("--out", o.out, "Output folder: per-frame JSON objects, or one KITTI file per sequence")->required();
-    auto* ev = app.add_subcommand("eval-tracking", "CLEAR MOT (MOTA, MOTP, ID switches, fragmentations) and HOTA "
-                                                   "(DetA, AssA) per class, 3D IoU");
+    sub->add_option("--range", o.range_m, "Sensor range [m]: farther objects are neither matched nor judged")->check(CLI::Range(0.1, 10000.0));
+    sub->add_option("--classes", o.classes, "Classes to track, comma separated (kitti: any type names, default every "
+                                            "type in the input but DontCare; makeway: chair, table)")
+        ->delimiter(',');
+    sub->add_option("--min-score", o.min_score, "Detections scoring below this (after --score-transform) are not used");
+    sub->add_option("--score-transform", o.score_transform, "How scores become probabilities: none, sigmoid (raw "
+                                                            "logits), or auto (sigmoid when any score is outside [0, 1])")
+        ->check(CLI::IsMember({"auto", "none", "sigmoid"}))
+        ->capture_default_str();
+    sub->add_option("--out-of-range", o.out_of_range, "Objects leaving the range: freeze (kept where last seen) or drop")
+        ->check(CLI::IsMember({"freeze", "drop"}));
+    sub->add_option("--fov-deg", o.fov_deg, "kitti: write only objects within this horizontal field of view of the "
+                                            "sensor's x axis (KITTI's camera: 81.4)")
+        ->check(CLI::Range(0.0, 360.0));
+    sub->add_option("--out", o.out, "Output folder: per-frame JSON objects, or one KITTI file per sequence; and "
+                                    "summary.json (frames per second, settings)")
+        ->required();
+    auto* ev = app.add_subcommand("eval-tracking", "makeway: CLEAR MOT (MOTA, MOTP, ID switches, fragmentations) and "
+                                                   "HOTA (DetA, AssA) per class, 3D IoU; kitti: the KITTI protocol as "
+                                                   "AB3DMOT reports it (sAMOTA, AMOTA, AMOTP; DontCare, neighbouring classes)");
     ev->add_option("--gt", e.gt, "Ground truth: folder of per-frame object JSON (as makeway simulate writes), or KITTI")->required();
     ev->add_option("--tracks", e.tracks, "Tracks in the same format")->required();
     ev->add_option("--format", e.format, "makeway or kitti")->check(CLI::IsMember({"makeway", "kitti"}))->capture_default_str();
+    ev->add_option("--classes", e.classes, "kitti: classes to evaluate, comma separated (default: those in the tracks)")->delimiter(',');
+    ev->add_option("--iou", e.min_iou, "kitti: 3D IoU a match needs")->check(CLI::Range(0.01, 1.0))->capture_default_str();
+    ev->add_option("--fov-deg", e.fov_deg, "kitti: score only boxes within this horizontal field of view (0: all)")
+        ->check(CLI::Range(0.0, 360.0));
     ev->add_option("--out", e.out, "Also write the metrics as JSON");
 }
 

@@ -176,14 +176,14 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
     {
         YamlSection s(root["tracking"], "tracking", problems);
         tracking::TrackerParams& t = sys.tracker;
-        if (const YAML::Node classes = s.take("classes")) {
+        if (const YAML::Node classes = s.take("classes"); classes && !classes.IsNull()) {
             t.tracked_classes.fill(false);
             const bool is_list = classes.IsSequence() && classes.size() > 0;
-            if (!is_list) s.problem("classes: must be a list of class names, e.g. [chair, table]");
+            if (!is_list) s.add_validation({"classes: must be a list of class names, e.g. [chair, table]"});
             for (std::size_t i = 0; is_list && i < classes.size(); ++i) {
                 const auto cls = parse_object_class(classes[i].IsScalar() ? classes[i].Scalar() : "");
                 if (cls) t.tracked_classes[static_cast<std::size_t>(*cls)] = true;
-                else s.problem("classes: unknown class '" + (classes[i].IsScalar() ? classes[i].Scalar() : "?") + "' (the map knows chair, table)");
+                else s.add_validation({"classes: unknown class '" + (classes[i].IsScalar() ? classes[i].Scalar() : "?") + "' (the map knows chair, table)"});
             }
         }
         s.read("min_score", t.min_score);
@@ -192,14 +192,14 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         if (transform == "none" || transform == "sigmoid") {
             t.score_transform = transform == "none" ? tracking::ScoreTransform::kNone : tracking::ScoreTransform::kSigmoid;
         } else {
-            s.problem("score_transform: must be none or sigmoid");
+            s.add_validation({"score_transform: must be none or sigmoid"});
         }
         std::string out_of_range = t.out_of_range == tracking::OutOfRange::kFreeze ? "freeze" : "drop";
         s.read("out_of_range", out_of_range);
         if (out_of_range == "freeze" || out_of_range == "drop") {
             t.out_of_range = out_of_range == "freeze" ? tracking::OutOfRange::kFreeze : tracking::OutOfRange::kDrop;
         } else {
-            s.problem("out_of_range: must be freeze or drop");
+            s.add_validation({"out_of_range: must be freeze or drop"});
         }
         s.read_or_infinity("max_unobserved_s", t.max_unobserved_s);
         s.read_or_infinity("max_floor_gap_m", t.max_floor_gap_m);

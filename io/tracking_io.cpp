@@ -139,7 +139,7 @@ OrientedBox box_from_kitti(const KittiTrackingRecord& r) {
 
 namespace {
 
-Detection detection_from_json(const Json& d) {
+Detection detection_from_json(const Json& d, bool any_score) {
     Detection det;
     if (!d.is_object() || !d.contains("class") || !d["class"].is_string()) throw FormatError("'class' must be chair or table");
     const auto cls = parse_object_class(d["class"].get<std::string>());
@@ -148,7 +148,8 @@ Detection detection_from_json(const Json& d) {
     det.box_sensor = box_from_json(d.contains("box") ? d["box"] : d);
     det.score = 1.0;
     if (d.contains("score")) {
-        if (!d["score"].is_number() || !(d["score"].get<double>() >= 0.0 && d["score"].get<double>() <= 1.0)) {
+        if (!d["score"].is_number() || !std::isfinite(d["score"].get<double>())) throw FormatError("'score' must be a number");
+        if (!any_score && !(d["score"].get<double>() >= 0.0 && d["score"].get<double>() <= 1.0)) {
             throw FormatError("'score' must be a number in [0, 1]");
         }
         det.score = d["score"].get<double>();
@@ -171,7 +172,7 @@ Detection detection_from_json(const Json& d) {
 
 }  // namespace
 
-DetectionFrame read_detection_frame(const std::filesystem::path& path) {
+DetectionFrame read_detection_frame(const std::filesystem::path& path, bool any_score) {
     const Json j = read_json(path);
     DetectionFrame f;
     const Json& list = j.is_object() && j.contains("detections") ? j["detections"] : j;
@@ -187,7 +188,7 @@ DetectionFrame read_detection_frame(const std::filesystem::path& path) {
     }
     for (std::size_t i = 0; i < list.size(); ++i) {
         try {
-            f.detections_sensor.push_back(detection_from_json(list[i]));
+            f.detections_sensor.push_back(detection_from_json(list[i], any_score));
         } catch (const FormatError& e) {
             throw FileError(path.string(), "detection " + std::to_string(i) + ": " + e.what());
         }

@@ -55,7 +55,8 @@ struct DetectionFrame {
 };
 /// Accepts {"detections": [...]} (with optional stamp_s and T_world_sensor) or a bare list.
 /// Throws FileError naming the file and the detection.
-DetectionFrame read_detection_frame(const std::filesystem::path& path);
+/// Scores must be in [0, 1] unless any_score (any finite number: raw logits, for a score transform).
+DetectionFrame read_detection_frame(const std::filesystem::path& path, bool any_score = false);
 Json to_json(const DetectionFrame& frame);
 
 /// Objects of one frame (tracks or ground truth).

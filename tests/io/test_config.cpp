@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <fstream>
 
 #include "io/config_reader.hpp"
@@ -41,6 +43,45 @@ TEST(Config, ShippedDefaultFileMatchesBuiltInDefaults) {
     EXPECT_EQ(c.affordance.table.sides_m, d.affordance.table.sides_m);
     EXPECT_EQ(c.affordance.table.ends_m, d.affordance.table.ends_m);
     EXPECT_EQ(c.affordance.min_existence, d.affordance.min_existence);
+    const auto& ct = c.system.tracker;
+    const auto& dt = d.system.tracker;
+    EXPECT_EQ(ct.tracked_classes, dt.tracked_classes);
+    EXPECT_EQ(ct.min_score, dt.min_score);
+    EXPECT_EQ(ct.score_transform, dt.score_transform);
+    EXPECT_EQ(ct.out_of_range, dt.out_of_range);
+    EXPECT_EQ(ct.max_unobserved_s, dt.max_unobserved_s);
+    EXPECT_EQ(ct.max_floor_gap_m, dt.max_floor_gap_m);
+    EXPECT_EQ(ct.merge_iou, dt.merge_iou);
+    for (std::size_t c2 = 0; c2 < dt.motion.size(); ++c2) {
+        EXPECT_EQ(ct.motion[c2].velocity_decay_s, dt.motion[c2].velocity_decay_s);
+        EXPECT_EQ(ct.motion[c2].max_speed_mps, dt.motion[c2].max_speed_mps);
+        EXPECT_EQ(ct.motion[c2].planar, dt.motion[c2].planar);
+    }
+}
+
+TEST(Config, TrackerIsConfigurable) {
+    const Config c = parse_config("tracking: {classes: [chair], min_score: 0.3, score_transform: sigmoid, sensor_range_m: 25,\n"
+                                  "  out_of_range: drop, max_unobserved_s: .inf, chair_velocity_decay_s: .inf, table_max_speed_mps: 0.5}\n");
+    const auto& t = c.system.tracker;
+    EXPECT_TRUE(t.tracked_classes[0]);
+    EXPECT_FALSE(t.tracked_classes[1]);
+    EXPECT_EQ(t.min_score, 0.3);
+    EXPECT_EQ(t.score_transform, makeway::tracking::ScoreTransform::kSigmoid);
+    EXPECT_EQ(t.sensor_range_m, 25.0);
+    EXPECT_EQ(t.out_of_range, makeway::tracking::OutOfRange::kDrop);
+    EXPECT_TRUE(std::isinf(t.max_unobserved_s));
+    EXPECT_TRUE(std::isinf(t.motion[0].velocity_decay_s));
+    EXPECT_EQ(t.motion[1].max_speed_mps, 0.5);
+    try {
+        parse_config("tracking: {classes: [sofa], score_transform: softmax, out_of_range: sideways, sensor_range_m: .inf}\n");
+        ADD_FAILURE();
+    } catch (const FormatError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("unknown class 'sofa'"), std::string::npos) << what;
+        EXPECT_NE(what.find("score_transform: must be none or sigmoid"), std::string::npos) << what;
+        EXPECT_NE(what.find("out_of_range: must be freeze or drop"), std::string::npos) << what;
+        EXPECT_NE(what.find("sensor_range_m: must be finite"), std::string::npos) << what;
+    }
 }
 
 TEST(Config, AffordanceZonesArePerClassParameters) {

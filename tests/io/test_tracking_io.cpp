@@ -54,6 +54,17 @@ TEST(KittiTracking, MalformedLinesNameTheFileAndLine) {
         }
     }
     EXPECT_EQ(class_of_kitti_type("CHAIR"), ObjectClass::kChair);
+    // Published KITTI labels: DontCare regions have no 3D box (size -1); a sequence may be empty.
+    std::ofstream(dir / "labels.txt") << "0 -1 DontCare -1 -1 -10 219.31 188.49 245.50 218.56 -1 -1 -1 -1000 -1000 -1000 -10\n"
+                                         "0 0 Van 0 0 -1.79 296.74 161.75 455.22 292.50 2.00 1.82 4.43 -4.55 1.71 13.41 -2.11\n";
+    const auto labels = read_kitti_tracking(dir / "labels.txt");
+    ASSERT_EQ(labels.size(), 2u);
+    EXPECT_TRUE(labels[0].is_dont_care());
+    EXPECT_EQ(labels[0].track_id, -1);
+    EXPECT_DOUBLE_EQ(labels[0].bbox_px[2], 245.50);
+    EXPECT_FALSE(labels[1].is_dont_care());
+    std::ofstream(dir / "empty.txt");
+    EXPECT_TRUE(read_kitti_tracking(dir / "empty.txt").empty());
     EXPECT_FALSE(class_of_kitti_type("Car").has_value());
 }
 
