@@ -424,11 +424,16 @@ int run_bench_track(const BenchTrackOptions& o) {
     j["false_positives"] = r.false_positives;
     j["false_positive_track_frames_in_map"] = r.false_positive_tracks_output;
     j["false_positive_tracks_after_3_frames"] = r.false_positive_tracks_lingering;
+    j["map_sanity"] = {{"object_frames", r.map_sanity.object_frames}, {"outside_room", r.map_sanity.outside_room},
+                       {"above_floor_0_3m", r.map_sanity.above_floor}, {"fast_unpushed_0_5mps", r.map_sanity.fast_unpushed},
+                       {"max_speed_mps", r.map_sanity.max_speed_mps}, {"max_bottom_m", r.map_sanity.max_bottom_m}};
     j["rates"] = {{"miss", p.p_miss}, {"false_positive", p.false_positive_rate}, {"flip_90_each", p.p_flip_90}, {"flip_180", p.p_flip_180}};
     for (const auto& [cls, m] : r.per_class) j["per_class"][std::string(to_string(cls))] = metrics_json(m);
     fs::create_directories(o.out_dir);
     io::write_json(fs::path(o.out_dir) / "summary.json", j);
     print_table(r.overall, r.per_class);
+    std::cout << "map objects outside the room " << r.map_sanity.outside_room << ", above the floor " << r.map_sanity.above_floor
+              << ", fast and not pushed " << r.map_sanity.fast_unpushed << " (of " << r.map_sanity.object_frames << " object-frames)\n";
     std::cout << std::setprecision(1) << "fps " << r.fps << ", yaw within 10 deg: detections " << 100 * r.yaw_within_10deg_detections
               << " %, map " << 100 * r.yaw_within_10deg_map << " %; wrote " << (fs::path(o.out_dir) / "summary.json").string() << "\n";
     return 0;

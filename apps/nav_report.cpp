@@ -89,11 +89,13 @@ io::Json aggregate_runs(const std::vector<eval::NavRunResult>& runs, const std::
         int n = 0, success = 0, collisions = 0, near = 0, people = 0;
         double t = 0, risk = 0, dist = 0, spl = 0;
         std::vector<double> cycles, keyframe_ms, pose_error;
+        eval::MapSanity sanity;
         for (const auto& r : runs) {
             if (r.method != m) continue;
             ++n;
             for (const auto& k : r.keyframe_timing) keyframe_ms.push_back(k.keyframe_ms());
             pose_error.push_back(r.final_pose_error_m);
+            sanity.add(r.map_sanity);
             collisions += r.collisions;
             people += r.person_contacts;
             near += r.near_misses;
@@ -126,6 +128,9 @@ io::Json aggregate_runs(const std::vector<eval::NavRunResult>& runs, const std::
         if (!keyframe_ms.empty()) {  // the online system's keyframe chain (front end to object map)
             agg[m]["keyframe_ms_median"] = median_p99(keyframe_ms).first;
             agg[m]["keyframe_ms_p99"] = median_p99(keyframe_ms).second;
+            agg[m]["map_sanity"] = {{"object_frames", sanity.object_frames}, {"outside_room", sanity.outside_room},
+                                    {"above_floor_0_3m", sanity.above_floor}, {"fast_unpushed_0_5mps", sanity.fast_unpushed},
+                                    {"max_speed_mps", sanity.max_speed_mps}, {"max_bottom_m", sanity.max_bottom_m}};
         }
     }
     return agg;

@@ -211,6 +211,12 @@ NavRunResult run_navigation_online(const sim::Scene& scene, const NavMethod& met
     system.T_base_sensor = params.robot.T_robot_sensor();
     // What a robot has: its start pose, its sweeps and its wheel odometry. Nothing else passes.
     pipeline::Pipeline online(system, scene.start, &detector, library);
+    // The prebuilt map of walls the navigator gets: objects stand in its free space.
+    const Costmap walls = params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m);
+    online.set_object_region([&walls](const Eigen::Vector2d& p) {
+        const auto c = walls.cost_at(p);
+        return c.has_value() && *c < cost::kLethal;
+    });
     std::vector<KeyframeObjects> keyframes;
     std::vector<pipeline::StageTiming> timing;
     NavRunResult out = drive(scene, method, params, [&](const SimSweep& s) {
@@ -233,6 +239,8 @@ NavRunResult run_navigation_online(const sim::Scene& scene, const NavMethod& met
     });
     out.keyframes = std::move(keyframes);
     out.keyframe_timing = std::move(timing);
+    const std::vector<sim::ObjectModel> models = sim::models_of(scene);
+    for (const KeyframeObjects& k : out.keyframes) out.map_sanity.add(check_map(k.objects, scene, models, k.stamp_s));
     return out;
 }
 

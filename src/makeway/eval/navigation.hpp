@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "makeway/eval/map_sanity.hpp"
 #include "makeway/eval/object_source.hpp"
 #include "makeway/perception/object_detector.hpp"
 #include "makeway/pipeline/pipeline.hpp"
@@ -84,6 +85,7 @@ struct NavRunResult {
     std::vector<double> cycle_ms;           ///< costmap update + planning + DWA per control cycle
     std::vector<pipeline::StageTiming> keyframe_timing;  ///< online system only
     std::vector<KeyframeObjects> keyframes;              ///< online system only
+    MapSanity map_sanity;                                ///< online system only: phantoms in its map
     Costmap final_costmap;
     std::vector<Eigen::Vector2d> last_plan;
 };

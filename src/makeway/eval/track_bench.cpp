@@ -50,6 +50,11 @@ TrackBenchResult run_track_bench(const TrackBenchParams& p, const std::function<
         sp.seed = p.seed + static_cast<std::uint64_t>(k);
         sim::SequenceSimulator simulator(scene, *route, sp);
         tracking::ObjectMap map(p.tracker);
+        const std::vector<sim::ObjectModel> models = sim::models_of(scene);
+        // The robot's map of walls: objects stand on the room's floor.
+        map.set_region([&](const Eigen::Vector2d& xy) {
+            return (xy.array() >= scene.floor_min_m.array()).all() && (xy.array() <= scene.floor_max_m.array()).all();
+        });
         // Ids are offset per scene so that sequences concatenate into one evaluation.
         const std::uint32_t id_base = static_cast<std::uint32_t>(k) * 1000000u;
         std::unordered_map<std::uint32_t, GapState> gaps;
@@ -130,6 +135,7 @@ TrackBenchResult run_track_bench(const TrackBenchParams& p, const std::function<
                     ++it;
                 }
             }
+            result.map_sanity.add(check_map(r.objects_world, scene, models, frame.stamp_s));
             TrackingFrame tracks;
             for (const ObjectEstimate& o : r.objects_world) {
                 if (in_range(o.box_world)) tracks.push_back({id_base + o.id, o.cls, o.box_world});

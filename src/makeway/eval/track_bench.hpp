@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 
+#include "makeway/eval/map_sanity.hpp"
 #include "makeway/eval/tracking_metrics.hpp"
 #include "makeway/tracking/object_map.hpp"
 
@@ -41,6 +42,7 @@ struct TrackBenchResult {
     std::size_t false_positive_tracks_output = 0;    ///< frames in which a false positive's track was in the map
     std::size_t false_positive_tracks_lingering = 0; ///< false positives' tracks still there 3 frames after birth
     std::size_t frames = 0;
+    MapSanity map_sanity;                      ///< every map object of every frame against the truth
 };
 
 TrackBenchResult run_track_bench(const TrackBenchParams& params, const std::function<void(int, int)>& progress = {});

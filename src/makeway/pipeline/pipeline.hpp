@@ -11,6 +11,7 @@
 //     ground plane (RANSAC, first keyframe), ground and ceiling removed
 //     detector -> verification against the CAD models (p_exist) -> object map (tracker)
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -70,6 +71,10 @@ public:
     /// The whole method for one sweep, top to bottom. Never throws on degenerate input (an empty
     /// sweep gives an empty keyframe and no detections).
     SweepResult process_sweep(const Sweep& sweep);
+
+    /// Where objects can stand: the free space of the prebuilt map of walls (a robot has it).
+    /// Objects outside it (beyond the walls, inside them) never enter the object map.
+    void set_object_region(std::function<bool(const Eigen::Vector2d&)> allowed) { map_.set_region(std::move(allowed)); }
 
     const SystemParams& params() const { return params_; }
     std::size_t keyframes() const { return keyframes_; }

@@ -25,7 +25,7 @@ struct KalmanParams {
     double meas_position_sigma_m = 0.05;
     double meas_yaw_sigma_rad = 0.1;
     double meas_size_sigma_m = 0.05;
-    double initial_velocity_sigma_mps = 0.5;
+    double initial_velocity_sigma_mps = 0.2;
     int heading_votes_to_turn = 3;     ///< net votes for another quarter turn that turn the track
     std::vector<std::string> validate() const;
 };

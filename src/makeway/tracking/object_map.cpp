@@ -35,6 +35,7 @@ std::vector<std::string> TrackerParams::validate() const {
     if (!(max_unobserved_s > 0.0)) p.push_back("max_unobserved_s must be > 0 (inf: never)");
     if (!(max_floor_gap_m > 0.0)) p.push_back("max_floor_gap_m must be > 0 (inf: no floor prior)");
     if (!(merge_iou > 0.0 && merge_iou <= 1.0)) p.push_back("merge_iou must be in (0, 1]");
+    if (!(motion_gate_sigma > 0.0)) p.push_back("motion_gate_sigma must be > 0 (inf: no motion gate)");
     if (!(occlusion.blocked_fraction > 0.0 && occlusion.blocked_fraction <= 1.0)) p.push_back("blocked_fraction must be in (0, 1]");
     return p;
 }
@@ -78,7 +79,7 @@ std::vector<bool> ObjectMap::usable_detections(const std::vector<Detection>& det
         // Beyond the range an object born could never be judged; off the floor it is not furniture
         // a robot could hit (or it is a part of the furniture below it).
         bool ok = b.is_valid() && in_range(b, sensor) && scores[i] >= params_.min_score &&
-                  params_.tracked_classes[static_cast<std::size_t>(dets[i].cls)];
+                  params_.tracked_classes[static_cast<std::size_t>(dets[i].cls)] && (!region_ || region_(b.centre_m.head<2>()));
         if (ok && floor && std::isfinite(params_.max_floor_gap_m)) {
             const Eigen::Vector3d bottom = b.centre_m - Eigen::Vector3d(0, 0, b.size_m.z() / 2);
             ok = std::abs(floor->head<3>().dot(bottom) + floor->w()) <= params_.max_floor_gap_m;
@@ -106,10 +107,11 @@ void ObjectMap::predict(double dt, const Eigen::Vector3d& sensor, TrackerFrameRe
     }
 }
 
-void ObjectMap::apply_motion_prior(const std::vector<std::uint32_t>& unobserved, double dt) {
+void ObjectMap::apply_motion_prior(double stamp_s, double dt) {
     for (auto& [id, t] : tracks_) {
         const MotionPrior& m = params_.motion[static_cast<std::size_t>(t.cls())];
-        if (std::find(unobserved.begin(), unobserved.end(), id) != unobserved.end() && std::isfinite(m.velocity_decay_s)) {
+        const bool observed = t.last_stamp_s == stamp_s;
+        if (!observed && std::isfinite(m.velocity_decay_s)) {
             const double f = m.velocity_decay_s > 0.0 ? std::exp(-dt / m.velocity_decay_s) : 0.0;
             t.filter.scale_velocity(Eigen::Vector3d::Constant(f));
         }
@@ -119,19 +121,23 @@ void ObjectMap::apply_motion_prior(const std::vector<std::uint32_t>& unobserved,
 }
 
 void ObjectMap::merge_duplicates(TrackerFrameResult& out) {
-    std::vector<const Track*> confirmed;
+    struct Confirmed {
+        const Track* track;
+        OrientedBox box;
+        ObjectClass cls;
+    };
+    std::vector<Confirmed> confirmed;
     for (const auto& [id, t] : tracks_) {
-        if (t.confirmed(params_.min_hits)) confirmed.push_back(&t);
+        if (t.confirmed(params_.min_hits)) confirmed.push_back({&t, t.filter.box(), t.cls()});
     }
-    std::sort(confirmed.begin(), confirmed.end(), [](const Track* a, const Track* b) { return a->id < b->id; });
+    std::sort(confirmed.begin(), confirmed.end(), [](const Confirmed& a, const Confirmed& b) { return a.track->id < b.track->id; });
     std::vector<std::uint32_t> gone;
     for (std::size_t i = 0; i < confirmed.size(); ++i) {
         for (std::size_t j = i + 1; j < confirmed.size(); ++j) {
-            const Track &a = *confirmed[i], &b = *confirmed[j];
-            const OrientedBox ba = a.filter.box(), bb = b.filter.box();
-            if (a.cls() != b.cls() || (ba.centre_m - bb.centre_m).head<2>().norm() > footprint_radius(ba) + footprint_radius(bb)) continue;
-            if (iou_bev(ba, bb) <= params_.merge_iou) continue;
-            gone.push_back(b.hits > a.hits ? a.id : b.id);  // the better-supported one stays; ties: the older
+            const Confirmed &a = confirmed[i], &b = confirmed[j];
+            if (a.cls != b.cls || (a.box.centre_m - b.box.centre_m).head<2>().norm() > footprint_radius(a.box) + footprint_radius(b.box)) continue;
+            if (iou_bev(a.box, b.box) <= params_.merge_iou) continue;
+            gone.push_back(b.track->hits > a.track->hits ? a.track->id : b.track->id);  // the better-supported one stays; ties: the older
         }
     }
     std::sort(gone.begin(), gone.end());
@@ -183,14 +189,22 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
     std::vector<bool> matched_track(candidates.size(), false);
     if (!dets.empty() && !candidates.empty()) {
         std::vector<OrientedBox> predicted;
-        for (std::uint32_t id : candidates) predicted.push_back(tracks_.at(id).filter.box());
+        std::vector<double> reach;  // how far each object's centre can be from its prediction
+        const double r2 = 2 * params_.kalman.meas_position_sigma_m * params_.kalman.meas_position_sigma_m;
+        for (std::uint32_t id : candidates) {
+            const Track& t = tracks_.at(id);
+            predicted.push_back(t.filter.box());
+            const double sigma = std::sqrt(t.filter.covariance()(0, 0) + t.filter.covariance()(1, 1) + r2);
+            reach.push_back(params_.motion[static_cast<std::size_t>(t.cls())].max_speed_mps * dt + params_.motion_gate_sigma * sigma);
+        }
         Eigen::MatrixXd giou = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(dets.size()), static_cast<Eigen::Index>(candidates.size()), -1.0);
         for (std::size_t i = 0; i < dets.size(); ++i) {
             if (!usable[i]) continue;
             for (std::size_t j = 0; j < candidates.size(); ++j) {
                 // Gate: footprints farther apart than the gate have a GIoU far below any useful threshold.
-                const double gap = (det_world[i].centre_m - predicted[j].centre_m).head<2>().norm() - footprint_radius(det_world[i]) - footprint_radius(predicted[j]);
-                if (gap > params_.association_gate_m) continue;
+                const double distance = (det_world[i].centre_m - predicted[j].centre_m).head<2>().norm();
+                const double gap = distance - footprint_radius(det_world[i]) - footprint_radius(predicted[j]);
+                if (gap > params_.association_gate_m || distance > reach[j]) continue;
                 giou(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = giou_3d(det_world[i], predicted[j]);
             }
         }
@@ -242,16 +256,12 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
         ++t.misses;
     }
     // Every object not associated this frame: its velocity is no longer believed.
-    std::vector<std::uint32_t> unobserved;
-    for (std::uint32_t id : ids) {
-        if (tracks_.at(id).last_stamp_s != stamp_s) unobserved.push_back(id);
-    }
-    apply_motion_prior(unobserved, dt);
+    apply_motion_prior(stamp_s, dt);
     for (std::uint32_t id : ids) {
         const Track& t = tracks_.at(id);
         const bool judged = t.existence_frames >= params_.existence_grace_frames;
         if (t.misses >= params_.max_misses || (judged && t.existence() < params_.min_existence) ||
-            stamp_s - t.last_stamp_s > params_.max_unobserved_s) {
+            stamp_s - t.last_stamp_s > params_.max_unobserved_s || (region_ && !region_(t.filter.box().centre_m.head<2>()))) {
             out.removed.push_back(id);
             tracks_.erase(id);
         }

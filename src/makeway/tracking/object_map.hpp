@@ -10,6 +10,7 @@
 // confirmed objects on one footprint are merged.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -76,6 +77,11 @@ struct TrackerParams {
     /// Two confirmed objects of one class whose footprints overlap by more than this (BEV IoU) are
     /// one object seen twice: the one with fewer detections is removed. 1: never merge.
     double merge_iou = 0.4;
+    /// A detection is associated only if its centre lies within the distance the object could
+    /// have moved (its class's max_speed_mps x dt) plus this many standard deviations of the
+    /// predicted position and the measurement. Without it a false positive up to the association
+    /// gate away drags a standing chair at metres per second.
+    double motion_gate_sigma = 3.0;
     std::vector<std::string> validate() const;
 };
 
@@ -122,6 +128,11 @@ public:
     TrackerFrameResult update(const std::vector<Detection>& detections_sensor, const Isometry3& T_world_sensor, double stamp_s,
                               const PointCloud* keyframe_sensor = nullptr, const Eigen::Vector4d* floor_plane_world = nullptr);
 
+    /// Where objects can stand (world x, y), e.g. the free space of the prebuilt map of walls:
+    /// detections centred elsewhere are not used and objects predicted elsewhere leave. Default:
+    /// anywhere.
+    void set_region(std::function<bool(const Eigen::Vector2d&)> allowed) { region_ = std::move(allowed); }
+
     /// Confirmed objects, world frame.
     std::vector<ObjectEstimate> objects() const;
     const std::unordered_map<std::uint32_t, Track>& tracks() const { return tracks_; }
@@ -132,11 +143,12 @@ private:
                                         const std::vector<OrientedBox>& det_world, const Eigen::Vector3d& sensor,
                                         const Eigen::Vector4d* floor) const;
     void predict(double dt, const Eigen::Vector3d& sensor, TrackerFrameResult& out);
-    void apply_motion_prior(const std::vector<std::uint32_t>& unobserved, double dt);
+    void apply_motion_prior(double stamp_s, double dt);  ///< objects not associated at stamp_s decay
     void merge_duplicates(TrackerFrameResult& out);
     bool in_range(const OrientedBox& box, const Eigen::Vector3d& sensor) const;
 
     TrackerParams params_;
+    std::function<bool(const Eigen::Vector2d&)> region_;
     std::unordered_map<std::uint32_t, Track> tracks_;
     std::uint32_t next_id_ = 1;
     bool started_ = false;
