@@ -44,7 +44,7 @@ tracking::TrackerParams kitti_preset() {
     tracking::TrackerParams p;
     p.sensor_range_m = 80.0;
     p.out_of_range = tracking::OutOfRange::kDrop;
-    p.motion.fill({std::numeric_limits<double>::infinity(), 60.0, false});
+    p.motion.fill({std::numeric_limits<double>::infinity(), 60.0, false, 0.0, 1.0});
     p.max_floor_gap_m = std::numeric_limits<double>::infinity();
     p.max_misses = 3;
     return p;

@@ -204,13 +204,17 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read_or_infinity("max_unobserved_s", t.max_unobserved_s);
         s.read_or_infinity("max_floor_gap_m", t.max_floor_gap_m);
         s.read("merge_iou", t.merge_iou);
+        s.read_or_infinity("motion_gate_sigma", t.motion_gate_sigma);
         for (ObjectClass c : kAllObjectClasses) {
             tracking::MotionPrior& m = t.motion[static_cast<std::size_t>(c)];
             const std::string name(to_string(c));
-            const std::string decay = name + "_velocity_decay_s", speed = name + "_max_speed_mps", planar = name + "_planar";
+            const std::string decay = name + "_velocity_decay_s", speed = name + "_max_speed_mps", planar = name + "_planar",
+                              displacement = name + "_min_displacement_m", window = name + "_motion_window_s";
             s.read_or_infinity(decay.c_str(), m.velocity_decay_s);
             s.read(speed.c_str(), m.max_speed_mps);
             s.read(planar.c_str(), m.planar);
+            s.read(displacement.c_str(), m.min_displacement_m);
+            s.read(window.c_str(), m.motion_window_s);
         }
         s.read("min_giou", t.min_giou);
         s.read("sensor_range_m", t.sensor_range_m);

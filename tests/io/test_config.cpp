@@ -52,10 +52,13 @@ TEST(Config, ShippedDefaultFileMatchesBuiltInDefaults) {
     EXPECT_EQ(ct.max_unobserved_s, dt.max_unobserved_s);
     EXPECT_EQ(ct.max_floor_gap_m, dt.max_floor_gap_m);
     EXPECT_EQ(ct.merge_iou, dt.merge_iou);
+    EXPECT_EQ(ct.motion_gate_sigma, dt.motion_gate_sigma);
     for (std::size_t c2 = 0; c2 < dt.motion.size(); ++c2) {
         EXPECT_EQ(ct.motion[c2].velocity_decay_s, dt.motion[c2].velocity_decay_s);
         EXPECT_EQ(ct.motion[c2].max_speed_mps, dt.motion[c2].max_speed_mps);
         EXPECT_EQ(ct.motion[c2].planar, dt.motion[c2].planar);
+        EXPECT_EQ(ct.motion[c2].min_displacement_m, dt.motion[c2].min_displacement_m);
+        EXPECT_EQ(ct.motion[c2].motion_window_s, dt.motion[c2].motion_window_s);
     }
 }
 

@@ -92,6 +92,14 @@ void BoxKalmanFilter::scale_velocity(const Eigen::Vector3d& f) {
     }
 }
 
+void BoxKalmanFilter::hold_at_rest() {
+    x_.tail<3>().setZero();
+    P_.bottomRows<3>().setZero();
+    P_.rightCols<3>().setZero();
+    const double sv = params_.initial_velocity_sigma_mps;
+    P_.bottomRightCorner<3, 3>().diagonal().setConstant(sv * sv);
+}
+
 void BoxKalmanFilter::clamp_speed(double max_mps) {
     const double speed = x_.segment<2>(7).norm();
     if (speed > max_mps) x_.segment<2>(7) *= max_mps / speed;

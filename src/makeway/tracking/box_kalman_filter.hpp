@@ -44,6 +44,12 @@ public:
 
     /// Velocity <- diag(factors) velocity, covariance alike (D P D^T): a motion prior's decay.
     void scale_velocity(const Eigen::Vector3d& factors);
+    /// Horizontal velocity replaced (an estimate from outside the filter: the window fit).
+    void set_planar_velocity(const Eigen::Vector2d& v_mps) { x_.segment<2>(7) = v_mps; }
+    /// Velocity set to zero with the uncertainty of a new object (initial_velocity_sigma_mps) and no
+    /// correlation: "at rest, as far as we know". Scaling by 0 instead would make the filter certain
+    /// of rest, and a pushed chair would outrun its own track.
+    void hold_at_rest();
     /// Horizontal speed clamped to max_mps (the state only: a bound, not a measurement).
     void clamp_speed(double max_mps);
 

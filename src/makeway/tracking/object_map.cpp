@@ -14,6 +14,8 @@ std::vector<std::string> MotionPrior::validate() const {
     std::vector<std::string> p;
     if (!(velocity_decay_s >= 0.0)) p.push_back("velocity_decay_s must be >= 0 (inf: no decay)");
     if (!(max_speed_mps > 0.0)) p.push_back("max_speed_mps must be > 0");
+    if (!(min_displacement_m >= 0.0)) p.push_back("min_displacement_m must be >= 0");
+    if (!(motion_window_s > 0.0)) p.push_back("motion_window_s must be > 0");
     return p;
 }
 
@@ -64,6 +66,19 @@ namespace {
 
 double footprint_radius(const OrientedBox& b) { return 0.5 * b.size_m.head<2>().norm(); }
 
+// Least-squares velocity of positions over time (at least two distinct stamps).
+Eigen::Vector2d window_velocity(const std::deque<std::pair<double, Eigen::Vector2d>>& seen) {
+    double t_mean = 0.0;
+    Eigen::Vector2d p_mean = Eigen::Vector2d::Zero();
+    for (const auto& [t, p] : seen) t_mean += t, p_mean += p;
+    t_mean /= static_cast<double>(seen.size());
+    p_mean /= static_cast<double>(seen.size());
+    double stt = 0.0;
+    Eigen::Vector2d stp = Eigen::Vector2d::Zero();
+    for (const auto& [t, p] : seen) stt += (t - t_mean) * (t - t_mean), stp += (t - t_mean) * (p - p_mean);
+    return stt > 0.0 ? Eigen::Vector2d(stp / stt) : Eigen::Vector2d::Zero();
+}
+
 }  // namespace
 
 bool ObjectMap::in_range(const OrientedBox& b, const Eigen::Vector3d& sensor) const {
@@ -111,7 +126,15 @@ void ObjectMap::apply_motion_prior(double stamp_s, double dt) {
     for (auto& [id, t] : tracks_) {
         const MotionPrior& m = params_.motion[static_cast<std::size_t>(t.cls())];
         const bool observed = t.last_stamp_s == stamp_s;
-        if (!observed && std::isfinite(m.velocity_decay_s)) {
+        while (!t.seen_at.empty() && t.seen_at.front().first < stamp_s - m.motion_window_s) t.seen_at.pop_front();
+        // Moved: 3+ boxes over at least half the window (two boxes a frame apart say nothing about motion).
+        const bool moved = t.seen_at.size() >= 3 && t.seen_at.back().first - t.seen_at.front().first >= m.motion_window_s / 2 &&
+                           (t.seen_at.back().second - t.seen_at.front().second).norm() >= m.min_displacement_m;
+        if (m.min_displacement_m > 0.0 && !moved) {
+            t.filter.hold_at_rest();  // until the detections move it
+        } else if (m.min_displacement_m > 0.0 && observed) {
+            t.filter.set_planar_velocity(window_velocity(t.seen_at));
+        } else if (!observed && std::isfinite(m.velocity_decay_s)) {
             const double f = m.velocity_decay_s > 0.0 ? std::exp(-dt / m.velocity_decay_s) : 0.0;
             t.filter.scale_velocity(Eigen::Vector3d::Constant(f));
         }
@@ -223,6 +246,7 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
             ++t.hits;
             t.misses = 0;
             t.last_stamp_s = stamp_s;
+            t.seen_at.emplace_back(stamp_s, det_world[i].centre_m.head<2>());
             matched_track[static_cast<std::size_t>(j)] = true;
             out.track_of_detection[i] = static_cast<int>(t.id);
         }
@@ -279,6 +303,7 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
         t.existence_frames = 1;
         t.hits = 1;
         t.last_stamp_s = stamp_s;
+        t.seen_at.emplace_back(stamp_s, det_world[i].centre_m.head<2>());
         out.track_of_detection[i] = static_cast<int>(t.id);
         out.born.push_back(t.id);
         tracks_.emplace(t.id, std::move(t));

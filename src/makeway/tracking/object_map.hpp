@@ -9,6 +9,7 @@
 // object unobserved for max_unobserved_s leaves, detections off the floor are not used, and two
 // confirmed objects on one footprint are merged.
 #include <array>
+#include <deque>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -34,6 +35,13 @@ struct MotionPrior {
     double velocity_decay_s = 0.5;
     double max_speed_mps = 1.5;  ///< horizontal speed estimates are clamped to this
     bool planar = true;          ///< no vertical motion (vz held at 0): things that stand on a floor
+    /// Static until it moved: the object is held at rest (velocity 0) unless its detections within
+    /// the last motion_window_s (spanning at least half of it) moved it at least this far, and then its velocity is the
+    /// least-squares slope of those detections (the filter's velocity, driven by the last few boxes
+    /// of partial views, overshoots). Detection noise otherwise reads as motion. 0: the filter's
+    /// velocity, always free (traffic).
+    double min_displacement_m = 0.3;
+    double motion_window_s = 2.0;
     std::vector<std::string> validate() const;
 };
 
@@ -49,8 +57,10 @@ enum class ScoreTransform { kNone, kSigmoid };
 struct TrackerParams {
     KalmanParams kalman;
     OcclusionParams occlusion;
-    /// Indexed by ObjectClass (chair, table).
-    std::array<MotionPrior, kNumObjectClasses> motion{MotionPrior{0.5, 1.5, true}, MotionPrior{0.5, 1.0, true}};
+    /// Indexed by ObjectClass (chair, table). Chairs roll or are carried at up to a brisk walk;
+    /// tables are heavy, dragged at a slow walk, and their boxes shift more with the view (half a
+    /// table's length), so they need a larger displacement over a longer window before they move.
+    std::array<MotionPrior, kNumObjectClasses> motion{MotionPrior{0.5, 1.5, true, 0.3, 2.0}, MotionPrior{0.5, 0.5, true, 0.6, 3.0}};
     std::array<bool, kNumObjectClasses> tracked_classes{true, true};  ///< detections of other classes are not used
     ScoreTransform score_transform = ScoreTransform::kNone;
     double min_score = 0.0;          ///< detections scoring below this (after the transform) are not used
@@ -98,6 +108,7 @@ struct Track {
     int misses = 0;                  ///< consecutive unexplained misses
     int age_frames = 0;
     double last_stamp_s = 0.0;
+    std::deque<std::pair<double, Eigen::Vector2d>> seen_at;  ///< (stamp, centre) of recent detections
 
     ObjectClass cls() const;                                        ///< eq. (4)
     double class_confidence() const;                                ///< eq. (5)
