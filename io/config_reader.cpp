@@ -65,6 +65,29 @@ void YamlSection::read_scalar(const char* key, T& value, const char* type_name) 
     }
 }
 
+namespace {
+
+// An enumeration written as one of its names ("must be a or b" otherwise).
+template <typename E>
+void read_choice(YamlSection& s, const char* key, E& value, const std::vector<std::pair<std::string, E>>& names) {
+    std::string name;
+    for (const auto& [n, v] : names) {
+        if (v == value) name = n;
+    }
+    s.read(key, name);
+    for (const auto& [n, v] : names) {
+        if (n == name) {
+            value = v;
+            return;
+        }
+    }
+    std::string list;
+    for (std::size_t i = 0; i < names.size(); ++i) list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i].first;
+    s.add_validation({std::string(key) + ": must be " + list});
+}
+
+}  // namespace
+
 void YamlSection::read(const char* key, double& value) { read_scalar(key, value, "a number"); }
 void YamlSection::read_or_infinity(const char* key, double& value) {
     double v = value;
@@ -187,20 +210,8 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
             }
         }
         s.read("min_score", t.min_score);
-        std::string transform = t.score_transform == tracking::ScoreTransform::kSigmoid ? "sigmoid" : "none";
-        s.read("score_transform", transform);
-        if (transform == "none" || transform == "sigmoid") {
-            t.score_transform = transform == "none" ? tracking::ScoreTransform::kNone : tracking::ScoreTransform::kSigmoid;
-        } else {
-            s.add_validation({"score_transform: must be none or sigmoid"});
-        }
-        std::string out_of_range = t.out_of_range == tracking::OutOfRange::kFreeze ? "freeze" : "drop";
-        s.read("out_of_range", out_of_range);
-        if (out_of_range == "freeze" || out_of_range == "drop") {
-            t.out_of_range = out_of_range == "freeze" ? tracking::OutOfRange::kFreeze : tracking::OutOfRange::kDrop;
-        } else {
-            s.add_validation({"out_of_range: must be freeze or drop"});
-        }
+        read_choice(s, "score_transform", t.score_transform, {{"none", tracking::ScoreTransform::kNone}, {"sigmoid", tracking::ScoreTransform::kSigmoid}});
+        read_choice(s, "out_of_range", t.out_of_range, {{"freeze", tracking::OutOfRange::kFreeze}, {"drop", tracking::OutOfRange::kDrop}});
         s.read_or_infinity("max_unobserved_s", t.max_unobserved_s);
         s.read_or_infinity("max_floor_gap_m", t.max_floor_gap_m);
         s.read("merge_iou", t.merge_iou);

@@ -66,17 +66,34 @@ namespace {
 
 double footprint_radius(const OrientedBox& b) { return 0.5 * b.size_m.head<2>().norm(); }
 
-// Least-squares velocity of positions over time (at least two distinct stamps).
-Eigen::Vector2d window_velocity(const std::deque<std::pair<double, Eigen::Vector2d>>& seen) {
+// Least-squares velocity of the recent detections, and whether it is significant: at least 3
+// sigmas of the slope, with sigma from the fit's residuals (never below the detector's nominal
+// noise). Boxes that hop between the parts of a cluttered corner have large residuals; a chair
+// being pushed moves on a line.
+struct WindowFit {
+    Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
+    bool significant = false;
+};
+
+WindowFit fit_window(const std::deque<std::pair<double, Eigen::Vector2d>>& seen, double min_sigma_m) {
+    WindowFit fit;
+    const auto n = static_cast<double>(seen.size());
+    if (seen.size() < 3) return fit;
     double t_mean = 0.0;
     Eigen::Vector2d p_mean = Eigen::Vector2d::Zero();
     for (const auto& [t, p] : seen) t_mean += t, p_mean += p;
-    t_mean /= static_cast<double>(seen.size());
-    p_mean /= static_cast<double>(seen.size());
+    t_mean /= n;
+    p_mean /= n;
     double stt = 0.0;
     Eigen::Vector2d stp = Eigen::Vector2d::Zero();
     for (const auto& [t, p] : seen) stt += (t - t_mean) * (t - t_mean), stp += (t - t_mean) * (p - p_mean);
-    return stt > 0.0 ? Eigen::Vector2d(stp / stt) : Eigen::Vector2d::Zero();
+    if (!(stt > 0.0)) return fit;
+    fit.velocity = stp / stt;
+    double ssr = 0.0;
+    for (const auto& [t, p] : seen) ssr += (p - p_mean - fit.velocity * (t - t_mean)).squaredNorm();
+    const double sigma = std::max(std::sqrt(ssr / (2.0 * (n - 2.0))), min_sigma_m);
+    fit.significant = fit.velocity.norm() >= 3.0 * sigma / std::sqrt(stt);
+    return fit;
 }
 
 }  // namespace
@@ -127,13 +144,15 @@ void ObjectMap::apply_motion_prior(double stamp_s, double dt) {
         const MotionPrior& m = params_.motion[static_cast<std::size_t>(t.cls())];
         const bool observed = t.last_stamp_s == stamp_s;
         while (!t.seen_at.empty() && t.seen_at.front().first < stamp_s - m.motion_window_s) t.seen_at.pop_front();
-        // Moved: 3+ boxes over at least half the window (two boxes a frame apart say nothing about motion).
-        const bool moved = t.seen_at.size() >= 3 && t.seen_at.back().first - t.seen_at.front().first >= m.motion_window_s / 2 &&
+        // Moved: 3+ boxes over at least half the window, displaced by min_displacement_m, along a
+        // significant slope (two boxes a frame apart, or boxes hopping, say nothing about motion).
+        const bool spans = t.seen_at.size() >= 3 && t.seen_at.back().first - t.seen_at.front().first >= m.motion_window_s / 2 &&
                            (t.seen_at.back().second - t.seen_at.front().second).norm() >= m.min_displacement_m;
-        if (m.min_displacement_m > 0.0 && !moved) {
+        const WindowFit fit = spans ? fit_window(t.seen_at, params_.kalman.meas_position_sigma_m) : WindowFit{};
+        if (m.min_displacement_m > 0.0 && !fit.significant) {
             t.filter.hold_at_rest();  // until the detections move it
         } else if (m.min_displacement_m > 0.0 && observed) {
-            t.filter.set_planar_velocity(window_velocity(t.seen_at));
+            t.filter.set_planar_velocity(fit.velocity);
         } else if (!observed && std::isfinite(m.velocity_decay_s)) {
             const double f = m.velocity_decay_s > 0.0 ? std::exp(-dt / m.velocity_decay_s) : 0.0;
             t.filter.scale_velocity(Eigen::Vector3d::Constant(f));
