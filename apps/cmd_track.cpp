@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <sstream>
 #include <unordered_map>
 
 #include "apps/commands.hpp"
@@ -79,8 +80,9 @@ tracking::ScoreTransform resolve_score_transform(const TrackOptions& o, tracking
     const auto outside = std::find_if(scores.begin(), scores.end(), [](const auto& s) { return !(s.second >= 0.0 && s.second <= 1.0); });
     if (o.score_transform == "none") {
         if (outside != scores.end()) {
-            throw io::FileError(outside->first, "score " + std::to_string(outside->second) +
-                                                    " is not in [0, 1]; raw logits need --score-transform sigmoid");
+            std::ostringstream what;
+            what << "score " << outside->second << " is not in [0, 1]; raw logits need --score-transform sigmoid";
+            throw io::FileError(outside->first, what.str());
         }
         return tracking::ScoreTransform::kNone;
     }
