@@ -98,7 +98,7 @@ struct KittiSequenceInput {
 };
 
 struct TrackRun {
-    std::size_t frames = 0;
+    std::size_t frames = 0;  // frames the tracker processed
     double update_s = 0.0;  // tracker updates only: reading and writing excluded
     std::map<std::string, std::size_t> tracks_per_class;
 };
@@ -109,6 +109,7 @@ std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInp
                                                           const tracking::TrackerParams& params, const TrackOptions& o, TrackRun& run) {
     int last = -1;
     for (const auto& r : in.records) last = std::max(last, r.frame);
+    std::set<int> updated;  // frames at which a map was updated (empty stretches with no objects are skipped)
     std::map<std::pair<std::string, std::uint32_t>, int> out_id;  // (type, map id) -> id in the output
     std::vector<io::KittiTrackingRecord> out;
     const double half_fov = deg_to_rad(o.fov_deg) / 2;
@@ -121,8 +122,14 @@ std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInp
         tracking::ObjectMap map(params);
         std::unordered_map<std::uint32_t, std::size_t> last_record;  // map id -> its last detection
         for (int f = 0; f <= last; ++f) {
-            std::vector<Detection> dets;
             const auto it = frames.find(f);
+            if (it == frames.end() && map.tracks().empty()) {  // nothing to predict or judge: skip to the next detections
+                const auto next = frames.upper_bound(f);
+                if (next == frames.end()) break;
+                f = next->first - 1;
+                continue;
+            }
+            std::vector<Detection> dets;
             const std::vector<std::size_t> idx = it == frames.end() ? std::vector<std::size_t>{} : it->second;
             for (std::size_t i : idx) {
                 Detection d;
@@ -135,6 +142,7 @@ std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInp
             const Clock::time_point t0 = Clock::now();
             const tracking::TrackerFrameResult r = map.update(dets, Isometry3::Identity(), f / o.rate_hz);
             run.update_s += std::chrono::duration<double>(Clock::now() - t0).count();
+            updated.insert(f);
             for (std::size_t k = 0; k < idx.size(); ++k) {
                 if (r.track_of_detection[k] >= 0) last_record[static_cast<std::uint32_t>(r.track_of_detection[k])] = idx[k];
             }
@@ -152,7 +160,7 @@ std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInp
             }
         }
     }
-    run.frames += static_cast<std::size_t>(last + 1);
+    run.frames += updated.size();
     std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.frame < b.frame; });
     return out;
 }
