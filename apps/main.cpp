@@ -1,5 +1,10 @@
 // makeway: the command-line front end. Parses options (CLI11) and calls one run_* per subcommand.
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 
@@ -261,6 +266,35 @@ void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchV
     sim->add_option("--out", o.out, "Also write the JSON to this file");
 }
 
+// Every number at the boundary: a FLOAT option must be finite (CLI11 reads "nan" and "inf" as
+// numbers, and a NaN passes a Range check), an unsigned one must be written as a whole number that
+// fits (CLI11 saturates "-1" and "1e23" to 2^64-1).
+void check_numbers(CLI::App& app) {
+    const CLI::Validator finite(
+        [](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            return end != text.c_str() && !std::isfinite(v) ? "must be a finite number" : "";
+        },
+        "", "finite");
+    const CLI::Validator whole(
+        [](std::string& text) -> std::string {
+            if (text.empty() || !std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c); })) {
+                return "must be a non-negative whole number";
+            }
+            errno = 0;
+            (void)std::strtoull(text.c_str(), nullptr, 10);
+            return errno == ERANGE ? "is too large (at most 18446744073709551615)" : "";
+        },
+        "", "whole");
+    for (CLI::Option* o : app.get_options()) {
+        const std::string type = o->get_type_name();
+        if (type.rfind("FLOAT", 0) == 0) o->check(finite);
+        if (type.rfind("UINT", 0) == 0) o->check(whole);
+    }
+    for (CLI::App* sub : app.get_subcommands({})) check_numbers(*sub);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -297,6 +331,7 @@ int main(int argc, char** argv) {
     add_track(app, track, eval_tracking);
     add_detector(app, dataset, train_detector, detect, eval_detection);
     add_bench(app, bench_sim, bench_nav, bench_verify, bench_track);
+    check_numbers(app);
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
         for (const CLI::App* sub : app.get_subcommands({})) known |= sub->get_name() == argv[1];

@@ -172,28 +172,38 @@ Detection detection_from_json(const Json& d, bool any_score) {
 
 }  // namespace
 
-DetectionFrame read_detection_frame(const std::filesystem::path& path, bool any_score) {
-    const Json j = read_json(path);
+DetectionFrame parse_detection_frame(std::string_view text, bool any_score) {
+    Json j;
+    try {
+        j = Json::parse(text);
+    } catch (const Json::parse_error& e) {
+        throw FormatError(std::string("invalid JSON: ") + e.what());
+    }
     DetectionFrame f;
     const Json& list = j.is_object() && j.contains("detections") ? j["detections"] : j;
-    if (!list.is_array()) throw FileError(path.string(), "expected a list of detections (or {\"detections\": [...]})");
-    try {
-        if (j.is_object() && j.contains("stamp_s")) {
-            if (!j["stamp_s"].is_number() || !std::isfinite(j["stamp_s"].get<double>())) throw FormatError("'stamp_s' must be a number");
-            f.stamp_s = j["stamp_s"].get<double>();
-        }
-        if (j.is_object() && j.contains("T_world_sensor")) f.T_world_sensor = pose_from_json(j["T_world_sensor"], "T_world_sensor");
-    } catch (const FormatError& e) {
-        throw FileError(path.string(), e.what());
+    if (!list.is_array()) throw FormatError("expected a list of detections (or {\"detections\": [...]})");
+    if (j.is_object() && j.contains("stamp_s")) {
+        if (!j["stamp_s"].is_number() || !std::isfinite(j["stamp_s"].get<double>())) throw FormatError("'stamp_s' must be a number");
+        f.stamp_s = j["stamp_s"].get<double>();
     }
+    if (j.is_object() && j.contains("T_world_sensor")) f.T_world_sensor = pose_from_json(j["T_world_sensor"], "T_world_sensor");
     for (std::size_t i = 0; i < list.size(); ++i) {
         try {
             f.detections_sensor.push_back(detection_from_json(list[i], any_score));
         } catch (const FormatError& e) {
-            throw FileError(path.string(), "detection " + std::to_string(i) + ": " + e.what());
+            throw FormatError("detection " + std::to_string(i) + ": " + e.what());
         }
     }
     return f;
+}
+
+DetectionFrame read_detection_frame(const std::filesystem::path& path, bool any_score) {
+    const std::string text = read_file(path);
+    try {
+        return parse_detection_frame(text, any_score);
+    } catch (const FormatError& e) {
+        throw FileError(path.string(), e.what());
+    }
 }
 
 Json to_json(const DetectionFrame& f) {

@@ -55,6 +55,8 @@ struct DetectionFrame {
 };
 /// Accepts {"detections": [...]} (with optional stamp_s and T_world_sensor) or a bare list.
 /// Throws FileError naming the file and the detection.
+/// The same from text; throws FormatError ("detection N: problem").
+DetectionFrame parse_detection_frame(std::string_view text, bool any_score = false);
 /// Scores must be in [0, 1] unless any_score (any finite number: raw logits, for a score transform).
 DetectionFrame read_detection_frame(const std::filesystem::path& path, bool any_score = false);
 Json to_json(const DetectionFrame& frame);

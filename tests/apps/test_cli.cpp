@@ -112,6 +112,13 @@ TEST(Cli, BadInputGivesExitTwoOneLineAndNoOutput) {
         {"scene --density crowded --out " + (dir / "o11.yaml").string(), "--density"},
         {"scene --out " + (dir / "o12.txt").string(), (dir / "o12.txt").string() + ": a scene file must end in .yaml"},
         {"frobnicate", "frobnicate"},
+        // Numbers at the boundary (CLI11 alone saturated these seeds and let NaN through a range).
+        {"scene --seed -1 --out " + (dir / "o13.yaml").string(), "--seed: must be a non-negative whole number"},
+        {"scene --seed 1e23 --out " + (dir / "o13.yaml").string(), "--seed: must be a non-negative whole number"},
+        {"scene --seed 99999999999999999999 --out " + (dir / "o13.yaml").string(), "--seed: is too large"},
+        {"navigate --scene " + (dir / "good_scene.yaml").string() + " --time-limit nan --out " + (dir / "o14").string(),
+         "--time-limit: must be a finite number"},
+        {"track --detections " + dir.string() + " --min-score nan --out " + (dir / "o15").string(), "--min-score: must be a finite number"},
     };
     for (const auto& [args, expected] : cases) {
         const CliRun r = run_makeway(args, dir);
@@ -121,7 +128,7 @@ TEST(Cli, BadInputGivesExitTwoOneLineAndNoOutput) {
         EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
     }
     for (const char* out : {"o1.ply", "o2.ply", "o3.pcd", "o4.pcd", "o5.xyz", "o6", "o7", "o8", "o9", "o10.obj",
-                            "o11.yaml", "o12.txt"}) {
+                            "o11.yaml", "o12.txt", "o13.yaml", "o14", "o15"}) {
         EXPECT_FALSE(std::filesystem::exists(dir / out)) << out;
     }
     EXPECT_EQ(run_makeway("convert " + (dir / "nan.bin").string() + " " + (dir / "ok.pcd").string() +
