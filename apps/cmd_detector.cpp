@@ -103,7 +103,8 @@ int run_train_detector(const TrainDetectorOptions& o) {
 
 int run_detect(const DetectOptions& o) {
     const perception::Detector detector = load_detector(o.model);
-    const PointCloud raw = io::read_point_cloud(o.cloud, {.non_finite = io::NonFinitePolicy::kDrop}).cloud;
+    const auto policy = o.non_finite == "drop" ? io::NonFinitePolicy::kDrop : io::NonFinitePolicy::kReject;
+    const PointCloud raw = io::read_point_cloud(o.cloud, {.non_finite = policy}).cloud;
     const PointCloud cloud = pipeline::prepare_keyframe(raw, {}).cloud_sensor;
     io::Json dets = io::Json::array();
     const auto found = detector.detect(cloud);

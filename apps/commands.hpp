@@ -194,6 +194,7 @@ int run_train_detector(const TrainDetectorOptions& options);
 struct DetectOptions {
     std::string model;  ///< empty: the default weights
     std::string cloud;
+    std::string non_finite = "reject";  ///< points with NaN/inf coordinates: reject the file or drop them
     std::string out;
 };
 int run_detect(const DetectOptions& options);

@@ -208,6 +208,9 @@ void add_detector(CLI::App& app, DatasetOptions& ds, TrainDetectorOptions& tr, D
                                             "plane and ceiling are removed first when found");
     de->add_option("--model", dt.model, "Model file (default: models/detector.pt)");
     de->add_option("--cloud", dt.cloud, "Keyframe cloud (.pcd, .ply, .bin)")->required();
+    de->add_option("--non-finite", dt.non_finite, "Points with NaN/inf coordinates: reject the file (bad input) or drop them")
+        ->check(CLI::IsMember({"reject", "drop"}))
+        ->capture_default_str();
     de->add_option("--out", dt.out, "Detections JSON (class, box, score, class_probabilities)")->required();
     auto* e = app.add_subcommand("eval-detection", "AP/AR at 3D IoU 0.25 and 0.5, orientation accuracy and latency on "
                                                    "held-out simulated scenes, and on styles left out of training");

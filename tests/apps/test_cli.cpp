@@ -498,6 +498,18 @@ TEST(Cli, DatasetTrainDetectAndEvaluateATinyModel) {
     EXPECT_EQ(lines(r.err), 1u) << r.err;
     EXPECT_EQ(r.err.rfind("makeway: " + (dir / "junk.pt").string() + ": ", 0), 0u) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "d2.json"));
+    // NaN coordinates are bad input unless the user asks to drop them.
+    PointCloud nan_cloud = io::read_point_cloud(dir / "data" / "clouds" / "000000.bin").cloud;
+    nan_cloud.xyz[0].x() = NAN;
+    io::write_point_cloud(dir / "nan.bin", nan_cloud);
+    r = run_makeway("detect --model " + (dir / "model.pt").string() + " --cloud " + (dir / "nan.bin").string() + " --out " + (dir / "d3.json").string(), dir);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find((dir / "nan.bin").string() + ": 1 points have NaN"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "d3.json"));
+    r = run_makeway("detect --model " + (dir / "model.pt").string() + " --cloud " + (dir / "nan.bin").string() +
+                        " --non-finite drop --out " + (dir / "d3.json").string(), dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
     r = run_makeway("train-detector --data " + (dir / "nowhere").string() + " --out " + (dir / "m2.pt").string(), dir);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("nowhere"), std::string::npos) << r.err;

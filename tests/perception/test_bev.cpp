@@ -63,6 +63,25 @@ TEST(BevGrid, DecodesPeaksIntoBoxesAndSuppressesDuplicates) {
     EXPECT_NEAR(chair.box_sensor.yaw_rad, 0.3, 1e-6);
     EXPECT_NEAR(chair.class_probabilities[0], 0.8, 1e-6);
     EXPECT_TRUE(decode_heads({}, g, {}).empty());  // wrong size: nothing
+
+    // Garbage in the heads (an absurd input drove the network there) is never a detection: a box
+    // of e^20 m, one of e^-20 m, a NaN centre, a NaN score.
+    std::vector<float> bad(heads.size(), 0.0f);
+    auto put = [&](int ch, int iy, int ix, float v) { bad[static_cast<std::size_t>((ch * n + iy) * n + ix)] = v; };
+    const int b = kNumObjectClasses;
+    for (int k = 0; k < 4; ++k) {
+        const int ix = 10 + 10 * k;
+        put(0, 30, ix, 0.95f);
+        for (int c = 3; c < 6; ++c) put(b + c, 30, ix, std::log(0.5f));
+        put(b + 7, 30, ix, 1.0f);
+    }
+    for (int c = 3; c < 6; ++c) put(b + c, 30, 10, 20.0f);
+    for (int c = 3; c < 6; ++c) put(b + c, 30, 20, -20.0f);
+    put(b, 30, 30, std::nanf(""));
+    put(0, 30, 40, std::nanf(""));
+    EXPECT_TRUE(decode_heads(bad, g, {}).empty());
+    put(b + 3, 30, 10, std::log(0.5f)), put(b + 4, 30, 10, std::log(0.5f)), put(b + 5, 30, 10, std::log(0.5f));
+    EXPECT_EQ(decode_heads(bad, g, {}).size(), 1u);  // the sane one of them
 }
 
 }  // namespace

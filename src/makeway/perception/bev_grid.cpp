@@ -80,7 +80,11 @@ std::vector<Detection> decode_heads(const std::vector<float>& heads, const BevGr
                 d.box_sensor.centre_m = {cx, cy, at(base + 2, iy, ix)};
                 d.box_sensor.size_m = {std::exp(at(base + 3, iy, ix)), std::exp(at(base + 4, iy, ix)), std::exp(at(base + 5, iy, ix))};
                 d.box_sensor.yaw_rad = std::atan2(at(base + 6, iy, ix), at(base + 7, iy, ix));
-                candidates.push_back(d);
+                const Eigen::Vector3d& size = d.box_sensor.size_m;
+                const bool sane = std::isfinite(d.score) && d.box_sensor.centre_m.allFinite() && std::isfinite(d.box_sensor.yaw_rad) &&
+                                  size.minCoeff() >= params.min_size_m && size.maxCoeff() <= params.max_size_m &&
+                                  std::isfinite(total) && total > 0.0;
+                if (sane) candidates.push_back(d);
             }
         }
     }

@@ -40,6 +40,10 @@ struct DecodeParams {
     double score_threshold = 0.3;
     int max_candidates = 200;
     double nms_bev_iou = 0.25;
+    /// Boxes outside these sizes, or with any non-finite value, are never detections: a network fed
+    /// garbage (an absurd intensity, a corrupt cloud) must not report confident garbage.
+    double min_size_m = 0.05;
+    double max_size_m = 5.0;
 };
 
 /// Peaks (3x3 local maxima above the threshold) of the heatmaps into boxes, then rotated NMS.
