@@ -30,7 +30,7 @@ Json read_json(const std::filesystem::path& path) {
     const std::string text = read_file(path);
     try {
         return Json::parse(text);
-    } catch (const Json::parse_error& e) {
+    } catch (const Json::exception& e) {  // parse_error, and out_of_range for a number that overflows
         throw FileError(path.string(), std::string("invalid JSON: ") + e.what());
     }
 }

@@ -176,7 +176,7 @@ DetectionFrame parse_detection_frame(std::string_view text, bool any_score) {
     Json j;
     try {
         j = Json::parse(text);
-    } catch (const Json::parse_error& e) {
+    } catch (const Json::exception& e) {  // parse_error, and out_of_range for a number that overflows
         throw FormatError(std::string("invalid JSON: ") + e.what());
     }
     DetectionFrame f;

@@ -94,3 +94,18 @@ TEST(DetectionFrames, RoundTripAndRejectBadFields) {
 
 }  // namespace
 }  // namespace makeway::io
+
+namespace makeway::io {
+namespace {
+
+TEST(DetectionFrames, ANumberThatOverflowsIsBadInputNotACrash) {
+    // Found by fuzz_detection_json: nlohmann throws out_of_range, not parse_error, for it.
+    EXPECT_THROW(parse_detection_frame("[{\"class\": \"chair\", \"score\": 5e555555555}]"), FormatError);
+    const auto dir = testing_util::fresh_dir("json_overflow");
+    std::ofstream(dir / "f.json") << "{\"detections\": [], \"stamp_s\": 1e99999}";
+    EXPECT_THROW(read_detection_frame(dir / "f.json"), FileError);
+    EXPECT_THROW(read_json(dir / "f.json"), FileError);
+}
+
+}  // namespace
+}  // namespace makeway::io
