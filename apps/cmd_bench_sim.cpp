@@ -77,7 +77,7 @@ int run_bench_sim(const BenchSimOptions& options) {
                         {"rays_per_second_1t", rays / (ms_1t * 1e-3)},
                         {"rays_per_second_2t", rays / (ms_2t * 1e-3)},
                         {"rays_per_second_1t_single_rays", rays / (ms_1t_single * 1e-3)}};
-    std::cout << j.dump(2) << "\n";
+    std::cout << io::dump_json(j, 2) << "\n";
     if (!options.out.empty()) io::write_json(options.out, j);
     return 0;
 }

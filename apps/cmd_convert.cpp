@@ -25,6 +25,9 @@ int run_convert(const ConvertOptions& options) {
     }
     const io::CloudFile file =
         io::read_point_cloud(options.input, {.non_finite = parse_policy(options.non_finite)});
+    if (file.cloud.size() == 0) {  // every point dropped: no file that `info` would then reject
+        throw io::FileError(options.input, "no finite points left to convert");
+    }
     if (!file.info.ignored_fields.empty()) {
         print_warning(options.input + ": fields not kept (makeway has no channel for them): " +
                       join(file.info.ignored_fields));

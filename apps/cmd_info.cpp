@@ -23,7 +23,7 @@ int run_info(const InfoOptions& options) {
     j["ignored_fields"] = file.info.ignored_fields;
     j["bounds_m"] = io::to_json(compute_bounds(file.cloud));
     j["nan_count"] = file.cloud.count_non_finite();
-    std::cout << j.dump() << "\n";
+    std::cout << io::dump_json(j) << "\n";
     return 0;
 }
 

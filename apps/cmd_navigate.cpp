@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "apps/commands.hpp"
+#include "io/json_io.hpp"
 #include "apps/model_path.hpp"
 #include "apps/nav_report.hpp"
 #include "apps/nav_run.hpp"
@@ -42,7 +43,7 @@ int run_navigate(const NavigateOptions& options) {
                           ", " + std::to_string(r.time_s).substr(0, 5) + " s, risk " +
                           std::to_string(r.risk_time_s).substr(0, 4) + " s",
                       params.system.navigator.affordance);
-    std::cout << j.dump() << "\n";
+    std::cout << io::dump_json(j) << "\n";
     return 0;
 }
 

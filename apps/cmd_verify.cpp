@@ -88,7 +88,7 @@ int run_bench_verify(const BenchVerifyOptions& options) {
                         {"matched", to_json(r.matched)},
                         {"mismatched", to_json(r.mismatched)}};
     io::write_json(std::filesystem::path(options.out_dir) / "summary.json", j);
-    std::cout << j.dump(2) << "\n";
+    std::cout << io::dump_json(j, 2) << "\n";
     return 0;
 }
 

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <iostream>
@@ -356,27 +357,38 @@ int main(int argc, char** argv) {
         return kExitBadInput;
     }
     try {
-        if (app.got_subcommand("info")) return run_info(info);
-        if (app.got_subcommand("convert")) return run_convert(convert);
-        if (app.got_subcommand("demo")) return run_demo(demo);
-        if (app.got_subcommand("cad")) return run_cad(cad);
-        if (app.got_subcommand("scene")) return run_scene(scene);
-        if (app.got_subcommand("simulate")) return run_simulate(simulate);
-        if (app.got_subcommand("navigate")) return run_navigate(navigate);
-        if (app.got_subcommand("verify")) return run_verify(verify);
-        if (app.got_subcommand("track")) return run_track(track);
-        if (app.got_subcommand("dataset")) return run_dataset(dataset);
-        if (app.got_subcommand("train-detector")) return run_train_detector(train_detector);
-        if (app.got_subcommand("detect")) return run_detect(detect);
-        if (app.got_subcommand("eval-detection")) return run_eval_detection(eval_detection);
-        if (app.got_subcommand("eval-tracking")) return run_eval_tracking(eval_tracking);
-        if (app.got_subcommand("bench")) {
-            const CLI::App* bench = app.get_subcommand("bench");
-            if (bench->got_subcommand("nav")) return run_bench_nav(bench_nav);
-            if (bench->got_subcommand("verify")) return run_bench_verify(bench_verify);
-            if (bench->got_subcommand("track")) return run_bench_track(bench_track);
-            return run_bench_sim(bench_sim);
+        const auto dispatch = [&]() -> int {
+            if (app.got_subcommand("info")) return run_info(info);
+            if (app.got_subcommand("convert")) return run_convert(convert);
+            if (app.got_subcommand("demo")) return run_demo(demo);
+            if (app.got_subcommand("cad")) return run_cad(cad);
+            if (app.got_subcommand("scene")) return run_scene(scene);
+            if (app.got_subcommand("simulate")) return run_simulate(simulate);
+            if (app.got_subcommand("navigate")) return run_navigate(navigate);
+            if (app.got_subcommand("verify")) return run_verify(verify);
+            if (app.got_subcommand("track")) return run_track(track);
+            if (app.got_subcommand("dataset")) return run_dataset(dataset);
+            if (app.got_subcommand("train-detector")) return run_train_detector(train_detector);
+            if (app.got_subcommand("detect")) return run_detect(detect);
+            if (app.got_subcommand("eval-detection")) return run_eval_detection(eval_detection);
+            if (app.got_subcommand("eval-tracking")) return run_eval_tracking(eval_tracking);
+            if (app.got_subcommand("bench")) {
+                const CLI::App* bench = app.get_subcommand("bench");
+                if (bench->got_subcommand("nav")) return run_bench_nav(bench_nav);
+                if (bench->got_subcommand("verify")) return run_bench_verify(bench_verify);
+                if (bench->got_subcommand("track")) return run_bench_track(bench_track);
+                return run_bench_sim(bench_sim);
+            }
+            return 1;
+        };
+        const int rc = dispatch();
+        // A result that never reached its reader (a full disk, a closed pipe) is not a success.
+        std::cout.flush();
+        if (!std::cout || std::fflush(stdout) != 0) {
+            print_error("standard output: write failed");
+            return kExitBadInput;
         }
+        return rc;
     } catch (const makeway::io::FileError& e) {
         print_error(e.what());
         return kExitBadInput;

@@ -23,7 +23,13 @@ Eigen::Vector3d vec3_from(const Json& j, const char* key) {
 }  // namespace
 
 void write_json(const std::filesystem::path& path, const Json& value) {
-    write_file_atomic(path, value.dump(2) + "\n");
+    write_file_atomic(path, dump_json(value, 2) + "\n");
+}
+
+std::string dump_json(const Json& value, int indent) {
+    // Field names and paths come from files and command lines: bytes that are not UTF-8 are
+    // replaced (U+FFFD) rather than ending the run in an internal error.
+    return value.dump(indent, ' ', false, Json::error_handler_t::replace);
 }
 
 Json read_json(const std::filesystem::path& path) {

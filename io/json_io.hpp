@@ -15,6 +15,8 @@ using Json = nlohmann::json;
 void write_json(const std::filesystem::path& path, const Json& value);
 /// Throws FileError on a missing file or invalid JSON.
 Json read_json(const std::filesystem::path& path);
+/// Text of a JSON value; bytes that are not UTF-8 become U+FFFD instead of throwing.
+std::string dump_json(const Json& value, int indent = -1);
 
 Json to_json(const OrientedBox& box);
 /// Throws FormatError naming the missing or malformed key.

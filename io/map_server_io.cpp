@@ -104,7 +104,11 @@ Costmap read_map_server(const std::filesystem::path& yaml_path) {
         }
         if (origin.size() != 3) s.problem("origin must be [x, y, yaw]");
         if (image.empty()) s.problem("image is missing");
-        if (!(resolution > 0.0 && resolution < 100.0)) s.problem("resolution must be in (0, 100)");
+        // map_server's keys: mode trinary/scale/raw, negate 0/1; cells of 1 mm to 100 m (a finer
+        // map of a room is millions of cells the planner would crawl through).
+        if (!(resolution >= 0.001 && resolution < 100.0)) s.problem("resolution must be in [0.001, 100)");
+        if (mode != "trinary" && mode != "scale" && mode != "raw") s.problem("mode must be trinary, scale or raw (got '" + mode + "')");
+        if (negate != 0 && negate != 1) s.problem("negate must be 0 or 1");
         if (!(free >= 0.0 && free < occupied && occupied <= 1.0)) s.problem("need 0 <= free_thresh < occupied_thresh <= 1");
         s.finish();
     }

@@ -99,6 +99,7 @@ PcdHeader parse_header(std::string_view bytes) {
         } else if (key == "FIELDS") {
             if (w.size() < 2) throw FormatError("header FIELDS is empty");
             for (std::size_t i = 1; i < w.size(); ++i) {
+                if (!is_header_name(w[i])) throw FormatError("header FIELDS: field " + std::to_string(i) + " is not a printable ASCII name");
                 PcdField f;
                 f.name = std::string(w[i]);
                 h.fields.push_back(f);

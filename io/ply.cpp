@@ -75,6 +75,7 @@ PlyProperty parse_property(const std::vector<std::string_view>& w) {
     } else {
         throw FormatError("malformed property line");
     }
+    if (!is_header_name(p.name)) throw FormatError("a property name is not printable ASCII");
     return p;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 // Whitespace tokenising and strict integer parsing for the text headers of PCD and PLY.
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
 #include <optional>
@@ -11,6 +12,12 @@ namespace makeway::io {
 inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
 
 /// Splits a line on whitespace.
+/// A header name (PCD field, PLY property): printable ASCII, as both formats define it. Anything
+/// else is an encoding fault of the file, reported as bad input, never carried into JSON output.
+inline bool is_header_name(std::string_view name) {
+    return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) { return c > ' ' && c < 127; });
+}
+
 inline std::vector<std::string_view> split_words(std::string_view line) {
     std::vector<std::string_view> words;
     std::size_t i = 0;

@@ -37,6 +37,9 @@ std::vector<std::string> Scene::validate() const {
     for (const Wall& w : walls) {
         if (!(w.thickness_m > 0.0 && w.height_m > 0.0)) p.push_back("wall: thickness_m and height_m must be > 0");
     }
+    for (const Pillar& pl : pillars) {
+        if (!(pl.size_m.x() > 0.0 && pl.size_m.y() > 0.0 && pl.height_m > 0.0)) p.push_back("pillar: size_m and height_m must be > 0");
+    }
     return p;
 }
 
