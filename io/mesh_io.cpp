@@ -9,6 +9,7 @@
 
 #include "io/error.hpp"
 #include "io/file_util.hpp"
+#include "io/ply.hpp"
 
 namespace makeway::io {
 namespace {
@@ -36,6 +37,9 @@ TriangleMesh collect_triangles(const aiScene& scene) {
 }  // namespace
 
 TriangleMesh parse_mesh(std::string_view bytes, const std::string& extension_hint) {
+    // assimp's post-processing reads past a truncated binary PLY (SIGSEGV): the file's structure is
+    // checked by our own reader first, which stops at the first byte that is not there.
+    if (extension_hint == "ply") (void)parse_ply(bytes);
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
     const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |

@@ -236,18 +236,19 @@ CloudFile parse_ply(std::string_view bytes) {
     check_field_set(names, channels);
     const PointFields fields = fields_of(channels);
 
+    // Every element is walked, and the data must end where the header says: a header that
+    // declares 5 vertices over 10, or `uchar x` over float data, is caught here instead of read
+    // as garbage (the devices' own files end exactly).
     const std::string_view body = bytes.substr(h.data_offset);
     if (h.encoding == Encoding::kAscii) {
         TokenStream tokens(body);
-        for (const auto& e : h.elements) {
-            read_ascii_element(e, tokens, body.size(), &e == vertex ? &out.cloud : nullptr, fields);
-            if (&e == vertex) break;
-        }
+        for (const auto& e : h.elements) read_ascii_element(e, tokens, body.size(), &e == vertex ? &out.cloud : nullptr, fields);
+        if (!tokens.at_end()) throw FormatError("data continues after the elements the header declares");
     } else {
         ByteCursor cur(body, h.encoding == Encoding::kBig);
-        for (const auto& e : h.elements) {
-            read_binary_element(e, cur, &e == vertex ? &out.cloud : nullptr, fields);
-            if (&e == vertex) break;
+        for (const auto& e : h.elements) read_binary_element(e, cur, &e == vertex ? &out.cloud : nullptr, fields);
+        if (cur.remaining() != 0) {
+            throw FormatError(std::to_string(cur.remaining()) + " bytes after the elements the header declares");
         }
     }
     return out;

@@ -102,6 +102,20 @@ std::vector<BadCase> bad_cases() {
          "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float z\nend_header\n1 2\n",
          "no 'y' field"},
         {"kitti_odd_size", CloudFormat::kKittiBin, std::string(20, '\0'), "not a multiple of 16"},
+        // The header says 2 vertices and 4 follow; `uchar x` declared over float data: both read as
+        // garbage with exit 0 before.
+        {"ply_more_ascii_than_declared", CloudFormat::kPly,
+         "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+         "1 2 3\n4 5 6\n7 8 9\n10 11 12\n",
+         "data continues after the elements the header declares"},
+        {"ply_uchar_over_float", CloudFormat::kPly,
+         "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty uchar x\nproperty float y\nproperty float z\n"
+         "end_header\n" + std::string(24, '\0'),
+         "bytes after the elements the header declares"},
+        {"ply_non_ascii_name", CloudFormat::kPly,
+         "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+         "property float \xff\xfe\nend_header\n1 2 3 4\n",
+         "not printable ASCII"},
     };
 }
 

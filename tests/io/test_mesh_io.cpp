@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <iterator>
 
 #include "io/error.hpp"
 #include "io/mesh_io.hpp"
@@ -94,6 +95,21 @@ TEST(MeshIo, BadMeshesNameTheFileAndProblem) {
     broken.triangles[0][1] = 99;
     EXPECT_THROW(write_mesh(dir / "x.obj", broken), FileError);
     EXPECT_FALSE(std::filesystem::exists(dir / "x.obj"));
+}
+
+TEST(MeshIo, ATruncatedBinaryPlyIsBadInputNotACrash) {
+    // Cut short by 1 byte or more, a binary PLY mesh made assimp's post-processing read past the
+    // buffer (SIGSEGV through `verify --cad` and a scene's `mesh:`); now every cut is exit-2 input.
+    const auto dir = testing_util::fresh_dir("trunc_ply");
+    write_mesh(dir / "cube.ply", unit_cube());
+    std::ifstream in(dir / "cube.ply", std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_EQ(read_mesh(dir / "cube.ply").triangles.size(), 12u);
+    const std::size_t header = bytes.find("end_header\n") + 11;
+    for (std::size_t cut = 1; cut < bytes.size() - header; cut += 7) {
+        std::ofstream(dir / "cut.ply", std::ios::binary) << bytes.substr(0, bytes.size() - cut);
+        EXPECT_THROW(read_mesh(dir / "cut.ply"), FileError) << cut;
+    }
 }
 
 }  // namespace
