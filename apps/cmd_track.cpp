@@ -252,16 +252,19 @@ int run_track(const TrackOptions& o) {
         }
         for (std::size_t k = 0; k < frames.size(); ++k) frames[k].T_world_sensor = poses[k].T_world_sensor;
     }
+    // Stamps checked before the progress bar starts: one error, one line. Frames without stamps are
+    // taken at 10 Hz.
+    std::vector<double> stamps;
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+        stamps.push_back(frames[k].stamp_s != 0.0 || k == 0 ? frames[k].stamp_s : static_cast<double>(k) / 10.0);
+        if (k > 0 && stamps[k] < stamps[k - 1]) throw io::FileError(files[k].string(), "stamp_s goes back in time");
+    }
     tracking::ObjectMap map(params);
     std::vector<io::Json> results;
     TrackRun run;
     io::ProgressBar bar("track", frames.size());
-    double last_stamp = -1e300;
     for (std::size_t k = 0; k < frames.size(); ++k) {
-        // Frames without stamps are taken at 10 Hz.
-        const double stamp = frames[k].stamp_s != 0.0 || k == 0 ? frames[k].stamp_s : static_cast<double>(k) / 10.0;
-        if (stamp < last_stamp) throw io::FileError(files[k].string(), "stamp_s goes back in time");
-        last_stamp = stamp;
+        const double stamp = stamps[k];
         const Clock::time_point t0 = Clock::now();
         const auto r = map.update(frames[k].detections_sensor, frames[k].T_world_sensor.value_or(Isometry3::Identity()), stamp);
         run.update_s += std::chrono::duration<double>(Clock::now() - t0).count();
