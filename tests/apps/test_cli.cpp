@@ -544,6 +544,13 @@ TEST(Cli, HostileInputsAtTheBoundary) {
     std::ofstream(dir / "good.yaml") << "name: empty\nfloor: {min_m: [-5, -5], max_m: [5, 5]}\n";
     std::ofstream(dir / "pillar.yaml") << "name: p\nfloor: {min_m: [-5, -5], max_m: [5, 5]}\n"
                                           "pillars:\n  - {centre_m: [1, 1], size_m: [-0.4, 0.4]}\n";
+    // Scenes beyond any room (they stalled): a 1000 km floor, 10001 walls.
+    std::ofstream(dir / "huge.yaml") << "name: h\nfloor: {min_m: [-500000, -5], max_m: [500000, 5]}\n";
+    {
+        std::ofstream walls(dir / "walls.yaml");
+        walls << "name: w\nfloor: {min_m: [-5, -5], max_m: [5, 5]}\nwalls:\n";
+        for (int i = 0; i <= 10000; ++i) walls << "  - {a_m: [0, 0], b_m: [1, 0]}\n";
+    }
     // Detection frames whose stamps go back in time (the progress bar's line came before the error).
     std::filesystem::create_directories(dir / "dets");
     std::ofstream(dir / "dets" / "000000.json") << "{\"stamp_s\": 1.0, \"detections\": []}";
@@ -551,6 +558,8 @@ TEST(Cli, HostileInputsAtTheBoundary) {
     const std::vector<std::pair<std::string, std::string>> cases = {
         {"track --detections " + (dir / "dets").string() + " --out " + (dir / "o6").string(),
          (dir / "dets" / "000001.json").string() + ": stamp_s goes back in time"},
+        {"simulate --scene " + (dir / "huge.yaml").string() + " --out " + (dir / "o7").string(), "floor: at most 200 m on a side"},
+        {"simulate --scene " + (dir / "walls.yaml").string() + " --out " + (dir / "o8").string(), "at most 10000 walls"},
         {"info " + (dir / "utf.pcd").string(), (dir / "utf.pcd").string() + ": header FIELDS: field 4 is not a printable ASCII name"},
         {"convert " + (dir / "allnan.bin").string() + " " + (dir / "o1.bin").string() + " --non-finite drop",
          (dir / "allnan.bin").string() + ": no finite points left to convert"},
@@ -565,7 +574,7 @@ TEST(Cli, HostileInputsAtTheBoundary) {
         EXPECT_EQ(lines(r.err), 1u) << args << "\n" << r.err;
         EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
     }
-    for (const char* out : {"o1.bin", "o2", "o3", "o4", "o5", "o6"}) EXPECT_FALSE(std::filesystem::exists(dir / out)) << out;
+    for (const char* out : {"o1.bin", "o2", "o3", "o4", "o5", "o6", "o7", "o8"}) EXPECT_FALSE(std::filesystem::exists(dir / out)) << out;
     // Standard output on a full device: exit 2 and one line, not a silent success.
     const int rc = std::system((std::string(MAKEWAY_BIN) + " scene --out " + (dir / "s.yaml").string() + " > /dev/full 2> " +
                                 (dir / "err.txt").string()).c_str());

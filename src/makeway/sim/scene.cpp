@@ -8,6 +8,12 @@ namespace makeway::sim {
 std::vector<std::string> Scene::validate() const {
     std::vector<std::string> p;
     if (!(floor_max_m.array() > floor_min_m.array()).all()) p.push_back("floor: max must exceed min");
+    // Bounds that fail fast instead of stalling: a building floor, not a city (the costmap has a
+    // cell per 5 cm), and counts of things a room holds.
+    if (!((floor_max_m - floor_min_m).maxCoeff() <= kMaxFloorExtent_m)) p.push_back("floor: at most 200 m on a side");
+    if (walls.size() > kMaxStructures || pillars.size() > kMaxStructures) p.push_back("at most 10000 walls and 10000 pillars");
+    if (objects.size() > kMaxObjects) p.push_back("at most 2000 objects");
+    if (walkers.size() > kMaxWalkers || pushers.size() > kMaxObjects) p.push_back("at most 200 walkers and 2000 pushers");
     if (!(ceiling_height_m > 0.5 && ceiling_height_m < 20.0)) p.push_back("ceiling_height_m must be in (0.5, 20)");
     std::set<std::uint32_t> ids;
     for (const SceneObject& o : objects) {

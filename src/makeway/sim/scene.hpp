@@ -58,6 +58,10 @@ struct ChairPusher {
     double phase_s = 0.0;
 };
 
+/// What Scene::validate() accepts at most.
+constexpr double kMaxFloorExtent_m = 200.0;
+constexpr std::size_t kMaxStructures = 10000, kMaxObjects = 2000, kMaxWalkers = 200;
+
 struct Scene {
     std::string name = "scene";
     std::uint64_t seed = 0;
