@@ -57,6 +57,9 @@ std::string_view name_of(tracking::ScoreTransform t) { return t == tracking::Sco
 tracking::TrackerParams tracker_params(const TrackOptions& o) {
     tracking::TrackerParams p = o.format == "kitti" ? kitti_preset() : tracking::TrackerParams{};
     if (!o.config.empty()) p = io::load_config(o.config).system.tracker;
+    // KITTI types are chosen by --classes; each type's map tracks its own boxes (as index 0, whose
+    // motion prior applies), whatever chair/table selection the configuration makes.
+    if (o.format == "kitti") p.tracked_classes.fill(true);
     if (o.range_m) p.sensor_range_m = *o.range_m;
     if (o.min_score) p.min_score = *o.min_score;
     if (!o.out_of_range.empty()) p.out_of_range = o.out_of_range == "drop" ? tracking::OutOfRange::kDrop : tracking::OutOfRange::kFreeze;
