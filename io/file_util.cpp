@@ -20,6 +20,8 @@ std::string read_file(const fs::path& path, bool allow_empty, std::size_t max_by
     const auto status = fs::status(path, ec);
     if (ec || !fs::exists(status)) throw FileError(path.string(), "no such file");
     if (fs::is_directory(status)) throw FileError(path.string(), "is a folder, not a file");
+    // Opening a FIFO blocks until something writes to it, possibly forever.
+    if (!fs::is_regular_file(status)) throw FileError(path.string(), "not a regular file (a FIFO, device or socket)");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw FileError(path.string(), std::string("cannot open: ") + std::strerror(errno));
     in.seekg(0, std::ios::end);

@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <array>
@@ -551,6 +552,8 @@ TEST(Cli, HostileInputsAtTheBoundary) {
         walls << "name: w\nfloor: {min_m: [-5, -5], max_m: [5, 5]}\nwalls:\n";
         for (int i = 0; i <= 10000; ++i) walls << "  - {a_m: [0, 0], b_m: [1, 0]}\n";
     }
+    // A FIFO as input (blocked forever waiting for a writer).
+    ASSERT_EQ(mkfifo((dir / "pipe.pcd").c_str(), 0600), 0);
     // Detection frames whose stamps go back in time (the progress bar's line came before the error).
     std::filesystem::create_directories(dir / "dets");
     std::ofstream(dir / "dets" / "000000.json") << "{\"stamp_s\": 1.0, \"detections\": []}";
@@ -560,6 +563,7 @@ TEST(Cli, HostileInputsAtTheBoundary) {
          (dir / "dets" / "000001.json").string() + ": stamp_s goes back in time"},
         {"simulate --scene " + (dir / "huge.yaml").string() + " --out " + (dir / "o7").string(), "floor: at most 200 m on a side"},
         {"simulate --scene " + (dir / "walls.yaml").string() + " --out " + (dir / "o8").string(), "at most 10000 walls"},
+        {"info " + (dir / "pipe.pcd").string(), (dir / "pipe.pcd").string() + ": not a regular file"},
         {"info " + (dir / "utf.pcd").string(), (dir / "utf.pcd").string() + ": header FIELDS: field 4 is not a printable ASCII name"},
         {"convert " + (dir / "allnan.bin").string() + " " + (dir / "o1.bin").string() + " --non-finite drop",
          (dir / "allnan.bin").string() + ": no finite points left to convert"},
