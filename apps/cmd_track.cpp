@@ -13,6 +13,7 @@
 
 #include "apps/commands.hpp"
 #include "io/error.hpp"
+#include "io/file_util.hpp"
 #include "io/pose_io.hpp"
 #include "io/progress.hpp"
 #include "io/tracking_io.hpp"
@@ -28,10 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return s;
-}
+using io::to_lower;
 
 // KITTI inputs: one file, or every .txt of a folder (one sequence each).
 std::vector<fs::path> kitti_sequences(const std::string& path) {
@@ -66,7 +64,7 @@ tracking::TrackerParams tracker_params(const TrackOptions& o) {
     if (o.format == "makeway" && !o.classes.empty()) {
         p.tracked_classes.fill(false);
         for (const std::string& c : o.classes) {
-            const auto cls = parse_object_class(lower(c));
+            const auto cls = parse_object_class(to_lower(c));
             if (!cls) throw io::FileError("--classes", "unknown class '" + c + "' (makeway detections are chair or table)");
             p.tracked_classes[static_cast<std::size_t>(*cls)] = true;
         }
@@ -119,7 +117,7 @@ std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInp
     for (const std::string& type : types) {
         std::map<int, std::vector<std::size_t>> frames;  // frame -> record indices of this type
         for (std::size_t i = 0; i < in.records.size(); ++i) {
-            if (lower(in.records[i].type) == lower(type)) frames[in.records[i].frame].push_back(i);
+            if (to_lower(in.records[i].type) == to_lower(type)) frames[in.records[i].frame].push_back(i);
         }
         if (frames.empty()) continue;
         tracking::ObjectMap map(params);
@@ -179,7 +177,7 @@ std::vector<std::string> kitti_types(const std::vector<KittiSequenceInput>& inpu
     if (o.classes.empty()) return present;
     std::vector<std::string> out;
     for (const std::string& c : o.classes) {
-        const auto it = std::find_if(present.begin(), present.end(), [&](const std::string& t) { return lower(t) == lower(c); });
+        const auto it = std::find_if(present.begin(), present.end(), [&](const std::string& t) { return to_lower(t) == to_lower(c); });
         if (it == present.end()) std::cout << "class " << c << ": no detections in the input\n";
         out.push_back(it == present.end() ? c : *it);
     }
@@ -295,7 +293,7 @@ eval::KittiSequence kitti_boxes(const fs::path& file, bool tracker) {
         if (seq.size() <= static_cast<std::size_t>(r.frame)) seq.resize(static_cast<std::size_t>(r.frame) + 1);
         eval::KittiBox b;
         b.track_id = r.track_id;
-        b.type = lower(r.type);
+        b.type = to_lower(r.type);
         b.truncation = static_cast<int>(r.truncated);
         b.occlusion = static_cast<int>(r.occluded);
         b.bbox_px = r.bbox_px;
@@ -329,7 +327,7 @@ int run_eval_tracking_kitti(const EvalTrackingOptions& o) {
         tracks.push_back(kitti_boxes(t, true));
     }
     std::vector<std::string> classes;
-    for (const std::string& c : o.classes) classes.push_back(lower(c));
+    for (const std::string& c : o.classes) classes.push_back(to_lower(c));
     if (classes.empty()) {  // those in the tracks; a neighbouring class is scored with its main one
         std::set<std::string> present;
         for (const auto& seq : tracks) for (const auto& f : seq) for (const auto& b : f) present.insert(b.type);

@@ -74,12 +74,15 @@ void write_file_atomic(const fs::path& path, std::string_view data) {
     }
 }
 
+std::string to_lower(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return text;
+}
+
 std::string lower_extension(const fs::path& path) {
     std::string ext = path.extension().string();
     if (!ext.empty() && ext.front() == '.') ext.erase(0, 1);
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
+    return to_lower(std::move(ext));
 }
 
 }  // namespace makeway::io

@@ -19,5 +19,7 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view data)
 
 /// Lower-case extension without the dot ("pcd"), or "" when there is none.
 std::string lower_extension(const std::filesystem::path& path);
+/// ASCII lower case (type names, extensions: files from other tools spell them either way).
+std::string to_lower(std::string text);
 
 }  // namespace makeway::io

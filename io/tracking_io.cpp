@@ -70,11 +70,7 @@ std::vector<KittiTrackingRecord> parse_kitti_tracking(std::string_view text) {
     return out;
 }
 
-bool KittiTrackingRecord::is_dont_care() const {
-    std::string lower(type);
-    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return lower == "dontcare";
-}
+bool KittiTrackingRecord::is_dont_care() const { return to_lower(type) == "dontcare"; }
 
 std::vector<KittiTrackingRecord> read_kitti_tracking(const std::filesystem::path& path) {
     const std::string text = read_file(path, /*allow_empty=*/true);  // a sequence without objects is valid
@@ -105,11 +101,7 @@ void write_kitti_tracking(const std::filesystem::path& path, const std::vector<K
     write_file_atomic(path, out);
 }
 
-std::optional<ObjectClass> class_of_kitti_type(std::string_view type) {
-    std::string lower(type);
-    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return parse_object_class(lower);
-}
+std::optional<ObjectClass> class_of_kitti_type(std::string_view type) { return parse_object_class(to_lower(std::string(type))); }
 
 KittiTrackingRecord to_kitti(const OrientedBox& b, ObjectClass cls, int frame, int track_id, std::optional<double> score) {
     return to_kitti(b, cls == ObjectClass::kChair ? "Chair" : "Table", frame, track_id, score);

@@ -1,17 +1,12 @@
+// End-to-end tests of the makeway program: info, convert, bad input, help, demo, the scene and
+// simulation chain, benchmarks, navigation, verification and the detector's commands.
 #include <gtest/gtest.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
 
-#include <array>
 #include <cmath>
-#include <set>
-#include <sstream>
-#include <cstdio>
-#include <cstdlib>
 #include <fstream>
-#include <iterator>
 
 #include "../io/io_test_util.hpp"
+#include "cli_test_util.hpp"
 #include "io/json_io.hpp"
 #include "io/point_cloud_io.hpp"
 #include "io/pose_io.hpp"
@@ -20,28 +15,9 @@
 namespace makeway {
 namespace {
 
-struct CliRun {
-    int exit_code = -1;
-    std::string out;
-    std::string err;
-};
-
-// Runs the makeway binary with `args` (shell-quoted by the caller), capturing both streams.
-CliRun run_makeway(const std::string& args, const std::filesystem::path& dir) {
-    const auto err_path = dir / "stderr.txt";
-    const std::string cmd = std::string(MAKEWAY_BIN) + " " + args + " 2>" + err_path.string();
-    CliRun r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    std::array<char, 4096> buf;
-    while (std::size_t n = fread(buf.data(), 1, buf.size(), pipe)) r.out.append(buf.data(), n);
-    const int status = pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(err_path);
-    r.err.assign(std::istreambuf_iterator<char>(in), {});
-    return r;
-}
-
-std::size_t lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
+using testing_util::CliRun;
+using testing_util::lines;
+using testing_util::run_makeway;
 
 TEST(Cli, InfoPrintsOneJsonObject) {
     const auto dir = testing_util::fresh_dir("info");
@@ -305,172 +281,6 @@ TEST(Cli, VerifyRefinesAFlippedDetectionAndRejectsAWallBox) {
     EXPECT_FALSE(std::filesystem::exists(dir / "v2.json"));
 }
 
-TEST(Cli, TrackAndEvalTrackingInBothFormats) {
-    const auto dir = testing_util::fresh_dir("track");
-    std::ofstream(dir / "room.yaml")
-        << "name: room\nfloor: {min_m: [-4.5, -2.5], max_m: [4.5, 2.5]}\n"
-           "walls:\n  - {a_m: [-4.5, -2.5], b_m: [4.5, -2.5]}\n  - {a_m: [4.5, -2.5], b_m: [4.5, 2.5]}\n"
-           "  - {a_m: [4.5, 2.5], b_m: [-4.5, 2.5]}\n  - {a_m: [-4.5, 2.5], b_m: [-4.5, -2.5]}\n"
-           "objects:\n  - {id: 1, class: chair, style: four_leg_chair, model_seed: 4, pose: {x_m: -1, y_m: 0.6, yaw_rad: 0.6}}\n"
-           "  - {id: 2, class: table, style: rect_table, model_seed: 2, pose: {x_m: 1.5, y_m: -0.8, yaw_rad: 0.1}}\n"
-           "  - {id: 3, class: chair, style: office_chair, model_seed: 1, pose: {x_m: 2.5, y_m: 1.2, yaw_rad: -2.0}}\n"
-           "start: {x_m: -3, y_m: -0.5, yaw_rad: 0}\nwaypoint: {x_m: -3, y_m: -0.5, yaw_rad: 0}\n"
-           "goal: {x_m: -3, y_m: -0.5, yaw_rad: 0}\n";
-    ASSERT_EQ(run_makeway("simulate --scene " + (dir / "room.yaml").string() + " --frames 20 --out " + (dir / "sim").string(), dir).exit_code, 0);
-    // A perfect detector: every ground-truth box in the sensor frame, one JSON per frame, and the
-    // same as one KITTI detection file (camera frame) plus KITTI ground truth.
-    const auto poses = io::read_tum(dir / "sim" / "poses_gt.txt");
-    const auto gt_files = io::frame_files(dir / "sim" / "objects", "json");
-    ASSERT_EQ(gt_files.size(), 20u);
-    std::filesystem::create_directories(dir / "dets");
-    std::vector<io::KittiTrackingRecord> kitti_dets, kitti_gt;
-    for (std::size_t k = 0; k < gt_files.size(); ++k) {
-        io::DetectionFrame f;
-        f.stamp_s = poses[k].stamp_s;
-        f.T_world_sensor = poses[k].T_world_sensor;
-        for (const ObjectEstimate& o : io::read_object_frame(gt_files[k])) {
-            Detection d;
-            d.cls = o.cls;
-            d.box_sensor = o.box_world.transformed(poses[k].T_world_sensor.inverse());
-            d.class_probabilities = {o.cls == ObjectClass::kChair ? 0.9 : 0.1, o.cls == ObjectClass::kChair ? 0.1 : 0.9};
-            d.score = 0.9;
-            f.detections_sensor.push_back(d);
-            kitti_dets.push_back(io::to_kitti(d.box_sensor, d.cls, static_cast<int>(k), -1, 0.9));
-            kitti_gt.push_back(io::to_kitti(d.box_sensor, d.cls, static_cast<int>(k), static_cast<int>(o.id), std::nullopt));
-        }
-        io::write_json(dir / "dets" / gt_files[k].filename(), io::to_json(f));
-    }
-    io::write_kitti_tracking(dir / "kitti_dets" / "0000.txt", kitti_dets);
-    io::write_kitti_tracking(dir / "kitti_gt" / "0000.txt", kitti_gt);
-
-    CliRun r = run_makeway("track --detections " + (dir / "dets").string() + " --out " + (dir / "tracks").string(), dir);
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    const auto last = io::read_object_frame(dir / "tracks" / gt_files.back().filename());
-    ASSERT_EQ(last.size(), 3u);
-    r = run_makeway("eval-tracking --gt " + (dir / "sim" / "objects").string() + " --tracks " + (dir / "tracks").string() +
-                        " --out " + (dir / "m.json").string(), dir);
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    const io::Json m = io::read_json(dir / "m.json");
-    // Frame 0 is missed by design (objects enter the map on their second detection): MOTA = 1 - 3/60.
-    EXPECT_NEAR(m["mota"].get<double>(), 1.0 - 3.0 / 60.0, 1e-9);
-    EXPECT_EQ(m["id_switches"].get<int>(), 0);
-    EXPECT_GT(m["per_class"]["table"]["hota"].get<double>(), 0.9);
-
-    r = run_makeway("track --format kitti --detections " + (dir / "kitti_dets").string() + " --out " + (dir / "kitti_tracks").string(), dir);
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    r = run_makeway("eval-tracking --format kitti --gt " + (dir / "kitti_gt").string() + " --tracks " + (dir / "kitti_tracks").string() +
-                        " --out " + (dir / "mk.json").string(), dir);
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    const io::Json mk = io::read_json(dir / "mk.json");
-    // Frame 0 missed again: two chairs of 40 boxes, one table of 20.
-    EXPECT_NEAR(mk["classes"]["chair"]["all_boxes"]["mota"].get<double>(), 1.0 - 2.0 / 40.0, 1e-9);
-    EXPECT_NEAR(mk["classes"]["table"]["all_boxes"]["mota"].get<double>(), 1.0 - 1.0 / 20.0, 1e-9);
-
-    // Bad input: one line naming the file, exit 2, nothing written.
-    std::filesystem::copy(dir / "dets", dir / "dets_bad");
-    std::ofstream(dir / "dets_bad" / gt_files[5].filename()) << "{\"detections\": [{\"class\": \"sofa\"}]}";
-    r = run_makeway("track --detections " + (dir / "dets_bad").string() + " --out " + (dir / "t2").string(), dir);
-    EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(lines(r.err), 1u) << r.err;
-    EXPECT_NE(r.err.find((dir / "dets_bad" / gt_files[5].filename()).string() + ": detection 0: 'class' must be chair or table"),
-              std::string::npos) << r.err;
-    EXPECT_FALSE(std::filesystem::exists(dir / "t2"));
-    r = run_makeway("eval-tracking --gt " + (dir / "sim" / "objects").string() + " --tracks " + (dir / "dets").string(), dir);
-    EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.err.find("expected {\"objects\": [...]}"), std::string::npos) << r.err;
-    EXPECT_EQ(run_makeway("track --format csv --detections x --out y", dir).exit_code, 2);
-}
-
-// KITTI as published data arrive: any class names, DontCare lines (size -1), raw logit scores,
-// sequences without objects, 2D boxes the devkit needs. Camera frame: x right, y down, z forward.
-std::string kitti_line(int frame, int id, const std::string& type, double x, double z, double score, std::array<int, 4> bbox = {600, 150, 700, 250}) {
-    std::ostringstream s;
-    s << frame << " " << id << " " << type << " 0 0 -1.57 " << bbox[0] << " " << bbox[1] << " " << bbox[2] << " " << bbox[3]
-      << " 1.5 1.6 3.9 " << x << " 1.7 " << z << " -1.57";
-    if (!std::isnan(score)) s << " " << score;
-    return s.str() + "\n";
-}
-
-TEST(Cli, TrackAndEvaluateKittiAsPublishedDataArrive) {
-    const auto dir = testing_util::fresh_dir("kitti");
-    std::filesystem::create_directories(dir / "dets");
-    std::filesystem::create_directories(dir / "gt");
-    const double nan = std::nan("");
-    std::string dets, gt;
-    for (int f = 0; f < 30; ++f) {
-        // Car 1 ahead at 20 m the whole time; car 2 at 50 m, seen for the first 10 frames only
-        // (then it is never detected again: before, its track drove on for good); a van; a cyclist.
-        dets += kitti_line(f, -1, "Car", 2.0, 20.0, 4.2);  // logits, as PointRCNN writes them
-        gt += kitti_line(f, 1, "Car", 2.0, 20.0, nan);
-        if (f < 10) dets += kitti_line(f, -1, "Car", -6.0, 50.0 - 0.5 * f, 2.5), gt += kitti_line(f, 2, "Car", -6.0, 50.0 - 0.5 * f, nan);
-        dets += kitti_line(f, -1, "Cyclist", 8.0, 12.0 + 0.2 * f, 1.1);
-        gt += kitti_line(f, 4, "Cyclist", 8.0, 12.0 + 0.2 * f, nan);
-        gt += kitti_line(f, 3, "Van", -3.0, 30.0, nan);
-        dets += kitti_line(f, -1, "Car", -3.0, 30.0, -0.5);  // a detection of the van, as "Car"
-        gt += std::to_string(f) + " -1 DontCare -1 -1 -10 100 120 200 200 -1 -1 -1 -1000 -1000 -1000 -10\n";
-        dets += kitti_line(f, -1, "Car", -12.0, 25.0, 0.8, {110, 130, 190, 190});  // inside the DontCare area
-    }
-    std::ofstream(dir / "dets" / "0000.txt") << dets;
-    std::ofstream(dir / "gt" / "0000.txt") << gt;
-    std::ofstream(dir / "dets" / "0001.txt");  // a sequence without detections
-    std::ofstream(dir / "gt" / "0001.txt");
-
-    // none refuses logits with one line naming the file; auto reads them through the sigmoid.
-    CliRun r = run_makeway("track --format kitti --score-transform none --detections " + (dir / "dets").string() + " --out " + (dir / "bad").string(), dir);
-    EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(lines(r.err), 1u) << r.err;
-    EXPECT_NE(r.err.find("0000.txt: score 4.2 is not in [0, 1]"), std::string::npos) << r.err;
-    EXPECT_FALSE(std::filesystem::exists(dir / "bad"));
-    r = run_makeway("track --format kitti --detections " + (dir / "dets").string() + " --out " + (dir / "tracks").string(), dir);
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.out.find("read as logits"), std::string::npos) << r.out;
-    const auto tracks = io::read_kitti_tracking(dir / "tracks" / "0000.txt");
-    EXPECT_TRUE(std::filesystem::exists(dir / "tracks" / "0001.txt"));
-    EXPECT_TRUE(io::read_kitti_tracking(dir / "tracks" / "0001.txt").empty());
-    std::set<std::string> types;
-    int far_last_frame = -1;
-    for (const auto& t : tracks) {
-        types.insert(t.type);
-        EXPECT_GE(t.bbox_px[0], 0.0);  // the 2D box of its detection, not -1
-        EXPECT_GT(*t.score, 0.0);
-        EXPECT_LE(*t.score, 1.0);
-        EXPECT_LT(t.location_cam_m.z(), 80.0);
-        if (t.location_cam_m.x() < -5.0 && t.location_cam_m.x() > -7.0) far_last_frame = std::max(far_last_frame, t.frame);
-    }
-    EXPECT_EQ(types, (std::set<std::string>{"Car", "Cyclist"}));
-    EXPECT_GE(far_last_frame, 9);
-    // Gone within max_misses (3) unexplained misses of its last detection at frame 9 (the van
-    // hides it for a frame on the way, which is not held against it).
-    EXPECT_LE(far_last_frame, 13);
-    const io::Json summary = io::read_json(dir / "tracks" / "summary.json");
-    EXPECT_EQ(summary["frames"].get<int>(), 30);
-    EXPECT_GT(summary["frames_per_second"].get<double>(), 0.0);
-    EXPECT_EQ(summary["tracker"]["score_transform"].get<std::string>(), "sigmoid");
-    EXPECT_NE(r.out.find("frames per second"), std::string::npos);
-
-    // --classes and --range select what is tracked.
-    r = run_makeway("track --format kitti --classes car --range 40 --detections " + (dir / "dets").string() + " --out " + (dir / "near").string(), dir);
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    for (const auto& t : io::read_kitti_tracking(dir / "near" / "0000.txt")) {
-        EXPECT_EQ(t.type, "Car");
-        EXPECT_LT(t.location_cam_m.z(), 40.0);
-    }
-
-    // The protocol: the van's track and the one in the DontCare area are ignored; the empty
-    // sequence is read; Car and Cyclist are scored.
-    r = run_makeway("eval-tracking --format kitti --gt " + (dir / "gt").string() + " --tracks " + (dir / "tracks").string() +
-                        " --out " + (dir / "m.json").string(), dir);
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    const io::Json m = io::read_json(dir / "m.json");
-    const io::Json& car = m["classes"]["car"]["all_boxes"];
-    EXPECT_EQ(car["fp"].get<int>(), 4) << car.dump();  // car 2's track coasting for frames 10-13, nothing else
-    EXPECT_EQ(car["id_switches"].get<int>(), 0);
-    EXPECT_GT(car["ignored_tracker"].get<int>(), 0);
-    EXPECT_GT(car["ignored_tp"].get<int>(), 0);  // the van
-    EXPECT_GT(m["classes"]["car"]["samota"].get<double>(), 0.8);
-    EXPECT_TRUE(m["classes"].contains("cyclist"));
-}
-
 TEST(Cli, DatasetTrainDetectAndEvaluateATinyModel) {
     const auto dir = testing_util::fresh_dir("detector");
     CliRun r = run_makeway("dataset --scenes 1 --seed 3 --max-keyframes 4 --keyframe-every 5 --out " + (dir / "data").string(), dir);
@@ -517,75 +327,6 @@ TEST(Cli, DatasetTrainDetectAndEvaluateATinyModel) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("nowhere"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "m2.pt"));
-}
-
-}  // namespace
-}  // namespace makeway
-
-namespace makeway {
-namespace {
-
-// Boundary cases from the hardening probe (issue 14) that this change fixes: one line, exit 2,
-// no output; and the output side (a full standard output is not a success).
-TEST(Cli, HostileInputsAtTheBoundary) {
-    const auto dir = testing_util::fresh_dir("hostile");
-    // A PCD whose field name is not ASCII (an encoding fault of the file; was exit 1, internal error).
-    std::ofstream(dir / "utf.pcd") << "VERSION .7\nFIELDS x y z \xff\xfe\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
-                                      "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2 3 4\n";
-    // A cloud of NaN points only, converted with --non-finite drop (was a 0-byte .bin).
-    PointCloud nan_cloud = testing_util::random_cloud(5, 3, {});
-    for (auto& p : nan_cloud.xyz) p.x() = NAN;
-    io::write_point_cloud(dir / "allnan.bin", nan_cloud);
-    // map_server keys out of their domain (was accepted; the robot never moved).
-    std::ofstream(dir / "map.pgm") << "P2\n2 2\n255\n0 255\n255 0\n";
-    std::ofstream(dir / "bogus_mode.yaml") << "image: map.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nmode: bogus\n";
-    std::ofstream(dir / "negate.yaml") << "image: map.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 2\n";
-    std::ofstream(dir / "fine.yaml") << "image: map.pgm\nresolution: 0.00001\norigin: [0, 0, 0]\n";
-    // A pillar of negative size (walls were already checked).
-    std::ofstream(dir / "good.yaml") << "name: empty\nfloor: {min_m: [-5, -5], max_m: [5, 5]}\n";
-    std::ofstream(dir / "pillar.yaml") << "name: p\nfloor: {min_m: [-5, -5], max_m: [5, 5]}\n"
-                                          "pillars:\n  - {centre_m: [1, 1], size_m: [-0.4, 0.4]}\n";
-    // Scenes beyond any room (they stalled): a 1000 km floor, 10001 walls.
-    std::ofstream(dir / "huge.yaml") << "name: h\nfloor: {min_m: [-500000, -5], max_m: [500000, 5]}\n";
-    {
-        std::ofstream walls(dir / "walls.yaml");
-        walls << "name: w\nfloor: {min_m: [-5, -5], max_m: [5, 5]}\nwalls:\n";
-        for (int i = 0; i <= 10000; ++i) walls << "  - {a_m: [0, 0], b_m: [1, 0]}\n";
-    }
-    // A FIFO as input (blocked forever waiting for a writer).
-    ASSERT_EQ(mkfifo((dir / "pipe.pcd").c_str(), 0600), 0);
-    // Detection frames whose stamps go back in time (the progress bar's line came before the error).
-    std::filesystem::create_directories(dir / "dets");
-    std::ofstream(dir / "dets" / "000000.json") << "{\"stamp_s\": 1.0, \"detections\": []}";
-    std::ofstream(dir / "dets" / "000001.json") << "{\"stamp_s\": 0.5, \"detections\": []}";
-    const std::vector<std::pair<std::string, std::string>> cases = {
-        {"track --detections " + (dir / "dets").string() + " --out " + (dir / "o6").string(),
-         (dir / "dets" / "000001.json").string() + ": stamp_s goes back in time"},
-        {"simulate --scene " + (dir / "huge.yaml").string() + " --out " + (dir / "o7").string(), "floor: at most 200 m on a side"},
-        {"simulate --scene " + (dir / "walls.yaml").string() + " --out " + (dir / "o8").string(), "at most 10000 walls"},
-        {"info " + (dir / "pipe.pcd").string(), (dir / "pipe.pcd").string() + ": not a regular file"},
-        {"info " + (dir / "utf.pcd").string(), (dir / "utf.pcd").string() + ": header FIELDS: field 4 is not a printable ASCII name"},
-        {"convert " + (dir / "allnan.bin").string() + " " + (dir / "o1.bin").string() + " --non-finite drop",
-         (dir / "allnan.bin").string() + ": no finite points left to convert"},
-        {"navigate --scene " + (dir / "good.yaml").string() + " --map " + (dir / "bogus_mode.yaml").string() + " --out " + (dir / "o2").string(), "mode must be trinary, scale or raw"},
-        {"navigate --scene " + (dir / "good.yaml").string() + " --map " + (dir / "negate.yaml").string() + " --out " + (dir / "o3").string(), "negate must be 0 or 1"},
-        {"navigate --scene " + (dir / "good.yaml").string() + " --map " + (dir / "fine.yaml").string() + " --out " + (dir / "o4").string(), "resolution must be in [0.001, 100)"},
-        {"simulate --scene " + (dir / "pillar.yaml").string() + " --out " + (dir / "o5").string(), "pillar: size_m and height_m must be > 0"},
-    };
-    for (const auto& [args, expected] : cases) {
-        const CliRun r = run_makeway(args, dir);
-        EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
-        EXPECT_EQ(lines(r.err), 1u) << args << "\n" << r.err;
-        EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
-    }
-    for (const char* out : {"o1.bin", "o2", "o3", "o4", "o5", "o6", "o7", "o8"}) EXPECT_FALSE(std::filesystem::exists(dir / out)) << out;
-    // Standard output on a full device: exit 2 and one line, not a silent success.
-    const int rc = std::system((std::string(MAKEWAY_BIN) + " scene --out " + (dir / "s.yaml").string() + " > /dev/full 2> " +
-                                (dir / "err.txt").string()).c_str());
-    EXPECT_EQ(WEXITSTATUS(rc), 2);
-    std::ifstream err(dir / "err.txt");
-    const std::string line((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
-    EXPECT_NE(line.find("makeway: standard output: write failed"), std::string::npos) << line;
 }
 
 }  // namespace

@@ -20,9 +20,7 @@ MapSanity check_map(const std::vector<ObjectEstimate>& objects, const sim::Scene
     for (const ObjectEstimate& o : objects) {
         ++s.object_frames;
         const Eigen::Vector3d& c = o.box_world.centre_m;
-        if ((c.head<2>().array() < scene.floor_min_m.array()).any() || (c.head<2>().array() > scene.floor_max_m.array()).any()) {
-            ++s.outside_room;
-        }
+        if (!scene.on_floor(c.head<2>())) ++s.outside_room;
         const double bottom = c.z() - o.box_world.size_m.z() / 2;
         s.max_bottom_m = std::max(s.max_bottom_m, bottom);
         if (bottom > p.max_floor_gap_m) ++s.above_floor;

@@ -52,9 +52,7 @@ TrackBenchResult run_track_bench(const TrackBenchParams& p, const std::function<
         tracking::ObjectMap map(p.tracker);
         const std::vector<sim::ObjectModel> models = sim::models_of(scene);
         // The robot's map of walls: objects stand on the room's floor.
-        map.set_region([&](const Eigen::Vector2d& xy) {
-            return (xy.array() >= scene.floor_min_m.array()).all() && (xy.array() <= scene.floor_max_m.array()).all();
-        });
+        map.set_region([&](const Eigen::Vector2d& xy) { return scene.on_floor(xy); });
         // Ids are offset per scene so that sequences concatenate into one evaluation.
         const std::uint32_t id_base = static_cast<std::uint32_t>(k) * 1000000u;
         std::unordered_map<std::uint32_t, GapState> gaps;

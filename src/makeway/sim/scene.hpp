@@ -76,6 +76,11 @@ struct Scene {
     std::vector<ChairPusher> pushers;
     Pose2 start, waypoint, goal;
 
+    /// Whether (x, y) lies on the room's floor (floor_min_m .. floor_max_m, inclusive).
+    bool on_floor(const Eigen::Vector2d& xy) const {
+        return (xy.array() >= floor_min_m.array()).all() && (xy.array() <= floor_max_m.array()).all();
+    }
+
     /// Every structural problem (duplicate ids, a pusher of a missing chair, ...); empty if valid.
     std::vector<std::string> validate() const;
 };

@@ -298,7 +298,8 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
         ++t.existence_frames;  // adds 0 to the sum
         ++t.misses;
     }
-    // Every object not associated this frame: its velocity is no longer believed.
+    // The class motion priors: at rest until moved, velocities of unobserved objects decaying,
+    // speeds bounded.
     apply_motion_prior(stamp_s, dt);
     for (std::uint32_t id : ids) {
         const Track& t = tracks_.at(id);
