@@ -17,6 +17,7 @@
 #include "io/json_io.hpp"
 #include "io/nav_png.hpp"
 #include "io/point_cloud_io.hpp"
+#include "io/staged_output.hpp"
 
 namespace makeway::apps {
 namespace {
@@ -37,7 +38,10 @@ bool same_cloud(const PointCloud& a, const PointCloud& b, bool xyzi_only) {
 
 int run_demo(const DemoOptions& options) {
     const io::Config cfg = options.config.empty() ? io::Config{} : io::load_config(options.config);
-    const std::filesystem::path out = options.out_dir;
+    // Everything is written to a staging folder and moved into place at the end: all or nothing.
+    io::StagedOutput staged(options.out_dir);
+    const std::filesystem::path out = staged.staging();
+    const std::filesystem::path shown = options.out_dir;
 
     // Scene.
     sim::Scene scene;
@@ -56,7 +60,7 @@ int run_demo(const DemoOptions& options) {
     seq.seed = cfg.simulation.seed;
     const auto route = auto_route(scene, seq.robot, "scene " + scene.name);
     const RecordingSummary rec = record_sequence(scene, route, seq, {.frames = cfg.simulation.frames, .cloud_every = 10},
-                                                 out / "sequence", (out / "scene.yaml").string());
+                                                 out / "sequence", (shown / "scene.yaml").string());
     const PointCloud first = io::read_point_cloud(out / "sequence" / "clouds" / "000000.pcd").cloud;
     bool exact = true;
     for (const char* name : {"first_sweep.ply", "first_sweep.bin"}) {
@@ -114,8 +118,9 @@ int run_demo(const DemoOptions& options) {
                                           {"format_round_trips_exact", exact},
                                           {"navigation", runs_json},
                                           {"aggregate", agg}});
-    std::cout << "  wrote " << (out / "report.md").string() << ", " << (out / "routes").string() << "/, "
-              << (out / "summary.json").string() << "\n";
+    staged.commit();
+    std::cout << "  wrote " << (shown / "report.md").string() << ", " << (shown / "routes").string() << "/, "
+              << (shown / "summary.json").string() << "\n";
     return exact ? 0 : 1;
 }
 

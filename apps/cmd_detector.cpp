@@ -11,6 +11,7 @@
 #include "io/json_io.hpp"
 #include "io/point_cloud_io.hpp"
 #include "io/progress.hpp"
+#include "io/staged_output.hpp"
 #include "makeway/eval/detection_eval.hpp"
 #include "makeway/pipeline/keyframe.hpp"
 
@@ -42,12 +43,14 @@ int run_dataset(const DatasetOptions& o) {
     const auto kfs = eval::generate_detection_dataset(p, [&](int d, int) { bar.update(static_cast<std::size_t>(d)); });
     bar.finish();
     std::size_t objects = 0;
+    io::StagedOutput staged(o.out);  // the whole dataset or none of it
     for (std::size_t k = 0; k < kfs.size(); ++k) {
-        io::write_labelled_keyframe(o.out, k, kfs[k]);
+        io::write_labelled_keyframe(staged.staging(), k, kfs[k]);
         objects += kfs[k].objects.size();
     }
-    io::write_json(fs::path(o.out) / "meta.json", {{"scenes", o.scenes}, {"seed", o.seed}, {"exclude_styles", o.exclude_styles},
-                                                   {"keyframes", kfs.size()}, {"objects", objects}});
+    io::write_json(staged.staging() / "meta.json", {{"scenes", o.scenes}, {"seed", o.seed}, {"exclude_styles", o.exclude_styles},
+                                                    {"keyframes", kfs.size()}, {"objects", objects}});
+    staged.commit();
     std::cout << "wrote " << kfs.size() << " keyframes with " << objects << " labelled objects to " << o.out << "\n";
     return 0;
 }

@@ -19,13 +19,14 @@
 #include "io/nav_png.hpp"
 #include "io/progress.hpp"
 #include "io/scene_io.hpp"
+#include "io/staged_output.hpp"
 #include "makeway/sim/scene_generator.hpp"
 
 namespace makeway::apps {
 
 int run_navigate(const NavigateOptions& options) {
     const io::Config cfg = options.config.empty() ? io::Config{} : io::load_config(options.config);
-    const sim::Scene scene = io::read_scene(options.scene);
+    const sim::Scene scene = io::read_scene(options.scene, {.allow_outside_paths = options.allow_outside_paths});
     eval::NavParams params = nav_params(cfg);
     params.seed = options.seed;
     params.time_limit_s = options.time_limit_s;
@@ -33,7 +34,8 @@ int run_navigate(const NavigateOptions& options) {
     std::optional<perception::Detector> detector;
     if (options.method == "ours") detector = load_detector(options.model);
     const eval::NavRunResult r = run_nav_method(scene, options.method, params, detector ? &*detector : nullptr);
-    const std::filesystem::path out = options.out_dir;
+    io::StagedOutput staged(options.out_dir);  // run.json, costmap.yaml/.pgm, route.png: all or none
+    const std::filesystem::path out = staged.staging();
     io::Json j = run_to_json(r, true);
     j["scene"] = options.scene;
     io::write_json(out / "run.json", j);
@@ -43,13 +45,15 @@ int run_navigate(const NavigateOptions& options) {
                           ", " + std::to_string(r.time_s).substr(0, 5) + " s, risk " +
                           std::to_string(r.risk_time_s).substr(0, 4) + " s",
                       params.system.navigator.affordance);
+    staged.commit();
     std::cout << io::dump_json(j) << "\n";
     return 0;
 }
 
 int run_bench_nav(const BenchNavOptions& options) {
     const io::Config cfg = options.config.empty() ? io::Config{} : io::load_config(options.config);
-    const std::filesystem::path out = options.out_dir;
+    io::StagedOutput staged(options.out_dir);  // scenes, routes, results.json, table.md: all or none
+    const std::filesystem::path out = staged.staging();
     // The full system `ours` joins when detector weights are there (given, or the default ones).
     std::vector<std::string> methods = eval::nav_method_names();
     std::optional<perception::Detector> detector;
@@ -114,6 +118,7 @@ int run_bench_nav(const BenchNavOptions& options) {
                               " s without touching a wall, pillar or piece of furniture; walking people do "
                               "not avoid the robot, so contacts with them are counted apart).\n";
     io::write_file_atomic(out / "table.md", table);
+    staged.commit();
     std::cout << table;
     for (const std::string& m : methods) {
         std::cout << m << ": control cycle " << agg[m]["cycle_ms_median"].get<double>() << " ms median, "

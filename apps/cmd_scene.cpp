@@ -8,6 +8,7 @@
 #include "io/mesh_io.hpp"
 #include "io/scene_io.hpp"
 #include "io/scene_png.hpp"
+#include "io/staged_output.hpp"
 #include "makeway/sim/furniture.hpp"
 #include "makeway/sim/route.hpp"
 #include "makeway/sim/scene_generator.hpp"
@@ -42,13 +43,17 @@ int run_scene(const SceneOptions& options) {
     } catch (const std::runtime_error& e) {
         throw io::FileError(out.string(), e.what());
     }
-    std::cout << "wrote " << out.string() << " and its picture (" << write_scene_with_picture(out, base) << ")\n";
+    // Every session's scene and picture, or none of them.
+    io::StagedOutput staged(out.parent_path());
+    std::vector<std::string> lines{"wrote " + out.string() + " and its picture (" +
+                                   write_scene_with_picture(staged.staging() / out.filename(), base) + ")"};
     for (int k = 1; k < options.sessions; ++k) {
-        auto path = out;
-        path.replace_filename(out.stem().string() + "_session" + std::to_string(k) + out.extension().string());
-        std::cout << "wrote " << path.string() << " (" << write_scene_with_picture(path, sim::make_session(base, k))
-                  << ")\n";
+        const std::string name = out.stem().string() + "_session" + std::to_string(k) + out.extension().string();
+        lines.push_back("wrote " + (out.parent_path() / name).string() + " (" +
+                        write_scene_with_picture(staged.staging() / name, sim::make_session(base, k)) + ")");
     }
+    staged.commit();
+    for (const auto& line : lines) std::cout << line << "\n";
     return 0;
 }
 

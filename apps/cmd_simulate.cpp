@@ -40,7 +40,7 @@ std::vector<Eigen::Vector2d> read_route(const std::string& path) {
 
 int run_simulate(const SimulateOptions& options) {
     const io::Config cfg = options.config.empty() ? io::Config{} : io::load_config(options.config);
-    const sim::Scene scene = io::read_scene(options.scene);
+    const sim::Scene scene = io::read_scene(options.scene, {.allow_outside_paths = options.allow_outside_paths});
     sim::SequenceParams params;
     params.lidar = cfg.lidar;
     params.robot = cfg.robot;

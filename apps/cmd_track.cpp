@@ -16,6 +16,7 @@
 #include "io/file_util.hpp"
 #include "io/pose_io.hpp"
 #include "io/progress.hpp"
+#include "io/staged_output.hpp"
 #include "io/tracking_io.hpp"
 #include "io/config_reader.hpp"
 #include "makeway/common/angles.hpp"
@@ -219,14 +220,15 @@ int run_track_kitti(const TrackOptions& o) {
         bar.update(tracks.size());
     }
     bar.finish();
-    fs::create_directories(o.out);
+    io::StagedOutput staged(o.out);
     for (std::size_t k = 0; k < inputs.size(); ++k) {
-        io::write_kitti_tracking(fs::path(o.out) / inputs[k].file.filename(), tracks[k]);  // empty: an empty file
+        io::write_kitti_tracking(staged.staging() / inputs[k].file.filename(), tracks[k]);  // empty: an empty file
     }
+    write_summary(staged.staging() / "summary.json", o, params, run, inputs.size());
+    staged.commit();
     std::cout << "classes:";
     for (const auto& t : types) std::cout << " " << t << " (" << run.tracks_per_class[t] << " tracks)";
     std::cout << "\nwrote " << inputs.size() << " sequence(s) to " << o.out << "\n";
-    write_summary(fs::path(o.out) / "summary.json", o, params, run, inputs.size());
     return 0;
 }
 
@@ -275,11 +277,11 @@ int run_track(const TrackOptions& o) {
     }
     bar.finish();
     run.frames = frames.size();
-    const fs::path out(o.out);
-    fs::create_directories(out);
-    for (std::size_t k = 0; k < frames.size(); ++k) io::write_json(out / files[k].filename(), results[k]);
+    io::StagedOutput staged(o.out);
+    for (std::size_t k = 0; k < frames.size(); ++k) io::write_json(staged.staging() / files[k].filename(), results[k]);
+    write_summary(staged.staging() / "summary.json", o, params, run, 1);
+    staged.commit();
     std::cout << "tracked " << frames.size() << " frames: " << map.objects().size() << " objects in the map; wrote " << o.out << "\n";
-    write_summary(out / "summary.json", o, params, run, 1);
     return 0;
 }
 

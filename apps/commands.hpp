@@ -64,6 +64,7 @@ struct SimulateOptions {
     std::string format = "pcd";
     std::uint64_t seed = 0;
     int threads = 1;
+    bool allow_outside_paths = false;  ///< the scene's meshes may lie outside its folder
 };
 int run_simulate(const SimulateOptions& options);
 
@@ -87,6 +88,7 @@ struct NavigateOptions {
     std::string out_dir;
     std::uint64_t seed = 0;
     double time_limit_s = 180.0;
+    bool allow_outside_paths = false;  ///< the scene's meshes may lie outside its folder
 };
 int run_navigate(const NavigateOptions& options);
 

@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "apps/commands.hpp"
+#include "io/interrupt.hpp"
 #include "io/error.hpp"
 
 namespace {
@@ -100,6 +101,9 @@ void add_simulate(CLI::App& app, SimulateOptions& o) {
         ->capture_default_str();
     sub->add_option("--seed", o.seed, "Seed of sensor noise and odometry drift")->capture_default_str();
     sub->add_option("--threads", o.threads, "Ray-casting threads")->check(CLI::Range(1, 256))->capture_default_str();
+    sub->add_flag("--allow-outside-paths", o.allow_outside_paths,
+                  "Let the scene's `mesh:` paths leave the scene's folder (absolute, ../); off: a scene reads only "
+                  "files beside it");
 }
 
 void add_navigate(CLI::App& app, NavigateOptions& o) {
@@ -123,6 +127,9 @@ void add_navigate(CLI::App& app, NavigateOptions& o) {
     sub->add_option("--time-limit", o.time_limit_s, "Seconds before the run counts as failed [s]")
         ->check(CLI::Range(1.0, 3600.0))
         ->capture_default_str();
+    sub->add_flag("--allow-outside-paths", o.allow_outside_paths,
+                  "Let the scene's `mesh:` paths leave the scene's folder (absolute, ../); off: a scene reads only "
+                  "files beside it");
 }
 
 void add_verify(CLI::App& app, VerifyOptions& o) {
@@ -336,6 +343,7 @@ int main(int argc, char** argv) {
     add_detector(app, dataset, train_detector, detect, eval_detection);
     add_bench(app, bench_sim, bench_nav, bench_verify, bench_track);
     check_numbers(app);
+    makeway::io::install_interrupt_handlers();
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
         for (const CLI::App* sub : app.get_subcommands({})) known |= sub->get_name() == argv[1];
@@ -392,6 +400,9 @@ int main(int argc, char** argv) {
     } catch (const makeway::io::FileError& e) {
         print_error(e.what());
         return kExitBadInput;
+    } catch (const makeway::io::Interrupted& e) {
+        print_error(e.what());
+        return e.exit_code();
     } catch (const std::exception& e) {
         const std::string what = e.what();
         print_error("internal error: " + what.substr(0, what.find('\n')));  // one line (torch appends backtraces)

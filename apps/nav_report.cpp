@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "makeway/common/statistics.hpp"
+#include "io/interrupt.hpp"
 
 namespace makeway::apps {
 
@@ -15,6 +16,7 @@ eval::NavParams nav_params(const io::Config& config) {
     p.robot = config.robot;
     p.odometry = config.odometry;
     p.system = config.system;
+    p.on_sweep = io::throw_if_interrupted;  // Ctrl-C stops a run within one sweep
     pipeline::NavigatorParams& n = p.system.navigator;
     n.affordance = config.affordance;
     n.inflation.inscribed_radius_m = config.robot.inscribed_radius_m();

@@ -15,6 +15,7 @@
 #include "io/progress.hpp"
 #include "io/scene_io.hpp"
 #include "io/scene_png.hpp"
+#include "io/staged_output.hpp"
 #include "makeway/sim/route.hpp"
 
 namespace makeway::apps {
@@ -74,62 +75,114 @@ std::vector<Eigen::Vector2d> auto_route(const sim::Scene& scene, const sim::Robo
     return *route;
 }
 
+std::uintmax_t recording_bytes_upper_bound(const sim::LidarParams& lidar, const RecordingOptions& options) {
+    // Every ray returning, in the chosen format, plus a frame's ground-truth JSON (generous).
+    PointCloud one, many;
+    one.resize(1, PointFields::all());
+    many.resize(1001, PointFields::all());
+    const std::size_t per_point = options.format == "bin" ? 16 + 4  // .bin xyzi + .label
+                                                          : (io::serialize_pcd(many, io::PcdEncoding::kBinary).size() -
+                                                             io::serialize_pcd(one, io::PcdEncoding::kBinary).size() + 999) / 1000;
+    const std::uintmax_t rays = static_cast<std::uintmax_t>(lidar.num_beams()) * static_cast<std::uintmax_t>(lidar.num_columns());
+    const std::uintmax_t clouds = (static_cast<std::uintmax_t>(options.frames) + options.cloud_every - 1) / options.cloud_every;
+    return clouds * rays * per_point + static_cast<std::uintmax_t>(options.frames) * 16384;
+}
+
 RecordingSummary record_sequence(const sim::Scene& scene, const std::vector<Eigen::Vector2d>& route,
                                  const sim::SequenceParams& params, const RecordingOptions& options,
                                  const std::filesystem::path& out, const std::string& scene_label) {
+    io::check_free_space(out, recording_bytes_upper_bound(params.lidar, options),
+                         std::to_string(options.frames) + " frames of " + std::to_string(params.lidar.num_beams()) +
+                             " beams x " + std::to_string(params.lidar.num_columns()) + " columns");
+    io::RecordingFolder folder(out, "simulate");
     const int frames = options.frames;
     const std::string& format = options.format;
     sim::SequenceSimulator simulator(scene, route, params);
     std::vector<io::StampedPose> gt, odom;
-    io::ProgressBar bar("simulate", static_cast<std::size_t>(frames));
     RecordingSummary summary;
-    double sim_s = 0.0;
-    for (int i = 0; i < frames && !(options.stop_at_goal && simulator.reached_goal()); ++i) {
-        const auto t0 = std::chrono::steady_clock::now();
-        const sim::SimFrame f = simulator.next();
-        sim_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        summary.frames_in_collision += f.collided;
-        summary.points += f.points_sensor.size();
-        char name[32];
-        std::snprintf(name, sizeof(name), "%06d", f.index);
-        ++summary.frames;
-        if (i % options.cloud_every != 0) {
-            // ground truth only
-        } else if (format == "bin") {
-            io::write_point_cloud(out / "clouds" / (std::string(name) + ".bin"), f.points_sensor);
-            io::write_file_atomic(out / "labels" / (std::string(name) + ".label"), semantic_kitti_labels(f.points_sensor));
-        } else {
-            io::write_point_cloud(out / "clouds" / (std::string(name) + ".pcd"), f.points_sensor);
+    const auto summary_json = [&] {
+        const auto& trajectory = simulator.trajectory();
+        summary.distance_m = 0.0;
+        for (std::size_t i = 1; i < trajectory.size(); ++i) {
+            summary.distance_m += std::hypot(trajectory[i].x_m - trajectory[i - 1].x_m, trajectory[i].y_m - trajectory[i - 1].y_m);
         }
-        io::write_json(out / "objects" / (std::string(name) + ".json"), frame_json(f));
-        gt.push_back({f.stamp_s, f.T_world_sensor});
-        odom.push_back({f.stamp_s, lift_to_3d(f.odometry_pose)});
-        bar.update(static_cast<std::size_t>(i + 1), std::to_string(f.points_sensor.size()) + " points");
+        return io::Json{{"scene", scene_label},
+                        {"frames", summary.frames},
+                        {"frames_requested", frames},
+                        {"reached_goal", summary.reached_goal},
+                        {"frames_in_collision", summary.frames_in_collision},
+                        {"distance_m", summary.distance_m},
+                        {"points", summary.points},
+                        {"ms_per_frame", summary.ms_per_frame},
+                        {"format", format}};
+    };
+    std::string writing;  // the frame whose files are being written
+    try {
+        io::ProgressBar bar("simulate", static_cast<std::size_t>(frames));
+        double sim_s = 0.0;
+        for (int i = 0; i < frames && !(options.stop_at_goal && simulator.reached_goal()); ++i) {
+            const auto t0 = std::chrono::steady_clock::now();
+            const sim::SimFrame f = simulator.next();
+            sim_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            summary.frames_in_collision += f.collided;
+            summary.points += f.points_sensor.size();
+            char name[32];
+            std::snprintf(name, sizeof(name), "%06d", f.index);
+            writing = name;
+            if (i % options.cloud_every != 0) {
+                // ground truth only
+            } else if (format == "bin") {
+                io::write_point_cloud(out / "clouds" / (std::string(name) + ".bin"), f.points_sensor);
+                io::write_file_atomic(out / "labels" / (std::string(name) + ".label"), semantic_kitti_labels(f.points_sensor));
+            } else {
+                io::write_point_cloud(out / "clouds" / (std::string(name) + ".pcd"), f.points_sensor);
+            }
+            io::write_json(out / "objects" / (std::string(name) + ".json"), frame_json(f));
+            gt.push_back({f.stamp_s, f.T_world_sensor});
+            odom.push_back({f.stamp_s, lift_to_3d(f.odometry_pose)});
+            ++summary.frames;  // only once everything of the frame is on disk
+            writing.clear();
+            summary.ms_per_frame = 1e3 * sim_s / summary.frames;
+            bar.update(static_cast<std::size_t>(i + 1), std::to_string(f.points_sensor.size()) + " points");
+        }
+        bar.finish(simulator.reached_goal() ? "goal reached" : "");
+        io::write_tum(out / "poses_gt.txt", gt);
+        io::write_tum(out / "odometry.txt", odom);
+        summary.reached_goal = simulator.reached_goal();
+        const io::Json done = summary_json();  // sets distance_m
+        const auto& trajectory = simulator.trajectory();
+        io::ScenePicture pic;
+        pic.route_m = route;
+        pic.trajectory = trajectory;
+        pic.title = scene.name + ": " + std::to_string(summary.frames) + " frames, " + std::to_string(summary.distance_m).substr(0, 5) +
+                    " m" + (summary.reached_goal ? ", goal reached" : "") +
+                    (summary.frames_in_collision ? ", " + std::to_string(summary.frames_in_collision) + " frames in collision" : "");
+        io::write_scene_png(out / "scene.png", scene, simulator.world().models(), pic);
+        folder.complete(done);
+    } catch (const std::exception& e) {
+        // Each write may throw again (the interrupt flag stays set): best effort, one by one.
+        const auto attempt = [](const auto& write) {
+            try {
+                write();
+            } catch (...) {
+            }
+        };
+        // The frame being written when it stopped is removed: every frame on disk is whole.
+        for (const char* part : {"clouds/%.pcd", "clouds/%.bin", "labels/%.label", "objects/%.json"}) {
+            if (writing.empty()) break;
+            std::string rel = part;
+            rel.replace(rel.find('%'), 1, writing);
+            std::error_code ec;
+            std::filesystem::remove(out / rel, ec);
+        }
+        // The poses of the frames on disk, so that the part that exists can be used.
+        gt.resize(std::min(gt.size(), static_cast<std::size_t>(summary.frames)));
+        odom.resize(std::min(odom.size(), static_cast<std::size_t>(summary.frames)));
+        attempt([&] { io::write_tum(out / "poses_gt.txt", gt); });
+        attempt([&] { io::write_tum(out / "odometry.txt", odom); });
+        folder.stopped(summary_json(), e.what());
+        throw;
     }
-    bar.finish(simulator.reached_goal() ? "goal reached" : "");
-    io::write_tum(out / "poses_gt.txt", gt);
-    io::write_tum(out / "odometry.txt", odom);
-    const auto& trajectory = simulator.trajectory();
-    for (std::size_t i = 1; i < trajectory.size(); ++i) {
-        summary.distance_m += std::hypot(trajectory[i].x_m - trajectory[i - 1].x_m, trajectory[i].y_m - trajectory[i - 1].y_m);
-    }
-    summary.reached_goal = simulator.reached_goal();
-    summary.ms_per_frame = 1e3 * sim_s / std::max(summary.frames, 1);
-    io::ScenePicture pic;
-    pic.route_m = route;
-    pic.trajectory = trajectory;
-    pic.title = scene.name + ": " + std::to_string(summary.frames) + " frames, " + std::to_string(summary.distance_m).substr(0, 5) +
-                " m" + (summary.reached_goal ? ", goal reached" : "") +
-                (summary.frames_in_collision ? ", " + std::to_string(summary.frames_in_collision) + " frames in collision" : "");
-    io::write_scene_png(out / "scene.png", scene, simulator.world().models(), pic);
-    io::write_json(out / "summary.json", {{"scene", scene_label},
-                                          {"frames", summary.frames},
-                                          {"reached_goal", summary.reached_goal},
-                                          {"frames_in_collision", summary.frames_in_collision},
-                                          {"distance_m", summary.distance_m},
-                                          {"points", summary.points},
-                                          {"ms_per_frame", summary.ms_per_frame},
-                                          {"format", format}});
     return summary;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // What `makeway scene`, `makeway simulate` and `makeway demo` share: writing a scene with its
 // picture, and recording a drive to a folder.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -32,8 +33,14 @@ struct RecordingOptions {
     bool stop_at_goal = false;
 };
 
+/// An upper bound on the bytes a recording writes (every ray returning).
+std::uintmax_t recording_bytes_upper_bound(const sim::LidarParams& lidar, const RecordingOptions& options);
+
 /// Records sweeps into out_dir: clouds/NNNNNN.pcd (or .bin + labels/NNNNNN.label),
 /// objects/NNNNNN.json, poses_gt.txt, odometry.txt, scene.png, summary.json. Shows progress.
+/// Checks the free disk space first (FileError). Written in place with a PARTIAL marker
+/// (io::RecordingFolder): a failure or Ctrl-C leaves the marker and summary.json with
+/// "complete": false and the frames that are on disk, then rethrows.
 RecordingSummary record_sequence(const sim::Scene& scene, const std::vector<Eigen::Vector2d>& route,
                                  const sim::SequenceParams& params, const RecordingOptions& options,
                                  const std::filesystem::path& out_dir, const std::string& scene_label);

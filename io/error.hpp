@@ -14,8 +14,8 @@ public:
 /// A named input or output file cannot be used. what() is "FILE: what is wrong".
 class FileError : public std::runtime_error {
 public:
-    FileError(const std::string& path, const std::string& problem)
-        : std::runtime_error(path + ": " + problem), path_(path), problem_(problem) {}
+    /// A path inside a staging folder (io::StagedOutput) is named as the file it will become.
+    FileError(const std::string& path, const std::string& problem);
     const std::string& path() const { return path_; }
     const std::string& problem() const { return problem_; }
 

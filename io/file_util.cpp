@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "io/error.hpp"
+#include "io/interrupt.hpp"
 
 namespace makeway::io {
 namespace fs = std::filesystem;
@@ -38,7 +39,9 @@ std::string read_file(const fs::path& path, bool allow_empty, std::size_t max_by
     return data;
 }
 
-void write_file_atomic(const fs::path& path, std::string_view data) {
+namespace {
+
+void write_file_atomic_now(const fs::path& path, std::string_view data) {
     std::error_code ec;
     const fs::path parent = path.parent_path();
     if (!parent.empty()) {
@@ -72,6 +75,17 @@ void write_file_atomic(const fs::path& path, std::string_view data) {
         ::unlink(tmpl.c_str());
         throw FileError(path.string(), "cannot replace file: " + why);
     }
+}
+
+}  // namespace
+
+void write_file_atomic(const fs::path& path, std::string_view data) {
+    {
+        // An interrupt between mkstemp and rename would leave the temporary file behind.
+        const DeferInterrupts defer;
+        write_file_atomic_now(path, data);
+    }
+    throw_if_interrupted();
 }
 
 std::string to_lower(std::string text) {

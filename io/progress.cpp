@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "io/interrupt.hpp"
+
 namespace makeway::io {
 
 ProgressBar::ProgressBar(std::string label, std::size_t total)
@@ -12,6 +14,7 @@ ProgressBar::ProgressBar(std::string label, std::size_t total)
       start_(std::chrono::steady_clock::now()) {}
 
 void ProgressBar::update(std::size_t done, const std::string& note) {
+    throw_if_interrupted();
     const double frac = std::min(1.0, static_cast<double>(done) / static_cast<double>(total_));
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     const double eta = frac > 0 ? elapsed * (1 - frac) / frac : 0.0;

@@ -10,7 +10,8 @@ namespace makeway::io {
 class ProgressBar {
 public:
     ProgressBar(std::string label, std::size_t total);
-    /// Marks `done` items finished; `note` is shown after the bar (e.g. "12.3 M rays/s").
+    /// Marks `done` items finished; `note` is shown after the bar (e.g. "12.3 M rays/s"). Long work
+    /// calls this often, so it is also where a deferred Ctrl-C is noticed: throws Interrupted.
     void update(std::size_t done, const std::string& note = "");
     /// Completes the line.
     void finish(const std::string& note = "");

@@ -36,8 +36,20 @@ void for_each_item(YAML::Node list, const std::string& name, std::vector<std::st
     for (std::size_t i = 0; i < list.size(); ++i) fn(list[i], name + "[" + std::to_string(i) + "]");
 }
 
+// True when `file` (relative to `base`) resolves, links followed, to a path inside `base`.
+bool inside_folder(const std::filesystem::path& base, const std::filesystem::path& file) {
+    if (file.is_absolute()) return false;
+    std::error_code ec;
+    const auto root = std::filesystem::weakly_canonical(base, ec);
+    if (ec) return false;
+    const auto resolved = std::filesystem::weakly_canonical(base / file, ec);
+    if (ec) return false;
+    const auto rel = resolved.lexically_relative(root);
+    return !rel.empty() && *rel.begin() != "..";
+}
+
 sim::SceneObject read_object(const YAML::Node& node, const std::string& prefix, std::vector<std::string>& problems,
-                             const std::filesystem::path& mesh_base_dir) {
+                             const std::filesystem::path& mesh_base_dir, const SceneReadOptions& options) {
     sim::SceneObject o;
     YamlSection s(node, prefix, problems);
     std::string cls = "chair";
@@ -61,7 +73,10 @@ sim::SceneObject read_object(const YAML::Node& node, const std::string& prefix, 
             s.problem("style '" + o.style + "' is not a " + cls);
         }
     }
-    if (!o.mesh_file.empty() && !mesh_base_dir.empty()) {
+    if (!o.mesh_file.empty() && !mesh_base_dir.empty() && !options.allow_outside_paths &&
+        !inside_folder(mesh_base_dir, o.mesh_file)) {
+        s.problem("mesh '" + o.mesh_file + "' is outside the scene's folder (--allow-outside-paths to read it)");
+    } else if (!o.mesh_file.empty() && !mesh_base_dir.empty()) {
         try {
             auto mesh = std::make_shared<TriangleMesh>(read_mesh(mesh_base_dir / o.mesh_file));
             sim::transform_mesh(*mesh, Isometry3(Eigen::Scaling(o.scale)));
@@ -75,7 +90,8 @@ sim::SceneObject read_object(const YAML::Node& node, const std::string& prefix, 
 
 }  // namespace
 
-sim::Scene parse_scene(std::string_view yaml_text, const std::filesystem::path& mesh_base_dir) {
+sim::Scene parse_scene(std::string_view yaml_text, const std::filesystem::path& mesh_base_dir,
+                       const SceneReadOptions& options) {
     YAML::Node root;
     try {
         root = YAML::Load(std::string(yaml_text));
@@ -119,7 +135,7 @@ sim::Scene parse_scene(std::string_view yaml_text, const std::filesystem::path& 
         scene.pillars.push_back(p);
     });
     for_each_item(s.take("objects"), "objects", problems, [&](const YAML::Node& n, const std::string& name) {
-        scene.objects.push_back(read_object(n, name, problems, mesh_base_dir));
+        scene.objects.push_back(read_object(n, name, problems, mesh_base_dir, options));
     });
     for_each_item(s.take("walkers"), "walkers", problems, [&](const YAML::Node& n, const std::string& name) {
         sim::Walker w;
@@ -153,12 +169,12 @@ sim::Scene parse_scene(std::string_view yaml_text, const std::filesystem::path& 
     return scene;
 }
 
-sim::Scene read_scene(const std::filesystem::path& path) {
+sim::Scene read_scene(const std::filesystem::path& path, const SceneReadOptions& options) {
     const std::string text = read_file(path);
     try {
         std::filesystem::path base = path.parent_path();
         if (base.empty()) base = ".";
-        return parse_scene(text, base);
+        return parse_scene(text, base, options);
     } catch (const FormatError& e) {
         throw FileError(path.string(), e.what());
     }

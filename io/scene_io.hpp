@@ -8,10 +8,17 @@
 
 namespace makeway::io {
 
+struct SceneReadOptions {
+    /// A scene names its meshes relative to its own folder and cannot reach outside it (`../x.obj`,
+    /// absolute paths, links leading out): a scene file from elsewhere reads no other files.
+    bool allow_outside_paths = false;
+};
+
 /// Throws FileError ("PATH: 2 problems: ...") on any problem, including unreadable user meshes.
-sim::Scene read_scene(const std::filesystem::path& path);
+sim::Scene read_scene(const std::filesystem::path& path, const SceneReadOptions& options = {});
 /// Throws FormatError. User meshes are not loaded (mesh_base_dir empty) or loaded from it.
-sim::Scene parse_scene(std::string_view yaml_text, const std::filesystem::path& mesh_base_dir = {});
+sim::Scene parse_scene(std::string_view yaml_text, const std::filesystem::path& mesh_base_dir = {},
+                       const SceneReadOptions& options = {});
 
 /// Atomic write.
 void write_scene(const std::filesystem::path& path, const sim::Scene& scene);

@@ -20,9 +20,12 @@ struct CliRun {
 
 /// Runs the makeway binary (MAKEWAY_BIN, set by tests/apps/CMakeLists.txt) with `args`
 /// (shell-quoted by the caller), capturing both streams.
-inline CliRun run_makeway(const std::string& args, const std::filesystem::path& dir) {
+inline CliRun run_makeway(const std::string& args, const std::filesystem::path& dir);
+
+/// Runs a shell command line (sh -c), capturing both streams.
+inline CliRun run_shell(const std::string& command_line, const std::filesystem::path& dir) {
     const auto err_path = dir / "stderr.txt";
-    const std::string cmd = std::string(MAKEWAY_BIN) + " " + args + " 2>" + err_path.string();
+    const std::string cmd = command_line + " 2>" + err_path.string();
     CliRun r;
     FILE* pipe = popen(cmd.c_str(), "r");
     std::array<char, 4096> buf;
@@ -32,6 +35,10 @@ inline CliRun run_makeway(const std::string& args, const std::filesystem::path& 
     std::ifstream in(err_path);
     r.err.assign(std::istreambuf_iterator<char>(in), {});
     return r;
+}
+
+inline CliRun run_makeway(const std::string& args, const std::filesystem::path& dir) {
+    return run_shell(std::string(MAKEWAY_BIN) + " " + args, dir);
 }
 
 /// Lines written to a stream (its newlines).

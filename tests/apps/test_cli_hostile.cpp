@@ -51,7 +51,21 @@ TEST(Cli, HostileInputsAtTheBoundary) {
     std::filesystem::create_directories(dir / "dets");
     std::ofstream(dir / "dets" / "000000.json") << "{\"stamp_s\": 1.0, \"detections\": []}";
     std::ofstream(dir / "dets" / "000001.json") << "{\"stamp_s\": 0.5, \"detections\": []}";
+    // A scene whose mesh lies outside its folder (was read from anywhere).
+    std::filesystem::create_directories(dir / "room");
+    std::ofstream(dir / "room" / "escape.yaml") << "name: e\nfloor: {min_m: [-5, -5], max_m: [5, 5]}\n"
+                                                   "objects:\n  - {id: 1, class: chair, mesh: ../../x.obj}\n";
+    // Outputs in the way: a folder where navigate's picture and scene's third session go.
+    std::filesystem::create_directories(dir / "o9" / "route.png");
+    std::filesystem::create_directories(dir / "o10" / "s_session2.png");
     const std::vector<std::pair<std::string, std::string>> cases = {
+        {"simulate --scene " + (dir / "good.yaml").string() + " --frames 1000000 --out " + (dir / "o11").string(),
+         "1000000 frames of 32 beams x 1800 columns need about"},  // 1.7 TB: refused before starting
+        {"simulate --scene " + (dir / "room" / "escape.yaml").string() + " --out " + (dir / "o12").string(),
+         "mesh '../../x.obj' is outside the scene's folder (--allow-outside-paths to read it)"},
+        {"navigate --scene " + (dir / "good.yaml").string() + " --time-limit 2 --out " + (dir / "o9").string(),
+         (dir / "o9" / "route.png").string() + ": in the way of an output"},
+        {"scene --sessions 3 --out " + (dir / "o10" / "s.yaml").string(), (dir / "o10" / "s_session2.png").string() + ": in the way"},
         {"track --detections " + (dir / "dets").string() + " --out " + (dir / "o6").string(),
          (dir / "dets" / "000001.json").string() + ": stamp_s goes back in time"},
         {"simulate --scene " + (dir / "huge.yaml").string() + " --out " + (dir / "o7").string(), "floor: at most 200 m on a side"},
@@ -71,7 +85,17 @@ TEST(Cli, HostileInputsAtTheBoundary) {
         EXPECT_EQ(lines(r.err), 1u) << args << "\n" << r.err;
         EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
     }
-    for (const char* out : {"o1.bin", "o2", "o3", "o4", "o5", "o6", "o7", "o8"}) EXPECT_FALSE(std::filesystem::exists(dir / out)) << out;
+    for (const char* out : {"o1.bin", "o2", "o3", "o4", "o5", "o6", "o7", "o8", "o11", "o12"}) {
+        EXPECT_FALSE(std::filesystem::exists(dir / out)) << out;
+    }
+    // Where an output was in the way, nothing else was delivered beside it.
+    const auto entries = [](const std::filesystem::path& d) {
+        std::vector<std::string> names;
+        for (const auto& e : std::filesystem::directory_iterator(d)) names.push_back(e.path().filename().string());
+        return names;
+    };
+    EXPECT_EQ(entries(dir / "o9"), std::vector<std::string>{"route.png"});
+    EXPECT_EQ(entries(dir / "o10"), std::vector<std::string>{"s_session2.png"});
     // Standard output on a full device: exit 2 and one line, not a silent success.
     const int rc = std::system((std::string(MAKEWAY_BIN) + " scene --out " + (dir / "s.yaml").string() + " > /dev/full 2> " +
                                 (dir / "err.txt").string()).c_str());

@@ -96,5 +96,33 @@ TEST(SceneIo, MissingMeshNamesBothFiles) {
     }
 }
 
+TEST(SceneIo, MeshPathsStayInsideTheScenesFolder) {
+    // A scene file from elsewhere must not read other files: ../, absolute paths and links out are
+    // refused unless allowed (was: any path was read).
+    const auto dir = testing_util::fresh_dir("outside");
+    TriangleMesh cube;
+    sim::add_box(cube, {0, 0, 0.5}, {1, 1, 1});
+    write_mesh(dir / "crate.stl", cube);
+    std::filesystem::create_directories(dir / "scene" / "meshes");
+    write_mesh(dir / "scene" / "meshes" / "inside.stl", cube);
+    std::filesystem::create_symlink(dir / "crate.stl", dir / "scene" / "link.stl");
+    const auto scene_with = [&](const std::string& mesh) {
+        std::ofstream(dir / "scene" / "s.yaml") << "objects:\n  - {id: 1, class: table, mesh: '" << mesh << "'}\n";
+        return dir / "scene" / "s.yaml";
+    };
+    for (const std::string& mesh : {std::string("../crate.stl"), (dir / "crate.stl").string(), std::string("meshes/../../crate.stl"),
+                                   std::string("link.stl")}) {
+        try {
+            read_scene(scene_with(mesh));
+            ADD_FAILURE() << mesh << " was read";
+        } catch (const FileError& e) {
+            EXPECT_NE(std::string(e.what()).find("mesh '" + mesh + "' is outside the scene's folder"), std::string::npos) << e.what();
+        }
+        EXPECT_TRUE(read_scene(scene_with(mesh), {.allow_outside_paths = true}).objects[0].user_mesh) << mesh;
+    }
+    EXPECT_TRUE(read_scene(scene_with("meshes/inside.stl")).objects[0].user_mesh);
+    EXPECT_TRUE(read_scene(scene_with("meshes/../meshes/inside.stl")).objects[0].user_mesh);
+}
+
 }  // namespace
 }  // namespace makeway::io

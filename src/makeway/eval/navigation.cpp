@@ -120,6 +120,7 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
     const Isometry3 T_robot_sensor = params.robot.T_robot_sensor();
     out.min_clearance_m = 1e9;
     for (int k = 0; k * period < params.time_limit_s; ++k) {
+        if (params.on_sweep) params.on_sweep();
         const double t = k * period;
         out.trajectory.push_back(state.pose);
         // Act for one sweep period, scoring each physics step; keep the poses for the sweep.

@@ -6,6 +6,7 @@
 //   con, oppo, gt-perc: the simulator's true pose (and, for gt-perc, its true objects);
 //   ours: the online Pipeline, fed only what a robot has (sweeps, drifting wheel odometry, the
 //         start pose, the map of walls, the CAD models of the room's furniture).
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,6 +53,8 @@ struct NavParams {
     /// The static layer's map (e.g. a map_server map); its geometry becomes the costmap's. When
     /// absent, the scene's walls and pillars are rasterised at resolution_m.
     std::optional<Costmap> static_map;
+    /// Called once per sweep; may throw to abandon the run (the program checks for Ctrl-C here).
+    std::function<void()> on_sweep;
 };
 
 /// The map's objects after one keyframe of the online system.

@@ -1,0 +1,151 @@
+// The README's output promise at the program's edge (issue 14): a multi-file command delivers
+// everything or nothing, whatever stops it (a write error, a full disk, Ctrl-C, `kill`), and a
+// long recording that stops is marked PARTIAL with a summary of how far it got.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <iterator>
+#include <thread>
+
+#include "../io/io_test_util.hpp"
+#include "cli_test_util.hpp"
+#include "io/json_io.hpp"
+
+namespace makeway {
+namespace {
+namespace fs = std::filesystem;
+
+using testing_util::CliRun;
+using testing_util::lines;
+using testing_util::run_makeway;
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// Every entry under `dir` that a failed or interrupted run must not leave: staging folders and
+// temporary files.
+std::vector<std::string> leftovers(const fs::path& dir) {
+    std::vector<std::string> out;
+    for (const auto& e : fs::recursive_directory_iterator(dir)) {
+        const std::string name = e.path().filename().string();
+        if (name.find(".staging") != std::string::npos || name.find(".tmp.") != std::string::npos) out.push_back(e.path().string());
+    }
+    return out;
+}
+
+std::size_t count_files(const fs::path& dir) {
+    if (!fs::exists(dir)) return 0;
+    return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}));
+}
+
+// Starts makeway with `args` (no shell), stdout/stderr to files in `dir`.
+pid_t spawn_makeway(const std::vector<std::string>& args, const fs::path& dir) {
+    const pid_t pid = fork();
+    if (pid == 0) {
+        std::freopen((dir / "spawn_out.txt").c_str(), "w", stdout);
+        std::freopen((dir / "spawn_err.txt").c_str(), "w", stderr);
+        std::vector<char*> argv{const_cast<char*>(MAKEWAY_BIN)};
+        for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        execv(MAKEWAY_BIN, argv.data());
+        _exit(127);
+    }
+    return pid;
+}
+
+int wait_exit(pid_t pid) {
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Waits (at most 120 s) until `done` holds.
+template <typename F>
+bool eventually(F done) {
+    const auto start = std::chrono::steady_clock::now();
+    while (!done()) {
+        if (std::chrono::steady_clock::now() - start > std::chrono::seconds(120)) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return true;
+}
+
+class CliOutputs : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = testing_util::fresh_dir("outputs");
+        const CliRun r = run_makeway("scene --seed 3 --out " + (dir_ / "scene" / "s.yaml").string(), dir_);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        scene_ = (dir_ / "scene" / "s.yaml").string();
+    }
+    fs::path dir_;
+    std::string scene_;
+};
+
+TEST_F(CliOutputs, InterruptedRecordingIsMarkedAndEveryFrameOnDiskIsWhole) {
+    for (const int sig : {SIGINT, SIGTERM}) {
+        const fs::path rec = dir_ / ("rec" + std::to_string(sig));
+        const pid_t pid = spawn_makeway({"simulate", "--scene", scene_, "--frames", "5000", "--out", rec.string()}, dir_);
+        ASSERT_TRUE(eventually([&] { return count_files(rec / "objects") >= 5; }));
+        kill(pid, sig);
+        EXPECT_EQ(wait_exit(pid), 128 + sig);
+        EXPECT_NE(slurp(dir_ / "spawn_err.txt").find("makeway: interrupted by SIG"), std::string::npos);
+        ASSERT_TRUE(fs::exists(rec / "PARTIAL"));
+        const io::Json s = io::Json::parse(slurp(rec / "summary.json"));
+        EXPECT_EQ(s["complete"], false);
+        const std::size_t frames = s["frames"].get<std::size_t>();
+        EXPECT_GE(frames, 5u);
+        EXPECT_LT(frames, 5000u);
+        EXPECT_EQ(count_files(rec / "clouds"), frames);
+        EXPECT_EQ(count_files(rec / "objects"), frames);
+        EXPECT_EQ(lines(slurp(rec / "poses_gt.txt")), frames + 1) << "one header line and a pose per frame";
+        EXPECT_EQ(lines(slurp(rec / "odometry.txt")), frames + 1);
+    }
+    EXPECT_TRUE(leftovers(dir_).empty());
+}
+
+TEST_F(CliOutputs, InterruptedNavigationWritesNothing) {
+    // In the drive (nothing open yet) the program ends at once; nothing of the run is written.
+    const fs::path out = dir_ / "nav";
+    const pid_t pid = spawn_makeway({"navigate", "--scene", scene_, "--method", "con", "--out", out.string()}, dir_);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // the drive takes about 7 s
+    kill(pid, SIGINT);
+    EXPECT_EQ(wait_exit(pid), 130);
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_TRUE(leftovers(dir_).empty());
+}
+
+TEST_F(CliOutputs, FullDiskLeavesNoHalfOutput) {
+    // A file-size limit makes every larger write fail as a full disk would (EFBIG instead of ENOSPC).
+    // At most 100 KB per file (bash counts KiB): run.json (53 KB) and the costmap (72 KB) are
+    // written, the picture (110 KB) is not; a 1.4 MB cloud is not.
+    const auto limited = [&](const std::string& args) {
+        return testing_util::run_shell("bash -c \"ulimit -f 100; trap '' XFSZ; exec " + std::string(MAKEWAY_BIN) + " " + args + "\"", dir_);
+    };
+    // Recording: the first cloud (1.4 MB) cannot be written.
+    const std::string rec = (dir_ / "rec").string();
+    CliRun r = limited("simulate --scene " + scene_ + " --frames 20 --out " + rec);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("write failed: File too large"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::exists(fs::path(rec) / "PARTIAL"));
+    EXPECT_EQ(io::Json::parse(slurp(fs::path(rec) / "summary.json"))["frames"], 0);
+    EXPECT_EQ(count_files(fs::path(rec) / "clouds"), 0u);
+    // Navigation: run.json and the costmap fit, the picture does not: none of them is delivered,
+    // and the error names the file the user asked for, not the staging folder.
+    r = limited("navigate --scene " + scene_ + " --method con --out " + (dir_ / "nav").string());
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_EQ(r.err, "makeway: " + (dir_ / "nav" / "route.png").string() + ": write failed: File too large\n");
+    EXPECT_FALSE(fs::exists(dir_ / "nav"));
+    EXPECT_TRUE(leftovers(dir_).empty());
+}
+
+}  // namespace
+}  // namespace makeway
