@@ -6,7 +6,7 @@ CMAKE_ARGS ?=
 MAKEWAY  := $(BUILD)/bin/makeway
 FUZZ_SECONDS ?= 60
 
-.PHONY: all deps configure build test demo bench model fuzz fuzz-run asan format clean
+.PHONY: all deps configure build test demo bench model fuzz fuzz-run asan tsan format clean
 
 all: build
 
@@ -47,6 +47,17 @@ asan:
 	    $(MAKE) --no-print-directory test BUILD=build-asan TYPE=RelWithDebInfo \
 	    CMAKE_ARGS="-DMAKEWAY_SANITIZE=ON -DMAKEWAY_BUILD_BENCH=OFF $(CMAKE_ARGS)"
 
+# ThreadSanitizer build of the multithreaded parts' tests: the simulator's ray casting (TBB), the
+# verifier's parallel ICP, the detector shared by threads, the pipeline and the full chain.
+TSAN_TESTS := test_sim test_verification test_detector test_pipeline test_full_chain
+tsan: deps
+	@cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMAKEWAY_TSAN=ON \
+	    -DMAKEWAY_BUILD_BENCH=OFF -DMAKEWAY_BUILD_APPS=OFF $(CMAKE_ARGS) > /dev/null
+	@cmake --build build-tsan -j $(JOBS) --target $(TSAN_TESTS)
+	@for t in $(TSAN_TESTS); do echo "== tsan $$t"; \
+	    TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$(CURDIR)/tests/tsan.supp" \
+	    build-tsan/bin/$$t --gtest_brief=1 || exit 1; done
+
 # libFuzzer targets (clang), one per parser: build-fuzz/bin/fuzz_*.
 fuzz:
 	@scripts/install-deps.sh --fuzz
@@ -63,4 +74,4 @@ format:
 	@find src io apps tests bench fuzz -name '*.[ch]pp' | xargs clang-format -i
 
 clean:
-	rm -rf build build-asan build-fuzz out
+	rm -rf build build-asan build-tsan build-fuzz out

@@ -19,8 +19,13 @@ if(MAKEWAY_SANITIZE)
     add_link_options(-fsanitize=address,undefined)
 endif()
 
+if(MAKEWAY_TSAN)
+    add_compile_options(-fsanitize=thread -fno-omit-frame-pointer)
+    add_link_options(-fsanitize=thread)
+endif()
+
 if(MAKEWAY_FUZZ)
     # Instrument every library for coverage-guided fuzzing; the fuzz executables add the driver.
-    add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer)
+    add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
     add_link_options(-fsanitize=address,undefined)
 endif()

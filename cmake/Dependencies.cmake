@@ -6,6 +6,7 @@ find_package(nlohmann_json 3.10 REQUIRED)
 find_package(assimp REQUIRED)
 find_package(embree 3 REQUIRED)
 find_package(TBB REQUIRED)
+find_package(tsl-robin-map REQUIRED)  # the odometry's voxel map
 # libtorch (the detector); Debian's libtorch-dev ships TorchConfig.cmake. The fuzz build (clang 14)
 # builds parsers only: torch 1.13's headers do not compile with clang 14 in C++20.
 if(NOT MAKEWAY_FUZZ)
@@ -32,3 +33,5 @@ endif()
 
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
+# libzip: model files are checked before torch reads them (its CMake config needs the zip tools).
+pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET libzip)

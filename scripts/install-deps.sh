@@ -8,7 +8,7 @@ packages=(
     build-essential cmake ninja-build pkg-config ccache
     libeigen3-dev libnanoflann-dev libtbb-dev libembree-dev
     libassimp-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev liblzf-dev
-    libcairo2-dev
+    libcairo2-dev libzip-dev robin-map-dev
     libtorch-dev libopenblas0-pthread
     libgtest-dev libgmock-dev libbenchmark-dev
 )

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <thread>
 
 #include "../io/io_test_util.hpp"
 #include "makeway/common/random.hpp"
@@ -79,6 +80,27 @@ TEST(Detector, SaveAndLoadReproduceIdenticalOutputs) {
             EXPECT_EQ(std::string(e.what()).rfind(bad.string(), 0), 0u) << e.what();
         }
     }
+}
+
+TEST(Detector, SharedByThreadsGivesTheSerialAnswers) {
+    // `bench nav` runs navigation in parallel with one detector: detect() is documented safe from
+    // several threads (the network is in eval mode, nothing writes to it). `make tsan` runs this.
+    set_inference_threads(1);
+    const Detector detector(small_params());
+    synthetic_set(4, 9);
+    std::vector<std::vector<float>> serial;
+    for (const PointCloud& c : clouds) serial.push_back(detector.heads(c));
+    std::vector<int> mismatches(3, 0);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 3; ++t) {
+        threads.emplace_back([&, t] {
+            for (int round = 0; round < 2; ++round) {
+                for (std::size_t k = 0; k < clouds.size(); ++k) mismatches[static_cast<std::size_t>(t)] += detector.heads(clouds[k]) != serial[k];
+            }
+        });
+    }
+    for (auto& th : threads) th.join();
+    EXPECT_EQ(mismatches, std::vector<int>(3, 0));
 }
 
 TEST(Detector, EmptyCloudGivesNoDetections) {

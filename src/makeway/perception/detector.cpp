@@ -1,8 +1,11 @@
 #include "makeway/perception/detector.hpp"
 
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 
 #include "makeway/perception/detector_impl.hpp"
+#include "makeway/perception/model_archive.hpp"
 
 namespace makeway::perception {
 
@@ -83,11 +86,33 @@ void Detector::save(const std::filesystem::path& path) const {
     std::filesystem::rename(tmp, path);
 }
 
+namespace {
+
+// The first non-empty line of a library's message, at most 120 characters (error lines are one line).
+std::string first_line(const std::string& text) {
+    std::size_t start = text.find_first_not_of("\n\r ");
+    if (start == std::string::npos) return "unknown error";
+    const std::size_t end = text.find_first_of("\n\r", start);
+    return text.substr(start, std::min<std::size_t>(end == std::string::npos ? text.size() - start : end - start, 120));
+}
+
+}  // namespace
+
 Detector Detector::load(const std::filesystem::path& path) {
     if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path.string() + ": no such model file");
+    std::string bytes;
+    {
+        std::ifstream in(path, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+        if (!in.good() && !in.eof()) throw std::runtime_error(path.string() + ": cannot read the model file");
+    }
+    // torch trusts its archive (a damaged one can crash it): the container is checked first.
+    if (const std::string problem = model_archive_problem(bytes); !problem.empty()) {
+        throw std::runtime_error(path.string() + ": " + problem);
+    }
     try {
         torch::serialize::InputArchive archive;
-        archive.load_from(path.string());
+        archive.load_from(bytes.data(), bytes.size());
         torch::Tensor t;
         if (!archive.try_read("makeway_detector_params", t) || (t.numel() != 9 && t.numel() != 10)) {
             throw std::runtime_error("not a makeway detector (no parameters)");
@@ -107,10 +132,15 @@ Detector Detector::load(const std::filesystem::path& path) {
         det.impl_->net->eval();
         return det;
     } catch (const c10::Error& e) {
-        throw std::runtime_error(path.string() + ": not a readable model (" + std::string(e.what_without_backtrace()).substr(0, 120) + ")");
+        throw std::runtime_error(path.string() + ": not a readable model (" + first_line(e.what_without_backtrace()) + ")");
     } catch (const std::runtime_error& e) {
         const std::string what = e.what();
-        throw std::runtime_error(what.rfind(path.string(), 0) == 0 ? what : path.string() + ": " + what);
+        if (what.rfind(path.string(), 0) == 0) throw;
+        throw std::runtime_error(path.string() + ": " + first_line(what));
+    } catch (const std::exception& e) {
+        // A damaged archive surfaces as whatever torch's readers throw (the TorchScript type
+        // parser, std::bad_alloc for a size field gone wild): all of them are a bad file.
+        throw std::runtime_error(path.string() + ": not a readable model (" + first_line(e.what()) + ")");
     }
 }
 

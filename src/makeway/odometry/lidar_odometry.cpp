@@ -1,0 +1,202 @@
+#include "makeway/odometry/lidar_odometry.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include "makeway/common/angles.hpp"
+#include "makeway/common/voxel_thin.hpp"
+
+namespace makeway::odometry {
+namespace {
+
+// Rotation's effect counted at this lever [m] when comparing poses (convergence, deviations).
+constexpr double kLever_m = 1.0;
+// A map plane whose normal is this close to vertical is a floor or ceiling.
+constexpr double kHorizontal = 0.8;
+// A map line whose direction is this close to vertical is a leg, a frame or a corner.
+constexpr double kVertical = 0.9;
+// Deviations remembered for the adaptive threshold.
+constexpr std::size_t kDeviationWindow = 100;
+
+double sq(double v) { return v * v; }
+
+}  // namespace
+
+std::vector<std::string> OdometryParams::validate() const {
+    std::vector<std::string> p;
+    if (!(map.voxel_m > 0.01 && map.voxel_m <= 10.0)) p.push_back("odometry voxel_m must be in (0.01, 10]");
+    if (map.max_points_per_voxel < 1 || map.max_points_per_voxel > 1000) p.push_back("odometry max_points_per_voxel must be in [1, 1000]");
+    if (!(source_voxel_m > 0.0 && insert_voxel_m > 0.0)) p.push_back("odometry source_voxel_m and insert_voxel_m must be > 0");
+    if (!(min_range_m >= 0.0 && max_range_m > min_range_m)) p.push_back("odometry needs 0 <= min_range_m < max_range_m");
+    if (!(map_radius_m > 0.0)) p.push_back("odometry map_radius_m must be > 0");
+    if (max_iterations < 1 || max_iterations > 1000) p.push_back("odometry max_iterations must be in [1, 1000]");
+    if (!(min_threshold_m > 0.0 && min_threshold_m <= initial_threshold_m && initial_threshold_m <= max_threshold_m)) {
+        p.push_back("odometry needs 0 < min_threshold_m <= initial_threshold_m <= max_threshold_m");
+    }
+    if (!(residual_sigma_m > 0.0 && wheel_sigma_m > 0.0 && wheel_sigma_rad > 0.0 && wheel_sigma_per_m >= 0.0 && wheel_sigma_per_rad >= 0.0)) {
+        p.push_back("odometry sigmas must be > 0");
+    }
+    if (!std::isfinite(min_height_m)) p.push_back("odometry min_height_m must be finite");
+    return p;
+}
+
+Pose2 compose(const Pose2& a, const Pose2& b) {
+    const double c = std::cos(a.yaw_rad), s = std::sin(a.yaw_rad);
+    return {a.x_m + c * b.x_m - s * b.y_m, a.y_m + s * b.x_m + c * b.y_m, wrap_angle(a.yaw_rad + b.yaw_rad)};
+}
+
+Pose2 between(const Pose2& a, const Pose2& b) {
+    const double c = std::cos(a.yaw_rad), s = std::sin(a.yaw_rad);
+    const double dx = b.x_m - a.x_m, dy = b.y_m - a.y_m;
+    return {c * dx + s * dy, -s * dx + c * dy, angle_diff(b.yaw_rad, a.yaw_rad)};
+}
+
+Pose2 interpolate(const Pose2& a, const Pose2& b, double s) {
+    return {a.x_m + s * (b.x_m - a.x_m), a.y_m + s * (b.y_m - a.y_m), wrap_angle(a.yaw_rad + s * angle_diff(b.yaw_rad, a.yaw_rad))};
+}
+
+LidarOdometry::LidarOdometry(const OdometryParams& params, const Isometry3& T_base_sensor, const Pose2& start_pose)
+    : params_(params), T_base_sensor_(T_base_sensor), pose_(start_pose), map_(params.map) {
+    if (const auto problems = params.validate(); !problems.empty()) {
+        std::string all;
+        for (const auto& p : problems) all += (all.empty() ? "" : "; ") + p;
+        throw std::invalid_argument(all);
+    }
+}
+
+OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, double /*stamp_s*/, double duration_s,
+                                             const std::optional<Pose2>& wheel_start, const std::optional<Pose2>& wheel_end) {
+    // 1. Prediction: the wheels' motion over the sweep (and over any gap since the last one), else
+    // the last sweep's motion again.
+    Pose2 gap, motion = last_motion_;
+    if (wheel_start && wheel_end) {
+        if (last_wheel_end_) gap = between(*last_wheel_end_, *wheel_start);
+        motion = between(*wheel_start, *wheel_end);
+        last_wheel_end_ = wheel_end;
+    }
+    const Pose2 predicted_start = compose(pose_, gap);
+    const Pose2 predicted = compose(predicted_start, motion);
+
+    // 2. De-skewing into the base frame at the sweep's end; range and floor filters.
+    const bool timed = params_.deskew && points_sensor.time_s.size() == points_sensor.size() && duration_s > 0.0;
+    const Isometry3 T_end_start = lift_to_3d(motion).inverse();
+    std::vector<Eigen::Vector3d> points;
+    points.reserve(points_sensor.size());
+    for (std::size_t i = 0; i < points_sensor.size(); ++i) {
+        const Eigen::Vector3d p = points_sensor.xyz[i].cast<double>();
+        if (!p.allFinite()) continue;
+        const double range = p.norm();
+        if (range < params_.min_range_m || range > params_.max_range_m) continue;
+        const Eigen::Vector3d p_base = T_base_sensor_ * p;
+        if (p_base.z() < params_.min_height_m) continue;
+        if (timed) {
+            const double s = std::clamp(static_cast<double>(points_sensor.time_s[i]) / duration_s, 0.0, 1.0);
+            points.push_back(T_end_start * (lift_to_3d(interpolate(Pose2{}, motion, s)) * p_base));
+        } else {
+            points.push_back(p_base);
+        }
+    }
+
+    OdometryResult out;
+    Pose2 estimate = predicted;
+    const double threshold = deviations_.size() < 5
+                                 ? params_.initial_threshold_m
+                                 : std::clamp(3.0 * std::sqrt(std::accumulate(deviations_.begin(), deviations_.end(), 0.0,
+                                                                              [](double a, double d) { return a + d * d; }) /
+                                                              static_cast<double>(deviations_.size())),
+                                              params_.min_threshold_m, params_.max_threshold_m);
+    out.threshold_m = threshold;
+    if (!first_ && !map_.empty()) {
+        // 3. Planar Gauss-Newton with the wheel prior.
+        const std::vector<Eigen::Vector3d> source = voxel_thin(points, params_.source_voxel_m);
+        out.source_points = source.size();
+        const double travelled = std::hypot(motion.x_m, motion.y_m) + std::hypot(gap.x_m, gap.y_m);
+        const double turned = std::abs(motion.yaw_rad) + std::abs(gap.yaw_rad);
+        const double sigma_t = params_.wheel_sigma_m + params_.wheel_sigma_per_m * travelled;
+        const double sigma_r = params_.wheel_sigma_rad + params_.wheel_sigma_per_rad * turned;
+        const Eigen::Vector3d prior_info(1.0 / sq(sigma_t), 1.0 / sq(sigma_t), 1.0 / sq(sigma_r));
+        const double kernel = sq(threshold / 3.0);
+        const double inv_var = 1.0 / sq(params_.residual_sigma_m);
+        Eigen::Matrix3d H_lidar = Eigen::Matrix3d::Zero();
+        for (int it = 0; it < params_.max_iterations; ++it) {
+            const double c = std::cos(estimate.yaw_rad), s = std::sin(estimate.yaw_rad);
+            Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+            Eigen::Vector3d g = Eigen::Vector3d::Zero();
+            std::size_t matched = 0;
+            for (const Eigen::Vector3d& p : source) {
+                const Eigen::Vector2d rp(c * p.x() - s * p.y(), s * p.x() + c * p.y());
+                const Eigen::Vector3d q(rp.x() + estimate.x_m, rp.y() + estimate.y_m, p.z());
+                const auto m = map_.nearest(q, threshold);
+                if (!m) continue;
+                const Eigen::Vector3d d = q - m->point;
+                // Point-to-plane on walls and faces, point-to-line on legs, door frames and wall
+                // corners (vertical lines: across them is the whole plane of motion). Residuals run
+                // only across the structure, so nothing holds the pose to old samples along a wall
+                // (a corridor). Left out: floors and ceilings (no say in planar motion), blobs
+                // (corners of planes, clutter: no direction to trust) and other lines, which
+                // indoors are mostly one scan ring crossing a wall, a sampling pattern that moves
+                // with the robot.
+                Eigen::Matrix3d J = Eigen::Matrix3d::Zero();  // d(q) / d(x, y, yaw); z does not move
+                J << 1.0, 0.0, -rp.y(), 0.0, 1.0, rp.x(), 0.0, 0.0, 0.0;
+                if (m->shape == VoxelShape::kPlane && std::abs(m->axis.z()) < kHorizontal) {
+                    const Eigen::Vector3d row = J.transpose() * m->axis;
+                    const double r = m->axis.dot(d);
+                    const double w = sq(kernel) / sq(kernel + r * r) * inv_var;
+                    H.noalias() += w * row * row.transpose();
+                    g.noalias() += w * row * r;
+                } else if (m->shape == VoxelShape::kLine && std::abs(m->axis.z()) > kVertical) {
+                    const Eigen::Vector3d r(d.x(), d.y(), 0.0);
+                    const double w = sq(kernel) / sq(kernel + r.squaredNorm()) * inv_var;
+                    H.noalias() += w * J.transpose() * J;
+                    g.noalias() += w * J.transpose() * r;
+                } else {
+                    continue;
+                }
+                ++matched;
+            }
+            H_lidar = H;
+            out.correspondences = matched;
+            const Eigen::Vector3d prior_r(estimate.x_m - predicted.x_m, estimate.y_m - predicted.y_m,
+                                          angle_diff(estimate.yaw_rad, predicted.yaw_rad));
+            H += prior_info.asDiagonal();
+            g += prior_info.cwiseProduct(prior_r);
+            const Eigen::Vector3d step = -H.ldlt().solve(g);
+            if (!step.allFinite()) break;
+            estimate.x_m += step.x();
+            estimate.y_m += step.y();
+            estimate.yaw_rad = wrap_angle(estimate.yaw_rad + step.z());
+            out.iterations = it + 1;
+            if (step.head<2>().norm() + kLever_m * std::abs(step.z()) < params_.convergence_m) break;
+        }
+        const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(H_lidar).eigenvalues();
+        out.constraint_ratio = ev(2) > 0.0 ? std::max(ev(0), 0.0) / ev(2) : 0.0;
+        // The adaptive threshold: how far registration moved the prediction (KISS-ICP's model
+        // deviation, with the rotation counted at the sensor's useful range).
+        const double deviation = std::hypot(estimate.x_m - predicted.x_m, estimate.y_m - predicted.y_m) +
+                                 10.0 * std::abs(angle_diff(estimate.yaw_rad, predicted.yaw_rad));
+        deviations_.push_back(deviation);
+        if (deviations_.size() > kDeviationWindow) deviations_.erase(deviations_.begin());
+    }
+    first_ = false;
+
+    // 4. The map: the registered sweep in, far voxels out.
+    const double c = std::cos(estimate.yaw_rad), s = std::sin(estimate.yaw_rad);
+    std::vector<Eigen::Vector3d> world = voxel_thin(points, params_.insert_voxel_m);
+    for (auto& p : world) p = Eigen::Vector3d(c * p.x() - s * p.y() + estimate.x_m, s * p.x() + c * p.y() + estimate.y_m, p.z());
+    map_.add(world);
+    map_.keep_within(Eigen::Vector3d(estimate.x_m, estimate.y_m, 0.0), params_.map_radius_m);
+
+    last_motion_ = between(pose_, estimate);
+    pose_ = estimate;
+    const Pose2 start = compose(estimate, between(motion, Pose2{}));
+    out.pose = estimate;
+    out.T_world_sensor_end = lift_to_3d(estimate) * T_base_sensor_;
+    out.T_world_sensor_start = lift_to_3d(start) * T_base_sensor_;
+    return out;
+}
+
+}  // namespace makeway::odometry

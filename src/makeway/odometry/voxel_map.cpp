@@ -1,0 +1,99 @@
+#include "makeway/odometry/voxel_map.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+namespace makeway::odometry {
+
+Eigen::Vector3i VoxelMap::key(const Eigen::Vector3d& p) const {
+    return (p / params_.voxel_m).array().floor().cast<int>();
+}
+
+void VoxelMap::fit_plane(Voxel& v) const {
+    v.shape = VoxelShape::kUnknown;
+    if (static_cast<int>(v.points.size()) < params_.min_points_for_plane) return;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& p : v.points) mean += p;
+    mean /= static_cast<double>(v.points.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const auto& p : v.points) cov += (p - mean) * (p - mean).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    // Eigenvalues ascending: flat when the smallest spread is small against the middle one (a
+    // line of points, e.g. one scan ring on a wall, has no plane: its middle spread is tiny too).
+    const Eigen::Vector3d ev = eig.eigenvalues().cwiseMax(0.0);
+    const double share = params_.planarity * params_.planarity;  // eigenvalues are spreads squared
+    if (ev(2) <= 1e-8) return;  // all points in one place
+    if (ev(1) <= share * ev(2)) {
+        v.shape = VoxelShape::kLine;
+        v.axis = eig.eigenvectors().col(2).normalized();
+    } else if (ev(0) <= share * ev(1)) {
+        v.shape = VoxelShape::kPlane;
+        v.axis = eig.eigenvectors().col(0).normalized();
+    } else {
+        v.shape = VoxelShape::kBlob;
+    }
+}
+
+void VoxelMap::add(const std::vector<Eigen::Vector3d>& points_world) {
+    std::vector<Eigen::Vector3i> changed;
+    for (const auto& p : points_world) {
+        if (!p.allFinite()) continue;
+        const Eigen::Vector3i k = key(p);
+        auto it = voxels_.find(k);
+        if (it == voxels_.end()) it = voxels_.emplace(k, Voxel{}).first;
+        Voxel& v = it.value();
+        if (static_cast<int>(v.points.size()) >= params_.max_points_per_voxel) continue;
+        v.points.push_back(p);
+        changed.push_back(k);
+    }
+    std::sort(changed.begin(), changed.end(), [](const Eigen::Vector3i& a, const Eigen::Vector3i& b) {
+        return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+    });
+    changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+    for (const auto& k : changed) fit_plane(voxels_.find(k).value());
+}
+
+void VoxelMap::keep_within(const Eigen::Vector3d& centre, double radius_m) {
+    const double r2 = radius_m * radius_m;
+    for (auto it = voxels_.begin(); it != voxels_.end();) {
+        const Eigen::Vector3d d = it->second.points.front() - centre;
+        if (d.head<2>().squaredNorm() > r2) {
+            it = voxels_.erase(it);
+        } else {
+            ++it;
+        }
+    }
+}
+
+std::optional<MapMatch> VoxelMap::nearest(const Eigen::Vector3d& query, double max_distance_m) const {
+    const Eigen::Vector3i k = key(query);
+    double best = max_distance_m * max_distance_m;
+    const Voxel* best_voxel = nullptr;
+    const Eigen::Vector3d* best_point = nullptr;
+    for (int dx = -1; dx <= 1; ++dx) {
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dz = -1; dz <= 1; ++dz) {
+                const auto it = voxels_.find(Eigen::Vector3i(k.x() + dx, k.y() + dy, k.z() + dz));
+                if (it == voxels_.end()) continue;
+                for (const auto& p : it->second.points) {
+                    const double d2 = (p - query).squaredNorm();
+                    if (d2 < best) {
+                        best = d2;
+                        best_voxel = &it->second;
+                        best_point = &p;
+                    }
+                }
+            }
+        }
+    }
+    if (!best_point) return std::nullopt;
+    return MapMatch{*best_point, best_voxel->shape, best_voxel->axis, std::sqrt(best)};
+}
+
+std::size_t VoxelMap::num_points() const {
+    std::size_t n = 0;
+    for (const auto& [k, v] : voxels_) n += v.points.size();
+    return n;
+}
+
+}  // namespace makeway::odometry
