@@ -40,6 +40,7 @@ bench:
 	@for b in $(BUILD)/bin/bench_*; do echo "== $$b"; $$b --benchmark_min_time=0.2; done
 	@echo "== makeway bench sim"; $(MAKEWAY) bench sim
 	@echo "== compare_open3d_icp (one core)"; OMP_NUM_THREADS=1 $(BUILD)/bin/compare_open3d_icp
+	@if [ -x $(BUILD)/bin/compare_kiss_icp ]; then echo "== compare_kiss_icp (one core)"; $(BUILD)/bin/compare_kiss_icp; fi
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build of everything, then the tests.
 asan:
@@ -47,16 +48,18 @@ asan:
 	    $(MAKE) --no-print-directory test BUILD=build-asan TYPE=RelWithDebInfo \
 	    CMAKE_ARGS="-DMAKEWAY_SANITIZE=ON -DMAKEWAY_BUILD_BENCH=OFF $(CMAKE_ARGS)"
 
-# ThreadSanitizer build of the multithreaded parts' tests: the simulator's ray casting (TBB), the
-# verifier's parallel ICP, the detector shared by threads, the pipeline and the full chain.
-TSAN_TESTS := test_sim test_verification test_detector test_pipeline test_full_chain
+# ThreadSanitizer build of the tests that start threads: the simulator's parallel ray casting, a
+# detector shared by threads (bench nav's pattern), the pipeline. Debian's oneTBB is not built with
+# TSan: tests/tsan.supp says what that hides. The verifier's parallel ICP and the full chain are left
+# out: under TSan, TBB's uninstrumented waiting made them run past 10 minutes.
+TSAN_RUNS := test_sim:*SameSeedSameSweepForAnyThreadCount* test_detector:Detector.SharedByThreads* test_pipeline:*
 tsan: deps
 	@cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMAKEWAY_TSAN=ON \
 	    -DMAKEWAY_BUILD_BENCH=OFF -DMAKEWAY_BUILD_APPS=OFF $(CMAKE_ARGS) > /dev/null
-	@cmake --build build-tsan -j $(JOBS) --target $(TSAN_TESTS)
-	@for t in $(TSAN_TESTS); do echo "== tsan $$t"; \
+	@cmake --build build-tsan -j $(JOBS) --target test_sim test_detector test_pipeline
+	@for run in $(TSAN_RUNS); do t=$${run%%:*}; echo "== tsan $$run"; \
 	    TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$(CURDIR)/tests/tsan.supp" \
-	    build-tsan/bin/$$t --gtest_brief=1 || exit 1; done
+	    build-tsan/bin/$$t --gtest_brief=1 --gtest_filter="$${run#*:}" || exit 1; done
 
 # libFuzzer targets (clang), one per parser: build-fuzz/bin/fuzz_*.
 fuzz:

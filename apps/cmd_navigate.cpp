@@ -122,7 +122,13 @@ int run_bench_nav(const BenchNavOptions& options) {
     std::cout << table;
     for (const std::string& m : methods) {
         std::cout << m << ": control cycle " << agg[m]["cycle_ms_median"].get<double>() << " ms median, "
-                  << agg[m]["cycle_ms_p99"].get<double>() << " ms p99\n";
+                  << agg[m]["cycle_ms_p99"].get<double>() << " ms p99";
+        if (m == "ours") {  // the full system drives on its own pose (LiDAR odometry fused with the wheels)
+            std::cout << "; its pose: ATE " << 100 * agg[m]["pose_ate_m_median"].get<double>() << " cm median, "
+                      << 100 * agg[m]["pose_ate_m_max"].get<double>() << " cm max, final error "
+                      << 100 * agg[m]["final_pose_error_m_median"].get<double>() << " cm median";
+        }
+        std::cout << "\n";
     }
     return 0;
 }

@@ -165,6 +165,25 @@ struct BenchTrackOptions {
 };
 int run_bench_track(const BenchTrackOptions& options);
 
+struct OdometryOptions {
+    std::string clouds;     ///< folder of sweeps (.pcd/.ply/.bin), in name order
+    std::string odometry;   ///< optional TUM wheel odometry, one pose per sweep start
+    std::string config;     ///< lidar_odometry and robot (mount) sections
+    std::vector<double> start{0.0, 0.0, 0.0};  ///< x, y, yaw of the base at the first sweep
+    double rate_hz = 10.0;  ///< sweep rate without odometry stamps
+    std::string out;
+};
+int run_odometry(const OdometryOptions& options);
+
+struct BenchOdometryOptions {
+    std::string config;
+    int scenes = 10;
+    std::uint64_t seed = 0;
+    int max_sweeps = 600;
+    std::string out_dir = "out/bench_odometry";
+};
+int run_bench_odometry(const BenchOdometryOptions& options);
+
 }  // namespace makeway::apps
 
 namespace makeway::apps {

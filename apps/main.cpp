@@ -230,9 +230,30 @@ void add_detector(CLI::App& app, DatasetOptions& ds, TrainDetectorOptions& tr, D
                                                  "CAD models of each scene's own furniture");
 }
 
-void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchVerifyOptions& ver_o, BenchTrackOptions& trk_o) {
+void add_odometry(CLI::App& app, OdometryOptions& o) {
+    auto* sub = app.add_subcommand("odometry", "LiDAR odometry fused with wheel odometry on recorded sweeps (per-point "
+                                               "time de-skews them); writes the sensor pose at each sweep's start (TUM)");
+    sub->add_option("--clouds", o.clouds, "Folder of sweeps (.pcd with a time/t field, .ply, .bin), taken in name order")->required();
+    sub->add_option("--odometry", o.odometry, "Wheel odometry (TUM, one base pose per sweep start, its stamps the sweeps'); "
+                                              "without it: constant velocity");
+    sub->add_option("--config", o.config, "YAML configuration: lidar_odometry and robot (sensor mount) sections");
+    sub->add_option("--start", o.start, "The base's pose at the first sweep: x y yaw [m, m, rad]")->expected(3)->capture_default_str();
+    sub->add_option("--rate", o.rate_hz, "Sweeps per second without odometry stamps")->check(CLI::Range(0.1, 100.0))->capture_default_str();
+    sub->add_option("--out", o.out, "Poses (TUM: stamp x y z qx qy qz qw)")->required();
+}
+
+void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchVerifyOptions& ver_o, BenchTrackOptions& trk_o,
+               BenchOdometryOptions& odo_o) {
     auto* bench = app.add_subcommand("bench", "Benchmarks that print JSON");
     bench->require_subcommand(1);
+    auto* odo = bench->add_subcommand("odometry", "LiDAR odometry on simulated drives (medium and dense scenes with people "
+                                                  "and pulled chairs, corridors): ATE, RPE over 1 m and 5 m, sweeps per second; "
+                                                  "writes summary.json and table.md");
+    odo->add_option("--config", odo_o.config, "YAML configuration: lidar, robot, odometry and lidar_odometry sections");
+    odo->add_option("--scenes", odo_o.scenes, "Drives (every fifth a corridor)")->check(CLI::Range(1, 1000))->capture_default_str();
+    odo->add_option("--seed", odo_o.seed, "Seed of scenes, sensor noise and wheel drift")->capture_default_str();
+    odo->add_option("--max-sweeps", odo_o.max_sweeps, "Sweeps per drive at most")->check(CLI::Range(10, 100000))->capture_default_str();
+    odo->add_option("--out", odo_o.out_dir, "Output folder (summary.json, table.md)")->capture_default_str();
     auto* trk = bench->add_subcommand("track", "Tracking on simulated drives: visible objects' ground truth corrupted "
                                                "(20 % missed, 10 % false positives, noise, yaw flips); MOTA, HOTA, "
                                                "map yaw accuracy, frames per second");
@@ -309,6 +330,7 @@ void check_numbers(CLI::App& app) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    makeway::io::install_interrupt_handlers();
     CLI::App app{"makeway: object-aware affordance costmaps for proactive indoor navigation "
                  "with a 3D LiDAR"};
     app.set_version_flag("--version", "makeway 0.1.0");
@@ -331,6 +353,8 @@ int main(int argc, char** argv) {
     TrackOptions track;
     EvalTrackingOptions eval_tracking;
     BenchTrackOptions bench_track;
+    OdometryOptions odometry;
+    BenchOdometryOptions bench_odometry;
     add_info(app, info);
     add_convert(app, convert);
     add_demo(app, demo);
@@ -341,9 +365,9 @@ int main(int argc, char** argv) {
     add_verify(app, verify);
     add_track(app, track, eval_tracking);
     add_detector(app, dataset, train_detector, detect, eval_detection);
-    add_bench(app, bench_sim, bench_nav, bench_verify, bench_track);
+    add_odometry(app, odometry);
+    add_bench(app, bench_sim, bench_nav, bench_verify, bench_track, bench_odometry);
     check_numbers(app);
-    makeway::io::install_interrupt_handlers();
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
         for (const CLI::App* sub : app.get_subcommands({})) known |= sub->get_name() == argv[1];
@@ -375,6 +399,7 @@ int main(int argc, char** argv) {
             if (app.got_subcommand("navigate")) return run_navigate(navigate);
             if (app.got_subcommand("verify")) return run_verify(verify);
             if (app.got_subcommand("track")) return run_track(track);
+            if (app.got_subcommand("odometry")) return run_odometry(odometry);
             if (app.got_subcommand("dataset")) return run_dataset(dataset);
             if (app.got_subcommand("train-detector")) return run_train_detector(train_detector);
             if (app.got_subcommand("detect")) return run_detect(detect);
@@ -385,6 +410,7 @@ int main(int argc, char** argv) {
                 if (bench->got_subcommand("nav")) return run_bench_nav(bench_nav);
                 if (bench->got_subcommand("verify")) return run_bench_verify(bench_verify);
                 if (bench->got_subcommand("track")) return run_bench_track(bench_track);
+                if (bench->got_subcommand("odometry")) return run_bench_odometry(bench_odometry);
                 return run_bench_sim(bench_sim);
             }
             return 1;

@@ -50,6 +50,7 @@ io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory) {
                   {"cycle_ms_median", median},
                   {"cycle_ms_p99", p99},
                   {"final_pose_error_m", r.final_pose_error_m},
+                  {"pose_ate_m", r.pose_ate_m},
                   {"stop_distance_m", r.stop_distance_m}};
     if (!r.keyframes.empty()) {  // the online system: its keyframes, timing and final object map
         std::vector<double> chain, accumulate, ground, detect, verify, track, deskew;
@@ -90,13 +91,14 @@ io::Json aggregate_runs(const std::vector<eval::NavRunResult>& runs, const std::
     for (const std::string& m : methods) {
         int n = 0, success = 0, collisions = 0, near = 0, people = 0;
         double t = 0, risk = 0, dist = 0, spl = 0;
-        std::vector<double> cycles, keyframe_ms, pose_error;
+        std::vector<double> cycles, keyframe_ms, pose_error, pose_ate;
         eval::MapSanity sanity;
         for (const auto& r : runs) {
             if (r.method != m) continue;
             ++n;
             for (const auto& k : r.keyframe_timing) keyframe_ms.push_back(k.keyframe_ms());
             pose_error.push_back(r.final_pose_error_m);
+            pose_ate.push_back(r.pose_ate_m);
             sanity.add(r.map_sanity);
             collisions += r.collisions;
             people += r.person_contacts;
@@ -126,7 +128,9 @@ io::Json aggregate_runs(const std::vector<eval::NavRunResult>& runs, const std::
                   {"cycle_ms_median", median},
                   {"cycle_ms_p99", p99},
                   {"final_pose_error_m_median", pose_error.empty() ? 0.0 : percentile(pose_error, 0.5)},
-                  {"final_pose_error_m_max", pose_error.empty() ? 0.0 : percentile(pose_error, 1.0)}};
+                  {"final_pose_error_m_max", pose_error.empty() ? 0.0 : percentile(pose_error, 1.0)},
+                  {"pose_ate_m_median", pose_ate.empty() ? 0.0 : percentile(pose_ate, 0.5)},
+                  {"pose_ate_m_max", pose_ate.empty() ? 0.0 : percentile(pose_ate, 1.0)}};
         if (!keyframe_ms.empty()) {  // the online system's keyframe chain (front end to object map)
             agg[m]["keyframe_ms_median"] = median_p99(keyframe_ms).first;
             agg[m]["keyframe_ms_p99"] = median_p99(keyframe_ms).second;

@@ -165,6 +165,32 @@ namespace {
 // The online system's sections; each Params struct's validate() reports under its section.
 void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vector<std::string>& problems) {
     {
+        YamlSection s(root["lidar_odometry"], "lidar_odometry", problems);
+        odometry::OdometryParams& o = sys.odometry;
+        s.read("enabled", sys.lidar_odometry);
+        s.read("voxel_m", o.map.voxel_m);
+        s.read("max_points_per_voxel", o.map.max_points_per_voxel);
+        s.read("planarity", o.map.planarity);
+        s.read("source_voxel_m", o.source_voxel_m);
+        s.read("insert_voxel_m", o.insert_voxel_m);
+        s.read("min_range_m", o.min_range_m);
+        s.read("max_range_m", o.max_range_m);
+        s.read("min_height_m", o.min_height_m);
+        s.read("map_radius_m", o.map_radius_m);
+        s.read("max_iterations", o.max_iterations);
+        s.read("initial_threshold_m", o.initial_threshold_m);
+        s.read("min_threshold_m", o.min_threshold_m);
+        s.read("max_threshold_m", o.max_threshold_m);
+        s.read("residual_sigma_m", o.residual_sigma_m);
+        s.read("wheel_sigma_m", o.wheel_sigma_m);
+        s.read("wheel_sigma_per_m", o.wheel_sigma_per_m);
+        s.read("wheel_sigma_rad", o.wheel_sigma_rad);
+        s.read("wheel_sigma_per_rad", o.wheel_sigma_per_rad);
+        s.read("deskew", o.deskew);
+        s.finish();
+        if (sys.lidar_odometry) s.add_validation(o.validate());
+    }
+    {
         YamlSection s(root["perception"], "perception", problems);
         pipeline::KeyframeParams& k = sys.keyframe;
         s.read("keyframe_window", k.window);
@@ -289,7 +315,7 @@ Config parse_config(std::string_view yaml_text) {
     }
     Config cfg;
     const std::vector<std::string> sections{"scene",      "lidar",        "robot",    "odometry", "simulation",
-                                            "affordance", "perception", "verification", "tracking", "costmap", "planning"};
+                                            "affordance", "lidar_odometry", "perception", "verification", "tracking", "costmap", "planning"};
     if (root.IsMap()) {
         for (const auto& kv : root) {
             const std::string name = kv.first.as<std::string>("");

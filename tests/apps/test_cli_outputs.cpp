@@ -59,10 +59,12 @@ pid_t spawn_makeway(const std::vector<std::string>& args, const fs::path& dir) {
     return pid;
 }
 
+// The exit code as a shell reports it: 128 + the signal for a process the signal ended (before
+// the program installs its handlers, SIGINT ends it by default: same meaning, nothing written).
 int wait_exit(pid_t pid) {
     int status = 0;
     waitpid(pid, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
 }
 
 // Waits (at most 120 s) until `done` holds.

@@ -11,21 +11,8 @@
 namespace makeway::odometry {
 namespace {
 
-std::vector<Pose2> truth_of(const eval::OdometryDrive& d) {
-    std::vector<Pose2> t;
-    for (const auto& s : d.sweeps) t.push_back(s.true_end);
-    return t;
-}
-std::vector<Pose2> wheels_of(const eval::OdometryDrive& d) {
-    // Dead reckoning from the start pose with the wheel increments.
-    std::vector<Pose2> out;
-    Pose2 pose = d.start_pose;
-    for (const auto& s : d.sweeps) {
-        pose = compose(pose, between(s.wheel_start, s.wheel_end));
-        out.push_back(pose);
-    }
-    return out;
-}
+using eval::dead_reckoning;
+using eval::truth_of;
 
 TEST(LidarOdometry, ShortDriveStaysNearTheTruth) {
     sim::SceneGenParams g;
@@ -38,7 +25,7 @@ TEST(LidarOdometry, ShortDriveStaysNearTheTruth) {
     ASSERT_GT(drive.length_m, 10.0);
     const auto run = eval::run_makeway_odometry(drive, OdometryParams{}, p.robot.T_robot_sensor());
     const auto ours = eval::trajectory_metrics(run.poses, truth_of(drive));
-    const auto wheels = eval::trajectory_metrics(wheels_of(drive), truth_of(drive));
+    const auto wheels = eval::trajectory_metrics(dead_reckoning(drive), truth_of(drive));
     std::cout << "[          ] " << drive.sweeps.size() << " sweeps, " << drive.length_m << " m: ATE " << ours.ate_rmse_m
               << " m (wheels " << wheels.ate_rmse_m << "), RPE 5 m " << ours.rpe_5m_percent << " % (wheels "
               << wheels.rpe_5m_percent << "), " << drive.sweeps.size() / run.seconds << " sweeps/s\n";
@@ -55,7 +42,7 @@ TEST(LidarOdometry, CorridorDoesNotCollapseAndAWalkerDoesNotJerkThePose) {
     const auto truth = truth_of(drive);
     const auto run = eval::run_makeway_odometry(drive, OdometryParams{}, p.robot.T_robot_sensor());
     const auto ours = eval::trajectory_metrics(run.poses, truth);
-    const auto wheels = eval::trajectory_metrics(wheels_of(drive), truth);
+    const auto wheels = eval::trajectory_metrics(dead_reckoning(drive), truth);
     // Along the corridor the walls say nothing: the estimate must follow the wheels there, not
     // stick to the wall samples (a collapse shortens the drive) nor slide.
     double est_len = 0.0;

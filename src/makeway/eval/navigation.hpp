@@ -85,6 +85,7 @@ struct NavRunResult {
     std::vector<Pose2> trajectory;          ///< true, one per sweep
     std::vector<Pose2> estimated_trajectory;  ///< what the robot believed, one per sweep
     double final_pose_error_m = 0.0;        ///< |estimated - true| position at the end
+    double pose_ate_m = 0.0;                ///< RMSE of |estimated - true| position over the run (the odometry's ATE)
     std::vector<double> cycle_ms;           ///< costmap update + planning + DWA per control cycle
     std::vector<pipeline::StageTiming> keyframe_timing;  ///< online system only
     std::vector<KeyframeObjects> keyframes;              ///< online system only

@@ -1,11 +1,14 @@
 #include "makeway/eval/odometry_bench.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <stdexcept>
 
 #include "makeway/common/angles.hpp"
 #include "makeway/sim/route.hpp"
+#include "makeway/sim/scene_generator.hpp"
 
 namespace makeway::eval {
 namespace {
@@ -109,6 +112,97 @@ OdometryRun run_makeway_odometry(const OdometryDrive& drive, const odometry::Odo
         run.poses.push_back(r.pose);
     }
     return run;
+}
+
+std::vector<OdometryDrive> benchmark_drives(int count, std::uint64_t seed, const sim::SequenceParams& params, int max_sweeps,
+                                            const std::function<void(int)>& progress) {
+    std::vector<OdometryDrive> drives;
+    for (int i = 0; i < count; ++i) {
+        sim::SequenceParams p = params;
+        p.seed = seed + static_cast<std::uint64_t>(i);
+        if (i % 5 == 4) {
+            drives.push_back(simulate_odometry_drive(corridor_scene(), p, max_sweeps, "corridor_" + std::to_string(p.seed)));
+        } else {
+            sim::SceneGenParams g;
+            g.seed = p.seed;
+            g.density = i % 2 == 0 ? sim::Density::kMedium : sim::Density::kDense;
+            g.robot = params.robot;
+            const sim::Scene scene = sim::generate_scene(g);
+            drives.push_back(simulate_odometry_drive(scene, p, max_sweeps, scene.name));
+        }
+        if (progress) progress(i + 1);
+    }
+    return drives;
+}
+
+std::vector<Pose2> dead_reckoning(const OdometryDrive& drive) {
+    std::vector<Pose2> out;
+    Pose2 pose = drive.start_pose;
+    for (const auto& s : drive.sweeps) {
+        pose = odometry::compose(pose, odometry::between(s.wheel_start, s.wheel_end));
+        out.push_back(pose);
+    }
+    return out;
+}
+
+std::vector<Pose2> truth_of(const OdometryDrive& drive) {
+    std::vector<Pose2> out;
+    for (const auto& s : drive.sweeps) out.push_back(s.true_end);
+    return out;
+}
+
+std::string odometry_table_markdown(const std::vector<OdometryScore>& scores, const std::vector<std::string>& methods) {
+    const auto fmt = [](double v, int digits) {
+        char b[32];
+        std::snprintf(b, sizeof(b), "%.*f", digits, v);
+        return std::string(b);
+    };
+    std::string t = "| method | ATE RMSE mean [cm] | ATE worst [cm] | RPE 1 m [%] | RPE 5 m [%] | RPE 5 m [deg/m] | final drift mean [cm] | sweeps/s (1 core) |\n"
+                    "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    for (const std::string& m : methods) {
+        double ate = 0, worst = 0, r1 = 0, r5 = 0, r5d = 0, drift = 0, sps = 0;
+        int n = 0;
+        for (const auto& s : scores) {
+            if (s.method != m) continue;
+            ++n;
+            ate += s.metrics.ate_rmse_m;
+            worst = std::max(worst, s.metrics.ate_rmse_m);
+            r1 += s.metrics.rpe_1m_percent;
+            r5 += s.metrics.rpe_5m_percent;
+            r5d += s.metrics.rpe_5m_deg_per_m;
+            drift += s.metrics.final_drift_m;
+            sps += s.sweeps_per_second;
+        }
+        if (n == 0) continue;
+        t += "| " + m + " | " + fmt(100 * ate / n, 2) + " | " + fmt(100 * worst, 2) + " | " + fmt(r1 / n, 2) + " | " + fmt(r5 / n, 2) +
+             " | " + fmt(r5d / n, 3) + " | " + fmt(100 * drift / n, 1) + " | " + (sps > 0 ? fmt(sps / n, 0) : std::string("-")) + " |\n";
+    }
+    t += "\n| drive | length [m] |";
+    for (const auto& m : methods) t += " " + m + " ATE [cm] |";
+    t += "\n| --- | --- |";
+    for (std::size_t k = 0; k < methods.size(); ++k) t += " --- |";
+    t += "\n";
+    std::vector<std::string> drives;
+    for (const auto& s : scores) {
+        if (std::find(drives.begin(), drives.end(), s.drive) == drives.end()) drives.push_back(s.drive);
+    }
+    for (const auto& d : drives) {
+        std::string row = "| " + d + " |";
+        double length = 0;
+        std::string cells;
+        for (const auto& m : methods) {
+            std::string cell = " - |";
+            for (const auto& s : scores) {
+                if (s.drive == d && s.method == m) {
+                    cell = " " + fmt(100 * s.metrics.ate_rmse_m, 2) + " |";
+                    length = s.metrics.length_m;
+                }
+            }
+            cells += cell;
+        }
+        t += row + " " + fmt(length, 1) + " |" + cells + "\n";
+    }
+    return t;
 }
 
 }  // namespace makeway::eval

@@ -3,6 +3,8 @@
 // per-point time, drifting wheel odometry, the truth kept apart for scoring), a corridor scene,
 // the trajectory metrics (ATE, RPE over 1 m and 5 m) and makeway's odometry run over a drive.
 // `makeway bench odometry` and the side-by-side program bench/bench_odometry (KISS-ICP) share them.
+#include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -55,5 +57,25 @@ struct OdometryRun {
 /// makeway's odometry over the drive; `wheels` false: constant-velocity prediction only.
 OdometryRun run_makeway_odometry(const OdometryDrive& drive, const odometry::OdometryParams& params,
                                  const Isometry3& T_base_sensor, bool wheels = true);
+
+/// The benchmark's drives: medium and dense generated scenes with walkers and chairs being pulled
+/// (seeds seed, seed + 1, ...), every fifth a corridor. `progress(done)` after each drive.
+std::vector<OdometryDrive> benchmark_drives(int count, std::uint64_t seed, const sim::SequenceParams& params, int max_sweeps,
+                                            const std::function<void(int)>& progress = {});
+
+/// The wheel odometry alone, integrated from the start pose (the baseline every method must beat).
+std::vector<Pose2> dead_reckoning(const OdometryDrive& drive);
+/// The truth at every sweep's end.
+std::vector<Pose2> truth_of(const OdometryDrive& drive);
+
+/// One method on one drive, scored.
+struct OdometryScore {
+    std::string drive, method;
+    TrajectoryMetrics metrics;
+    double sweeps_per_second = 0.0;  ///< 0 when not timed (the wheels)
+};
+/// A markdown table: per method, the mean and worst ATE, mean RPE and sweeps per second, and one
+/// row per drive.
+std::string odometry_table_markdown(const std::vector<OdometryScore>& scores, const std::vector<std::string>& methods);
 
 }  // namespace makeway::eval

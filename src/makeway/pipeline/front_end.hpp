@@ -1,6 +1,6 @@
 #pragma once
-// The front end of the online system: the pose of every sweep from the start pose and the wheel
-// odometry, and every `keyframe.every` sweeps a keyframe (the last `window` sweeps de-skewed and
+// The front end of the online system: the pose of every sweep (LiDAR odometry fused with the wheel
+// odometry from the start pose, or the wheel odometry alone), and every `keyframe.every` sweeps a keyframe (the last `window` sweeps de-skewed and
 // accumulated into the newest sweep's frame, ground plane by RANSAC at the first keyframe, ground
 // and ceiling removed). The Pipeline runs it on label-free sweeps; the detector's dataset runs the
 // very same code on labelled ones, so that training and evaluation see the pipeline's keyframes.
@@ -8,6 +8,7 @@
 
 #include "makeway/common/point_cloud.hpp"
 #include "makeway/common/transforms.hpp"
+#include "makeway/odometry/lidar_odometry.hpp"
 #include "makeway/perception/accumulator.hpp"
 #include "makeway/pipeline/keyframe.hpp"
 #include "makeway/pipeline/system_params.hpp"
@@ -36,7 +37,9 @@ struct FrontEndResult {
     Pose2 pose;              ///< the base at the sweep's end, estimated
     PointCloud points_world; ///< the sweep de-skewed into the world frame
     std::optional<FrontEndKeyframe> keyframe;
-    double deskew_ms = 0.0;  ///< pose and de-skewing of this sweep
+    double deskew_ms = 0.0;  ///< pose and de-skewing of this sweep (the odometry included)
+    double odometry_ms = 0.0;  ///< the LiDAR odometry's registration alone
+    std::optional<odometry::OdometryResult> odometry;  ///< with lidar_odometry
 };
 
 class FrontEnd {
@@ -52,6 +55,7 @@ private:
     SystemParams params_;
     Pose2 start_pose_;
     perception::KeyframeAccumulator accumulator_;
+    std::optional<odometry::LidarOdometry> lidar_odometry_;
     std::optional<Isometry2> T_world_odom_;  ///< fixed by the first odometry reading
     Pose2 last_odometry_;
     std::optional<perception::GroundPlaneResult> ground_;  ///< fitted once, at the first keyframe

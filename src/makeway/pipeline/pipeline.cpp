@@ -54,6 +54,8 @@ SweepResult Pipeline::process_sweep(const Sweep& sweep) {
     out.pose = front.pose;
     out.points_world = std::move(front.points_world);
     out.timing.deskew_ms = front.deskew_ms;
+    out.timing.odometry_ms = front.odometry_ms;
+    out.odometry = front.odometry;
     // Keyframe: detect, verify, track.
     if (front.keyframe) {
         out.keyframe = process_keyframe(std::move(*front.keyframe), sweep.stamp_s, out.timing);

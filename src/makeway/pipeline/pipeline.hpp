@@ -5,7 +5,8 @@
 // reach it: this library links no sim/ or eval/ code (a test checks the rule), and the sensor's
 // points enter without the simulator's labels and instance ids.
 //
-//   sweep + wheel odometry -> pose at sweep start and end (start pose + odometry increments)
+//   sweep + wheel odometry -> LiDAR odometry (registration against a local map, the wheels as
+//     prior; or the wheels alone) -> pose at sweep start and end
 //   every `keyframe.every` sweeps:
 //     keyframe: the last `window` sweeps de-skewed and accumulated into the newest sweep's frame
 //     ground plane (RANSAC, first keyframe), ground and ceiling removed
@@ -32,6 +33,7 @@ namespace makeway::pipeline {
 /// Wall-clock time of each stage [ms] (zero for stages that did not run).
 struct StageTiming {
     double deskew_ms = 0.0;  ///< every sweep: its pose and de-skewing into the world
+    double odometry_ms = 0.0;  ///< ... of which the LiDAR odometry's registration
     double accumulate_ms = 0.0, ground_ms = 0.0, detect_ms = 0.0, verify_ms = 0.0, track_ms = 0.0;  ///< keyframes
     double total_ms = 0.0;   ///< the whole process_sweep
     /// The keyframe chain: accumulation to the object map.
@@ -55,6 +57,7 @@ struct SweepResult {
     Isometry3 T_world_sensor_end = Isometry3::Identity();
     Pose2 pose;                 ///< the base at the sweep's end, estimated
     PointCloud points_world;    ///< this sweep de-skewed into the world frame (the obstacle layer's input)
+    std::optional<odometry::OdometryResult> odometry;  ///< the LiDAR odometry's report, when it runs
     std::optional<KeyframeResult> keyframe;
     std::vector<ObjectEstimate> objects;  ///< the object map after this sweep, world frame
     StageTiming timing;

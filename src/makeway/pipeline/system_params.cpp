@@ -62,6 +62,7 @@ std::vector<std::string> NavigatorParams::validate_policy() const {
 std::vector<std::string> SystemParams::validate() const {
     std::vector<std::string> p;
     if (!T_base_sensor.matrix().allFinite()) p.push_back("T_base_sensor must be finite");
+    if (lidar_odometry) add(p, "lidar_odometry", odometry.validate());
     add(p, "keyframe", keyframe.validate());
     add(p, "verification", verify.validate());
     add(p, "tracking", tracker.validate());

@@ -8,6 +8,7 @@
 #include "makeway/costmap/affordance.hpp"
 #include "makeway/costmap/inflation_layer.hpp"
 #include "makeway/costmap/obstacle_layer.hpp"
+#include "makeway/odometry/lidar_odometry.hpp"
 #include "makeway/perception/ground.hpp"
 #include "makeway/planning/astar.hpp"
 #include "makeway/planning/dwa.hpp"
@@ -53,6 +54,10 @@ struct NavigatorParams {
 struct SystemParams {
     /// The sensor on the robot's base (extrinsics): odometry poses the base, the points are the sensor's.
     Isometry3 T_base_sensor = Isometry3::Identity();
+    /// The pose of every sweep: LiDAR odometry fused with the wheel odometry (the paper's front
+    /// end); false: the wheel odometry alone.
+    bool lidar_odometry = true;
+    odometry::OdometryParams odometry;
     KeyframeParams keyframe;
     bool verification = true;  ///< with a CAD library: 4-DoF ICP, p_exist as existence evidence
     verification::VerifyParams verify;
