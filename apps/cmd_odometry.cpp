@@ -14,7 +14,6 @@
 #include "io/pose_io.hpp"
 #include "io/progress.hpp"
 #include "io/staged_output.hpp"
-#include "io/tracking_io.hpp"
 #include "makeway/eval/odometry_bench.hpp"
 #include "makeway/odometry/lidar_odometry.hpp"
 
@@ -23,9 +22,12 @@ namespace fs = std::filesystem;
 
 int run_odometry(const OdometryOptions& o) {
     const io::Config cfg = o.config.empty() ? io::Config{} : io::load_config(o.config);
+    std::error_code ec;
+    if (!fs::is_directory(o.clouds, ec)) throw io::FileError(o.clouds, "not a folder of sweeps");
     std::vector<fs::path> files;
-    for (const char* ext : {"pcd", "ply", "bin"}) {
-        for (auto& f : io::frame_files(o.clouds, ext)) files.push_back(std::move(f));
+    for (const auto& e : fs::directory_iterator(o.clouds, ec)) {
+        const std::string ext = io::lower_extension(e.path());
+        if (e.is_regular_file() && (ext == "pcd" || ext == "ply" || ext == "bin")) files.push_back(e.path());
     }
     std::sort(files.begin(), files.end());
     if (files.empty()) throw io::FileError(o.clouds, "no .pcd, .ply or .bin sweeps");

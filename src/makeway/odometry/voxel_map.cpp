@@ -90,6 +90,12 @@ std::optional<MapMatch> VoxelMap::nearest(const Eigen::Vector3d& query, double m
     return MapMatch{*best_point, best_voxel->shape, best_voxel->axis, std::sqrt(best)};
 }
 
+std::vector<Eigen::Vector3d> VoxelMap::points() const {
+    std::vector<Eigen::Vector3d> out;
+    for (const auto& [k, v] : voxels_) out.insert(out.end(), v.points.begin(), v.points.end());
+    return out;
+}
+
 std::size_t VoxelMap::num_points() const {
     std::size_t n = 0;
     for (const auto& [k, v] : voxels_) n += v.points.size();

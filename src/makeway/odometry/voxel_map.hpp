@@ -48,6 +48,8 @@ public:
     bool empty() const { return voxels_.empty(); }
     std::size_t num_voxels() const { return voxels_.size(); }
     std::size_t num_points() const;
+    /// Every point of the map (tests, pictures).
+    std::vector<Eigen::Vector3d> points() const;
 
 private:
     struct Voxel {
