@@ -39,9 +39,12 @@ std::vector<std::string> leftovers(const fs::path& dir) {
     return out;
 }
 
+// Files in `dir`, temporary ones (still being written) not counted.
 std::size_t count_files(const fs::path& dir) {
-    if (!fs::exists(dir)) return 0;
-    return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}));
+    std::error_code ec;
+    std::size_t n = 0;
+    for (const auto& e : fs::directory_iterator(dir, ec)) n += e.path().filename().string().find(".tmp.") == std::string::npos;
+    return n;
 }
 
 // Starts makeway with `args` (no shell), stdout/stderr to files in `dir`.
