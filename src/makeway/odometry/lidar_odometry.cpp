@@ -30,6 +30,8 @@ std::vector<std::string> OdometryParams::validate() const {
     std::vector<std::string> p;
     if (!(map.voxel_m > 0.01 && map.voxel_m <= 10.0)) p.push_back("odometry voxel_m must be in (0.01, 10]");
     if (map.max_points_per_voxel < 1 || map.max_points_per_voxel > 1000) p.push_back("odometry max_points_per_voxel must be in [1, 1000]");
+    if (map.min_points_for_plane < 3) p.push_back("odometry min_points_for_plane must be >= 3");
+    if (!(map.planarity > 0.0 && map.planarity < 1.0)) p.push_back("odometry planarity must be in (0, 1)");
     if (!(source_voxel_m > 0.0 && insert_voxel_m > 0.0)) p.push_back("odometry source_voxel_m and insert_voxel_m must be > 0");
     if (!(min_range_m >= 0.0 && max_range_m > min_range_m)) p.push_back("odometry needs 0 <= min_range_m < max_range_m");
     if (!(map_radius_m > 0.0)) p.push_back("odometry map_radius_m must be > 0");
