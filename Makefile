@@ -44,7 +44,7 @@ bench:
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build of everything, then the tests.
 asan:
-	@LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp UBSAN_OPTIONS=print_stacktrace=1 \
+	@LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 UBSAN_OPTIONS=print_stacktrace=1 \
 	    $(MAKE) --no-print-directory test BUILD=build-asan TYPE=RelWithDebInfo \
 	    CMAKE_ARGS="-DMAKEWAY_SANITIZE=ON -DMAKEWAY_BUILD_BENCH=OFF $(CMAKE_ARGS)"
 

@@ -99,7 +99,7 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
             const double s = std::clamp(static_cast<double>(points_sensor.time_s[i]) / duration_s, 0.0, 1.0);
             points.push_back(T_end_start * (lift_to_3d(interpolate(Pose2{}, motion, s)) * p_base));
         } else {
-            points.push_back(p_base);
+            points.push_back(T_end_start * p_base);  // an instantaneous sweep, taken at its stamp (the start)
         }
     }
 
