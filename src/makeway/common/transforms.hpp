@@ -17,6 +17,12 @@ struct Pose2 {
 Isometry2 to_isometry(const Pose2& pose);
 Pose2 to_pose2(const Isometry2& T);
 
+/// a then b (b in a's frame), and the motion from a to b in a's frame.
+Pose2 compose(const Pose2& a, const Pose2& b);
+Pose2 between(const Pose2& a, const Pose2& b);
+/// Between two planar poses: x, y linear, yaw along the shorter turn; s in [0, 1].
+Pose2 interpolate(const Pose2& a, const Pose2& b, double s);
+
 /// SE(3) from a translation [m] and a rotation about z [rad] (roll = pitch = 0).
 Isometry3 make_T_xyz_yaw(const Eigen::Vector3d& translation_m, double yaw_rad);
 

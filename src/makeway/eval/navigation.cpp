@@ -6,6 +6,7 @@
 #include "makeway/common/angles.hpp"
 #include "makeway/costmap/affordance.hpp"
 #include "makeway/costmap/static_layer.hpp"
+#include "makeway/eval/odometry_bench.hpp"
 #include "makeway/perception/accumulator.hpp"
 #include "makeway/pipeline/navigator.hpp"
 #include "makeway/sim/route.hpp"
@@ -157,12 +158,7 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
     const Pose2 believed = out.estimated_trajectory.empty() ? state.pose : out.estimated_trajectory.back();
     out.final_pose_error_m = std::hypot(believed.x_m - state.pose.x_m, believed.y_m - state.pose.y_m);
     // The belief of sweep k is the pose at its end: the true pose k + 1.
-    double sum_sq = 0.0;
-    for (std::size_t k = 0; k < out.estimated_trajectory.size() && k + 1 < out.trajectory.size(); ++k) {
-        sum_sq += std::pow(out.estimated_trajectory[k].x_m - out.trajectory[k + 1].x_m, 2) +
-                  std::pow(out.estimated_trajectory[k].y_m - out.trajectory[k + 1].y_m, 2);
-    }
-    if (!out.estimated_trajectory.empty()) out.pose_ate_m = std::sqrt(sum_sq / static_cast<double>(out.estimated_trajectory.size()));
+    out.pose_ate_m = trajectory_metrics(out.estimated_trajectory, {out.trajectory.begin() + 1, out.trajectory.end()}).ate_rmse_m;
     const double to_goal = std::hypot(state.pose.x_m - scene.goal.x_m, state.pose.y_m - scene.goal.y_m);
     out.stop_distance_m = to_goal;
     out.reached_goal = navigator.arrived() && to_goal < params.arrival_radius_m;

@@ -86,8 +86,8 @@ TrajectoryMetrics trajectory_metrics(const std::vector<Pose2>& estimated, const 
             while (j < n && along[j] - along[i] < d) ++j;
             if (j >= n) break;
             const double dist = along[j] - along[i];
-            const Pose2 e = odometry::between(estimated[i], estimated[j]);
-            const Pose2 t = odometry::between(truth[i], truth[j]);
+            const Pose2 e = between(estimated[i], estimated[j]);
+            const Pose2 t = between(truth[i], truth[j]);
             t_sum += std::hypot(e.x_m - t.x_m, e.y_m - t.y_m) / dist;
             r_sum += std::abs(angle_diff(e.yaw_rad, t.yaw_rad)) * 180.0 / M_PI / dist;
             ++pairs;
@@ -139,7 +139,7 @@ std::vector<Pose2> dead_reckoning(const OdometryDrive& drive) {
     std::vector<Pose2> out;
     Pose2 pose = drive.start_pose;
     for (const auto& s : drive.sweeps) {
-        pose = odometry::compose(pose, odometry::between(s.wheel_start, s.wheel_end));
+        pose = compose(pose, between(s.wheel_start, s.wheel_end));
         out.push_back(pose);
     }
     return out;

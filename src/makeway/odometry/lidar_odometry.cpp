@@ -46,21 +46,6 @@ std::vector<std::string> OdometryParams::validate() const {
     return p;
 }
 
-Pose2 compose(const Pose2& a, const Pose2& b) {
-    const double c = std::cos(a.yaw_rad), s = std::sin(a.yaw_rad);
-    return {a.x_m + c * b.x_m - s * b.y_m, a.y_m + s * b.x_m + c * b.y_m, wrap_angle(a.yaw_rad + b.yaw_rad)};
-}
-
-Pose2 between(const Pose2& a, const Pose2& b) {
-    const double c = std::cos(a.yaw_rad), s = std::sin(a.yaw_rad);
-    const double dx = b.x_m - a.x_m, dy = b.y_m - a.y_m;
-    return {c * dx + s * dy, -s * dx + c * dy, angle_diff(b.yaw_rad, a.yaw_rad)};
-}
-
-Pose2 interpolate(const Pose2& a, const Pose2& b, double s) {
-    return {a.x_m + s * (b.x_m - a.x_m), a.y_m + s * (b.y_m - a.y_m), wrap_angle(a.yaw_rad + s * angle_diff(b.yaw_rad, a.yaw_rad))};
-}
-
 LidarOdometry::LidarOdometry(const OdometryParams& params, const Isometry3& T_base_sensor, const Pose2& start_pose)
     : params_(params), T_base_sensor_(T_base_sensor), pose_(start_pose), map_(params.map) {
     if (const auto problems = params.validate(); !problems.empty()) {

@@ -82,10 +82,4 @@ private:
     bool first_ = true;
 };
 
-/// The base's pose between two poses (x, y, yaw linear, yaw along the shorter turn), s in [0, 1].
-Pose2 interpolate(const Pose2& a, const Pose2& b, double s);
-/// a then b (b in a's frame), and the motion from a to b in a's frame.
-Pose2 compose(const Pose2& a, const Pose2& b);
-Pose2 between(const Pose2& a, const Pose2& b);
-
 }  // namespace makeway::odometry
