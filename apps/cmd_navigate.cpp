@@ -3,6 +3,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <mutex>
@@ -57,12 +58,18 @@ int run_bench_nav(const BenchNavOptions& options) {
     // The full system `ours` joins when detector weights are there (given, or the default ones).
     std::vector<std::string> methods = eval::nav_method_names();
     std::optional<perception::Detector> detector;
-    if (!options.model.empty() || default_model_path()) {
-        detector = load_detector(options.model);
+    const bool ours_asked = std::find(options.methods.begin(), options.methods.end(), "ours") != options.methods.end();
+    if (!options.model.empty() || default_model_path() || ours_asked) {
+        detector = load_detector(options.model);  // names the missing default file when ours was asked for
         perception::set_inference_threads(1);  // runs go in parallel instead
         methods.push_back("ours");
     } else {
         std::cout << "no detector weights (models/detector.pt; `make model`): the full system `ours` is left out\n";
+    }
+    if (!options.methods.empty()) {
+        std::erase_if(methods, [&](const std::string& m) {
+            return std::find(options.methods.begin(), options.methods.end(), m) == options.methods.end();
+        });
     }
     const sim::Density densities[] = {sim::Density::kSparse, sim::Density::kMedium, sim::Density::kDense};
     std::vector<sim::Scene> scenes;

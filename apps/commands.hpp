@@ -100,6 +100,7 @@ struct BenchNavOptions {
     std::string model;  ///< detector weights for `ours`; empty: the default ones when present
     int threads = 2;
     double time_limit_s = 180.0;
+    std::vector<std::string> methods;  ///< empty: every method (ours when weights are there)
 };
 int run_bench_nav(const BenchNavOptions& options);
 

@@ -172,8 +172,11 @@ DetectionFrame parse_detection_frame(std::string_view text, bool any_score) {
         throw FormatError(std::string("invalid JSON: ") + e.what());
     }
     DetectionFrame f;
-    const Json& list = j.is_object() && j.contains("detections") ? j["detections"] : j;
-    if (!list.is_array()) throw FormatError("expected a list of detections (or {\"detections\": [...]})");
+    // `makeway verify` writes {"verified": [...]}: its accepted entries are detections with the
+    // verified box and the existence probability as score.
+    const bool verified = j.is_object() && !j.contains("detections") && j.contains("verified");
+    const Json& list = j.is_object() && j.contains("detections") ? j["detections"] : verified ? j["verified"] : j;
+    if (!list.is_array()) throw FormatError("expected a list of detections (or {\"detections\": [...]}, or verify's {\"verified\": [...]})");
     if (j.is_object() && j.contains("stamp_s")) {
         if (!j["stamp_s"].is_number() || !std::isfinite(j["stamp_s"].get<double>())) throw FormatError("'stamp_s' must be a number");
         f.stamp_s = j["stamp_s"].get<double>();
@@ -181,7 +184,17 @@ DetectionFrame parse_detection_frame(std::string_view text, bool any_score) {
     if (j.is_object() && j.contains("T_world_sensor")) f.T_world_sensor = pose_from_json(j["T_world_sensor"], "T_world_sensor");
     for (std::size_t i = 0; i < list.size(); ++i) {
         try {
-            f.detections_sensor.push_back(detection_from_json(list[i], any_score));
+            if (!verified) {
+                f.detections_sensor.push_back(detection_from_json(list[i], any_score));
+                continue;
+            }
+            const Json& v = list[i];
+            if (!v.is_object() || !v.contains("accepted") || !v["accepted"].is_boolean()) throw FormatError("'accepted' must be true or false");
+            if (!v["accepted"].get<bool>()) continue;
+            if (!v.contains("p_exist")) throw FormatError("'p_exist' is missing");
+            Json d = v;
+            d["score"] = v["p_exist"];
+            f.detections_sensor.push_back(detection_from_json(d, any_score));
         } catch (const FormatError& e) {
             throw FormatError("detection " + std::to_string(i) + ": " + e.what());
         }

@@ -271,6 +271,20 @@ TEST(Cli, VerifyRefinesAFlippedDetectionAndRejectsAWallBox) {
     const double yaw = v[0]["T_sensor_object"]["yaw_rad"].get<double>();
     EXPECT_LT(std::abs(std::remainder(yaw - true_yaw, 2 * 3.14159265358979)), 0.05);
     EXPECT_FALSE(v[1]["accepted"].get<bool>());
+    // verify's output is track's input: the accepted chair, seen in five keyframes, becomes the one
+    // object of the map.
+    std::filesystem::create_directories(dir / "frames");
+    for (int k = 0; k < 5; ++k) {
+        io::Json frame = io::read_json(dir / "verified.json");
+        frame["stamp_s"] = 0.5 * k;
+        io::write_json(dir / "frames" / ("00000" + std::to_string(k) + ".json"), frame);
+    }
+    const CliRun t = run_makeway("track --detections " + (dir / "frames").string() + " --out " + (dir / "tracks").string(), dir);
+    ASSERT_EQ(t.exit_code, 0) << t.err;
+    const auto tracked = io::read_object_frame(dir / "tracks" / "000004.json");
+    ASSERT_EQ(tracked.size(), 1u);
+    EXPECT_EQ(tracked[0].cls, ObjectClass::kChair);
+    EXPECT_LT((tracked[0].box_world.centre_m.head<2>() - io::box_from_json(v[0]["box"]).centre_m.head<2>()).norm(), 1e-6);
     // Bad input: a detection without a class names the file and the detection.
     std::ofstream(dir / "bad.json") << "[{\"box\": {}}]";
     const CliRun bad = run_makeway("verify --cloud " + (dir / "sim" / "clouds" / "000000.pcd").string() + " --detections " +
