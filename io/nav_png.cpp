@@ -10,20 +10,6 @@
 namespace makeway::io {
 namespace {
 
-// A zone's outline: the set u = 1, traced by marching outward along rays from the object centre.
-std::vector<Eigen::Vector2d> zone_outline(const ObjectEstimate& o, const costmap::AffordanceParams& p) {
-    std::vector<Eigen::Vector2d> out;
-    const Eigen::Vector2d c = o.box_world.centre_m.head<2>();
-    for (int k = 0; k < 72; ++k) {
-        const double a = 2.0 * M_PI * k / 72;
-        const Eigen::Vector2d d(std::cos(a), std::sin(a));
-        double r = 0.0;
-        while (r < 6.0 && costmap::in_affordance_zone(o, p, c + (r + 0.01) * d)) r += 0.01;
-        out.push_back(c + r * d);
-    }
-    return out;
-}
-
 const Rgb kPathColours[] = {{0.0, 0.0, 0.0}, {0.1, 0.5, 0.1}, {0.55, 0.1, 0.75}, {0.0, 0.45, 0.7}};
 
 }  // namespace
@@ -49,7 +35,7 @@ void write_nav_png(const std::filesystem::path& path, const sim::Scene& scene, c
         o.cls = s.cls;
         o.box_world = s.box_world;
         const Rgb colour = label_colour(to_semantic_label(s.cls));
-        canvas.stroke_polyline(zone_outline(o, zones), colour, 1.0, true, true);
+        canvas.stroke_polyline(costmap::zone_outline(o, zones), colour, 1.0, true, true);
         draw_box(canvas, s.box_world, colour);
     }
     canvas.stroke_polyline(plan, {0.4, 0.4, 0.4}, 1.5, false, true);

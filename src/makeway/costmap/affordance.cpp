@@ -79,4 +79,17 @@ void zone_bounds(const ObjectEstimate& o, const AffordanceParams& p, Eigen::Vect
     max_m = o.box_world.centre_m.head<2>() + r;
 }
 
+std::vector<Eigen::Vector2d> zone_outline(const ObjectEstimate& object, const AffordanceParams& params, int rays) {
+    std::vector<Eigen::Vector2d> out;
+    const Eigen::Vector2d c = object.box_world.centre_m.head<2>();
+    for (int k = 0; k < rays; ++k) {
+        const double a = 2.0 * M_PI * k / rays;
+        const Eigen::Vector2d d(std::cos(a), std::sin(a));
+        double r = 0.0;
+        while (r < 6.0 && in_affordance_zone(object, params, c + (r + 0.01) * d)) r += 0.01;
+        out.push_back(c + r * d);
+    }
+    return out;
+}
+
 }  // namespace makeway::costmap

@@ -53,6 +53,10 @@ inline bool in_affordance_zone(const ObjectEstimate& object, const AffordancePar
 /// The soft cost at p (0 outside the zone).
 std::uint8_t zone_cost(const ObjectEstimate& object, const AffordanceParams& params, const Eigen::Vector2d& p_m);
 
+/// The zone's boundary (u = 1) as a closed polygon of `rays` points, traced outward from the
+/// object's centre in 1 cm steps (up to 6 m): for pictures and markers.
+std::vector<Eigen::Vector2d> zone_outline(const ObjectEstimate& object, const AffordanceParams& params, int rays = 72);
+
 /// Axis-aligned world bounds of the zone [m].
 void zone_bounds(const ObjectEstimate& object, const AffordanceParams& params, Eigen::Vector2d& min_m,
                  Eigen::Vector2d& max_m);

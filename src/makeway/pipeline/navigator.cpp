@@ -2,29 +2,14 @@
 
 #include <chrono>
 #include <cmath>
-#include <memory>
 
 #include "makeway/common/angles.hpp"
-#include "makeway/costmap/affordance_layer.hpp"
-#include "makeway/costmap/inflation_layer.hpp"
-#include "makeway/costmap/obstacle_layer.hpp"
-#include "makeway/costmap/static_layer.hpp"
 #include "makeway/planning/dwa.hpp"
 
 namespace makeway::pipeline {
 
 Navigator::Navigator(const Costmap& static_map, const NavigatorParams& params)
-    : params_(params),
-      layered_(Costmap(static_map.origin_m, static_map.resolution_m, static_map.width, static_map.height)) {
-    throw_if_problems(params.validate());
-    // The stack: static (the known building), obstacle (LiDAR), affordance (objects), inflation last.
-    layered_.add_layer(std::make_unique<costmap::StaticLayer>(static_map));
-    layered_.add_layer(std::make_unique<costmap::ObstacleLayer>(static_map, params.obstacle));
-    if (params.affordance_layer) layered_.add_layer(std::make_unique<costmap::AffordanceLayer>(params.affordance));
-    costmap::InflationParams inflation = params.inflation;
-    inflation.inflation_radius_m = std::max(inflation.inflation_radius_m, inflation.inscribed_radius_m);
-    layered_.add_layer(std::make_unique<costmap::InflationLayer>(inflation));
-}
+    : params_(params), costmap_(static_map, params) {}
 
 void Navigator::set_route(std::vector<Eigen::Vector2d> legs_m) {
     legs_ = std::move(legs_m);
@@ -48,14 +33,10 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
     }
     check_progress(in, out);
     // Costmap: every layer grows the update window, then writes inside it.
-    costmap::LayerInput layer_input;
-    layer_input.points_world = in.points_world;
-    layer_input.sensor_world_m = in.sensor_world_m;
-    layer_input.objects = in.objects;
-    layered_.update(layer_input);
+    costmap_.update(in.points_world, in.sensor_world_m, in.objects);
     // Global plan when there is none, when it is due, or when something now blocks it.
     if (plan_.empty() || in.t_s - last_plan_t_ >= params_.replan_period_s || plan_blocked(here)) {
-        const planning::PlanResult p = planning::plan_astar(layered_.master(), here, legs_[leg_], params_.astar);
+        const planning::PlanResult p = planning::plan_astar(costmap_.master(), here, legs_[leg_], params_.astar);
         if (p.status == planning::PlanStatus::kOk) plan_ = p.path_m;
         out.plan_status = p.status;
         last_plan_t_ = in.t_s;
@@ -73,7 +54,7 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
 }
 
 bool Navigator::plan_blocked(const Eigen::Vector2d& robot) const {
-    const Costmap& m = layered_.master();
+    const Costmap& m = costmap_.master();
     std::size_t nearest = 0;
     for (std::size_t i = 1; i < plan_.size(); ++i) {
         if ((plan_[i] - robot).squaredNorm() < (plan_[nearest] - robot).squaredNorm()) nearest = i;
@@ -88,7 +69,7 @@ bool Navigator::plan_blocked(const Eigen::Vector2d& robot) const {
 }
 
 VelocityCommand Navigator::follow_plan(const NavigatorInput& in, NavigatorStep& out) const {
-    const planning::DwaResult r = planning::dwa_step(layered_.master(), {in.pose, in.v_mps, in.w_radps}, plan_, params_.dwa);
+    const planning::DwaResult r = planning::dwa_step(costmap_.master(), {in.pose, in.v_mps, in.w_radps}, plan_, params_.dwa);
     out.dwa_found = r.found;
     if (r.found) return r.command;
     // Every velocity collides: turn toward the path on the spot.

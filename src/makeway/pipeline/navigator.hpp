@@ -11,7 +11,7 @@
 #include "makeway/common/point_cloud.hpp"
 #include "makeway/common/transforms.hpp"
 #include "makeway/common/velocity_command.hpp"
-#include "makeway/costmap/layered_costmap.hpp"
+#include "makeway/pipeline/object_costmap.hpp"
 #include "makeway/pipeline/system_params.hpp"
 #include "makeway/planning/astar.hpp"
 
@@ -48,7 +48,7 @@ public:
     void set_route(std::vector<Eigen::Vector2d> legs_m);
     NavigatorStep step(const NavigatorInput& input);
 
-    const Costmap& costmap() const { return layered_.master(); }
+    const Costmap& costmap() const { return costmap_.master(); }
     const std::vector<Eigen::Vector2d>& plan() const { return plan_; }
     std::size_t leg() const { return leg_; }
     bool arrived() const { return leg_ >= legs_.size(); }
@@ -59,7 +59,7 @@ private:
     void check_progress(const NavigatorInput& input, NavigatorStep& step);
 
     NavigatorParams params_;
-    costmap::LayeredCostmap layered_;
+    ObjectCostmap costmap_;
     std::vector<Eigen::Vector2d> legs_;
     std::size_t leg_ = 0;
     std::vector<Eigen::Vector2d> plan_;
