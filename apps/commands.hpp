@@ -176,6 +176,25 @@ struct OdometryOptions {
 };
 int run_odometry(const OdometryOptions& options);
 
+struct RunOptions {
+    std::string clouds, bag;            ///< one of them: a folder of sweeps, or a ROS 1 bag
+    std::string odometry;               ///< folders: TUM wheel odometry of the base, line k at sweep k
+    std::string poses;                  ///< TUM T_world_sensor per sweep start: external poses, no odometry
+    std::string cloud_topic = "/velodyne_points", odom_topic = "/odom";
+    std::string map;                    ///< map_server YAML: the static layer (optional)
+    std::string cad;                    ///< CAD folder for verification (optional: skipped without)
+    std::vector<double> extrinsics;     ///< x y z roll pitch yaw of the sensor on the base (default: the config's robot)
+    std::vector<double> start;          ///< x y yaw of the base at the first sweep (default: the first pose)
+    std::string config, model;
+    std::string out = "out/run", out_bag;
+    double rate_hz = 10.0;
+    double costmap_size_m = 40.0, resolution_m = 0.05;  ///< without --map: a free square around the start
+    int png_every = 1;                  ///< a picture every n-th keyframe (0: none)
+    int max_sweeps = 0;                 ///< 0: all
+    std::string non_finite = "reject";
+};
+int run_run(const RunOptions& options);
+
 struct BenchOdometryOptions {
     std::string config;
     int scenes = 10;

@@ -95,9 +95,10 @@ void add_simulate(CLI::App& app, SimulateOptions& o) {
     sub->add_option("--out", o.out_dir, "Output folder: clouds/, objects/, poses_gt.txt, odometry.txt, "
                                         "scene.png, summary.json")
         ->required();
-    sub->add_option("--format", o.format, "Cloud format: pcd (binary, with labels) or bin (KITTI, labels "
-                                          "in SemanticKITTI .label files)")
-        ->check(CLI::IsMember({"pcd", "bin"}))
+    sub->add_option("--format", o.format, "Cloud format: pcd (binary, with labels), bin (KITTI, labels "
+                                          "in SemanticKITTI .label files) or bag (a ROS 1 bag, drive.bag, as a robot "
+                                          "records it: /velodyne_points, /odom, /tf_static; the truth on /ground_truth/*)")
+        ->check(CLI::IsMember({"pcd", "bin", "bag"}))
         ->capture_default_str();
     sub->add_option("--seed", o.seed, "Seed of sensor noise and odometry drift")->capture_default_str();
     sub->add_option("--threads", o.threads, "Ray-casting threads")->check(CLI::Range(1, 256))->capture_default_str();
@@ -242,6 +243,43 @@ void add_odometry(CLI::App& app, OdometryOptions& o) {
     sub->add_option("--out", o.out, "Poses (TUM: stamp x y z qx qy qz qw)")->required();
 }
 
+void add_run(CLI::App& app, RunOptions& o) {
+    auto* sub = app.add_subcommand("run", "The whole system on recorded data (a folder of sweeps or a ROS 1 bag): pose, "
+                                          "keyframes, detection, verification, object map, object-aware costmap");
+    auto* clouds = sub->add_option("--clouds", o.clouds, "Folder of sweeps (.pcd with a time/t field, .ply, .bin), in name order");
+    auto* bag = sub->add_option("--bag", o.bag, "ROS 1 bag with sensor_msgs/PointCloud2 sweeps and nav_msgs/Odometry");
+    clouds->excludes(bag);
+    sub->add_option("--odometry", o.odometry, "With --clouds: wheel odometry of the base (TUM, line k at sweep k's start)")->needs(clouds);
+    sub->add_option("--poses", o.poses, "External poses (TUM T_world_sensor at each sweep's start, as `makeway odometry` "
+                                        "writes them): used as they are, the odometry does not run");
+    sub->add_option("--cloud-topic", o.cloud_topic, "With --bag: the PointCloud2 topic")->capture_default_str();
+    sub->add_option("--odom-topic", o.odom_topic, "With --bag: the wheel odometry topic (optional in the bag)")->capture_default_str();
+    sub->add_option("--map", o.map, "Static map (map_server YAML + PGM) for the costmap's static layer; objects stand in its free space");
+    sub->add_option("--cad", o.cad, "Folder of CAD meshes (chair_*/table_*) for verification; without it the stage is skipped");
+    sub->add_option("--extrinsics", o.extrinsics, "The sensor on the base: x y z roll pitch yaw [m, rad] (default: the "
+                                                  "config's robot section, 0.4 m above the base)")
+        ->expected(6);
+    sub->add_option("--start", o.start, "The base's pose at the first sweep in the map: x y yaw (default: the first "
+                                        "odometry or external pose, else 0 0 0)")
+        ->expected(3);
+    sub->add_option("--config", o.config, "YAML configuration (config/default.yaml's sections)");
+    sub->add_option("--model", o.model, "Detector weights (default: models/detector.pt)");
+    sub->add_option("--rate", o.rate_hz, "Sweeps per second when nothing gives stamps")->check(CLI::Range(0.1, 100.0))->capture_default_str();
+    sub->add_option("--size", o.costmap_size_m, "Without --map: side of the square costmap around the start [m]")
+        ->check(CLI::Range(2.0, 1000.0))
+        ->capture_default_str();
+    sub->add_option("--png-every", o.png_every, "A picture every n-th keyframe (0: none)")->check(CLI::Range(0, 100000))->capture_default_str();
+    sub->add_option("--max-sweeps", o.max_sweeps, "Stop after this many sweeps (0: all)")->check(CLI::Range(0, 100000000))->capture_default_str();
+    sub->add_option("--non-finite", o.non_finite, "Points with NaN/inf coordinates: reject (error) or drop")
+        ->check(CLI::IsMember({"reject", "drop"}))
+        ->capture_default_str();
+    sub->add_option("--out", o.out, "Output folder: objects/ per keyframe, objects.json, costmap.yaml/.pgm, poses.txt, "
+                                    "keyframes/ and keyframes.png, map.png, summary.json")
+        ->capture_default_str();
+    sub->add_option("--out-bag", o.out_bag, "Also a ROS 1 bag: /makeway/costmap (OccupancyGrid), /makeway/objects "
+                                            "(MarkerArray), /makeway/object_map (String, JSON), /makeway/odometry, /tf");
+}
+
 void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchVerifyOptions& ver_o, BenchTrackOptions& trk_o,
                BenchOdometryOptions& odo_o) {
     auto* bench = app.add_subcommand("bench", "Benchmarks that print JSON");
@@ -358,6 +396,7 @@ int main(int argc, char** argv) {
     BenchTrackOptions bench_track;
     OdometryOptions odometry;
     BenchOdometryOptions bench_odometry;
+    RunOptions run;
     add_info(app, info);
     add_convert(app, convert);
     add_demo(app, demo);
@@ -369,6 +408,7 @@ int main(int argc, char** argv) {
     add_track(app, track, eval_tracking);
     add_detector(app, dataset, train_detector, detect, eval_detection);
     add_odometry(app, odometry);
+    add_run(app, run);
     add_bench(app, bench_sim, bench_nav, bench_verify, bench_track, bench_odometry);
     check_numbers(app);
     if (argc > 1 && argv[1][0] != '-') {
@@ -403,6 +443,13 @@ int main(int argc, char** argv) {
             if (app.got_subcommand("verify")) return run_verify(verify);
             if (app.got_subcommand("track")) return run_track(track);
             if (app.got_subcommand("odometry")) return run_odometry(odometry);
+            if (app.got_subcommand("run")) {
+                if (run.clouds.empty() && run.bag.empty()) {
+                    print_error("run: give --clouds DIR or --bag FILE");
+                    return kExitBadInput;
+                }
+                return run_run(run);
+            }
             if (app.got_subcommand("dataset")) return run_dataset(dataset);
             if (app.got_subcommand("train-detector")) return run_train_detector(train_detector);
             if (app.got_subcommand("detect")) return run_detect(detect);

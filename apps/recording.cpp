@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <optional>
 
 #include "io/error.hpp"
 #include "io/file_util.hpp"
@@ -17,6 +18,7 @@
 #include "io/scene_png.hpp"
 #include "io/staged_output.hpp"
 #include "makeway/sim/route.hpp"
+#include "ros/bag_io.hpp"
 
 namespace makeway::apps {
 namespace {
@@ -80,8 +82,9 @@ std::uintmax_t recording_bytes_upper_bound(const sim::LidarParams& lidar, const 
     PointCloud one, many;
     one.resize(1, PointFields::all());
     many.resize(1001, PointFields::all());
-    const std::size_t per_point = options.format == "bin" ? 16 + 4  // .bin xyzi + .label
-                                                          : (io::serialize_pcd(many, io::PcdEncoding::kBinary).size() -
+    const std::size_t per_point = options.format == "bin"   ? 16 + 4  // .bin xyzi + .label
+                                  : options.format == "bag" ? 22 + 8  // PointCloud2 x y z intensity ring time, bag overhead
+                                                            : (io::serialize_pcd(many, io::PcdEncoding::kBinary).size() -
                                                              io::serialize_pcd(one, io::PcdEncoding::kBinary).size() + 999) / 1000;
     const std::uintmax_t rays = static_cast<std::uintmax_t>(lidar.num_beams()) * static_cast<std::uintmax_t>(lidar.num_columns());
     const std::uintmax_t clouds = (static_cast<std::uintmax_t>(options.frames) + options.cloud_every - 1) / options.cloud_every;
@@ -117,7 +120,15 @@ RecordingSummary record_sequence(const sim::Scene& scene, const std::vector<Eige
                         {"format", format}};
     };
     std::string writing;  // the frame whose files are being written
+    // --format bag: the drive as a robot records it (clouds, wheel odometry, the sensor's mount),
+    // the truth on topics of its own. Written to drive.bag.active, renamed when complete.
+    std::optional<rosio::BagWriter> bag;
+    const double epoch = rosio::kSimulatedEpoch_s;
     try {
+        if (format == "bag") {
+            bag.emplace(out / "drive.bag");
+            bag->write_tf(params.robot.T_robot_sensor(), epoch, "base_link", "velodyne", true);
+        }
         io::ProgressBar bar("simulate", static_cast<std::size_t>(frames));
         double sim_s = 0.0;
         for (int i = 0; i < frames && !(options.stop_at_goal && simulator.reached_goal()); ++i) {
@@ -131,6 +142,12 @@ RecordingSummary record_sequence(const sim::Scene& scene, const std::vector<Eige
             writing = name;
             if (i % options.cloud_every != 0) {
                 // ground truth only
+            } else if (bag) {
+                bag->write_cloud("/velodyne_points", f.points_sensor, epoch + f.stamp_s, "velodyne");
+                bag->write_odometry("/odom", f.odometry_pose, 0.0, 0.0, epoch + f.stamp_s, "odom", "base_link");
+                bag->write_odometry("/odom", f.odometry_end_pose, 0.0, 0.0, epoch + f.stamp_s + params.lidar.sweep_duration_s(), "odom", "base_link");
+                bag->write_odometry("/ground_truth/odom", f.true_pose, 0.0, 0.0, epoch + f.stamp_s, "map", "base_link");
+                bag->write_text("/ground_truth/objects", io::dump_json(frame_json(f)), epoch + f.stamp_s);
             } else if (format == "bin") {
                 io::write_point_cloud(out / "clouds" / (std::string(name) + ".bin"), f.points_sensor);
                 io::write_file_atomic(out / "labels" / (std::string(name) + ".label"), semantic_kitti_labels(f.points_sensor));
@@ -148,6 +165,7 @@ RecordingSummary record_sequence(const sim::Scene& scene, const std::vector<Eige
         bar.finish(simulator.reached_goal() ? "goal reached" : "");
         io::write_tum(out / "poses_gt.txt", gt);
         io::write_tum(out / "odometry.txt", odom);
+        if (bag) bag->close();
         summary.reached_goal = simulator.reached_goal();
         const io::Json done = summary_json();  // sets distance_m
         const auto& trajectory = simulator.trajectory();

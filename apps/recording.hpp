@@ -28,7 +28,7 @@ struct RecordingSummary {
 
 struct RecordingOptions {
     int frames = 100;            ///< sweeps to simulate (at most, with stop_at_goal)
-    std::string format = "pcd";  ///< "pcd" (binary, labelled) or "bin" (KITTI + SemanticKITTI labels)
+    std::string format = "pcd";  ///< "pcd" (binary, labelled), "bin" (KITTI + SemanticKITTI labels) or "bag" (ROS 1)
     int cloud_every = 1;         ///< write every n-th sweep's cloud (ground truth is written for all)
     bool stop_at_goal = false;
 };

@@ -35,3 +35,18 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 # libzip: model files are checked before torch reads them (its CMake config needs the zip tools).
 pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET libzip)
+
+# ROS 1 bags (Debian's ros packages, no catkin): rosbag_storage's config, the message headers (in
+# /usr/include, header-only) and ros::Time. The messages' own CMake configs need catkin: not used.
+# Not in the fuzz build (clang 14 parsers only).
+if(NOT MAKEWAY_FUZZ)
+    find_package(rosbag_storage REQUIRED)
+    find_library(ROS_ROSTIME_LIBRARY rostime REQUIRED)
+    find_library(ROS_SERIALIZATION_LIBRARY roscpp_serialization REQUIRED)
+    find_library(ROS_CPP_COMMON_LIBRARY cpp_common REQUIRED)
+    find_path(ROS_SENSOR_MSGS_INCLUDE_DIR sensor_msgs/PointCloud2.h REQUIRED)
+    add_library(makeway_ros_bag_deps INTERFACE)
+    target_include_directories(makeway_ros_bag_deps SYSTEM INTERFACE ${rosbag_storage_INCLUDE_DIRS} ${ROS_SENSOR_MSGS_INCLUDE_DIR})
+    target_link_libraries(makeway_ros_bag_deps INTERFACE ${rosbag_storage_LIBRARIES} ${ROS_ROSTIME_LIBRARY}
+                                                         ${ROS_SERIALIZATION_LIBRARY} ${ROS_CPP_COMMON_LIBRARY})
+endif()

@@ -129,4 +129,58 @@ void Canvas::save_png(const std::filesystem::path& path) {
     write_file_atomic(path, png);
 }
 
+void write_contact_sheet(const std::filesystem::path& path, const std::vector<std::filesystem::path>& pngs,
+                         const std::vector<std::string>& captions, int columns, int thumb_px) {
+    constexpr int kCaption_px = 18;
+    columns = std::max(1, std::min<int>(columns, static_cast<int>(std::max<std::size_t>(pngs.size(), 1))));
+    const int rows = static_cast<int>((pngs.size() + columns - 1) / columns);
+    // Thumbnails keep the first picture's aspect ratio.
+    int thumb_h = thumb_px;
+    std::vector<cairo_surface_t*> images;
+    const auto release = [&images] {
+        for (cairo_surface_t* i : images) cairo_surface_destroy(i);
+    };
+    for (const auto& p : pngs) {
+        cairo_surface_t* img = cairo_image_surface_create_from_png(p.c_str());
+        if (cairo_surface_status(img) != CAIRO_STATUS_SUCCESS) {
+            cairo_surface_destroy(img);
+            release();
+            throw FileError(p.string(), "not a readable PNG");
+        }
+        if (images.empty()) {
+            thumb_h = std::max(1, thumb_px * cairo_image_surface_get_height(img) / std::max(1, cairo_image_surface_get_width(img)));
+        }
+        images.push_back(img);
+    }
+    const int width = columns * thumb_px, height = std::max(1, rows) * (thumb_h + kCaption_px);
+    cairo_surface_t* sheet = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
+    cairo_t* cr = cairo_create(sheet);
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, 12);
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        const int x = static_cast<int>(i % columns) * thumb_px, y = static_cast<int>(i / columns) * (thumb_h + kCaption_px);
+        const double sx = static_cast<double>(thumb_px) / cairo_image_surface_get_width(images[i]);
+        const double sy = static_cast<double>(thumb_h) / cairo_image_surface_get_height(images[i]);
+        cairo_save(cr);
+        cairo_translate(cr, x, y);
+        cairo_scale(cr, sx, sy);
+        cairo_set_source_surface(cr, images[i], 0, 0);
+        cairo_paint(cr);
+        cairo_restore(cr);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        cairo_move_to(cr, x + 4, y + thumb_h + kCaption_px - 5);
+        cairo_show_text(cr, i < captions.size() ? captions[i].c_str() : "");
+    }
+    release();
+    cairo_destroy(cr);
+    std::string png;
+    cairo_surface_flush(sheet);
+    const cairo_status_t status = cairo_surface_write_to_png_stream(sheet, append_to_string, &png);
+    cairo_surface_destroy(sheet);
+    if (status != CAIRO_STATUS_SUCCESS) throw FileError(path.string(), std::string("PNG encoding failed: ") + cairo_status_to_string(status));
+    write_file_atomic(path, png);
+}
+
 }  // namespace makeway::io

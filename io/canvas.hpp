@@ -57,4 +57,10 @@ private:
     int height_ = 0;
 };
 
+/// Thumbnails of `pngs` (scaled to thumb_px wide, in rows of `columns`) with a caption under each,
+/// as one PNG: a drive's keyframes at a glance. Throws FileError naming an unreadable input or the
+/// output.
+void write_contact_sheet(const std::filesystem::path& path, const std::vector<std::filesystem::path>& pngs,
+                         const std::vector<std::string>& captions, int columns = 6, int thumb_px = 320);
+
 }  // namespace makeway::io

@@ -1,11 +1,11 @@
 #pragma once
-// Angle helpers [rad]. Header-only: used in every inner loop.
+// Angle helpers [rad]. Header-only: used in every inner loop. C++17-clean (the ROS 1 files,
+// whose message headers do not compile as C++20, include it).
 #include <cmath>
-#include <numbers>
 
 namespace makeway {
 
-constexpr double kPi = std::numbers::pi;
+constexpr double kPi = 3.14159265358979323846;  // std::numbers::pi, which C++17 lacks
 
 constexpr double deg_to_rad(double deg) { return deg * kPi / 180.0; }
 constexpr double rad_to_deg(double rad) { return rad * 180.0 / kPi; }

@@ -18,7 +18,9 @@ struct PointFields {
     bool label = false;
     bool instance = false;
 
-    bool operator==(const PointFields&) const = default;
+    bool operator==(const PointFields& o) const {  // spelled out: C++17-clean for the ROS 1 files
+        return intensity == o.intensity && ring == o.ring && time == o.time && label == o.label && instance == o.instance;
+    }
     static PointFields all() { return {true, true, true, true, true}; }
 };
 

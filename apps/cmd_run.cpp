@@ -1,0 +1,213 @@
+// makeway run: the whole system on recorded data (a folder of sweeps or a ROS 1 bag), as a robot
+// would run it: pose, keyframes, detection, verification, object map, object-aware costmap.
+// Writes the object map per keyframe, the final map and costmap, pictures, timing; optionally a
+// bag that RViz or Foxglove plays.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <optional>
+
+#include "apps/commands.hpp"
+#include "apps/model_path.hpp"
+#include "apps/nav_report.hpp"
+#include "ros/sweep_source.hpp"
+#include "io/cad_folder.hpp"
+#include "io/canvas.hpp"
+#include "io/config_reader.hpp"
+#include "io/error.hpp"
+#include "io/json_io.hpp"
+#include "io/map_server_io.hpp"
+#include "io/nav_png.hpp"
+#include "io/pose_io.hpp"
+#include "io/progress.hpp"
+#include "io/staged_output.hpp"
+#include "io/tracking_io.hpp"
+#include "makeway/eval/navigation.hpp"
+#include "makeway/pipeline/mapping_system.hpp"
+#include "ros/bag_io.hpp"
+
+namespace makeway::apps {
+namespace fs = std::filesystem;
+namespace {
+
+// Median and 99th percentile of each timed quantity, in summary.json.
+struct Timings {
+    std::map<std::string, std::vector<double>> ms;
+    void add(const std::string& name, double v) { ms[name].push_back(v); }
+    io::Json to_json() const {
+        io::Json j = io::Json::object();
+        for (const auto& [name, values] : ms) {
+            const auto [median, p99] = median_p99(values);
+            j[name] = {{"median", median}, {"p99", p99}, {"count", values.size()}};
+        }
+        return j;
+    }
+};
+
+Isometry3 extrinsics_from(const std::vector<double>& v) {
+    Isometry3 T = Isometry3::Identity();
+    T.linear() = (Eigen::AngleAxisd(v[5], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(v[4], Eigen::Vector3d::UnitY()) *
+                  Eigen::AngleAxisd(v[3], Eigen::Vector3d::UnitX()))
+                     .toRotationMatrix();
+    T.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+    return T;
+}
+
+// Where the pictures look: what was driven and mapped, plus a margin, within the costmap.
+void view_bounds(const std::vector<Pose2>& trajectory, const std::vector<ObjectEstimate>& objects, const Costmap& map,
+                 Eigen::Vector2d& lo, Eigen::Vector2d& hi) {
+    lo = Eigen::Vector2d::Constant(1e18), hi = -lo;
+    for (const Pose2& p : trajectory) lo = lo.cwiseMin(Eigen::Vector2d(p.x_m, p.y_m)), hi = hi.cwiseMax(Eigen::Vector2d(p.x_m, p.y_m));
+    for (const ObjectEstimate& o : objects) lo = lo.cwiseMin(o.box_world.centre_m.head<2>()), hi = hi.cwiseMax(o.box_world.centre_m.head<2>());
+    lo -= Eigen::Vector2d::Constant(4.0), hi += Eigen::Vector2d::Constant(4.0);
+    const Eigen::Vector2d map_hi = map.origin_m + map.resolution_m * Eigen::Vector2d(map.width, map.height);
+    lo = lo.cwiseMax(map.origin_m), hi = hi.cwiseMin(map_hi).cwiseMax(lo + Eigen::Vector2d::Constant(1.0));
+}
+
+std::string frame_name(std::size_t k) {
+    char b[16];
+    std::snprintf(b, sizeof(b), "%06zu", k);
+    return b;
+}
+
+}  // namespace
+
+int run_run(const RunOptions& o) {
+    const io::Config cfg = o.config.empty() ? io::Config{} : io::load_config(o.config);
+    pipeline::SystemParams params = nav_params(cfg).system;
+    params.navigator.inflation.inflation_radius_m = eval::nav_method("ours", cfg.robot)->inflation_radius_m;
+    params.navigator.affordance_layer = true;
+    if (!o.extrinsics.empty()) params.T_base_sensor = extrinsics_from(o.extrinsics);
+    const bool external = !o.poses.empty();
+    if (external) params.lidar_odometry = false;  // the given poses are the pose: no odometry runs
+
+    rosio::SourceOptions so;
+    so.clouds = o.clouds;
+    so.bag = o.bag;
+    so.odometry = o.odometry;
+    so.poses = o.poses;
+    so.topics = {o.cloud_topic, o.odom_topic};
+    so.rate_hz = o.rate_hz;
+    so.non_finite = o.non_finite == "drop" ? io::NonFinitePolicy::kDrop : io::NonFinitePolicy::kReject;
+    so.T_base_sensor = params.T_base_sensor;
+    const std::unique_ptr<rosio::SweepSource> source = rosio::open_sweep_source(so);
+    const perception::Detector detector = load_detector(o.model);
+    std::optional<verification::CadLibrary> library;
+    if (!o.cad.empty()) library = io::read_cad_folder(o.cad);
+    const Pose2 start = !o.start.empty() ? Pose2{o.start[0], o.start[1], o.start[2]} : source->first_pose().value_or(Pose2{});
+    const Costmap static_map = !o.map.empty() ? io::read_map_server(o.map)
+                                              : Costmap(Eigen::Vector2d(start.x_m, start.y_m) - Eigen::Vector2d::Constant(0.5 * o.costmap_size_m),
+                                                        o.resolution_m, static_cast<int>(o.costmap_size_m / o.resolution_m),
+                                                        static_cast<int>(o.costmap_size_m / o.resolution_m));
+    pipeline::MappingSystem system(params, start, static_map, !o.map.empty(), &detector, library ? &*library : nullptr);
+
+    io::StagedOutput staged(o.out);  // everything or nothing
+    const fs::path out = staged.staging();
+    std::optional<rosio::BagWriter> bag;
+    if (!o.out_bag.empty()) bag.emplace(o.out_bag);
+    std::cout << "run: " << source->describe() << (library ? ", " + std::to_string(library->models().size()) + " CAD models" : ", no CAD models (verification skipped)")
+              << (external ? ", external poses (no odometry)" : params.lidar_odometry ? ", LiDAR odometry" : ", wheel odometry alone") << "\n";
+
+    Timings timings;
+    std::vector<Pose2> trajectory;
+    std::vector<io::StampedPose> sensor_poses;
+    std::vector<fs::path> pictures;
+    std::vector<std::string> captions;
+    std::size_t keyframes = 0, detections = 0, accepted = 0, points = 0, sweeps = 0;
+    std::string sensor_frame = "velodyne";
+    io::ProgressBar bar("run", source->size());
+    while (std::optional<rosio::SourceSweep> s = source->next()) {
+        if (o.max_sweeps > 0 && sweeps >= static_cast<std::size_t>(o.max_sweeps)) break;
+        points += s->points.size();
+        const double stamp = s->stamp_s;
+        const pipeline::MappingStep step = system.process({std::move(s->points), stamp, s->duration_s, s->pose_start, s->pose_end});
+        ++sweeps;
+        const pipeline::SweepResult& r = step.sweep;
+        trajectory.push_back(r.pose);
+        sensor_poses.push_back({stamp, r.T_world_sensor_start});
+        timings.add("per_sweep_ms", step.per_sweep_ms());
+        timings.add("pose_ms", r.timing.deskew_ms);
+        if (r.odometry) timings.add("odometry_ms", r.timing.odometry_ms);
+        timings.add("costmap_ms", step.costmap_ms);
+        const double end = stamp + s->duration_s;
+        if (bag) {
+            bag->write_odometry("/makeway/odometry", r.pose, 0.0, 0.0, end, "map", "base_link");
+            bag->write_tf(lift_to_3d(r.pose), end, "map", "base_link");
+        }
+        if (r.keyframe) {
+            const pipeline::KeyframeResult& k = *r.keyframe;
+            timings.add("keyframe_ms", r.timing.keyframe_ms());
+            timings.add("accumulate_ms", r.timing.accumulate_ms);
+            timings.add("ground_ms", r.timing.ground_ms);
+            timings.add("detect_ms", r.timing.detect_ms);
+            if (library) timings.add("verify_ms", r.timing.verify_ms);
+            timings.add("track_ms", r.timing.track_ms);
+            detections += k.detections.size();
+            accepted += std::count_if(k.verified.begin(), k.verified.end(), [](const auto& v) { return v.accepted; });
+            const std::string name = frame_name(keyframes);
+            io::Json frame = io::objects_to_json(static_cast<int>(keyframes), k.stamp_s, r.objects);
+            frame["T_world_sensor"] = io::pose_to_json(k.T_world_keyframe);
+            frame["detections"] = k.detections.size();
+            io::write_json(out / "objects" / (name + ".json"), frame);
+            if (o.png_every > 0 && keyframes % static_cast<std::size_t>(o.png_every) == 0) {
+                Eigen::Vector2d lo, hi;
+                view_bounds(trajectory, r.objects, system.costmap(), lo, hi);
+                char title[128];
+                std::snprintf(title, sizeof(title), "keyframe %zu, t = %.1f s: %zu objects", keyframes, k.stamp_s - sensor_poses.front().stamp_s,
+                              r.objects.size());
+                pictures.push_back(out / "keyframes" / (name + ".png"));
+                io::write_map_png(pictures.back(), system.costmap(), r.objects, params.navigator.affordance, trajectory, lo, hi, title);
+                captions.push_back("keyframe " + std::to_string(keyframes) + ": " + std::to_string(r.objects.size()) + " objects");
+            }
+            if (bag) {
+                bag->write_costmap("/makeway/costmap", system.costmap(), end, "map");
+                bag->write_markers("/makeway/objects", r.objects, params.navigator.affordance, end, "map");
+                bag->write_text("/makeway/object_map", io::dump_json(frame), end);
+            }
+            ++keyframes;
+        }
+        bar.update(sweeps, std::to_string(keyframes) + " keyframes, " + std::to_string(system.objects().size()) + " objects");
+    }
+    bar.finish();
+    if (sweeps == 0) throw io::FileError(o.bag.empty() ? o.clouds : o.bag, "no sweeps");
+
+    const std::vector<ObjectEstimate>& objects = system.objects();
+    io::write_json(out / "objects.json", io::objects_to_json(static_cast<int>(keyframes), sensor_poses.back().stamp_s, objects));
+    io::write_map_server(out / "costmap.yaml", system.costmap());
+    io::write_tum(out / "poses.txt", sensor_poses);
+    Eigen::Vector2d lo, hi;
+    view_bounds(trajectory, objects, system.costmap(), lo, hi);
+    io::write_map_png(out / "map.png", system.costmap(), objects, params.navigator.affordance, trajectory, lo, hi,
+                      std::to_string(sweeps) + " sweeps, " + std::to_string(keyframes) + " keyframes, " + std::to_string(objects.size()) + " objects");
+    if (!pictures.empty()) io::write_contact_sheet(out / "keyframes.png", pictures, captions);
+    std::size_t chairs = std::count_if(objects.begin(), objects.end(), [](const ObjectEstimate& x) { return x.cls == ObjectClass::kChair; });
+    io::Json summary = {{"input", source->describe()},
+                        {"sweeps", sweeps},
+                        {"points", points},
+                        {"keyframes", keyframes},
+                        {"detections", detections},
+                        {"verification", library ? "on: " + std::to_string(library->models().size()) + " CAD models from " + o.cad
+                                                 : std::string("skipped: no --cad")},
+                        {"verified_accepted", accepted},
+                        {"pose", external ? "external (--poses)" : params.lidar_odometry ? "LiDAR odometry" : "wheel odometry"},
+                        {"objects", objects.size()},
+                        {"chairs", chairs},
+                        {"tables", objects.size() - chairs},
+                        {"static_map", o.map.empty() ? "none (a free " + std::to_string(o.costmap_size_m) + " m square)" : o.map},
+                        {"timing_ms", timings.to_json()},
+                        {"start_pose", {start.x_m, start.y_m, start.yaw_rad}}};
+    io::write_json(out / "summary.json", summary);
+    if (bag) bag->close();
+    staged.commit();
+    const auto [sweep_median, sweep_p99] = median_p99(timings.ms["per_sweep_ms"]);
+    const auto [key_median, key_p99] = median_p99(timings.ms.count("keyframe_ms") ? timings.ms["keyframe_ms"] : std::vector<double>{0.0});
+    char line[256];
+    std::snprintf(line, sizeof(line), "%zu sweeps, %zu keyframes, %zu objects (%zu chairs); per sweep %.1f ms median, per keyframe %.1f ms median",
+                  sweeps, keyframes, objects.size(), chairs, sweep_median, key_median);
+    std::cout << line << "\nwrote " << o.out << (o.out_bag.empty() ? "" : " and " + o.out_bag) << "\n";
+    return 0;
+}
+
+}  // namespace makeway::apps

@@ -1,0 +1,187 @@
+#include "ros/sweep_source.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "io/error.hpp"
+#include "io/file_util.hpp"
+#include "io/pose_io.hpp"
+
+namespace makeway::rosio {
+namespace fs = std::filesystem;
+namespace {
+
+std::string seconds(double t) {
+    char b[32];
+    std::snprintf(b, sizeof(b), "%.3f", t);
+    return b;
+}
+
+// The base's planar poses from a TUM file: wheel odometry holds the base; external poses hold the
+// sensor (as `makeway odometry` and `simulate`'s poses_gt.txt write them).
+std::vector<StampedPose2> read_base_poses(const std::string& path, bool sensor_poses, const Isometry3& T_base_sensor) {
+    std::vector<StampedPose2> out;
+    for (const io::StampedPose& p : io::read_tum(path)) {
+        out.push_back({p.stamp_s, project_to_plane(sensor_poses ? p.T_world_sensor * T_base_sensor.inverse() : p.T_world_sensor)});
+    }
+    return out;
+}
+
+double sweep_duration(const PointCloud& points) {
+    float last = 0.0f;
+    for (float t : points.time_s) last = std::max(last, t);
+    return last;
+}
+
+// A spinning LiDAR's sweep lasts until the next one starts; the last sweep lasts as long as the
+// one before it; without stamps between sweeps, until its last point, else one period at `rate`.
+double choose_duration(std::optional<double> gap_to_next, double previous, double measured, double rate_hz) {
+    if (gap_to_next && *gap_to_next > 0.0 && *gap_to_next <= 1.0) return *gap_to_next;
+    if (previous > 0.0) return previous;
+    if (measured > 1e-4) return measured;
+    return 1.0 / rate_hz;
+}
+
+class FolderSource : public SweepSource {
+public:
+    explicit FolderSource(const SourceOptions& o) : o_(o) {
+        std::error_code ec;
+        if (!fs::is_directory(o.clouds, ec)) throw io::FileError(o.clouds, "not a folder of sweeps");
+        for (const auto& e : fs::directory_iterator(o.clouds, ec)) {
+            const std::string ext = io::lower_extension(e.path());
+            if (e.is_regular_file() && (ext == "pcd" || ext == "ply" || ext == "bin")) files_.push_back(e.path());
+        }
+        std::sort(files_.begin(), files_.end());
+        if (files_.empty()) throw io::FileError(o.clouds, "no .pcd, .ply or .bin sweeps");
+        const std::string& pose_file = !o.poses.empty() ? o.poses : o.odometry;
+        if (!pose_file.empty()) {
+            poses_ = read_base_poses(pose_file, !o.poses.empty(), o.T_base_sensor);
+            if (poses_.size() < files_.size()) {
+                throw io::FileError(pose_file, "holds " + std::to_string(poses_.size()) + " poses for " +
+                                                   std::to_string(files_.size()) + " sweeps (line k is sweep k's start)");
+            }
+        }
+    }
+    std::size_t size() const override { return files_.size(); }
+    std::optional<Pose2> first_pose() const override {
+        return poses_.empty() ? std::nullopt : std::optional<Pose2>(poses_.front().pose);
+    }
+    std::string describe() const override {
+        return std::to_string(files_.size()) + " sweeps in " + o_.clouds +
+               (!o_.poses.empty() ? ", external poses " + o_.poses : !o_.odometry.empty() ? ", wheel odometry " + o_.odometry : ", no odometry");
+    }
+    std::optional<SourceSweep> next() override {
+        if (k_ >= files_.size()) return std::nullopt;
+        const std::size_t k = k_++;
+        SourceSweep s;
+        s.name = files_[k].string();
+        s.points = io::read_point_cloud(files_[k], {.non_finite = o_.non_finite}).cloud;
+        s.timed = s.points.time_s.size() == s.points.size() && !s.points.empty();
+        const double measured = s.timed ? sweep_duration(s.points) : 0.0;
+        if (poses_.empty()) {
+            s.stamp_s = static_cast<double>(k) / o_.rate_hz;
+            s.duration_s = measured > 1e-4 ? measured : 1.0 / o_.rate_hz;
+            return s;
+        }
+        s.stamp_s = poses_[k].stamp_s;
+        const std::optional<double> gap = k + 1 < poses_.size() ? std::optional<double>(poses_[k + 1].stamp_s - s.stamp_s) : std::nullopt;
+        s.duration_s = previous_duration_ = choose_duration(gap, previous_duration_, measured, o_.rate_hz);
+        s.pose_start = poses_[k].pose;
+        // The end: the next line (an extra last line gives the last sweep's end), else the last
+        // increment again.
+        s.pose_end = k + 1 < poses_.size() ? poses_[k + 1].pose
+                     : k > 0              ? compose(poses_[k].pose, between(poses_[k - 1].pose, poses_[k].pose))
+                                          : poses_[k].pose;
+        return s;
+    }
+
+private:
+    SourceOptions o_;
+    std::vector<fs::path> files_;
+    std::vector<StampedPose2> poses_;
+    std::size_t k_ = 0;
+    double previous_duration_ = 0.0;
+};
+
+class BagSource : public SweepSource {
+public:
+    explicit BagSource(const SourceOptions& o) : o_(o), reader_(o.bag, o.topics, false) {
+        if (!o.poses.empty()) {
+            poses_ = read_base_poses(o.poses, true, o.T_base_sensor);
+            pose_source_ = o.poses;
+        } else {
+            poses_ = reader_.odometry();
+            pose_source_ = "the odometry on " + o.topics.odometry;
+        }
+        if (reader_.sweeps() == 0) throw io::FileError(o.bag, "no messages on " + o.topics.cloud);
+    }
+    std::size_t size() const override { return reader_.sweeps(); }
+    std::optional<Pose2> first_pose() const override {
+        return poses_.empty() ? std::nullopt : std::optional<Pose2>(poses_.front().pose);
+    }
+    std::string describe() const override {
+        return std::to_string(reader_.sweeps()) + " sweeps on " + o_.topics.cloud + " in " + o_.bag +
+               (poses_.empty() ? ", no odometry on " + o_.topics.odometry : ", poses from " + pose_source_);
+    }
+    std::optional<SourceSweep> next() override {
+        std::optional<CloudSweep> c = pending_ ? std::move(pending_) : reader_.next();
+        if (!c) return std::nullopt;
+        pending_ = reader_.next();  // one sweep ahead: this one lasts until that one starts
+        const std::size_t k = k_++;
+        SourceSweep s;
+        s.name = o_.bag + ": " + o_.topics.cloud + " message " + std::to_string(k);
+        s.points = std::move(c->points);
+        const std::size_t bad = s.points.count_non_finite();
+        if (bad > 0 && o_.non_finite == io::NonFinitePolicy::kReject) {
+            throw io::FileError(o_.bag, o_.topics.cloud + " message " + std::to_string(k) + ": " + std::to_string(bad) +
+                                            " points have NaN or infinite coordinates (--non-finite drop to skip them)");
+        }
+        if (bad > 0 && o_.non_finite == io::NonFinitePolicy::kDrop) s.points = remove_non_finite(s.points);
+        s.timed = c->timed;
+        s.stamp_s = c->stamp_s;
+        const std::optional<double> gap = pending_ ? std::optional<double>(pending_->stamp_s - s.stamp_s) : std::nullopt;
+        s.duration_s = previous_duration_ = choose_duration(gap, previous_duration_, c->timed ? c->duration_s : 0.0, o_.rate_hz);
+        if (!poses_.empty()) {
+            s.pose_start = interpolate_at(poses_, s.stamp_s);
+            s.pose_end = interpolate_at(poses_, s.stamp_s + s.duration_s);
+            if (!s.pose_start || !s.pose_end) {
+                throw io::FileError(o_.poses.empty() ? o_.bag : o_.poses,
+                                    pose_source_ + " covers " + seconds(poses_.front().stamp_s) + "-" + seconds(poses_.back().stamp_s) +
+                                        " s; sweep " + std::to_string(k) + " (" + seconds(s.stamp_s) + "-" +
+                                        seconds(s.stamp_s + s.duration_s) + " s) lies outside");
+            }
+        }
+        return s;
+    }
+
+private:
+    SourceOptions o_;
+    BagReader reader_;
+    std::vector<StampedPose2> poses_;
+    std::string pose_source_;
+    std::size_t k_ = 0;
+    double previous_duration_ = 0.0;
+    std::optional<CloudSweep> pending_;
+};
+
+}  // namespace
+
+std::optional<Pose2> interpolate_at(const std::vector<StampedPose2>& poses, double t) {
+    constexpr double kSlack_s = 1e-3;
+    if (poses.empty() || t < poses.front().stamp_s - kSlack_s || t > poses.back().stamp_s + kSlack_s) return std::nullopt;
+    const auto it = std::lower_bound(poses.begin(), poses.end(), t, [](const StampedPose2& p, double v) { return p.stamp_s < v; });
+    if (it == poses.begin()) return poses.front().pose;
+    if (it == poses.end()) return poses.back().pose;
+    const StampedPose2& a = *(it - 1);
+    const StampedPose2& b = *it;
+    const double span = b.stamp_s - a.stamp_s;
+    const double s = span > 0.0 ? (t - a.stamp_s) / span : 1.0;
+    return interpolate(a.pose, b.pose, std::clamp(s, 0.0, 1.0));
+}
+
+std::unique_ptr<SweepSource> open_sweep_source(const SourceOptions& options) {
+    if (!options.bag.empty()) return std::make_unique<BagSource>(options);
+    return std::make_unique<FolderSource>(options);
+}
+
+}  // namespace makeway::rosio

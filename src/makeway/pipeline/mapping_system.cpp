@@ -1,0 +1,29 @@
+#include "makeway/pipeline/mapping_system.hpp"
+
+#include <chrono>
+
+namespace makeway::pipeline {
+
+MappingSystem::MappingSystem(const SystemParams& params, const Pose2& start_pose, const Costmap& static_map,
+                             bool restrict_objects, const perception::ObjectDetector* detector,
+                             const verification::CadLibrary* library)
+    : static_map_(static_map), pipeline_(params, start_pose, detector, library), costmap_(static_map, params.navigator) {
+    if (restrict_objects) {
+        pipeline_.set_object_region([this](const Eigen::Vector2d& p) {
+            const auto c = static_map_.cost_at(p);
+            return c.has_value() && *c < cost::kLethal;
+        });
+    }
+}
+
+MappingStep MappingSystem::process(const Sweep& sweep) {
+    MappingStep out;
+    out.sweep = pipeline_.process_sweep(sweep);
+    objects_ = out.sweep.objects;
+    const auto t0 = std::chrono::steady_clock::now();
+    costmap_.update(&out.sweep.points_world, out.sweep.T_world_sensor_end.translation(), objects_);
+    out.costmap_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+}
+
+}  // namespace makeway::pipeline
