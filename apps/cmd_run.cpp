@@ -120,6 +120,11 @@ int run_run(const RunOptions& o) {
     io::ProgressBar bar("run", source->size());
     while (std::optional<rosio::SourceSweep> s = source->next()) {
         if (o.max_sweeps > 0 && sweeps >= static_cast<std::size_t>(o.max_sweeps)) break;
+        if (!s->timed && !o.instantaneous) {
+            throw io::FileError(s->file, (s->item.empty() ? "" : s->item + ": ") +
+                                             "no per-point time field (time, t or timestamp): the sweep cannot be de-skewed "
+                                             "(--instantaneous takes each sweep as taken at once)");
+        }
         points += s->points.size();
         const double stamp = s->stamp_s;
         const pipeline::MappingStep step = system.process({std::move(s->points), stamp, s->duration_s, s->pose_start, s->pose_end});

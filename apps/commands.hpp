@@ -192,6 +192,7 @@ struct RunOptions {
     int png_every = 1;                  ///< a picture every n-th keyframe (0: none)
     int max_sweeps = 0;                 ///< 0: all
     std::string non_finite = "reject";
+    bool instantaneous = false;         ///< accept sweeps without per-point time (not de-skewed)
 };
 int run_run(const RunOptions& options);
 

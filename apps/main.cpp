@@ -273,6 +273,8 @@ void add_run(CLI::App& app, RunOptions& o) {
     sub->add_option("--non-finite", o.non_finite, "Points with NaN/inf coordinates: reject (error) or drop")
         ->check(CLI::IsMember({"reject", "drop"}))
         ->capture_default_str();
+    sub->add_flag("--instantaneous", o.instantaneous, "Accept sweeps without a per-point time field, each taken at its "
+                                                      "stamp (not de-skewed); off: such a sweep is an error");
     sub->add_option("--out", o.out, "Output folder: objects/ per keyframe, objects.json, costmap.yaml/.pgm, poses.txt, "
                                     "keyframes/ and keyframes.png, map.png, summary.json")
         ->capture_default_str();

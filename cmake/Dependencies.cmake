@@ -40,6 +40,11 @@ pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET libzip)
 # /usr/include, header-only) and ros::Time. The messages' own CMake configs need catkin: not used.
 # Not in the fuzz build (clang 14 parsers only).
 if(NOT MAKEWAY_FUZZ)
+    # Debian's ROS configs run Python helpers that need the system interpreter's ament_package: a
+    # python3 earlier on PATH (a virtualenv, pyenv) would not have it.
+    if(NOT Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+        set(Python3_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "Debian's Python (ROS 1 CMake configs)")
+    endif()
     find_package(rosbag_storage REQUIRED)
     find_library(ROS_ROSTIME_LIBRARY rostime REQUIRED)
     find_library(ROS_SERIALIZATION_LIBRARY roscpp_serialization REQUIRED)

@@ -113,6 +113,22 @@ std::optional<CloudSweep> BagReader::next() {
     return std::nullopt;
 }
 
+std::map<std::string, BagTopic> bag_topics(const std::filesystem::path& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) throw io::FileError(path.string(), "no such bag file");
+    std::map<std::string, BagTopic> out;
+    try {
+        rosbag::Bag bag(path.string(), rosbag::bagmode::Read);
+        for (const auto& [topic, type] : topic_types(bag)) {
+            rosbag::View view(bag, rosbag::TopicQuery(topic));
+            out[topic] = {type, view.size()};
+        }
+    } catch (const rosbag::BagException& e) {
+        throw io::FileError(path.string(), std::string("not a readable ROS 1 bag: ") + e.what());
+    }
+    return out;
+}
+
 struct BagWriter::Impl {
     std::filesystem::path path, active;
     rosbag::Bag bag;

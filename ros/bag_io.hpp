@@ -3,6 +3,7 @@
 // ROS type: the program's commands include it; the messages stay in bag_io.cpp and
 // msg_conversions.cpp.
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -57,6 +58,13 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
+
+struct BagTopic {
+    std::string type;
+    std::size_t messages = 0;
+};
+/// Every topic of a bag with its message type and count. Throws io::FileError.
+std::map<std::string, BagTopic> bag_topics(const std::filesystem::path& path);
 
 /// Writes a bag (atomically: into PATH.active, renamed on close(); removed when destroyed
 /// without close()). Stamps are seconds since the epoch (see kSimulatedEpoch_s for simulated time).

@@ -74,7 +74,7 @@ public:
         if (k_ >= files_.size()) return std::nullopt;
         const std::size_t k = k_++;
         SourceSweep s;
-        s.name = files_[k].string();
+        s.file = files_[k].string();
         s.points = io::read_point_cloud(files_[k], {.non_finite = o_.non_finite}).cloud;
         s.timed = s.points.time_s.size() == s.points.size() && !s.points.empty();
         const double measured = s.timed ? sweep_duration(s.points) : 0.0;
@@ -108,10 +108,10 @@ public:
     explicit BagSource(const SourceOptions& o) : o_(o), reader_(o.bag, o.topics, false) {
         if (!o.poses.empty()) {
             poses_ = read_base_poses(o.poses, true, o.T_base_sensor);
-            pose_source_ = o.poses;
+            pose_source_ = "the poses span";
         } else {
             poses_ = reader_.odometry();
-            pose_source_ = "the odometry on " + o.topics.odometry;
+            pose_source_ = "the odometry on " + o.topics.odometry + " spans";
         }
         if (reader_.sweeps() == 0) throw io::FileError(o.bag, "no messages on " + o.topics.cloud);
     }
@@ -121,7 +121,7 @@ public:
     }
     std::string describe() const override {
         return std::to_string(reader_.sweeps()) + " sweeps on " + o_.topics.cloud + " in " + o_.bag +
-               (poses_.empty() ? ", no odometry on " + o_.topics.odometry : ", poses from " + pose_source_);
+               (poses_.empty() ? ", no odometry on " + o_.topics.odometry : !o_.poses.empty() ? ", external poses " + o_.poses : ", wheel odometry on " + o_.topics.odometry);
     }
     std::optional<SourceSweep> next() override {
         std::optional<CloudSweep> c = pending_ ? std::move(pending_) : reader_.next();
@@ -129,7 +129,8 @@ public:
         pending_ = reader_.next();  // one sweep ahead: this one lasts until that one starts
         const std::size_t k = k_++;
         SourceSweep s;
-        s.name = o_.bag + ": " + o_.topics.cloud + " message " + std::to_string(k);
+        s.file = o_.bag;
+        s.item = o_.topics.cloud + " message " + std::to_string(k);
         s.points = std::move(c->points);
         const std::size_t bad = s.points.count_non_finite();
         if (bad > 0 && o_.non_finite == io::NonFinitePolicy::kReject) {
@@ -146,7 +147,7 @@ public:
             s.pose_end = interpolate_at(poses_, s.stamp_s + s.duration_s);
             if (!s.pose_start || !s.pose_end) {
                 throw io::FileError(o_.poses.empty() ? o_.bag : o_.poses,
-                                    pose_source_ + " covers " + seconds(poses_.front().stamp_s) + "-" + seconds(poses_.back().stamp_s) +
+                                    pose_source_ + " " + seconds(poses_.front().stamp_s) + "-" + seconds(poses_.back().stamp_s) +
                                         " s; sweep " + std::to_string(k) + " (" + seconds(s.stamp_s) + "-" +
                                         seconds(s.stamp_s + s.duration_s) + " s) lies outside");
             }

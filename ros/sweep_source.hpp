@@ -23,7 +23,8 @@ struct SourceSweep {
     /// The base's pose in the odometry frame (wheels) or in the world (external poses), at the
     /// sweep's start and end; absent without either.
     std::optional<Pose2> pose_start, pose_end;
-    std::string name;        ///< the file, or "TOPIC message K", for errors
+    std::string file;        ///< where it came from, for errors: the cloud file or the bag ...
+    std::string item;        ///< ... and within a bag, "TOPIC message K" (empty for files)
 };
 
 struct SourceOptions {
