@@ -6,7 +6,7 @@ CMAKE_ARGS ?=
 MAKEWAY  := $(BUILD)/bin/makeway
 FUZZ_SECONDS ?= 60
 
-.PHONY: all deps configure build test demo bench model fuzz fuzz-run asan tsan format clean
+.PHONY: all deps configure build test demo bench model fuzz fuzz-run asan tsan ros format clean
 
 all: build
 
@@ -61,6 +61,14 @@ tsan: deps
 	    TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$(CURDIR)/tests/tsan.supp" \
 	    build-tsan/bin/$$t --gtest_brief=1 --gtest_filter="$${run#*:}" || exit 1; done
 
+# The ROS 1 node (makeway_node) and its integration test against a real master (Debian's rosmaster):
+# a simulated bag played into the node at twice its rate.
+ros:
+	@scripts/install-deps.sh --ros
+	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=$(TYPE) -DMAKEWAY_ROS_NODE=ON $(CMAKE_ARGS) > /dev/null
+	@cmake --build $(BUILD) -j $(JOBS) --target makeway makeway_node test_node
+	@$(BUILD)/bin/test_node --gtest_brief=1
+
 # libFuzzer targets (clang), one per parser: build-fuzz/bin/fuzz_*.
 fuzz:
 	@scripts/install-deps.sh --fuzz
@@ -74,7 +82,7 @@ fuzz-run: fuzz
 	@scripts/run-fuzzers.sh build-fuzz/bin $(FUZZ_SECONDS)
 
 format:
-	@find src io apps tests bench fuzz -name '*.[ch]pp' | xargs clang-format -i
+	@find src io ros apps tests bench fuzz -name '*.[ch]pp' | xargs clang-format -i
 
 clean:
 	rm -rf build build-asan build-tsan build-fuzz out

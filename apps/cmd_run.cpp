@@ -24,7 +24,6 @@
 #include "io/progress.hpp"
 #include "io/staged_output.hpp"
 #include "io/tracking_io.hpp"
-#include "makeway/eval/navigation.hpp"
 #include "makeway/pipeline/mapping_system.hpp"
 #include "ros/bag_io.hpp"
 
@@ -76,9 +75,7 @@ std::string frame_name(std::size_t k) {
 
 int run_run(const RunOptions& o) {
     const io::Config cfg = o.config.empty() ? io::Config{} : io::load_config(o.config);
-    pipeline::SystemParams params = nav_params(cfg).system;
-    params.navigator.inflation.inflation_radius_m = eval::nav_method("ours", cfg.robot)->inflation_radius_m;
-    params.navigator.affordance_layer = true;
+    pipeline::SystemParams params = io::online_system_params(cfg);
     if (!o.extrinsics.empty()) params.T_base_sensor = extrinsics_from(o.extrinsics);
     const bool external = !o.poses.empty();
     if (external) params.lidar_odometry = false;  // the given poses are the pose: no odometry runs

@@ -15,17 +15,8 @@ eval::NavParams nav_params(const io::Config& config) {
     p.lidar = config.lidar;
     p.robot = config.robot;
     p.odometry = config.odometry;
-    p.system = config.system;
+    p.system = io::online_system_params(config);  // navigation sets each method's inflation radius
     p.on_sweep = io::throw_if_interrupted;  // Ctrl-C stops a run within one sweep
-    pipeline::NavigatorParams& n = p.system.navigator;
-    n.affordance = config.affordance;
-    n.inflation.inscribed_radius_m = config.robot.inscribed_radius_m();
-    n.dwa.footprint_length_m = config.robot.length_m;
-    n.dwa.footprint_width_m = config.robot.width_m;
-    n.dwa.max_w_radps = config.robot.max_w_radps;
-    n.dwa.acc_v_mps2 = config.robot.max_acc_mps2;
-    n.dwa.acc_w_radps2 = config.robot.max_ang_acc_radps2;
-    p.system.T_base_sensor = config.robot.T_robot_sensor();
     p.seed = config.simulation.seed;
     return p;
 }

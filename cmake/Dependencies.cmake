@@ -55,3 +55,6 @@ if(NOT MAKEWAY_FUZZ)
     target_link_libraries(makeway_ros_bag_deps INTERFACE ${rosbag_storage_LIBRARIES} ${ROS_ROSTIME_LIBRARY}
                                                          ${ROS_SERIALIZATION_LIBRARY} ${ROS_CPP_COMMON_LIBRARY})
 endif()
+if(MAKEWAY_ROS_NODE)
+    find_package(roscpp REQUIRED)
+endif()

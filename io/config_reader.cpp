@@ -434,4 +434,20 @@ Config load_config(const std::filesystem::path& path) {
     }
 }
 
+pipeline::SystemParams online_system_params(const Config& config) {
+    pipeline::SystemParams p = config.system;
+    pipeline::NavigatorParams& n = p.navigator;
+    n.affordance = config.affordance;
+    n.affordance_layer = true;
+    n.inflation.inscribed_radius_m = config.robot.inscribed_radius_m();
+    n.inflation.inflation_radius_m = config.robot.circumscribed_radius_m();
+    n.dwa.footprint_length_m = config.robot.length_m;
+    n.dwa.footprint_width_m = config.robot.width_m;
+    n.dwa.max_w_radps = config.robot.max_w_radps;
+    n.dwa.acc_v_mps2 = config.robot.max_acc_mps2;
+    n.dwa.acc_w_radps2 = config.robot.max_ang_acc_radps2;
+    p.T_base_sensor = config.robot.T_robot_sensor();
+    return p;
+}
+
 }  // namespace makeway::io

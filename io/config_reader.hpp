@@ -83,6 +83,11 @@ struct Config {
     pipeline::SystemParams system;
 };
 
+/// The online system's parameters as the program runs it on a robot (`ours`): the configuration's
+/// sections, the affordance zones into the navigator, the robot's footprint and limits into DWA,
+/// inflation at the robot's circumscribed radius, the sensor's mount as extrinsics.
+pipeline::SystemParams online_system_params(const Config& config);
+
 /// Throws FormatError listing every problem ("3 problems: a; b; c").
 Config parse_config(std::string_view yaml_text);
 /// Throws FileError("PATH: ...") on a missing file or any problem in it.

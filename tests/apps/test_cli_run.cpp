@@ -17,16 +17,9 @@ using testing_util::CliRun;
 using testing_util::lines;
 using testing_util::run_makeway;
 
-// A room with a chair and a table beside the robot's straight route.
+// A room with a chair and a table beside the robot's straight route (shared with the node's test).
 void write_room(const std::filesystem::path& path) {
-    std::ofstream(path) << "name: room\nfloor: {min_m: [-5.5, -3], max_m: [5.5, 3]}\n"
-                           "walls:\n  - {a_m: [-5, -2.5], b_m: [5, -2.5]}\n  - {a_m: [5, -2.5], b_m: [5, 2.5]}\n"
-                           "  - {a_m: [5, 2.5], b_m: [-5, 2.5]}\n  - {a_m: [-5, 2.5], b_m: [-5, -2.5]}\n"
-                           "objects:\n"
-                           "  - {id: 1, class: chair, style: four_leg_chair, model_seed: 4, pose: {x_m: -1, y_m: 1.0, yaw_rad: 0.6}}\n"
-                           "  - {id: 2, class: table, style: rect_table, model_seed: 2, pose: {x_m: 1.5, y_m: -1.3, yaw_rad: 0.1}}\n"
-                           "start: {x_m: -4, y_m: 0, yaw_rad: 0}\nwaypoint: {x_m: 0, y_m: 0, yaw_rad: 0}\n"
-                           "goal: {x_m: 3.5, y_m: 0, yaw_rad: 0}\n";
+    std::filesystem::copy_file(std::filesystem::path(MAKEWAY_SOURCE_DIR) / "tests" / "data" / "room_chair_table.yaml", path);
 }
 
 const ObjectEstimate* nearest(const std::vector<ObjectEstimate>& objects, ObjectClass cls, const Eigen::Vector2d& at, double* distance) {
