@@ -73,6 +73,10 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
     const Isometry3 T_end_start = lift_to_3d(motion).inverse();
     std::vector<Eigen::Vector3d> points;
     points.reserve(points_sensor.size());
+    // A spinning sensor fires a column of beams at once: consecutive points share their time, and
+    // the motion at that time is computed once per column (1,800 a sweep, not 57,600).
+    float column_time = -1.0f;
+    Isometry3 T_end_point = T_end_start;
     for (std::size_t i = 0; i < points_sensor.size(); ++i) {
         const Eigen::Vector3d p = points_sensor.xyz[i].cast<double>();
         if (!p.allFinite()) continue;
@@ -81,8 +85,12 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
         const Eigen::Vector3d p_base = T_base_sensor_ * p;
         if (p_base.z() < params_.min_height_m) continue;
         if (timed) {
-            const double s = std::clamp(static_cast<double>(points_sensor.time_s[i]) / duration_s, 0.0, 1.0);
-            points.push_back(T_end_start * (lift_to_3d(interpolate(Pose2{}, motion, s)) * p_base));
+            if (points_sensor.time_s[i] != column_time) {
+                column_time = points_sensor.time_s[i];
+                const double s = std::clamp(static_cast<double>(column_time) / duration_s, 0.0, 1.0);
+                T_end_point = T_end_start * lift_to_3d(interpolate(Pose2{}, motion, s));
+            }
+            points.push_back(T_end_point * p_base);
         } else {
             points.push_back(T_end_start * p_base);  // an instantaneous sweep, taken at its stamp (the start)
         }

@@ -70,9 +70,16 @@ std::optional<MapMatch> VoxelMap::nearest(const Eigen::Vector3d& query, double m
     double best = max_distance_m * max_distance_m;
     const Voxel* best_voxel = nullptr;
     const Eigen::Vector3d* best_point = nullptr;
+    // How far the query lies inside its voxel: a neighbour whose nearest face is farther than the
+    // best match so far cannot hold a closer point, and is not looked up (most of the 26 are not:
+    // the correspondence distance is well below the voxel size once under way).
+    const Eigen::Vector3d low = query - k.cast<double>() * params_.voxel_m;
+    const Eigen::Vector3d high = Eigen::Vector3d::Constant(params_.voxel_m) - low;
+    const auto gap2 = [&](int d, int axis) { return d < 0 ? low(axis) * low(axis) : d > 0 ? high(axis) * high(axis) : 0.0; };
     for (int dx = -1; dx <= 1; ++dx) {
         for (int dy = -1; dy <= 1; ++dy) {
             for (int dz = -1; dz <= 1; ++dz) {
+                if (gap2(dx, 0) + gap2(dy, 1) + gap2(dz, 2) >= best) continue;
                 const auto it = voxels_.find(Eigen::Vector3i(k.x() + dx, k.y() + dy, k.z() + dz));
                 if (it == voxels_.end()) continue;
                 for (const auto& p : it->second.points) {
