@@ -134,8 +134,8 @@ void write_contact_sheet(const std::filesystem::path& path, const std::vector<st
     constexpr int kCaption_px = 18;
     columns = std::max(1, std::min<int>(columns, static_cast<int>(std::max<std::size_t>(pngs.size(), 1))));
     const int rows = static_cast<int>((pngs.size() + columns - 1) / columns);
-    // Thumbnails keep the first picture's aspect ratio.
-    int thumb_h = thumb_px;
+    // Square cells; each picture scaled to fit its cell, keeping its aspect ratio.
+    const int thumb_h = thumb_px;
     std::vector<cairo_surface_t*> images;
     const auto release = [&images] {
         for (cairo_surface_t* i : images) cairo_surface_destroy(i);
@@ -146,9 +146,6 @@ void write_contact_sheet(const std::filesystem::path& path, const std::vector<st
             cairo_surface_destroy(img);
             release();
             throw FileError(p.string(), "not a readable PNG");
-        }
-        if (images.empty()) {
-            thumb_h = std::max(1, thumb_px * cairo_image_surface_get_height(img) / std::max(1, cairo_image_surface_get_width(img)));
         }
         images.push_back(img);
     }
@@ -161,11 +158,12 @@ void write_contact_sheet(const std::filesystem::path& path, const std::vector<st
     cairo_set_font_size(cr, 12);
     for (std::size_t i = 0; i < images.size(); ++i) {
         const int x = static_cast<int>(i % columns) * thumb_px, y = static_cast<int>(i / columns) * (thumb_h + kCaption_px);
-        const double sx = static_cast<double>(thumb_px) / cairo_image_surface_get_width(images[i]);
-        const double sy = static_cast<double>(thumb_h) / cairo_image_surface_get_height(images[i]);
+        const double scale = std::min(static_cast<double>(thumb_px) / cairo_image_surface_get_width(images[i]),
+                                      static_cast<double>(thumb_h) / cairo_image_surface_get_height(images[i]));
         cairo_save(cr);
-        cairo_translate(cr, x, y);
-        cairo_scale(cr, sx, sy);
+        cairo_translate(cr, x + 0.5 * (thumb_px - scale * cairo_image_surface_get_width(images[i])),
+                        y + 0.5 * (thumb_h - scale * cairo_image_surface_get_height(images[i])));
+        cairo_scale(cr, scale, scale);
         cairo_set_source_surface(cr, images[i], 0, 0);
         cairo_paint(cr);
         cairo_restore(cr);

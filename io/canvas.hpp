@@ -57,7 +57,7 @@ private:
     int height_ = 0;
 };
 
-/// Thumbnails of `pngs` (scaled to thumb_px wide, in rows of `columns`) with a caption under each,
+/// Thumbnails of `pngs` (each scaled into a thumb_px square, aspect kept; rows of `columns`) with a caption under each,
 /// as one PNG: a drive's keyframes at a glance. Throws FileError naming an unreadable input or the
 /// output.
 void write_contact_sheet(const std::filesystem::path& path, const std::vector<std::filesystem::path>& pngs,

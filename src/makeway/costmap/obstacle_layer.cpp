@@ -19,9 +19,13 @@ ObstacleLayer::ObstacleLayer(const Costmap& geometry, const ObstacleLayerParams&
 void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridWindow& window) {
     if (!input.points_world) return;
     const Eigen::Vector2i s = grid_.cell_of(input.sensor_world_m.head<2>());
-    // Unique endpoint cells: one ray per cell is enough to clear and mark.
-    std::vector<std::uint8_t> endpoint(grid_.cost.size(), 0);  // 1 clear-only, 2 mark
-    std::vector<int> cells;
+    // Unique endpoint cells: one ray per cell is enough to clear and mark. The per-cell marks are
+    // kept between updates (zeroed cell by cell at the end) instead of a grid-sized allocation
+    // per sweep.
+    std::vector<std::uint8_t>& endpoint = endpoint_;
+    endpoint.resize(grid_.cost.size(), 0);
+    std::vector<int>& cells = cells_;
+    cells.clear();
     const double mark2 = params_.mark_range_m * params_.mark_range_m;
     const double clear2 = params_.clear_range_m * params_.clear_range_m;
     for (const Eigen::Vector3f& p : input.points_world->xyz) {
@@ -52,6 +56,7 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
     }
     for (int idx : cells) {
         if (endpoint[idx] == 2) grid_.cost[idx] = cost::kLethal;
+        endpoint[idx] = 0;
     }
     window.expand(touched.clipped(grid_.width, grid_.height));
 }

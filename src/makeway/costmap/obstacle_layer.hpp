@@ -25,6 +25,8 @@ public:
 private:
     ObstacleLayerParams params_;
     Costmap grid_;
+    std::vector<std::uint8_t> endpoint_;  ///< per cell, during one update: 0 none, 1 clear-only, 2 mark (zero between updates)
+    std::vector<int> cells_;              ///< the cells with an endpoint in this update
 };
 
 }  // namespace makeway::costmap

@@ -9,9 +9,11 @@ MappingSystem::MappingSystem(const SystemParams& params, const Pose2& start_pose
                              const verification::CadLibrary* library)
     : static_map_(static_map), pipeline_(params, start_pose, detector, library), costmap_(static_map, params.navigator) {
     if (restrict_objects) {
+        // Within the map's known area. Not "in its free space" as with a map of walls alone: a
+        // SLAM map of a furnished room holds the furniture as occupied cells.
         pipeline_.set_object_region([this](const Eigen::Vector2d& p) {
             const auto c = static_map_.cost_at(p);
-            return c.has_value() && *c < cost::kLethal;
+            return c.has_value() && *c != cost::kUnknown;
         });
     }
 }

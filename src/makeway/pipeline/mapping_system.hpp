@@ -20,8 +20,8 @@ struct MappingStep {
 
 class MappingSystem {
 public:
-    /// `static_map`: the prebuilt map of walls (or a free grid of the area to map); with
-    /// `restrict_objects`, objects stand only in its free space. `detector` and `library` as the
+    /// `static_map`: the prebuilt map (or a free grid of the area to map); with
+    /// `restrict_objects`, objects stand only within its known area. `detector` and `library` as the
     /// Pipeline's. Throws std::invalid_argument listing every problem of `params`.
     MappingSystem(const SystemParams& params, const Pose2& start_pose, const Costmap& static_map, bool restrict_objects,
                   const perception::ObjectDetector* detector, const verification::CadLibrary* library);

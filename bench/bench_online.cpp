@@ -1,0 +1,79 @@
+// The online system's per-sweep work on one core (the target: at most 10 ms median per
+// sweep): LiDAR odometry against its local map, the sweep de-skewed into the world, and the
+// object-aware costmap's update (obstacle raytracing, affordance zones, inflation), over a 50-sweep
+// drive through a medium scene with a walker and pulled chairs. The keyframe chain (detector,
+// verification, tracking) is timed by `makeway run`'s summary.json.
+#include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
+
+#include "makeway/odometry/lidar_odometry.hpp"
+#include "makeway/perception/accumulator.hpp"
+#include "makeway/pipeline/object_costmap.hpp"
+#include "makeway/sim/route.hpp"
+#include "makeway/sim/scene_generator.hpp"
+#include "makeway/sim/sequence.hpp"
+
+namespace {
+
+using namespace makeway;
+
+struct Drive {
+    std::vector<sim::SimFrame> frames;
+    Pose2 start;
+    std::vector<ObjectEstimate> objects;  // the truth, as the affordance layer's input
+    Costmap free_map;
+};
+
+const Drive& medium_drive() {
+    static const Drive drive = [] {
+        sim::SceneGenParams g;
+        g.seed = 11;
+        g.density = sim::Density::kMedium;
+        const sim::Scene scene = sim::generate_scene(g);
+        const sim::RobotParams robot;
+        const auto route = sim::drive_route(scene, sim::CollisionChecker(scene, sim::models_of(scene), robot), robot);
+        sim::SequenceSimulator sim(scene, route.value_or(std::vector<Eigen::Vector2d>{}), {});
+        Drive d;
+        d.start = sim.start_pose();
+        for (int k = 0; k < 50; ++k) d.frames.push_back(sim.next());
+        for (const sim::ObjectState& s : d.frames.front().objects) {
+            ObjectEstimate o;
+            o.id = s.id;
+            o.cls = s.cls;
+            o.box_world = s.box_world;
+            d.objects.push_back(o);
+        }
+        d.free_map = Costmap(Eigen::Vector2d(d.start.x_m - 20.0, d.start.y_m - 20.0), 0.05, 800, 800);
+        return d;
+    }();
+    return drive;
+}
+
+void BM_PerSweep(benchmark::State& state) {
+    const tbb::global_control one_core(tbb::global_control::max_allowed_parallelism, 1);
+    const Drive& d = medium_drive();
+    const sim::RobotParams robot;
+    std::size_t sweeps = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        odometry::LidarOdometry odo({}, robot.T_robot_sensor(), d.start);
+        pipeline::NavigatorParams nav;
+        nav.inflation.inscribed_radius_m = robot.inscribed_radius_m();
+        nav.inflation.inflation_radius_m = robot.circumscribed_radius_m();
+        pipeline::ObjectCostmap costmap(d.free_map, nav);
+        state.ResumeTiming();
+        for (const sim::SimFrame& f : d.frames) {
+            const auto r = odo.register_sweep(f.points_sensor, f.stamp_s, 0.1, f.odometry_pose, f.odometry_end_pose);
+            const PointCloud world = perception::deskew_sweep({f.points_sensor, f.stamp_s, 0.1, r.T_world_sensor_start, r.T_world_sensor_end},
+                                                              Isometry3::Identity(), true);
+            costmap.update(&world, r.T_world_sensor_end.translation(), d.objects);
+            ++sweeps;
+        }
+    }
+    state.counters["sweeps_per_s"] = benchmark::Counter(static_cast<double>(sweeps), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_PerSweep)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
