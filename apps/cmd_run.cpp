@@ -197,7 +197,7 @@ int run_run(const RunOptions& o) {
                         {"objects", objects.size()},
                         {"chairs", chairs},
                         {"tables", objects.size() - chairs},
-                        {"static_map", o.map.empty() ? "none (a free " + std::to_string(o.costmap_size_m) + " m square)" : o.map},
+                        {"static_map", o.map.empty() ? "none (a free square of " + io::dump_json(o.costmap_size_m) + " m)" : o.map},
                         {"timing_ms", timings.to_json()},
                         {"start_pose", {start.x_m, start.y_m, start.yaw_rad}}};
     io::write_json(out / "summary.json", summary);
