@@ -113,7 +113,6 @@ int run_run(const RunOptions& o) {
     std::vector<fs::path> pictures;
     std::vector<std::string> captions;
     std::size_t keyframes = 0, detections = 0, accepted = 0, points = 0, sweeps = 0;
-    std::string sensor_frame = "velodyne";
     io::ProgressBar bar("run", source->size());
     while (std::optional<rosio::SourceSweep> s = source->next()) {
         if (o.max_sweeps > 0 && sweeps >= static_cast<std::size_t>(o.max_sweeps)) break;

@@ -249,9 +249,11 @@ void add_run(CLI::App& app, RunOptions& o) {
     auto* clouds = sub->add_option("--clouds", o.clouds, "Folder of sweeps (.pcd with a time/t field, .ply, .bin), in name order");
     auto* bag = sub->add_option("--bag", o.bag, "ROS 1 bag with sensor_msgs/PointCloud2 sweeps and nav_msgs/Odometry");
     clouds->excludes(bag);
-    sub->add_option("--odometry", o.odometry, "With --clouds: wheel odometry of the base (TUM, line k at sweep k's start)")->needs(clouds);
-    sub->add_option("--poses", o.poses, "External poses (TUM T_world_sensor at each sweep's start, as `makeway odometry` "
-                                        "writes them): used as they are, the odometry does not run");
+    auto* wheels = sub->add_option("--odometry", o.odometry, "With --clouds: wheel odometry of the base (TUM, line k at sweep k's start)")
+                       ->needs(clouds);
+    auto* poses = sub->add_option("--poses", o.poses, "External poses (TUM T_world_sensor at each sweep's start, as `makeway odometry` "
+                                                      "writes them): used as they are, the odometry does not run");
+    poses->excludes(wheels);
     sub->add_option("--cloud-topic", o.cloud_topic, "With --bag: the PointCloud2 topic")->capture_default_str();
     sub->add_option("--odom-topic", o.odom_topic, "With --bag: the wheel odometry topic (optional in the bag)")->capture_default_str();
     sub->add_option("--map", o.map, "Static map (map_server YAML + PGM) for the costmap's static layer; objects stand in its free space");
