@@ -94,10 +94,7 @@ int run_run(const RunOptions& o) {
     std::optional<verification::CadLibrary> library;
     if (!o.cad.empty()) library = io::read_cad_folder(o.cad);
     const Pose2 start = !o.start.empty() ? Pose2{o.start[0], o.start[1], o.start[2]} : source->first_pose().value_or(Pose2{});
-    const Costmap static_map = !o.map.empty() ? io::read_map_server(o.map)
-                                              : Costmap(Eigen::Vector2d(start.x_m, start.y_m) - Eigen::Vector2d::Constant(0.5 * o.costmap_size_m),
-                                                        o.resolution_m, static_cast<int>(o.costmap_size_m / o.resolution_m),
-                                                        static_cast<int>(o.costmap_size_m / o.resolution_m));
+    const Costmap static_map = !o.map.empty() ? io::read_map_server(o.map) : pipeline::free_area(start, o.costmap_size_m, o.resolution_m);
     pipeline::MappingSystem system(params, start, static_map, !o.map.empty(), &detector, library ? &*library : nullptr);
 
     io::StagedOutput staged(o.out);  // everything or nothing

@@ -96,10 +96,7 @@ struct NodeEngine::Impl {
                  double waited_ms) {
         if (!system) {
             const Pose2 start = settings.start ? *settings.start : wheel_start.value_or(Pose2{});
-            const Costmap map = static_map ? *static_map
-                                           : Costmap(Eigen::Vector2d(start.x_m, start.y_m) - Eigen::Vector2d::Constant(0.5 * settings.costmap_size_m),
-                                                     0.05, static_cast<int>(settings.costmap_size_m / 0.05),
-                                                     static_cast<int>(settings.costmap_size_m / 0.05));
+            const Costmap map = static_map ? *static_map : pipeline::free_area(start, settings.costmap_size_m);
             system = std::make_unique<pipeline::MappingSystem>(params, start, map, static_map.has_value(), &detector,
                                                                library ? &*library : nullptr);
         }

@@ -4,6 +4,11 @@
 
 namespace makeway::pipeline {
 
+Costmap free_area(const Pose2& centre, double side_m, double resolution_m) {
+    const int cells = static_cast<int>(side_m / resolution_m);
+    return Costmap(Eigen::Vector2d(centre.x_m, centre.y_m) - Eigen::Vector2d::Constant(0.5 * side_m), resolution_m, cells, cells);
+}
+
 MappingSystem::MappingSystem(const SystemParams& params, const Pose2& start_pose, const Costmap& static_map,
                              bool restrict_objects, const perception::ObjectDetector* detector,
                              const verification::CadLibrary* library)

@@ -18,6 +18,9 @@ struct MappingStep {
     double per_sweep_ms() const { return sweep.timing.deskew_ms + costmap_ms; }
 };
 
+/// Without a prebuilt map: a free square grid of `side_m` centred on the start, to map into.
+Costmap free_area(const Pose2& centre, double side_m, double resolution_m = 0.05);
+
 class MappingSystem {
 public:
     /// `static_map`: the prebuilt map (or a free grid of the area to map); with
