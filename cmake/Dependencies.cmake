@@ -54,7 +54,5 @@ if(NOT MAKEWAY_FUZZ)
     target_include_directories(makeway_ros_bag_deps SYSTEM INTERFACE ${rosbag_storage_INCLUDE_DIRS} ${ROS_SENSOR_MSGS_INCLUDE_DIR})
     target_link_libraries(makeway_ros_bag_deps INTERFACE ${rosbag_storage_LIBRARIES} ${ROS_ROSTIME_LIBRARY}
                                                          ${ROS_SERIALIZATION_LIBRARY} ${ROS_CPP_COMMON_LIBRARY})
-endif()
-if(MAKEWAY_ROS_NODE)
-    find_package(roscpp REQUIRED)
-endif()
+endif()# roscpp (the node) is found in ros/CMakeLists.txt: its config adds compile definitions to the
+# directory it is found in, which would recompile everything when `make ros` turns the node on.
