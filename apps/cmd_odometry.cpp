@@ -22,15 +22,7 @@ namespace fs = std::filesystem;
 
 int run_odometry(const OdometryOptions& o) {
     const io::Config cfg = o.config.empty() ? io::Config{} : io::load_config(o.config);
-    std::error_code ec;
-    if (!fs::is_directory(o.clouds, ec)) throw io::FileError(o.clouds, "not a folder of sweeps");
-    std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(o.clouds, ec)) {
-        const std::string ext = io::lower_extension(e.path());
-        if (e.is_regular_file() && (ext == "pcd" || ext == "ply" || ext == "bin")) files.push_back(e.path());
-    }
-    std::sort(files.begin(), files.end());
-    if (files.empty()) throw io::FileError(o.clouds, "no .pcd, .ply or .bin sweeps");
+    const std::vector<fs::path> files = io::sweep_files(o.clouds);
     std::vector<io::StampedPose> wheels;
     if (!o.odometry.empty()) {
         wheels = io::read_tum(o.odometry);

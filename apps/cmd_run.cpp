@@ -17,6 +17,7 @@
 #include "io/canvas.hpp"
 #include "io/config_reader.hpp"
 #include "io/error.hpp"
+#include "io/file_util.hpp"
 #include "io/json_io.hpp"
 #include "io/map_server_io.hpp"
 #include "io/nav_png.hpp"
@@ -63,12 +64,6 @@ void view_bounds(const std::vector<Pose2>& trajectory, const std::vector<ObjectE
     lo -= Eigen::Vector2d::Constant(4.0), hi += Eigen::Vector2d::Constant(4.0);
     const Eigen::Vector2d map_hi = map.origin_m + map.resolution_m * Eigen::Vector2d(map.width, map.height);
     lo = lo.cwiseMax(map.origin_m), hi = hi.cwiseMin(map_hi).cwiseMax(lo + Eigen::Vector2d::Constant(1.0));
-}
-
-std::string frame_name(std::size_t k) {
-    char b[16];
-    std::snprintf(b, sizeof(b), "%06zu", k);
-    return b;
 }
 
 }  // namespace
@@ -144,7 +139,7 @@ int run_run(const RunOptions& o) {
             timings.add("track_ms", r.timing.track_ms);
             detections += k.detections.size();
             accepted += std::count_if(k.verified.begin(), k.verified.end(), [](const auto& v) { return v.accepted; });
-            const std::string name = frame_name(keyframes);
+            const std::string name = io::frame_name(keyframes);
             io::Json frame = io::objects_to_json(static_cast<int>(keyframes), k.stamp_s, r.objects);
             frame["T_world_sensor"] = io::pose_to_json(k.T_world_keyframe);
             frame["detections"] = k.detections.size();

@@ -137,8 +137,7 @@ RecordingSummary record_sequence(const sim::Scene& scene, const std::vector<Eige
             sim_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             summary.frames_in_collision += f.collided;
             summary.points += f.points_sensor.size();
-            char name[32];
-            std::snprintf(name, sizeof(name), "%06d", f.index);
+            const std::string name = io::frame_name(static_cast<std::size_t>(f.index));
             writing = name;
             if (i % options.cloud_every != 0) {
                 // ground truth only

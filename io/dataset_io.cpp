@@ -5,17 +5,12 @@
 
 #include "io/error.hpp"
 #include "io/json_io.hpp"
+#include "io/file_util.hpp"
 #include "io/point_cloud_io.hpp"
 #include "io/tracking_io.hpp"
 
 namespace makeway::io {
 namespace {
-
-std::string frame_name(std::size_t index) {
-    char buf[16];
-    std::snprintf(buf, sizeof(buf), "%06zu", index);
-    return buf;
-}
 
 Json labelled_objects_to_json(const std::vector<LabelledObject>& objects) {
     Json out = Json::array();

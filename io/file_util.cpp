@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <system_error>
@@ -91,6 +92,12 @@ void write_file_atomic(const fs::path& path, std::string_view data) {
 std::string to_lower(std::string text) {
     std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return text;
+}
+
+std::string frame_name(std::size_t index) {
+    char buf[24];
+    std::snprintf(buf, sizeof(buf), "%06zu", index);
+    return buf;
 }
 
 std::string lower_extension(const fs::path& path) {

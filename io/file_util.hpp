@@ -22,4 +22,7 @@ std::string lower_extension(const std::filesystem::path& path);
 /// ASCII lower case (type names, extensions: files from other tools spell them either way).
 std::string to_lower(std::string text);
 
+/// A frame's file name stem, zero-padded to six digits ("000042"): recordings, datasets, runs.
+std::string frame_name(std::size_t index);
+
 }  // namespace makeway::io

@@ -1,5 +1,8 @@
 #include "io/point_cloud_io.hpp"
 
+#include <algorithm>
+#include <system_error>
+
 #include "io/error.hpp"
 #include "io/file_util.hpp"
 #include "io/kitti_bin.hpp"
@@ -49,6 +52,19 @@ CloudFile read_point_cloud(const std::filesystem::path& path, const CloudReadOpt
         file.cloud = remove_non_finite(file.cloud);
     }
     return file;
+}
+
+std::vector<std::filesystem::path> sweep_files(const std::filesystem::path& dir) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec)) throw FileError(dir.string(), "not a folder of sweeps");
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+        const std::string ext = lower_extension(e.path());
+        if (e.is_regular_file() && (ext == "pcd" || ext == "ply" || ext == "bin")) files.push_back(e.path());
+    }
+    std::sort(files.begin(), files.end());
+    if (files.empty()) throw FileError(dir.string(), "no .pcd, .ply or .bin sweeps");
+    return files;
 }
 
 std::vector<std::string> write_point_cloud(const std::filesystem::path& path,

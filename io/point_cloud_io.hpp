@@ -28,6 +28,10 @@ struct CloudWriteOptions {
     PlyEncoding ply = PlyEncoding::kBinaryLittleEndian;
 };
 
+/// The sweeps of a recording folder: its .pcd, .ply and .bin files, in name order. Throws
+/// FileError when `dir` is not a folder or holds none.
+std::vector<std::filesystem::path> sweep_files(const std::filesystem::path& dir);
+
 /// Reads any supported file. Throws FileError("PATH: what is wrong") on every kind of bad input.
 CloudFile read_point_cloud(const std::filesystem::path& path, const CloudReadOptions& options = {});
 

@@ -42,8 +42,6 @@ void check_topic(const std::filesystem::path& path, const std::map<std::string, 
     if (it->second != type) throw io::FileError(path.string(), "topic " + topic + " holds " + it->second + ", not " + type);
 }
 
-ros::Time bag_time(double stamp_s) { return ros::Time(std::max(stamp_s, 1e-9)); }
-
 }  // namespace
 
 struct BagReader::Impl {
@@ -137,7 +135,7 @@ struct BagWriter::Impl {
     template <typename M>
     void write(const std::string& topic, double stamp_s, const M& msg) {
         try {
-            bag.write(topic, bag_time(stamp_s), msg);
+            bag.write(topic, to_ros_time(stamp_s), msg);
         } catch (const rosbag::BagException& e) {
             throw io::FileError(path.string(), std::string("cannot write: ") + e.what());
         }

@@ -14,8 +14,6 @@ namespace {
 
 using sensor_msgs::PointField;
 
-ros::Time ros_time(double stamp_s) { return ros::Time(std::max(stamp_s, 1e-9)); }
-
 std::size_t field_size(std::uint8_t datatype) {
     switch (datatype) {
         case PointField::INT8:
@@ -74,6 +72,8 @@ geometry_msgs::Quaternion quaternion_of_yaw(double yaw) {
 }
 
 }  // namespace
+
+ros::Time to_ros_time(double stamp_s) { return ros::Time(std::max(stamp_s, 1e-9)); }
 
 CloudSweep from_point_cloud2(const sensor_msgs::PointCloud2& msg) {
     if (msg.is_bigendian) throw io::FormatError("big-endian PointCloud2 data is not supported");
@@ -165,7 +165,7 @@ CloudSweep from_point_cloud2(const sensor_msgs::PointCloud2& msg) {
 
 sensor_msgs::PointCloud2 to_point_cloud2(const PointCloud& cloud, double stamp_s, const std::string& frame_id) {
     sensor_msgs::PointCloud2 msg;
-    msg.header.stamp = ros_time(stamp_s);
+    msg.header.stamp = to_ros_time(stamp_s);
     msg.header.frame_id = frame_id;
     msg.height = 1;
     msg.width = static_cast<std::uint32_t>(cloud.size());
@@ -199,7 +199,7 @@ Pose2 pose_from_odometry(const nav_msgs::Odometry& msg) {
 nav_msgs::Odometry to_odometry(const Pose2& pose, double v_mps, double w_radps, double stamp_s, const std::string& frame_id,
                                const std::string& child_frame_id) {
     nav_msgs::Odometry msg;
-    msg.header.stamp = ros_time(stamp_s);
+    msg.header.stamp = to_ros_time(stamp_s);
     msg.header.frame_id = frame_id;
     msg.child_frame_id = child_frame_id;
     msg.pose.pose.position.x = pose.x_m;
@@ -220,7 +220,7 @@ std::int8_t occupancy_of_cost(std::uint8_t cost) {
 
 nav_msgs::OccupancyGrid to_occupancy_grid(const Costmap& costmap, double stamp_s, const std::string& frame_id) {
     nav_msgs::OccupancyGrid msg;
-    msg.header.stamp = ros_time(stamp_s);
+    msg.header.stamp = to_ros_time(stamp_s);
     msg.header.frame_id = frame_id;
     msg.info.map_load_time = msg.header.stamp;
     msg.info.resolution = static_cast<float>(costmap.resolution_m);
@@ -239,7 +239,7 @@ visualization_msgs::MarkerArray to_markers(const std::vector<ObjectEstimate>& ob
     using visualization_msgs::Marker;
     visualization_msgs::MarkerArray array;
     Marker clear;
-    clear.header.stamp = ros_time(stamp_s);
+    clear.header.stamp = to_ros_time(stamp_s);
     clear.header.frame_id = frame_id;
     clear.action = Marker::DELETEALL;
     array.markers.push_back(clear);
@@ -300,7 +300,7 @@ visualization_msgs::MarkerArray to_markers(const std::vector<ObjectEstimate>& ob
 
 tf2_msgs::TFMessage to_tf(const Isometry3& T, double stamp_s, const std::string& parent, const std::string& child) {
     geometry_msgs::TransformStamped t;
-    t.header.stamp = ros_time(stamp_s);
+    t.header.stamp = to_ros_time(stamp_s);
     t.header.frame_id = parent;
     t.child_frame_id = child;
     t.transform.translation.x = T.translation().x();

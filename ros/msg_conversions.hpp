@@ -20,6 +20,9 @@
 
 namespace makeway::rosio {
 
+/// A stamp as ros::Time: seconds since the epoch, at least 1 ns (rosbag refuses time 0).
+ros::Time to_ros_time(double stamp_s);
+
 /// Reads x, y, z (float32/64), intensity (float32/64, uint8/16) and ring (uint8/16) when present,
 /// and the per-point time in the layouts drivers write: `time` in seconds relative to the stamp
 /// (Velodyne; float64 values above 1e6 are taken as absolute seconds), `t` in nanoseconds relative

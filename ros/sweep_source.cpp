@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "io/error.hpp"
-#include "io/file_util.hpp"
 #include "io/pose_io.hpp"
 
 namespace makeway::rosio {
@@ -45,14 +44,7 @@ double choose_duration(std::optional<double> gap_to_next, double previous, doubl
 class FolderSource : public SweepSource {
 public:
     explicit FolderSource(const SourceOptions& o) : o_(o) {
-        std::error_code ec;
-        if (!fs::is_directory(o.clouds, ec)) throw io::FileError(o.clouds, "not a folder of sweeps");
-        for (const auto& e : fs::directory_iterator(o.clouds, ec)) {
-            const std::string ext = io::lower_extension(e.path());
-            if (e.is_regular_file() && (ext == "pcd" || ext == "ply" || ext == "bin")) files_.push_back(e.path());
-        }
-        std::sort(files_.begin(), files_.end());
-        if (files_.empty()) throw io::FileError(o.clouds, "no .pcd, .ply or .bin sweeps");
+        files_ = io::sweep_files(o.clouds);
         const std::string& pose_file = !o.poses.empty() ? o.poses : o.odometry;
         if (!pose_file.empty()) {
             poses_ = read_base_poses(pose_file, !o.poses.empty(), o.T_base_sensor);
