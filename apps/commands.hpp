@@ -251,3 +251,28 @@ struct EvalDetectionOptions {
 int run_eval_detection(const EvalDetectionOptions& options);
 
 }  // namespace makeway::apps
+
+namespace makeway::apps {
+
+struct LabelOptions {
+    std::vector<std::string> sessions;  ///< one folder per session (makeway simulate output or recorded sweeps)
+    std::string cad;                    ///< CAD folder; empty: PCA boxes only
+    std::string model;                  ///< the previous round's detector: classes of model-less clusters
+    std::string config;
+    std::string odometry_name = "odometry.txt";
+    std::string out;
+    int max_sweeps = 0;                 ///< per session; 0: all
+};
+int run_label(const LabelOptions& options);
+
+struct BenchLabelOptions {
+    int scenes = 10;
+    int sessions = 3;
+    std::uint64_t seed = 0;
+    int max_sweeps = 600;
+    bool no_cad = false;
+    std::string out_dir = "out/bench_label";
+};
+int run_bench_label(const BenchLabelOptions& options);
+
+}  // namespace makeway::apps

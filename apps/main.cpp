@@ -284,10 +284,37 @@ void add_run(CLI::App& app, RunOptions& o) {
                                             "(MarkerArray), /makeway/object_map (String, JSON), /makeway/odometry, /tf");
 }
 
+void add_label(CLI::App& app, LabelOptions& o) {
+    auto* sub = app.add_subcommand("label", "Automatic annotation of recorded sessions of one place (the paper's six steps): "
+                                            "sessions aligned, points classified by ray tracing (ground, permanent, "
+                                            "movable, dynamic), movable points clustered, boxes by PCA and CAD alignment, "
+                                            "per-point labels; writes a detector dataset");
+    sub->add_option("--sessions", o.sessions, "Session folders (makeway simulate output: clouds/ and odometry.txt; or a "
+                                              "folder of sweeps with odometry.txt) or .bag files, the first one the reference")
+        ->required()->expected(1, -1);
+    sub->add_option("--cad", o.cad, "CAD models of the room's furniture (chair_*.obj, table_*.obj, ...); without: PCA boxes, unknown classes");
+    sub->add_option("--model", o.model, "Detector weights of the previous round: the class of objects no CAD model fits");
+    sub->add_option("--config", o.config, "YAML configuration (the front end's sections)");
+    sub->add_option("--odometry-name", o.odometry_name, "Wheel odometry file name in each session folder (TUM)")->capture_default_str();
+    sub->add_option("--max-sweeps", o.max_sweeps, "Sweeps per session at most (0: all)")->check(CLI::Range(0, 10000000))->capture_default_str();
+    sub->add_option("--out", o.out, "Output folder: clouds/, labels/ (as makeway dataset), point_labels/ (uint32: "
+                                    "semantic low 16 bits, instance high 16), objects.json, meta.json")->required();
+}
+
 void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchVerifyOptions& ver_o, BenchTrackOptions& trk_o,
-               BenchOdometryOptions& odo_o) {
+               BenchOdometryOptions& odo_o, BenchLabelOptions& lab_o) {
     auto* bench = app.add_subcommand("bench", "Benchmarks that print JSON");
     bench->require_subcommand(1);
+    auto* lab = bench->add_subcommand("label", "The automatic annotation against the simulator's truth: multi-session "
+                                               "drives (furniture moved between sessions), point-class IoU, panoptic "
+                                               "quality, box AP@0.25/0.5 and yaw within 10 deg of the auto-labels");
+    lab->add_option("--scenes", lab_o.scenes, "Scenes (alternating medium and dense)")->check(CLI::Range(1, 1000))->capture_default_str();
+    lab->add_option("--sessions", lab_o.sessions, "Sessions per scene")->check(CLI::Range(2, 20))->capture_default_str();
+    lab->add_option("--seed", lab_o.seed, "Seed of scenes, sessions, sensor noise and wheel drift")->capture_default_str();
+    lab->add_option("--max-sweeps", lab_o.max_sweeps, "Sweeps per session at most (10 per second)")->check(CLI::Range(10, 100000))
+        ->capture_default_str();
+    lab->add_flag("--no-cad", lab_o.no_cad, "Without CAD models: every object keeps its PCA box, unknown class");
+    lab->add_option("--out", lab_o.out_dir, "Output folder (summary.json)")->capture_default_str();
     auto* odo = bench->add_subcommand("odometry", "LiDAR odometry on simulated drives (medium and dense scenes with people "
                                                   "and pulled chairs, corridors): ATE, RPE over 1 m and 5 m, sweeps per second; "
                                                   "writes summary.json and table.md");
@@ -400,6 +427,8 @@ int main(int argc, char** argv) {
     BenchTrackOptions bench_track;
     OdometryOptions odometry;
     BenchOdometryOptions bench_odometry;
+    BenchLabelOptions bench_label;
+    LabelOptions label;
     RunOptions run;
     add_info(app, info);
     add_convert(app, convert);
@@ -409,11 +438,12 @@ int main(int argc, char** argv) {
     add_simulate(app, simulate);
     add_navigate(app, navigate);
     add_verify(app, verify);
+    add_label(app, label);
     add_track(app, track, eval_tracking);
     add_detector(app, dataset, train_detector, detect, eval_detection);
     add_odometry(app, odometry);
     add_run(app, run);
-    add_bench(app, bench_sim, bench_nav, bench_verify, bench_track, bench_odometry);
+    add_bench(app, bench_sim, bench_nav, bench_verify, bench_track, bench_odometry, bench_label);
     check_numbers(app);
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
@@ -445,6 +475,7 @@ int main(int argc, char** argv) {
             if (app.got_subcommand("simulate")) return run_simulate(simulate);
             if (app.got_subcommand("navigate")) return run_navigate(navigate);
             if (app.got_subcommand("verify")) return run_verify(verify);
+            if (app.got_subcommand("label")) return run_label(label);
             if (app.got_subcommand("track")) return run_track(track);
             if (app.got_subcommand("odometry")) return run_odometry(odometry);
             if (app.got_subcommand("run")) {
@@ -465,6 +496,7 @@ int main(int argc, char** argv) {
                 if (bench->got_subcommand("verify")) return run_bench_verify(bench_verify);
                 if (bench->got_subcommand("track")) return run_bench_track(bench_track);
                 if (bench->got_subcommand("odometry")) return run_bench_odometry(bench_odometry);
+                if (bench->got_subcommand("label")) return run_bench_label(bench_label);
                 return run_bench_sim(bench_sim);
             }
             return 1;

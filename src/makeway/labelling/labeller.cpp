@@ -1,0 +1,493 @@
+#include "makeway/labelling/labeller.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <deque>
+#include <map>
+#include <stdexcept>
+
+#include "makeway/common/angles.hpp"
+#include "makeway/common/box_overlap.hpp"
+#include "makeway/common/voxel_thin.hpp"
+#include "makeway/labelling/upright_box.hpp"
+
+namespace makeway::labelling {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::vector<Eigen::Vector3d> to_world(const PointCloud& cloud, const Isometry3& T) {
+    std::vector<Eigen::Vector3d> out;
+    out.reserve(cloud.size());
+    for (const Eigen::Vector3f& p : cloud.xyz) out.push_back(T * p.cast<double>());
+    return out;
+}
+
+const verification::CadModel* find_model(const verification::CadLibrary& library, const std::string& name) {
+    for (const verification::CadModel& m : library.models()) {
+        if (m.name == name) return &m;
+    }
+    throw std::logic_error("labeller: the verifier chose a model not in the library: " + name);
+}
+
+// Points within `distance` of the model's surface (finest level) at T_object_world.
+std::size_t count_explained(const std::vector<Eigen::Vector3d>& points, const verification::CadModel& model,
+                            const Isometry3& T_object_world, double distance = 0.06) {
+    std::size_t n = 0;
+    double d2 = 0.0;
+    for (const Eigen::Vector3d& p : points) {
+        if (model.levels.back().nearest(T_object_world * p, distance, &d2) != verification::ModelLevel::kNone) ++n;
+    }
+    return n;
+}
+
+}  // namespace
+
+LabelParams::LabelParams() {
+    // Clusters are rough boxes: every model of the class is tried, whatever its size.
+    verify.max_size_mismatch = 1.2;
+    verify.max_models = 32;
+    verify.box_margin_m = 0.05;
+    verify.num_threads = 1;
+    // A session's map is many keyframes of a still object: its fit is tighter than one keyframe's.
+    verify.e_max_m = 0.025;
+}
+
+std::vector<std::string> LabelParams::validate() const {
+    std::vector<std::string> e = system.validate();
+    for (const std::string& s : align.validate()) e.push_back(s);
+    for (const std::string& s : occupancy.validate()) e.push_back(s);
+    for (const std::string& s : verify.validate()) e.push_back("labelling.verify: " + s);
+    if (trace_every < 1) e.push_back("labelling.trace_every must be >= 1");
+    if (!(trace_voxel_m > 0.0) || !(map_voxel_m > 0.0)) e.push_back("labelling.trace_voxel_m and map_voxel_m must be > 0");
+    if (!(dbscan.eps_m > 0.0) || dbscan.min_points < 1) e.push_back("labelling.dbscan: eps_m > 0 and min_points >= 1");
+    if (!(min_object_height_m >= 0.0 && max_object_height_m > min_object_height_m && max_object_length_m > 0.0)) {
+        e.push_back("labelling: 0 <= min_object_height_m < max_object_height_m and max_object_length_m > 0");
+    }
+    if (!(movable_share >= 0.0 && movable_share <= 1.0) || !(split_share > 0.0 && split_share <= 1.0)) {
+        e.push_back("labelling.movable_share in [0, 1] and split_share in (0, 1]");
+    }
+    if (max_splits < 0) e.push_back("labelling.max_splits must be >= 0");
+    if (!(label_distance_m > 0.0) || !(unknown_box_margin_m >= 0.0)) e.push_back("labelling.label_distance_m > 0, unknown_box_margin_m >= 0");
+    if (!(range_m > 0.0)) e.push_back("labelling.range_m must be > 0");
+    return e;
+}
+
+struct Labeller::Impl {
+    struct TracedSweep {
+        Eigen::Vector3d origin;
+        std::vector<Eigen::Vector3f> points_world;  ///< in the session's own world
+    };
+    struct KeyframeRecord {
+        Isometry3 T_world_keyframe;  ///< in the session's own world
+        PointCloud cloud_sensor;
+        std::optional<Eigen::Vector4d> plane_sensor;
+        double stamp_s = 0.0;
+    };
+    struct Session {
+        Pose2 start;
+        std::unique_ptr<pipeline::FrontEnd> front_end;
+        std::vector<TracedSweep> traced;
+        std::vector<KeyframeRecord> keyframes;
+        std::size_t sweeps = 0;
+        Isometry3 T_ref = Isometry3::Identity();
+        std::optional<Eigen::Vector4d> floor_ref;  ///< the floor plane in the reference frame
+    };
+    struct Object {
+        LabelledWorldObject info;
+        const verification::CadModel* model = nullptr;
+        Isometry3 T_object_world = Isometry3::Identity();
+    };
+
+    LabelParams params;
+    std::vector<Session> sessions;
+    std::unique_ptr<MultiSessionOccupancy> occupancy;
+    std::vector<Object> objects;
+    bool finished = false;
+    double seconds_front_end = 0.0;
+
+    double height_of(const Session& s, const Eigen::Vector3d& p) const {
+        return s.floor_ref ? s.floor_ref->head<3>().dot(p) + s.floor_ref->w() : p.z();
+    }
+    double floor_z_at(const Session& s, double x, double y) const {
+        if (!s.floor_ref || std::abs(s.floor_ref->z()) < 1e-6) return 0.0;
+        const Eigen::Vector4d& f = *s.floor_ref;
+        return -(f.x() * x + f.y() * y + f.w()) / f.z();
+    }
+
+    PointLabel label_point(int session, const Eigen::Vector3d& p) const {
+        const Session& s = sessions[static_cast<std::size_t>(session)];
+        const double h = height_of(s, p);
+        if (h < params.system.keyframe.ground_filter.ground_band_m) return {PointClass::kGround, SemanticLabel::kGround, 0};
+        for (const Object& o : objects) {
+            if (o.info.session != session) continue;
+            const double margin = o.model ? params.label_distance_m : params.unknown_box_margin_m;
+            if (!o.info.box_world.contains(p, margin)) continue;
+            if (o.model) {
+                double d2 = 0.0;
+                const Eigen::Vector3d q = o.T_object_world * p;
+                if (o.model->levels.back().nearest(q, params.label_distance_m, &d2) == verification::ModelLevel::kNone) continue;
+            }
+            return {PointClass::kMovable, o.info.cls ? to_semantic_label(*o.info.cls) : SemanticLabel::kClutter, o.info.id};
+        }
+        if (h > params.system.keyframe.ground_filter.ceiling_height_m) return {PointClass::kPermanent, SemanticLabel::kCeiling, 0};
+        switch (occupancy->classify(session, p)) {
+            case PointClass::kDynamic: return {PointClass::kDynamic, SemanticLabel::kPerson, 0};
+            case PointClass::kMovable: return {PointClass::kMovable, SemanticLabel::kClutter, 0};
+            default: return {PointClass::kPermanent, SemanticLabel::kStructure, 0};
+        }
+    }
+
+    void align(LabelResult& result, const LabelProgress& progress);
+    void trace(const LabelProgress& progress);
+    void find_objects(int session, const verification::CadLibrary* library, const UnknownClassifier& classify_unknown,
+                      SessionReport& report);
+    void label_keyframes(LabelResult& result, const LabelProgress& progress);
+};
+
+Labeller::Labeller(const LabelParams& params) : impl_(std::make_unique<Impl>()) {
+    pipeline::throw_if_problems(params.validate());
+    impl_->params = params;
+}
+Labeller::~Labeller() = default;
+
+void Labeller::begin_session(const Pose2& start_pose) {
+    if (impl_->finished) throw std::logic_error("labeller: begin_session after finish");
+    Impl::Session s;
+    s.start = start_pose;
+    s.front_end = std::make_unique<pipeline::FrontEnd>(impl_->params.system, start_pose);
+    impl_->sessions.push_back(std::move(s));
+}
+
+pipeline::FrontEndResult Labeller::add_sweep(pipeline::Sweep sweep) {
+    if (impl_->sessions.empty() || impl_->finished) throw std::logic_error("labeller: add_sweep outside a session");
+    const auto t0 = Clock::now();
+    Impl::Session& s = impl_->sessions.back();
+    sweep.points_sensor = pipeline::sensor_channels_only(std::move(sweep.points_sensor));
+    pipeline::FrontEndResult r = s.front_end->add(std::move(sweep));
+    if (s.sweeps % static_cast<std::size_t>(impl_->params.trace_every) == 0) {
+        Impl::TracedSweep t;
+        // The sweep's rays start where the sensor was mid-sweep (it moves a few cm in 0.1 s).
+        t.origin = 0.5 * (r.T_world_sensor_start.translation() + r.T_world_sensor_end.translation());
+        std::vector<Eigen::Vector3d> pts;
+        pts.reserve(r.points_world.size());
+        for (const Eigen::Vector3f& p : r.points_world.xyz) pts.push_back(p.cast<double>());
+        for (const Eigen::Vector3d& p : voxel_thin(pts, impl_->params.trace_voxel_m)) t.points_world.push_back(p.cast<float>());
+        s.traced.push_back(std::move(t));
+    }
+    if (r.keyframe) {
+        Impl::KeyframeRecord k;
+        k.T_world_keyframe = r.keyframe->T_world_keyframe;
+        k.cloud_sensor = r.keyframe->prepared.cloud_sensor;
+        if (r.keyframe->prepared.ground.found) {
+            const auto& g = r.keyframe->prepared.ground;
+            k.plane_sensor = Eigen::Vector4d(g.normal.x(), g.normal.y(), g.normal.z(), g.offset);
+        }
+        k.stamp_s = sweep.stamp_s;
+        s.keyframes.push_back(std::move(k));
+    }
+    ++s.sweeps;
+    impl_->seconds_front_end += seconds_since(t0);
+    return r;
+}
+
+const Isometry3& Labeller::T_reference_session(int session) const { return impl_->sessions.at(static_cast<std::size_t>(session)).T_ref; }
+
+void Labeller::Impl::align(LabelResult& result, const LabelProgress& progress) {
+    auto session_map = [&](const Session& s, const Isometry3& T) {
+        std::vector<Eigen::Vector3d> map;
+        for (const KeyframeRecord& k : s.keyframes) {
+            for (const Eigen::Vector3d& p : to_world(k.cloud_sensor, T * k.T_world_keyframe)) map.push_back(p);
+        }
+        return voxel_thin(map, params.align.voxel_m);
+    };
+    odometry::VoxelMap reference;
+    reference.add(session_map(sessions.front(), Isometry3::Identity()));
+    for (std::size_t i = 0; i < sessions.size(); ++i) {
+        Session& s = sessions[i];
+        if (i > 0) {
+            result.reports[i].alignment = align_session(reference, session_map(s, Isometry3::Identity()), params.align);
+            s.T_ref = result.reports[i].alignment.T_reference_session;
+        }
+        for (const KeyframeRecord& k : s.keyframes) {
+            if (!k.plane_sensor) continue;
+            const Isometry3 T = s.T_ref * k.T_world_keyframe;
+            const Eigen::Vector3d n = T.linear() * k.plane_sensor->head<3>();
+            s.floor_ref = Eigen::Vector4d(n.x(), n.y(), n.z(), k.plane_sensor->w() - n.dot(T.translation()));
+            break;
+        }
+        if (progress) progress("align", i + 1, sessions.size());
+    }
+}
+
+void Labeller::Impl::trace(const LabelProgress& progress) {
+    Eigen::AlignedBox3d bounds;
+    for (const Session& s : sessions) {
+        for (const TracedSweep& t : s.traced) {
+            bounds.extend(s.T_ref * t.origin);
+            for (const Eigen::Vector3f& p : t.points_world) {
+                const Eigen::Vector3d q = s.T_ref * p.cast<double>();
+                if ((q - s.T_ref * t.origin).norm() <= params.occupancy.max_range_m) bounds.extend(q);
+            }
+        }
+    }
+    if (bounds.isEmpty()) throw std::invalid_argument("labelling: the sessions hold no points");
+    occupancy = std::make_unique<MultiSessionOccupancy>(params.occupancy, bounds, static_cast<int>(sessions.size()));
+    std::size_t total = 0, done = 0;
+    for (const Session& s : sessions) total += s.traced.size();
+    std::vector<Eigen::Vector3f> pts;
+    for (std::size_t i = 0; i < sessions.size(); ++i) {
+        const Session& s = sessions[i];
+        const Eigen::Isometry3f Tf = s.T_ref.cast<float>();
+        for (const TracedSweep& t : s.traced) {
+            pts.clear();
+            for (const Eigen::Vector3f& p : t.points_world) pts.push_back(Tf * p);
+            occupancy->add_sweep(static_cast<int>(i), s.T_ref * t.origin, pts);
+            if (progress && (++done % 20 == 0 || done == total)) progress("ray tracing", done, total);
+        }
+    }
+}
+
+void Labeller::Impl::find_objects(int session, const verification::CadLibrary* library, const UnknownClassifier& classify_unknown,
+                                  SessionReport& report) {
+    const Session& s = sessions[static_cast<std::size_t>(session)];
+    std::vector<Eigen::Vector3d> map;
+    for (const KeyframeRecord& k : s.keyframes) {
+        for (const Eigen::Vector3d& p : to_world(k.cloud_sensor, s.T_ref * k.T_world_keyframe)) map.push_back(p);
+    }
+    map = voxel_thin(map, params.map_voxel_m);
+    // Step 2 on the map: Dynamic points are not objects' (a walker would join a chair's cluster).
+    std::vector<Eigen::Vector3d> points;
+    std::vector<char> movable;
+    for (const Eigen::Vector3d& p : map) {
+        const PointClass c = occupancy->classify(session, p);
+        if (c == PointClass::kDynamic) continue;
+        points.push_back(p);
+        movable.push_back(c == PointClass::kMovable);
+    }
+    struct Pending {
+        std::vector<Eigen::Vector3d> points;
+        std::vector<char> movable;
+        int depth = 0;
+    };
+    std::deque<Pending> queue;
+    auto cluster_into_queue = [&](const std::vector<Eigen::Vector3d>& pts, const std::vector<char>& mov, int depth) {
+        // Vertical gaps count for less (an office chair's thin column, a table top over its legs).
+        std::vector<Eigen::Vector3d> scaled = pts;
+        for (Eigen::Vector3d& q : scaled) q.z() *= params.dbscan_z_scale;
+        const DbscanResult clusters = dbscan(scaled, params.dbscan);
+        for (const std::vector<std::size_t>& members : cluster_members(clusters)) {
+            if (members.size() < params.min_cluster_points) continue;
+            Pending p;
+            p.depth = depth;
+            for (std::size_t i : members) {
+                p.points.push_back(pts[i]);
+                p.movable.push_back(mov[i]);
+            }
+            queue.push_back(std::move(p));
+            ++report.clusters;
+        }
+    };
+    cluster_into_queue(points, movable, 0);
+    while (!queue.empty()) {
+        Pending c = std::move(queue.front());
+        queue.pop_front();
+        const std::size_t n = c.points.size();
+        const std::size_t n_movable = static_cast<std::size_t>(std::count(c.movable.begin(), c.movable.end(), 1));
+        const double share = static_cast<double>(n_movable) / static_cast<double>(n);
+        Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+        for (const Eigen::Vector3d& p : c.points) centroid += p;
+        centroid /= static_cast<double>(n);
+        const double floor_z = floor_z_at(s, centroid.x(), centroid.y());
+        const OrientedBox box = upright_pca_box(c.points, floor_z);
+        const double height = box.z_max_m() - floor_z;
+        const bool furniture_sized = height >= params.min_object_height_m && height <= params.max_object_height_m &&
+                                     std::max(box.size_m.x(), box.size_m.y()) <= params.max_object_length_m;
+        if (!furniture_sized) {
+            // A wall with chairs against it: its Movable points may still be objects of their own.
+            if (c.depth < params.max_splits && n_movable >= params.min_cluster_points && n_movable < n) {
+                std::vector<Eigen::Vector3d> pts;
+                for (std::size_t i = 0; i < n; ++i) {
+                    if (c.movable[i]) pts.push_back(c.points[i]);
+                }
+                cluster_into_queue(pts, std::vector<char>(pts.size(), 1), c.depth + 1);
+            }
+            continue;
+        }
+        // Step 5: every model of either class, from the PCA box turned by 0 and 45 deg (the verifier
+        // tries the four quarter turns of each: a square footprint's PCA yaw says nothing); the
+        // lowest accepted residual that explains enough of the cluster wins.
+        std::optional<verification::VerifiedDetection> best;
+        const verification::CadModel* best_model = nullptr;
+        std::size_t best_explained = 0;
+        if (library && !library->models().empty()) {
+            PointCloud cloud;
+            for (const Eigen::Vector3d& p : c.points) cloud.xyz.push_back(p.cast<float>());
+            for (ObjectClass cls : kAllObjectClasses) {
+                if (library->models_of(cls).empty()) continue;
+                for (double turn : {0.0, 0.25 * kPi}) {
+                    Detection det;
+                    det.box_sensor = box;
+                    det.box_sensor.yaw_rad += turn;
+                    det.cls = cls;
+                    det.class_probabilities.fill(0.0);
+                    det.class_probabilities[static_cast<std::size_t>(cls)] = 1.0;
+                    verification::VerifiedDetection v = verification::verify_detection(cloud, det, *library, params.verify, floor_z);
+                    if (!v.accepted || (best && v.residual_m >= best->residual_m)) continue;
+                    const verification::CadModel* model = find_model(*library, v.model);
+                    const std::size_t explained = count_explained(c.points, *model, v.T_sensor_object.inverse(), params.label_distance_m);
+                    if (static_cast<double>(explained) < params.min_coverage * static_cast<double>(n) ||
+                        explained < params.min_object_points) {
+                        continue;
+                    }
+                    best = std::move(v);
+                    best_model = model;
+                    best_explained = explained;
+                }
+            }
+        }
+        Object o;
+        o.info.session = session;
+        o.info.map_points = n;
+        o.info.movable_share = share;
+        if (best) {
+            o.model = best_model;
+            o.T_object_world = best->T_sensor_object.inverse();
+            // What the model leaves far from its surface: another object merged into the cluster (a
+            // chair tucked under its table); nearer, it is the object's own noise.
+            std::vector<Eigen::Vector3d> rest;
+            std::vector<char> rest_movable;
+            for (std::size_t i = 0; i < n; ++i) {
+                double d2 = 0.0;
+                if (best_model->levels.back().nearest(o.T_object_world * c.points[i], params.split_distance_m, &d2) !=
+                    verification::ModelLevel::kNone) {
+                    continue;
+                }
+                rest.push_back(c.points[i]);
+                rest_movable.push_back(c.movable[i]);
+            }
+            if (c.depth < params.max_splits && rest.size() >= params.min_cluster_points &&
+                static_cast<double>(rest.size()) >= params.split_share * static_cast<double>(n)) {
+                cluster_into_queue(rest, rest_movable, c.depth + 1);
+            }
+            (void)best_explained;
+            o.info.cls = best->detection.cls;
+            o.info.box_world = best->box_sensor;
+            o.info.model = best->model;
+            o.info.class_source = "cad";
+            o.info.residual_m = best->residual_m;
+            o.info.T_world_object = best->T_sensor_object;
+            ++report.cad_objects;
+        } else if (share >= params.movable_share && n >= params.min_object_points) {
+            o.info.box_world = box;
+            if (classify_unknown) o.info.cls = classify_unknown(session, box, c.points);
+            o.info.class_source = o.info.cls ? "detector" : "unknown";
+            if (!o.info.cls) ++report.unknown_objects;
+        } else {
+            continue;  // Permanent: it never moved and no model explains it
+        }
+        // The same object twice (a cluster and a piece split off a neighbour): the first stays. Only
+        // within a class: a chair tucked under its table overlaps the table from above.
+        const bool duplicate = std::any_of(objects.begin(), objects.end(), [&](const Object& other) {
+            return other.info.session == session && other.info.cls == o.info.cls &&
+                   iou_bev(other.info.box_world, o.info.box_world) > params.duplicate_iou;
+        });
+        if (duplicate) continue;
+        o.info.id = static_cast<std::uint32_t>(objects.size() + 1);
+        objects.push_back(std::move(o));
+        ++report.objects;
+    }
+}
+
+void Labeller::Impl::label_keyframes(LabelResult& result, const LabelProgress& progress) {
+    std::size_t total = 0, done = 0;
+    for (const Session& s : sessions) total += s.keyframes.size();
+    result.sessions.resize(sessions.size());
+    for (std::size_t si = 0; si < sessions.size(); ++si) {
+        const Session& s = sessions[si];
+        for (const KeyframeRecord& k : s.keyframes) {
+            const Isometry3 T_ref_kf = s.T_ref * k.T_world_keyframe;
+            LabelledSessionKeyframe out;
+            out.keyframe.sequence = static_cast<std::uint32_t>(si);
+            out.keyframe.stamp_s = k.stamp_s;
+            out.keyframe.T_world_sensor = T_ref_kf;
+            out.keyframe.ground_plane_sensor = k.plane_sensor;
+            std::vector<std::size_t> keep;
+            std::map<std::uint32_t, std::size_t> points_of;
+            for (std::size_t i = 0; i < k.cloud_sensor.size(); ++i) {
+                const PointLabel l = label_point(static_cast<int>(si), T_ref_kf * k.cloud_sensor.xyz[i].cast<double>());
+                const bool unknown_object = l.instance != 0 && l.semantic == SemanticLabel::kClutter;
+                if (unknown_object) continue;  // left out of training: neither object nor background
+                keep.push_back(i);
+                out.point_labels.push_back(static_cast<std::uint32_t>(l.semantic) | (l.instance << 16));
+                out.point_classes.push_back(l.cls);
+                ++result.point_class_counts[static_cast<std::size_t>(l.cls)];
+                if (l.instance) ++points_of[l.instance];
+            }
+            out.keyframe.cloud_sensor = k.cloud_sensor.select(keep);
+            const Isometry3 T_kf_ref = T_ref_kf.inverse();
+            for (const Object& o : objects) {
+                if (o.info.session != static_cast<int>(si) || !o.info.cls) continue;
+                const OrientedBox box = o.info.box_world.transformed(T_kf_ref);
+                if (std::abs(box.centre_m.x()) > params.range_m || std::abs(box.centre_m.y()) > params.range_m) continue;
+                const LabelledObject label{o.info.id, *o.info.cls, o.info.model, box, points_of[o.info.id]};
+                (label.points >= params.min_points ? out.keyframe.objects : out.keyframe.unseen).push_back(label);
+            }
+            result.sessions[si].push_back(std::move(out));
+            if (progress) progress("labels", ++done, total);
+        }
+    }
+}
+
+LabelResult Labeller::finish(const verification::CadLibrary* library, const UnknownClassifier& classify_unknown,
+                             const LabelProgress& progress) {
+    Impl& m = *impl_;
+    if (m.finished) throw std::logic_error("labeller: finish called twice");
+    if (m.sessions.empty()) throw std::invalid_argument("labelling: no sessions");
+    for (std::size_t i = 0; i < m.sessions.size(); ++i) {
+        if (m.sessions[i].keyframes.empty()) {
+            throw std::invalid_argument("labelling: session " + std::to_string(i + 1) + " has no keyframe (fewer than " +
+                                        std::to_string(m.params.system.keyframe.every) + " sweeps)");
+        }
+    }
+    m.finished = true;
+    LabelResult result;
+    result.seconds_front_end = m.seconds_front_end;
+    result.reports.resize(m.sessions.size());
+    for (std::size_t i = 0; i < m.sessions.size(); ++i) {
+        result.reports[i].sweeps = m.sessions[i].sweeps;
+        result.reports[i].keyframes = m.sessions[i].keyframes.size();
+        result.reports[i].traced_sweeps = m.sessions[i].traced.size();
+    }
+    auto t0 = Clock::now();
+    m.align(result, progress);
+    result.seconds_align = seconds_since(t0);
+    t0 = Clock::now();
+    m.trace(progress);
+    result.seconds_trace = seconds_since(t0);
+    t0 = Clock::now();
+    for (std::size_t i = 0; i < m.sessions.size(); ++i) {
+        m.find_objects(static_cast<int>(i), library, classify_unknown, result.reports[i]);
+        if (progress) progress("objects", i + 1, m.sessions.size());
+    }
+    result.seconds_objects = seconds_since(t0);
+    t0 = Clock::now();
+    m.label_keyframes(result, progress);
+    result.seconds_points = seconds_since(t0);
+    for (const Impl::Object& o : m.objects) result.objects.push_back(o.info);
+    for (Impl::Session& s : m.sessions) s.traced.clear();  // the occupancy map holds what they said
+    return result;
+}
+
+std::vector<PointLabel> Labeller::label_points(int session, const std::vector<Eigen::Vector3f>& points_session_world) const {
+    const Impl& m = *impl_;
+    if (!m.finished) throw std::logic_error("labeller: label_points before finish");
+    const Isometry3& T = m.sessions.at(static_cast<std::size_t>(session)).T_ref;
+    std::vector<PointLabel> out;
+    out.reserve(points_session_world.size());
+    for (const Eigen::Vector3f& p : points_session_world) out.push_back(m.label_point(session, T * p.cast<double>()));
+    return out;
+}
+
+}  // namespace makeway::labelling
