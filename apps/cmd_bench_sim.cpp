@@ -23,11 +23,12 @@ sim::Scene bench_scene(std::uint64_t seed) {
     const double c = 10.0;
     s.walls = {{{-c, -c}, {c, -c}}, {{c, -c}, {c, c}}, {{c, c}, {-c, c}}, {{-c, c}, {-c, -c}}};
     Rng rng = make_rng(seed, 77);
+    const int kSceneStyles = 7;  // the styles generated scenes draw from (sim::scene_styles_of): comparable numbers
     std::vector<OrientedBox> boxes;
     while (s.objects.size() < 40) {
         sim::SceneObject o;
         o.id = static_cast<std::uint32_t>(s.objects.size() + 1);
-        const auto style = static_cast<sim::FurnitureStyle>(uniform_int(rng, 0, sim::kNumFurnitureStyles - 1));
+        const auto style = static_cast<sim::FurnitureStyle>(uniform_int(rng, 0, kSceneStyles - 1));
         o.cls = sim::class_of(style);
         o.style = std::string(sim::to_string(style));
         o.model_seed = static_cast<std::uint64_t>(uniform_int(rng, 0, 1 << 20));

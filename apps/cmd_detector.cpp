@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "apps/commands.hpp"
+#include "io/furniture_folder.hpp"
 #include "apps/model_path.hpp"
 #include "io/dataset_io.hpp"
 #include "io/error.hpp"
@@ -39,6 +40,13 @@ int run_dataset(const DatasetOptions& o) {
     p.exclude_styles = o.exclude_styles;
     p.keyframe_every = o.keyframe_every;
     p.max_keyframes_per_scene = o.max_keyframes;
+    p.furniture_share = o.furniture_share;
+    p.all_styles = o.all_styles;
+    if (!o.furniture.empty()) {
+        for (io::FurnitureMesh& m : io::read_furniture_folder(o.furniture, [](const std::string& w) { std::cerr << "makeway: warning: " << w << "\n"; })) {
+            p.furniture.push_back({m.name, m.cls, std::move(m.mesh_object)});
+        }
+    }
     io::ProgressBar bar("dataset", static_cast<std::size_t>(o.scenes));
     const auto kfs = eval::generate_detection_dataset(p, [&](int d, int) { bar.update(static_cast<std::size_t>(d)); });
     bar.finish();
@@ -49,7 +57,8 @@ int run_dataset(const DatasetOptions& o) {
         objects += kfs[k].objects.size();
     }
     io::write_json(staged.staging() / "meta.json", {{"scenes", o.scenes}, {"seed", o.seed}, {"exclude_styles", o.exclude_styles},
-                                                    {"keyframes", kfs.size()}, {"objects", objects}});
+                                                    {"keyframes", kfs.size()}, {"objects", objects},
+                                                    {"all_styles", o.all_styles}, {"furniture", o.furniture}, {"furniture_meshes", p.furniture.size()}});
     staged.commit();
     std::cout << "wrote " << kfs.size() << " keyframes with " << objects << " labelled objects to " << o.out << "\n";
     return 0;

@@ -1,5 +1,6 @@
 // `makeway label` (the automatic annotation of recorded sessions) and `makeway bench label` (its
 // accuracy against the simulator's truth).
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,8 @@
 #include "io/staged_output.hpp"
 #include "makeway/common/box_overlap.hpp"
 #include "makeway/eval/label_bench.hpp"
+#include "makeway/eval/session_bench.hpp"
+#include "makeway/sim/furniture.hpp"
 #include "makeway/labelling/labeller.hpp"
 #include "ros/sweep_source.hpp"
 
@@ -220,6 +223,50 @@ int run_bench_label(const BenchLabelOptions& o) {
               << "\ninstances: PQ " << r.panoptic.pq() << " (SQ " << r.panoptic.sq() << ", RQ " << r.panoptic.rq() << ")"
               << "\nboxes: AP@0.25 " << r.boxes.map_25 << ", AP@0.5 " << r.boxes.map_50 << ", yaw within 10 deg "
               << yaw_within_10(r.boxes) << "\nwrote " << (out / "summary.json").string() << "\n";
+    return 0;
+}
+
+int run_bench_sessions(const BenchSessionsOptions& o) {
+    for (const std::string& style : o.left_out_styles) {
+        if (!sim::parse_furniture_style(style)) throw std::invalid_argument("--left-out-styles: unknown style '" + style + "'");
+    }
+    perception::Detector detector = load_detector(o.model);
+    perception::set_inference_threads(o.threads);
+    eval::SessionBenchParams p;
+    p.rounds = o.rounds;
+    p.scenes_per_round = o.scenes_per_round;
+    p.sessions = o.sessions;
+    p.max_sweeps = o.max_sweeps;
+    p.seed = o.seed;
+    p.eval_scenes = o.eval_scenes;
+    p.left_out_styles = o.left_out_styles;
+    p.train.epochs = o.epochs;
+    p.train.threads = o.threads;
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::vector<eval::SessionRound> rounds = eval::run_session_bench(detector, p, [&](const std::string& what) {
+        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::printf("[%6.0f s] %s\n", s, what.c_str());
+        std::fflush(stdout);
+    });
+    const fs::path out(o.out_dir);
+    io::Json rows = io::Json::array();
+    std::string table = "| round | auto-labelled keyframes | labelled objects | left-out mAP@0.25 | left-out mAP@0.5 | trained styles mAP@0.25 | trained styles mAP@0.5 |\n"
+                        "| --- | --- | --- | --- | --- | --- | --- |\n";
+    char line[256];
+    for (const eval::SessionRound& r : rounds) {
+        rows.push_back({{"round", r.round}, {"labelled_keyframes", r.labelled_keyframes}, {"labelled_objects", r.labelled_objects},
+                        {"left_out_map_25", r.left_out_map_25}, {"left_out_map_50", r.left_out_map_50},
+                        {"held_out_map_25", r.held_out_map_25}, {"held_out_map_50", r.held_out_map_50},
+                        {"label_seconds", r.label_seconds}, {"train_seconds", r.train_seconds}});
+        std::snprintf(line, sizeof(line), "| %d | %zu | %zu | %.3f | %.3f | %.3f | %.3f |\n", r.round, r.labelled_keyframes, r.labelled_objects,
+                      r.left_out_map_25, r.left_out_map_50, r.held_out_map_25, r.held_out_map_50);
+        table += line;
+    }
+    io::write_json(out / "summary.json", {{"left_out_styles", p.left_out_styles}, {"rounds", rows}, {"scenes_per_round", p.scenes_per_round},
+                                          {"sessions", p.sessions}, {"epochs", p.train.epochs}, {"seed", p.seed}});
+    io::write_file_atomic(out / "table.md", table);
+    detector.save(out / "model.pt");
+    std::cout << table;
     return 0;
 }
 

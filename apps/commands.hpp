@@ -215,6 +215,9 @@ struct DatasetOptions {
     std::vector<std::string> exclude_styles{"armchair", "round_table"};
     int keyframe_every = 10;
     int max_keyframes = 30;
+    bool all_styles = false;        ///< every style of the simulator, not only the seven scenes draw from
+    std::string furniture;          ///< a folder of the user's own furniture meshes (io/furniture_folder.hpp)
+    double furniture_share = 0.5;
     std::string out;
 };
 int run_dataset(const DatasetOptions& options);
@@ -274,5 +277,20 @@ struct BenchLabelOptions {
     std::string out_dir = "out/bench_label";
 };
 int run_bench_label(const BenchLabelOptions& options);
+
+struct BenchSessionsOptions {
+    std::string model;  ///< the detector to start from (default weights when empty)
+    int rounds = 2;
+    int scenes_per_round = 3;
+    int sessions = 3;
+    int max_sweeps = 300;
+    int epochs = 4;
+    int eval_scenes = 3;
+    int threads = 2;
+    std::uint64_t seed = 0;
+    std::vector<std::string> left_out_styles{"armchair", "round_table", "lounge_chair", "pedestal_table"};
+    std::string out_dir = "out/bench_sessions";
+};
+int run_bench_sessions(const BenchSessionsOptions& options);
 
 }  // namespace makeway::apps

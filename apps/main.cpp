@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "apps/commands.hpp"
+#include "makeway/sim/furniture.hpp"
 #include "io/interrupt.hpp"
 #include "io/error.hpp"
 
@@ -51,11 +52,13 @@ void add_demo(CLI::App& app, DemoOptions& o) {
 
 void add_cad(CLI::App& app, CadOptions& o) {
     auto* sub = app.add_subcommand("cad", "Write a procedural chair or table model (OBJ, PLY or STL)");
-    sub->add_option("--style", o.style, "four_leg_chair, office_chair, stool, armchair, rect_table, "
-                                        "round_table or conference_table")
-        ->required()
-        ->check(CLI::IsMember({"four_leg_chair", "office_chair", "stool", "armchair", "rect_table", "round_table",
-                               "conference_table"}));
+    std::vector<std::string> styles;
+    std::string names;
+    for (int i = 0; i < makeway::sim::kNumFurnitureStyles; ++i) {
+        styles.emplace_back(makeway::sim::to_string(static_cast<makeway::sim::FurnitureStyle>(i)));
+        names += (i ? ", " : "") + styles.back();
+    }
+    sub->add_option("--style", o.style, "One of " + names)->required()->check(CLI::IsMember(styles));
     sub->add_option("--seed", o.seed, "Seed of the dimensions (real furniture ranges)")->capture_default_str();
     sub->add_option("--out", o.out, "Mesh file (.obj, .ply, .stl); the object frame has its origin on the "
                                     "floor at the footprint centre, x forward, z up")
@@ -200,6 +203,16 @@ void add_detector(CLI::App& app, DatasetOptions& ds, TrainDetectorOptions& tr, D
         ->capture_default_str();
     d->add_option("--keyframe-every", ds.keyframe_every, "Sweeps between keyframes")->check(CLI::Range(1, 1000))->capture_default_str();
     d->add_option("--max-keyframes", ds.max_keyframes, "Keyframes per scene at most")->check(CLI::Range(1, 10000))->capture_default_str();
+    d->add_flag("--all-styles", ds.all_styles, "The wider world: every object a random style of its class among all twelve "
+                                               "chair and nine table styles (stacking, sled and cantilever chairs, bar stools, "
+                                               "benches, sofas, lounge chairs, pedestal, coffee, balcony, folding and side "
+                                               "tables, desks), less --exclude-styles");
+    d->add_option("--furniture", ds.furniture, "A folder of your own furniture meshes (OBJ/PLY/STL/DAE): furniture.yaml gives "
+                                               "each file's class, units, up_axis and forward_axis, else chair_*/table_* names")
+        ->check(CLI::ExistingDirectory);
+    d->add_option("--furniture-share", ds.furniture_share, "Share of the objects of a class drawn with your meshes")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
     d->add_option("--out", ds.out, "Output folder (clouds/, labels/, meta.json)")->required();
     auto* t = app.add_subcommand("train-detector", "Train the detector from C++ (libtorch, CPU): augmentation, AdamW, "
                                                    "warm-up + cosine schedule, checkpoints every epoch");
@@ -302,9 +315,23 @@ void add_label(CLI::App& app, LabelOptions& o) {
 }
 
 void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchVerifyOptions& ver_o, BenchTrackOptions& trk_o,
-               BenchOdometryOptions& odo_o, BenchLabelOptions& lab_o) {
+               BenchOdometryOptions& odo_o, BenchLabelOptions& lab_o, BenchSessionsOptions& ses_o) {
     auto* bench = app.add_subcommand("bench", "Benchmarks that print JSON");
     bench->require_subcommand(1);
+    auto* ses = bench->add_subcommand("sessions", "Session after session: a detector trained without some styles is fine-tuned "
+                                                  "on auto-labels of multi-session drives of rooms furnished with them; the "
+                                                  "left-out and trained styles' mAP after each round");
+    ses->add_option("--model", ses_o.model, "Detector to start from (default: models/detector.pt, trained without armchairs and round tables)");
+    ses->add_option("--rounds", ses_o.rounds, "Rounds of label + fine-tune")->check(CLI::Range(1, 20))->capture_default_str();
+    ses->add_option("--scenes-per-round", ses_o.scenes_per_round, "Rooms driven and labelled per round")->check(CLI::Range(1, 100))->capture_default_str();
+    ses->add_option("--sessions", ses_o.sessions, "Sessions per room")->check(CLI::Range(2, 20))->capture_default_str();
+    ses->add_option("--max-sweeps", ses_o.max_sweeps, "Sweeps per session at most")->check(CLI::Range(10, 100000))->capture_default_str();
+    ses->add_option("--epochs", ses_o.epochs, "Fine-tuning epochs per round")->check(CLI::Range(1, 1000))->capture_default_str();
+    ses->add_option("--eval-scenes", ses_o.eval_scenes, "Held-out scenes per scored set")->check(CLI::Range(1, 100))->capture_default_str();
+    ses->add_option("--left-out-styles", ses_o.left_out_styles, "Styles the detector never saw")->delimiter(',')->capture_default_str();
+    ses->add_option("--threads", ses_o.threads, "Torch threads")->check(CLI::Range(1, 256))->capture_default_str();
+    ses->add_option("--seed", ses_o.seed, "Seed of rooms, replay data and fine-tuning")->capture_default_str();
+    ses->add_option("--out", ses_o.out_dir, "Output folder (summary.json, table.md, model.pt: the fine-tuned detector)")->capture_default_str();
     auto* lab = bench->add_subcommand("label", "The automatic annotation against the simulator's truth: multi-session "
                                                "drives (furniture moved between sessions), point-class IoU, panoptic "
                                                "quality, box AP@0.25/0.5 and yaw within 10 deg of the auto-labels");
@@ -428,6 +455,7 @@ int main(int argc, char** argv) {
     OdometryOptions odometry;
     BenchOdometryOptions bench_odometry;
     BenchLabelOptions bench_label;
+    BenchSessionsOptions bench_sessions;
     LabelOptions label;
     RunOptions run;
     add_info(app, info);
@@ -443,7 +471,7 @@ int main(int argc, char** argv) {
     add_detector(app, dataset, train_detector, detect, eval_detection);
     add_odometry(app, odometry);
     add_run(app, run);
-    add_bench(app, bench_sim, bench_nav, bench_verify, bench_track, bench_odometry, bench_label);
+    add_bench(app, bench_sim, bench_nav, bench_verify, bench_track, bench_odometry, bench_label, bench_sessions);
     check_numbers(app);
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
@@ -497,6 +525,7 @@ int main(int argc, char** argv) {
                 if (bench->got_subcommand("track")) return run_bench_track(bench_track);
                 if (bench->got_subcommand("odometry")) return run_bench_odometry(bench_odometry);
                 if (bench->got_subcommand("label")) return run_bench_label(bench_label);
+                if (bench->got_subcommand("sessions")) return run_bench_sessions(bench_sessions);
                 return run_bench_sim(bench_sim);
             }
             return 1;

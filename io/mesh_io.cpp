@@ -1,7 +1,10 @@
 #include "io/mesh_io.hpp"
 
+#include "makeway/common/mesh_placement.hpp"
+
 #include <assimp/Exporter.hpp>
 #include <assimp/Importer.hpp>
+#include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -49,16 +52,41 @@ TriangleMesh collect_triangles(const aiScene& scene) {
 
 namespace {
 
+// The up axis a Collada file declares (<asset><up_axis>), Y_UP when it declares none (the spec's default).
+MeshAxis collada_up_axis(std::string_view bytes) {
+    const std::size_t open = bytes.find("<up_axis>");
+    if (open == std::string_view::npos) return MeshAxis::kPosY;
+    const std::string_view rest = bytes.substr(open + 9, 16);
+    if (rest.find("Z_UP") != std::string_view::npos) return MeshAxis::kPosZ;
+    if (rest.find("X_UP") != std::string_view::npos) return MeshAxis::kPosX;
+    return MeshAxis::kPosY;
+}
+
 // assimp in this process: throws FormatError.
 TriangleMesh import_with_assimp(std::string_view bytes, const std::string& extension_hint) {
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    // assimp turns a Z-up Collada file into its own Y-up; makeway is Z-up, so the file's coordinates
+    // are kept and its declared up axis turned to +z below (units stay assimp's: <unit meter>).
+    const bool collada = extension_hint == "dae";
+    if (collada) importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
     const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                            aiProcess_PreTransformVertices | aiProcess_SortByPType;
     const aiScene* scene =
         importer.ReadFileFromMemory(bytes.data(), bytes.size(), flags, extension_hint.c_str());
     if (!scene) throw FormatError(std::string("cannot read mesh: ") + importer.GetErrorString());
-    return collect_triangles(*scene);
+    TriangleMesh mesh = collect_triangles(*scene);
+    if (collada) {
+        const MeshAxis up = collada_up_axis(bytes);
+        if (up != MeshAxis::kPosZ) {
+            MeshPlacement turn;
+            turn.up = up;
+            turn.forward = up == MeshAxis::kPosX ? MeshAxis::kNegZ : MeshAxis::kPosX;  // the least turn
+            turn.recentre = false;
+            mesh = place_mesh(std::move(mesh), turn);
+        }
+    }
+    return mesh;
 }
 
 bool write_all(int fd, const void* data, std::size_t size) {

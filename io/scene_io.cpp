@@ -11,6 +11,7 @@
 #include "io/error.hpp"
 #include "io/file_util.hpp"
 #include "io/mesh_io.hpp"
+#include "io/furniture_folder.hpp"
 #include "makeway/sim/furniture.hpp"
 #include "makeway/sim/mesh_primitives.hpp"
 
@@ -58,7 +59,8 @@ sim::SceneObject read_object(const YAML::Node& node, const std::string& prefix, 
     s.read("style", o.style);
     s.read("model_seed", o.model_seed);
     s.read("mesh", o.mesh_file);
-    s.read("scale", o.scale);
+    MeshPlacementKeys keys;
+    read_placement_keys(s, keys);
     s.read("table_id", o.table_id);
     read_pose(s, "pose", o.pose, problems, prefix);
     s.finish();
@@ -73,14 +75,18 @@ sim::SceneObject read_object(const YAML::Node& node, const std::string& prefix, 
             s.problem("style '" + o.style + "' is not a " + cls);
         }
     }
+    o.scale = keys.scale;
+    o.units = keys.units;
+    o.up_axis = keys.up_axis;
+    o.forward_axis = keys.forward_axis;
+    o.recentre = keys.recentre;
+    const std::optional<MeshPlacement> placement = to_placement(keys, s);
     if (!o.mesh_file.empty() && !mesh_base_dir.empty() && !options.allow_outside_paths &&
         !inside_folder(mesh_base_dir, o.mesh_file)) {
         s.problem("mesh '" + o.mesh_file + "' is outside the scene's folder (--allow-outside-paths to read it)");
-    } else if (!o.mesh_file.empty() && !mesh_base_dir.empty()) {
+    } else if (!o.mesh_file.empty() && !mesh_base_dir.empty() && placement) {
         try {
-            auto mesh = std::make_shared<TriangleMesh>(read_mesh(mesh_base_dir / o.mesh_file));
-            sim::transform_mesh(*mesh, Isometry3(Eigen::Scaling(o.scale)));
-            o.user_mesh = std::move(mesh);
+            o.user_mesh = std::make_shared<TriangleMesh>(read_placed_mesh(mesh_base_dir / o.mesh_file, *placement, o.cls, prefix, options.warn));
         } catch (const FileError& e) {
             s.problem(std::string("mesh ") + e.what());
         }
@@ -225,7 +231,9 @@ std::string scene_to_yaml(const sim::Scene& scene) {
         if (o.mesh_file.empty()) {
             out << YAML::Key << "style" << YAML::Value << o.style << YAML::Key << "model_seed" << YAML::Value << o.model_seed;
         } else {
-            out << YAML::Key << "mesh" << YAML::Value << o.mesh_file << YAML::Key << "scale" << YAML::Value << o.scale;
+            out << YAML::Key << "mesh" << YAML::Value << o.mesh_file << YAML::Key << "scale" << YAML::Value << o.scale << YAML::Key
+                << "units" << YAML::Value << o.units << YAML::Key << "up_axis" << YAML::Value << o.up_axis << YAML::Key << "forward_axis"
+                << YAML::Value << o.forward_axis << YAML::Key << "recentre" << YAML::Value << o.recentre;
         }
         if (o.table_id) out << YAML::Key << "table_id" << YAML::Value << o.table_id;
         pose("pose", o.pose);
@@ -247,7 +255,8 @@ std::string scene_to_yaml(const sim::Scene& scene) {
     out << YAML::EndSeq << YAML::EndMap;
     return "# makeway scene: lengths in metres, angles in radians, poses are T_world_object.\n"
            "# Object styles: four_leg_chair office_chair stool armchair rect_table round_table\n"
-           "# conference_table; or `mesh: FILE` (OBJ/PLY/STL/DAE, relative to this file) with `scale`.\n" +
+           "# conference_table; or `mesh: FILE` (OBJ/PLY/STL/DAE, relative to this file) with `scale`, `units`\n"
+           "# (m, cm, mm, in, ft), `up_axis` and `forward_axis` (x, y, z, -x, ...) and `recentre`.\n" +
            std::string(out.c_str()) + "\n";
 }
 

@@ -2,6 +2,9 @@
 // Scenes as YAML files a person can read and edit (see README "Scene files"). User meshes named in
 // a scene are loaded relative to the scene file. Reads list every problem at once.
 #include <filesystem>
+#include <functional>
+#include <iostream>
+#include <string>
 #include <string>
 
 #include "makeway/sim/scene.hpp"
@@ -12,6 +15,9 @@ struct SceneReadOptions {
     /// A scene names its meshes relative to its own folder and cannot reach outside it (`../x.obj`,
     /// absolute paths, links leading out): a scene file from elsewhere reads no other files.
     bool allow_outside_paths = false;
+    /// Told what is readable but suspicious (a user mesh whose size cannot be furniture of its
+    /// class); by default a line on stderr.
+    std::function<void(const std::string&)> warn = [](const std::string& w) { std::cerr << "makeway: warning: " << w << "\n"; };
 };
 
 /// Throws FileError ("PATH: 2 problems: ...") on any problem, including unreadable user meshes.

@@ -1,8 +1,11 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sstream>
 
 #include "io/error.hpp"
+#include "io/cad_folder.hpp"
+#include "io/furniture_folder.hpp"
 #include "io/mesh_io.hpp"
 #include "io/scene_io.hpp"
 #include "io_test_util.hpp"
@@ -122,6 +125,159 @@ TEST(SceneIo, MeshPathsStayInsideTheScenesFolder) {
     }
     EXPECT_TRUE(read_scene(scene_with("meshes/inside.stl")).objects[0].user_mesh);
     EXPECT_TRUE(read_scene(scene_with("meshes/../meshes/inside.stl")).objects[0].user_mesh);
+}
+
+}  // namespace
+}  // namespace makeway::io
+
+namespace makeway::io {
+namespace {
+
+// A chair-like block 0.5 wide, 0.4 deep, 0.9 tall with a back rest (a thin slab at its rear),
+// written as an author would: in `unit`s, with `up` and `forward` axes, its origin at a corner.
+TriangleMesh authored_chair(const Eigen::Vector3d& up, const Eigen::Vector3d& forward, double unit) {
+    const Eigen::Vector3d side = up.cross(forward);
+    TriangleMesh seat, back;
+    sim::add_box(seat, Eigen::Vector3d(0, 0, 0.225), Eigen::Vector3d(0.4, 0.5, 0.45));
+    sim::add_box(back, Eigen::Vector3d(-0.18, 0, 0.675), Eigen::Vector3d(0.04, 0.5, 0.45));
+    seat.append(back);
+    Eigen::Matrix3d R;  // object frame (x forward, z up) into the author's axes
+    R.col(0) = forward;
+    R.col(1) = side;
+    R.col(2) = up;
+    for (auto& v : seat.vertices_m) v = ((R * (v.cast<double>() + Eigen::Vector3d(0.2, 0.25, 0.0))) / unit).cast<float>();
+    return seat;
+}
+
+std::string collada(const TriangleMesh& m, const char* up_axis) {
+    std::ostringstream pos, idx;
+    for (const auto& v : m.vertices_m) pos << v.x() << " " << v.y() << " " << v.z() << " ";
+    for (const auto& t : m.triangles) idx << t.x() << " " << t.y() << " " << t.z() << " ";
+    std::ostringstream out;
+    out << R"(<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1"><asset><unit meter="1" name="meter"/>)"
+        << (up_axis ? std::string("<up_axis>") + up_axis + "</up_axis>" : "") << R"(</asset>
+<library_geometries><geometry id="g"><mesh><source id="p"><float_array id="pa" count=")" << 3 * m.vertices_m.size() << "\">" << pos.str()
+        << R"(</float_array><technique_common><accessor source="#pa" count=")" << m.vertices_m.size() << R"(" stride="3">
+<param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
+<vertices id="v"><input semantic="POSITION" source="#p"/></vertices><triangles count=")" << m.triangles.size()
+        << R"("><input semantic="VERTEX" source="#v" offset="0"/><p>)" << idx.str() << R"(</p></triangles></mesh></geometry></library_geometries>
+<library_visual_scenes><visual_scene id="s"><node id="n"><instance_geometry url="#g"/></node></visual_scene></library_visual_scenes>
+<scene><instance_visual_scene url="#s"/></scene></COLLADA>)";
+    return out.str();
+}
+
+// The placed mesh is the chair upright, 0.4 deep along x, its back rest at -x, on the floor, centred.
+void expect_upright_facing_x(const TriangleMesh& m, const std::string& what) {
+    Eigen::Vector3f lo = m.vertices_m[0], hi = lo;
+    for (const auto& v : m.vertices_m) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    EXPECT_NEAR(hi.z() - lo.z(), 0.9, 1e-4) << what;
+    EXPECT_NEAR(hi.x() - lo.x(), 0.4, 1e-4) << what;
+    EXPECT_NEAR(hi.y() - lo.y(), 0.5, 1e-4) << what;
+    EXPECT_NEAR(lo.z(), 0.0, 1e-4) << what;
+    EXPECT_NEAR(lo.x() + hi.x(), 0.0, 1e-4) << what;
+    EXPECT_NEAR(lo.y() + hi.y(), 0.0, 1e-4) << what;
+    // Every vertex above the seat (z > 0.5) belongs to the back rest, behind the seat's centre.
+    for (const auto& v : m.vertices_m) {
+        if (v.z() > 0.5f) {
+            EXPECT_LT(v.x(), -0.15f) << what;
+        }
+    }
+}
+
+TEST(SceneIo, MeshesOfOtherToolsArePlacedAsTheirFilesAndTheSceneSay) {
+    const auto dir = testing_util::fresh_dir("mesh_axes");
+    const Eigen::Vector3d Y = Eigen::Vector3d::UnitY(), Z = Eigen::Vector3d::UnitZ();
+    // Collada declares its up axis: Z_UP (Gazebo's worlds) and Y_UP (Blender's default export), and
+    // none (the spec's default, Y_UP). Facing -y in the Z-up file, +z in the Y-up ones.
+    std::ofstream(dir / "zup.dae") << collada(authored_chair(Z, -Y, 1.0), "Z_UP");
+    std::ofstream(dir / "yup.dae") << collada(authored_chair(Y, Z, 1.0), "Y_UP");
+    std::ofstream(dir / "noup.dae") << collada(authored_chair(Y, Z, 1.0), nullptr);
+    // OBJ from a Y-up tool in centimetres facing -z; binary STL Z-up in millimetres facing +y.
+    write_mesh(dir / "yup_cm.obj", authored_chair(Y, -Z, 0.01));
+    write_mesh(dir / "zup_mm.stl", authored_chair(Z, Y, 0.001));
+    std::ofstream(dir / "s.yaml")
+        << "floor: {min_m: [-5, -5], max_m: [5, 5]}\nobjects:\n"
+           "  - {id: 1, class: chair, mesh: zup.dae, forward_axis: -y, pose: {x_m: 0, y_m: 0, yaw_rad: 0}}\n"
+           "  - {id: 2, class: chair, mesh: yup.dae, forward_axis: -y, pose: {x_m: 1, y_m: 0, yaw_rad: 0}}\n"
+           "  - {id: 3, class: chair, mesh: noup.dae, forward_axis: -y, pose: {x_m: 2, y_m: 0, yaw_rad: 0}}\n"
+           "  - {id: 4, class: chair, mesh: yup_cm.obj, units: cm, up_axis: y, forward_axis: -z, pose: {x_m: 3, y_m: 0, yaw_rad: 0}}\n"
+           "  - {id: 5, class: chair, mesh: zup_mm.stl, units: mm, forward_axis: y, pose: {x_m: 4, y_m: 0, yaw_rad: 0}}\n";
+    // The Y-up Collada files are turned Z-up by the reader (their +z front becomes -y).
+    std::vector<std::string> warnings;
+    SceneReadOptions options;
+    options.warn = [&](const std::string& w) { warnings.push_back(w); };
+    const sim::Scene s = read_scene(dir / "s.yaml", options);
+    ASSERT_EQ(s.objects.size(), 5u);
+    for (const sim::SceneObject& o : s.objects) {
+        ASSERT_TRUE(o.user_mesh) << o.mesh_file;
+        expect_upright_facing_x(*o.user_mesh, o.mesh_file);
+    }
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    // Written back and read again: the same placement.
+    write_scene(dir / "again.yaml", s);
+    const sim::Scene again = read_scene(dir / "again.yaml", options);
+    for (const sim::SceneObject& o : again.objects) expect_upright_facing_x(*o.user_mesh, "again " + o.mesh_file);
+    // Units forgotten: readable, with a warning naming the object and the file.
+    std::ofstream(dir / "w.yaml") << "objects:\n  - {id: 1, class: chair, mesh: yup_cm.obj, up_axis: y, forward_axis: -z}\n";
+    read_scene(dir / "w.yaml", options);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("objects[0]: mesh yup_cm.obj: "), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("wrong units or up axis"), std::string::npos) << warnings[0];
+    // Bad axes and units are problems of the scene file.
+    std::ofstream(dir / "bad.yaml") << "objects:\n  - {id: 1, class: chair, mesh: zup.dae, up_axis: y, forward_axis: -y, units: cubits}\n";
+    try {
+        read_scene(dir / "bad.yaml", options);
+        ADD_FAILURE() << "no error";
+    } catch (const FileError& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find("up_axis and forward_axis are parallel"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("units must be m, cm, mm, in or ft (got 'cubits')"), std::string::npos) << msg;
+    }
+}
+
+TEST(FurnitureFolder, AnIndexSaysHowEachMeshWasDrawn) {
+    const auto dir = testing_util::fresh_dir("furniture");
+    const Eigen::Vector3d Y = Eigen::Vector3d::UnitY(), Z = Eigen::Vector3d::UnitZ();
+    std::filesystem::create_directories(dir / "f" / "chairs");
+    std::ofstream(dir / "f" / "cafe.dae") << collada(authored_chair(Z, -Y, 1.0), "Z_UP");
+    write_mesh(dir / "f" / "chairs" / "stacking.obj", authored_chair(Y, -Z, 0.01));
+    write_mesh(dir / "f" / "bench.stl", authored_chair(Z, Y, 0.001));
+    std::ofstream(dir / "f" / "furniture.yaml") << "furniture:\n"
+                                                   "  - {file: cafe.dae, class: table, forward_axis: -y}\n"
+                                                   "  - {file: chairs/stacking.obj, class: chair, units: cm, up_axis: y, forward_axis: -z}\n"
+                                                   "  - {file: bench.stl, class: chair, units: mm, forward_axis: y}\n";
+    std::vector<std::string> warnings;
+    const auto meshes = read_furniture_folder(dir / "f", [&](const std::string& w) { warnings.push_back(w); });
+    ASSERT_EQ(meshes.size(), 3u);
+    EXPECT_EQ(meshes[0].name, "cafe");
+    EXPECT_EQ(meshes[0].cls, ObjectClass::kTable);
+    EXPECT_EQ(meshes[1].name, "chairs/stacking");
+    for (const FurnitureMesh& m : meshes) expect_upright_facing_x(*m.mesh_object, m.name);
+    EXPECT_TRUE(warnings.empty());
+    // The same folder is a CAD library for verify, run and label.
+    EXPECT_EQ(read_cad_folder(dir / "f").models().size(), 3u);
+    // Every problem of the index at once, naming the index; files outside the folder refused.
+    std::ofstream(dir / "f" / "furniture.yaml") << "furniture:\n"
+                                                   "  - {file: cafe.dae, class: sofa}\n"
+                                                   "  - {file: ../outside.obj, class: chair}\n"
+                                                   "  - {file: bench.stl, class: chair, up_axis: q}\n";
+    try {
+        read_furniture_folder(dir / "f");
+        ADD_FAILURE() << "no error";
+    } catch (const FileError& e) {
+        const std::string msg = e.what();
+        EXPECT_EQ(msg.rfind((dir / "f" / "furniture.yaml").string(), 0), 0u) << msg;
+        EXPECT_NE(msg.find("furniture[0]: class must be chair or table (got 'sofa')"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("furniture[1]: file '../outside.obj' is outside the folder"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("furniture[2]: up_axis must be"), std::string::npos) << msg;
+    }
+    // Without an index: names say the class.
+    std::filesystem::create_directories(dir / "g");
+    write_mesh(dir / "g" / "table_a.stl", authored_chair(Z, Eigen::Vector3d::UnitX(), 1.0));
+    EXPECT_EQ(read_furniture_folder(dir / "g").front().cls, ObjectClass::kTable);
+    write_mesh(dir / "g" / "lamp.stl", authored_chair(Z, Eigen::Vector3d::UnitX(), 1.0));
+    EXPECT_THROW(read_furniture_folder(dir / "g"), FileError);
 }
 
 }  // namespace

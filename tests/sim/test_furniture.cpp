@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "makeway/common/mesh_placement.hpp"
 #include "makeway/sim/furniture.hpp"
 #include "makeway/sim/mesh_primitives.hpp"
 
@@ -21,6 +22,10 @@ TEST(Furniture, EveryStyleIsAValidModelOfRealSize) {
             EXPECT_NEAR(lo.x() + hi.x(), 0.0, 1e-5);               // footprint centred
             EXPECT_NEAR(lo.y() + hi.y(), 0.0, 1e-5);
             EXPECT_TRUE(((hi - lo) - size).cwiseAbs().maxCoeff() < 1e-5);
+            // Every style is a plausible piece of furniture of its class (the check user meshes get).
+            TriangleMesh placed = m.mesh_object;
+            EXPECT_FALSE(implausible_furniture_extent(placed, class_of(style)).has_value()) << to_string(style);
+            if (static_cast<int>(style) > static_cast<int>(FurnitureStyle::kConferenceTable)) continue;  // the wider world
             if (class_of(style) == ObjectClass::kChair) {
                 EXPECT_GT(size.z(), 0.44) << to_string(style);
                 EXPECT_LT(size.z(), 1.3) << to_string(style);
@@ -44,7 +49,9 @@ TEST(Furniture, SeedNamesOneModel) {
 
 TEST(Furniture, ChairsHaveTheirBackAtMinusX) {
     // The backrest rises behind the seat: the highest vertices lie in the rear half.
-    for (auto style : {FurnitureStyle::kFourLegChair, FurnitureStyle::kOfficeChair, FurnitureStyle::kArmchair}) {
+    for (auto style : {FurnitureStyle::kFourLegChair, FurnitureStyle::kOfficeChair, FurnitureStyle::kArmchair, FurnitureStyle::kStackingChair,
+                       FurnitureStyle::kSledChair, FurnitureStyle::kCantileverChair, FurnitureStyle::kSofa, FurnitureStyle::kLoungeChair,
+                       FurnitureStyle::kFoldingChair}) {
         const FurnitureModel m = make_furniture(style, 1);
         const double top = m.box_object.size_m.z();
         for (const auto& v : m.mesh_object.vertices_m) {
@@ -53,8 +60,22 @@ TEST(Furniture, ChairsHaveTheirBackAtMinusX) {
             }
         }
     }
-    EXPECT_EQ(styles_of(ObjectClass::kChair).size(), 4u);
-    EXPECT_EQ(styles_of(ObjectClass::kTable).size(), 3u);
+    EXPECT_EQ(styles_of(ObjectClass::kChair).size(), 12u);
+    EXPECT_EQ(styles_of(ObjectClass::kTable).size(), 9u);
+    EXPECT_EQ(scene_styles_of(ObjectClass::kChair).size(), 4u);  // what generated scenes draw
+    EXPECT_EQ(scene_styles_of(ObjectClass::kTable).size(), 3u);
+}
+
+TEST(Furniture, SledAndCantileverChairsRestOnLowRunners) {
+    // Their runners are what a robot drives into: a part within 3 cm of the floor, 0.4 m long.
+    for (auto style : {FurnitureStyle::kSledChair, FurnitureStyle::kCantileverChair}) {
+        const FurnitureModel m = make_furniture(style, 3);
+        float lo = 1e9f, hi = -1e9f;
+        for (const auto& v : m.mesh_object.vertices_m) {
+            if (v.z() < 0.03f) lo = std::min(lo, v.x()), hi = std::max(hi, v.x());
+        }
+        EXPECT_GT(hi - lo, 0.4f) << to_string(style);
+    }
 }
 
 TEST(MeshPrimitives, ClosedBoxArea) {

@@ -4,6 +4,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "makeway/common/random.hpp"
 #include "makeway/pipeline/front_end.hpp"
 #include "makeway/sim/furniture.hpp"
 #include "makeway/sim/route.hpp"
@@ -20,20 +21,36 @@ sim::FurnitureStyle parse_style(const std::string& name) {
     return *s;
 }
 
-// Restyles objects: excluded styles become the first allowed style of their class; with `only`,
-// every object takes the given style of its class.
-void restyle(sim::Scene& scene, const DatasetParams& p) {
+}  // namespace
+
+void restyle_scene(sim::Scene& scene, const DatasetParams& p) {
     std::vector<sim::FurnitureStyle> excluded, only;
     for (const auto& n : p.exclude_styles) excluded.push_back(parse_style(n));
     for (const auto& n : p.only_styles) only.push_back(parse_style(n));
+    Rng rng = make_rng(scene.seed, 0x5717);
     for (sim::SceneObject& o : scene.objects) {
+        if (p.all_styles && only.empty()) {
+            std::vector<sim::FurnitureStyle> allowed;
+            for (sim::FurnitureStyle s : sim::styles_of(o.cls)) {
+                if (std::find(excluded.begin(), excluded.end(), s) == excluded.end()) allowed.push_back(s);
+            }
+            if (!allowed.empty()) {
+                o.style = std::string(sim::to_string(allowed[static_cast<std::size_t>(uniform_int(rng, 0, static_cast<std::int64_t>(allowed.size()) - 1))]));
+                continue;
+            }
+        }
         const sim::FurnitureStyle current = parse_style(o.style);
         std::optional<sim::FurnitureStyle> to;
+        std::vector<sim::FurnitureStyle> only_of_class;
         for (sim::FurnitureStyle s : only) {
-            if (sim::class_of(s) == o.cls) to = s;
+            if (sim::class_of(s) == o.cls) only_of_class.push_back(s);
+        }
+        if (only_of_class.size() == 1) to = only_of_class.front();
+        if (only_of_class.size() > 1) {  // several styles of the class: one at random each
+            to = only_of_class[static_cast<std::size_t>(uniform_int(rng, 0, static_cast<std::int64_t>(only_of_class.size()) - 1))];
         }
         if (!to && std::find(excluded.begin(), excluded.end(), current) != excluded.end()) {
-            for (sim::FurnitureStyle s : sim::styles_of(o.cls)) {
+            for (sim::FurnitureStyle s : sim::scene_styles_of(o.cls)) {
                 if (std::find(excluded.begin(), excluded.end(), s) == excluded.end()) {
                     to = s;
                     break;
@@ -41,6 +58,25 @@ void restyle(sim::Scene& scene, const DatasetParams& p) {
             }
         }
         if (to) o.style = std::string(sim::to_string(*to));
+    }
+}
+
+namespace {
+
+// Some objects become the user's meshes of their class.
+void furnish(sim::Scene& scene, const DatasetParams& p) {
+    if (p.furniture.empty()) return;
+    Rng rng = make_rng(scene.seed, 0xF0F0);
+    for (sim::SceneObject& o : scene.objects) {
+        std::vector<const UserFurniture*> of_class;
+        for (const UserFurniture& f : p.furniture) {
+            if (f.cls == o.cls) of_class.push_back(&f);
+        }
+        if (of_class.empty() || !bernoulli(rng, p.furniture_share)) continue;
+        const UserFurniture& f = *of_class[static_cast<std::size_t>(uniform_int(rng, 0, static_cast<std::int64_t>(of_class.size()) - 1))];
+        o.style.clear();
+        o.mesh_file = f.name;
+        o.user_mesh = f.mesh_object;
     }
 }
 
@@ -54,7 +90,8 @@ std::vector<LabelledKeyframe> generate_detection_dataset(const DatasetParams& p,
         g.seed = p.seed + static_cast<std::uint64_t>(k);
         g.density = static_cast<sim::Density>(k % 3);
         sim::Scene scene = sim::generate_scene(g);
-        restyle(scene, p);
+        restyle_scene(scene, p);
+        furnish(scene, p);
         const sim::RobotParams robot;
         const sim::CollisionChecker checker(scene, sim::models_of(scene), robot);
         auto route = sim::drive_route(scene, checker, robot);
@@ -92,7 +129,8 @@ std::vector<LabelledKeyframe> generate_detection_dataset(const DatasetParams& p,
                 const OrientedBox box = o.box_world.transformed(T_keyframe_world);
                 if (std::abs(box.centre_m.x()) > p.range_m || std::abs(box.centre_m.y()) > p.range_m) continue;
                 const auto it = std::find_if(scene.objects.begin(), scene.objects.end(), [&](const sim::SceneObject& s) { return s.id == o.id; });
-                const LabelledObject label{o.id, o.cls, it == scene.objects.end() ? "" : it->style, box, points_of[o.id]};
+                const std::string style = it == scene.objects.end() ? "" : !it->mesh_file.empty() ? "user:" + it->mesh_file : it->style;
+                const LabelledObject label{o.id, o.cls, style, box, points_of[o.id]};
                 (label.points >= p.min_points ? kf.objects : kf.unseen).push_back(label);
             }
             out.push_back(std::move(kf));

@@ -4,6 +4,7 @@
 // and ceiling removed), and every chair and table seen by enough points labelled with its true box
 // in the keyframe's sensor frame.
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,13 @@
 #include "makeway/sim/scene.hpp"
 
 namespace makeway::eval {
+
+/// A user's own piece of furniture (io::read_furniture_folder), in makeway's object frame.
+struct UserFurniture {
+    std::string name;
+    ObjectClass cls = ObjectClass::kChair;
+    std::shared_ptr<const TriangleMesh> mesh_object;
+};
 
 struct DatasetParams {
     int scenes = 10;
@@ -25,10 +33,24 @@ struct DatasetParams {
     /// `only_styles`, the styles every object is given (evaluation on held-out styles).
     std::vector<std::string> exclude_styles;
     std::vector<std::string> only_styles;
+    /// The wider world: every object takes a random style of its class among all the simulator's
+    /// (sim::styles_of; twelve chairs, nine tables) that are not excluded, not only the seven
+    /// generated scenes draw from.
+    bool all_styles = false;
+    /// A user's own furniture: each object of a class takes one of that class's meshes with
+    /// probability furniture_share (seeded by the scene), so the detector learns them.
+    std::vector<UserFurniture> furniture;
+    double furniture_share = 0.5;
     /// The front end's parameters (keyframe.every is overridden by keyframe_every).
     pipeline::SystemParams system;
     sim::OdometryNoiseParams odometry;  ///< the wheel odometry the front end runs on
 };
+
+/// The styles of `params` on a scene: excluded styles become the first allowed scene style of their
+/// class; with `only_styles`, every object takes one of those of its class (at random among several,
+/// seeded by the scene); with `all_styles`, a random style of its class that is not excluded.
+/// Throws std::invalid_argument on unknown style names.
+void restyle_scene(sim::Scene& scene, const DatasetParams& params);
 
 /// Keyframes in time order, `sequence` = the scene's index. With `scenes`, the (restyled) scenes
 /// are appended to it, one per index, for CAD libraries of the furniture actually there.

@@ -38,6 +38,33 @@ struct Sample {
 
 }  // namespace
 
+void drive_sessions(labelling::Labeller& labeller, const sim::Scene& base, int sessions, int max_sweeps, std::uint64_t seed,
+                    const sim::OdometryNoiseParams& odometry, const SessionFrameHook& on_frame) {
+    for (int s = 0; s < sessions; ++s) {
+        const sim::Scene scene = sim::make_session(base, s);
+        const sim::RobotParams robot;
+        const sim::CollisionChecker checker(scene, sim::models_of(scene), robot);
+        const auto route = sim::drive_route(scene, checker, robot);
+        if (!route) throw std::runtime_error("no route in " + scene.name);
+        sim::SequenceParams sp;
+        sp.seed = seed + static_cast<std::uint64_t>(s);
+        sp.odometry = odometry;
+        sim::SequenceSimulator simulator(scene, *route, sp);
+        labeller.begin_session(simulator.start_pose());
+        const auto feed = [&](sim::SimFrame& frame) {
+            return labeller.add_sweep({frame.points_sensor, frame.stamp_s, sp.lidar.sweep_duration_s(), frame.odometry_pose, frame.odometry_end_pose});
+        };
+        for (int f = 0; f < max_sweeps && !simulator.reached_goal(); ++f) {
+            sim::SimFrame frame = simulator.next();
+            if (on_frame) {
+                on_frame(s, scene, frame, feed);
+            } else {
+                feed(frame);
+            }
+        }
+    }
+}
+
 std::array<double, labelling::kNumPointClasses> class_iou(
     const std::array<std::array<std::size_t, labelling::kNumPointClasses>, labelling::kNumPointClasses>& confusion) {
     std::array<double, labelling::kNumPointClasses> iou{};
@@ -99,55 +126,43 @@ LabelBenchResult run_label_bench(const LabelBenchParams& params, const std::func
         labelling::Labeller labeller(lp);
         std::vector<Sample> samples;
         double label_seconds = 0.0;
-        for (int s = 0; s < params.sessions; ++s) {
-            const sim::Scene scene = sim::make_session(base, s);
-            const sim::RobotParams robot;
-            const sim::CollisionChecker checker(scene, sim::models_of(scene), robot);
-            const auto route = sim::drive_route(scene, checker, robot);
-            if (!route) throw std::runtime_error("bench label: no route in " + scene.name);
-            sim::SequenceParams sp;
-            sp.seed = params.seed * 7919 + static_cast<std::uint64_t>(k) * 31 + static_cast<std::uint64_t>(s);
-            sp.odometry = params.odometry;
-            sim::SequenceSimulator simulator(scene, *route, sp);
-            labeller.begin_session(simulator.start_pose());
-            // Truth visibility as the labeller's keyframes see it: points over the keyframe's window.
-            std::deque<std::map<std::uint32_t, std::size_t>> window;
-            for (int f = 0; f < params.max_sweeps && !simulator.reached_goal(); ++f) {
-                sim::SimFrame frame = simulator.next();
-                const auto t0 = Clock::now();
-                Sample sample;
-                sample.label = frame.points_sensor.label;
-                sample.instance = frame.points_sensor.instance;
-                std::map<std::uint32_t, std::size_t> sweep_points;
-                for (std::size_t i = 0; i < sample.instance.size(); ++i) {
-                    if (sample.instance[i] && sample.label[i] != static_cast<std::uint8_t>(SemanticLabel::kGround)) ++sweep_points[sample.instance[i]];
-                }
-                window.push_back(std::move(sweep_points));
-                if (window.size() > static_cast<std::size_t>(lp.system.keyframe.window)) window.pop_front();
-                pipeline::FrontEndResult r = labeller.add_sweep(
-                    {frame.points_sensor, frame.stamp_s, sp.lidar.sweep_duration_s(), frame.odometry_pose, frame.odometry_end_pose});
-                label_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-                ++row.sweeps;
-                if (!r.keyframe) continue;
-                ++row.keyframes;
-                if (r.points_world.size() != sample.label.size()) throw std::logic_error("bench label: the front end reordered a sweep");
-                sample.session = s;
-                sample.points_world = std::move(r.points_world.xyz);
-                std::map<std::uint32_t, std::size_t> points_of;
-                for (const auto& counts : window) {
-                    for (const auto& [id, n] : counts) points_of[id] += n;
-                }
-                const Isometry3 T_sensor_world = frame.T_world_sensor.inverse();
-                for (const sim::ObjectState& o : frame.objects) {
-                    const OrientedBox box = o.box_world.transformed(T_sensor_world);
-                    if (std::abs(box.centre_m.x()) > lp.range_m || std::abs(box.centre_m.y()) > lp.range_m) continue;
-                    const auto it = std::find_if(scene.objects.begin(), scene.objects.end(), [&](const sim::SceneObject& so) { return so.id == o.id; });
-                    const LabelledObject label{o.id, o.cls, it == scene.objects.end() ? "" : it->style, box, points_of[o.id]};
-                    (label.points >= lp.min_points ? sample.truth.objects : sample.truth.unseen).push_back(label);
-                }
-                samples.push_back(std::move(sample));
+        // Truth visibility as the labeller's keyframes see it: points over the keyframe's window.
+        std::deque<std::map<std::uint32_t, std::size_t>> window;
+        drive_sessions(labeller, base, params.sessions, params.max_sweeps, params.seed * 7919 + static_cast<std::uint64_t>(k) * 31, params.odometry,
+                       [&](int s, const sim::Scene& scene, sim::SimFrame& frame, const std::function<pipeline::FrontEndResult(sim::SimFrame&)>& feed) {
+            const auto t0 = Clock::now();
+            Sample sample;
+            sample.label = frame.points_sensor.label;
+            sample.instance = frame.points_sensor.instance;
+            std::map<std::uint32_t, std::size_t> sweep_points;
+            for (std::size_t i = 0; i < sample.instance.size(); ++i) {
+                if (sample.instance[i] && sample.label[i] != static_cast<std::uint8_t>(SemanticLabel::kGround)) ++sweep_points[sample.instance[i]];
             }
-        }
+            if (frame.index == 0) window.clear();
+            window.push_back(std::move(sweep_points));
+            if (window.size() > static_cast<std::size_t>(lp.system.keyframe.window)) window.pop_front();
+            pipeline::FrontEndResult r = feed(frame);
+            label_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+            ++row.sweeps;
+            if (!r.keyframe) return;
+            ++row.keyframes;
+            if (r.points_world.size() != sample.label.size()) throw std::logic_error("bench label: the front end reordered a sweep");
+            sample.session = s;
+            sample.points_world = std::move(r.points_world.xyz);
+            std::map<std::uint32_t, std::size_t> points_of;
+            for (const auto& counts : window) {
+                for (const auto& [id, n] : counts) points_of[id] += n;
+            }
+            const Isometry3 T_sensor_world = frame.T_world_sensor.inverse();
+            for (const sim::ObjectState& o : frame.objects) {
+                const OrientedBox box = o.box_world.transformed(T_sensor_world);
+                if (std::abs(box.centre_m.x()) > lp.range_m || std::abs(box.centre_m.y()) > lp.range_m) continue;
+                const auto it = std::find_if(scene.objects.begin(), scene.objects.end(), [&](const sim::SceneObject& so) { return so.id == o.id; });
+                const LabelledObject label{o.id, o.cls, it == scene.objects.end() ? "" : it->style, box, points_of[o.id]};
+                (label.points >= lp.min_points ? sample.truth.objects : sample.truth.unseen).push_back(label);
+            }
+            samples.push_back(std::move(sample));
+        });
         const verification::CadLibrary library = params.cad ? scene_cad_library(base) : verification::CadLibrary{};
         const auto t0 = Clock::now();
         const labelling::LabelResult labels = labeller.finish(params.cad ? &library : nullptr);

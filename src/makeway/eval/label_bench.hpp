@@ -66,6 +66,17 @@ std::array<double, labelling::kNumPointClasses> class_iou(
 void add_panoptic(const std::vector<std::uint32_t>& truth, const std::vector<std::uint32_t>& predicted, std::size_t min_points,
                   PanopticQuality& pq);
 
+/// Called for every simulated sweep: the session, its scene, the frame (truth included), and `feed`,
+/// which hands the frame to the labeller as a robot records it and returns the front end's result.
+using SessionFrameHook = std::function<void(int session, const sim::Scene& scene, sim::SimFrame& frame,
+                                            const std::function<pipeline::FrontEndResult(sim::SimFrame&)>& feed)>;
+
+/// Drives `base` in `sessions` sessions (sim::make_session: furniture moved between them) along
+/// each session's auto route, up to max_sweeps each, into the labeller (begin_session per session).
+/// Throws std::runtime_error when a session has no route.
+void drive_sessions(labelling::Labeller& labeller, const sim::Scene& base, int sessions, int max_sweeps, std::uint64_t seed,
+                    const sim::OdometryNoiseParams& odometry, const SessionFrameHook& on_frame = {});
+
 LabelBenchResult run_label_bench(const LabelBenchParams& params, const std::function<void(int, int)>& progress = {});
 
 }  // namespace makeway::eval

@@ -11,7 +11,7 @@ namespace makeway::eval {
 verification::CadLibrary default_cad_library() {
     verification::CadLibrary lib;
     for (ObjectClass cls : kAllObjectClasses) {
-        for (sim::FurnitureStyle s : sim::styles_of(cls)) lib.add(std::string(sim::to_string(s)), cls, sim::make_furniture(s, 0).mesh_object);
+        for (sim::FurnitureStyle s : sim::scene_styles_of(cls)) lib.add(std::string(sim::to_string(s)), cls, sim::make_furniture(s, 0).mesh_object);
     }
     return lib;
 }

@@ -6,8 +6,8 @@
 
 namespace makeway::eval {
 
-/// Every furniture style of the simulator at its default dimensions, as a verification library:
-/// for furniture whose CAD models are not known.
+/// Every furniture style generated scenes draw from (sim::scene_styles_of) at its default
+/// dimensions, as a verification library: for furniture whose CAD models are not known.
 verification::CadLibrary default_cad_library();
 /// The CAD models of the furniture in the scene, one per distinct model (the paper's setting: the
 /// robot's owner has the models of the room's chairs and tables).

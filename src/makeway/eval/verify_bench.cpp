@@ -49,7 +49,7 @@ verification::CadLibrary build_library(const sim::SceneObject& o, bool matched) 
     // The object's own model (matched) or none of its dimensions (mismatched), plus one model of
     // every other style of its class.
     verification::CadLibrary lib;
-    for (sim::FurnitureStyle style : sim::styles_of(o.cls)) {
+    for (sim::FurnitureStyle style : sim::scene_styles_of(o.cls)) {
         const bool own = std::string(sim::to_string(style)) == o.style;
         const std::uint64_t seed = own && matched ? o.model_seed : o.model_seed + 7919 + static_cast<std::uint64_t>(style);
         lib.add(std::string(sim::to_string(style)) + "_" + std::to_string(seed), o.cls,

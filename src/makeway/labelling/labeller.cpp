@@ -104,6 +104,7 @@ struct Labeller::Impl {
     std::vector<Session> sessions;
     std::unique_ptr<MultiSessionOccupancy> occupancy;
     std::vector<Object> objects;
+    std::vector<std::vector<std::size_t>> objects_of;  ///< per session: indices into objects
     bool finished = false;
     double seconds_front_end = 0.0;
 
@@ -120,8 +121,8 @@ struct Labeller::Impl {
         const Session& s = sessions[static_cast<std::size_t>(session)];
         const double h = height_of(s, p);
         if (h < params.system.keyframe.ground_filter.ground_band_m) return {PointClass::kGround, SemanticLabel::kGround, 0};
-        for (const Object& o : objects) {
-            if (o.info.session != session) continue;
+        for (std::size_t index : objects_of[static_cast<std::size_t>(session)]) {
+            const Object& o = objects[index];
             const double margin = o.model ? params.label_distance_m : params.unknown_box_margin_m;
             if (!o.info.box_world.contains(p, margin)) continue;
             if (o.model) {
@@ -164,6 +165,7 @@ pipeline::FrontEndResult Labeller::add_sweep(pipeline::Sweep sweep) {
     if (impl_->sessions.empty() || impl_->finished) throw std::logic_error("labeller: add_sweep outside a session");
     const auto t0 = Clock::now();
     Impl::Session& s = impl_->sessions.back();
+    const double stamp_s = sweep.stamp_s;
     sweep.points_sensor = pipeline::sensor_channels_only(std::move(sweep.points_sensor));
     pipeline::FrontEndResult r = s.front_end->add(std::move(sweep));
     if (s.sweeps % static_cast<std::size_t>(impl_->params.trace_every) == 0) {
@@ -184,7 +186,7 @@ pipeline::FrontEndResult Labeller::add_sweep(pipeline::Sweep sweep) {
             const auto& g = r.keyframe->prepared.ground;
             k.plane_sensor = Eigen::Vector4d(g.normal.x(), g.normal.y(), g.normal.z(), g.offset);
         }
-        k.stamp_s = sweep.stamp_s;
+        k.stamp_s = stamp_s;
         s.keyframes.push_back(std::move(k));
     }
     ++s.sweeps;
@@ -378,12 +380,10 @@ void Labeller::Impl::find_objects(int session, const verification::CadLibrary* l
             o.info.class_source = "cad";
             o.info.residual_m = best->residual_m;
             o.info.T_world_object = best->T_sensor_object;
-            ++report.cad_objects;
         } else if (share >= params.movable_share && n >= params.min_object_points) {
             o.info.box_world = box;
             if (classify_unknown) o.info.cls = classify_unknown(session, box, c.points);
             o.info.class_source = o.info.cls ? "detector" : "unknown";
-            if (!o.info.cls) ++report.unknown_objects;
         } else {
             continue;  // Permanent: it never moved and no model explains it
         }
@@ -395,6 +395,9 @@ void Labeller::Impl::find_objects(int session, const verification::CadLibrary* l
         });
         if (duplicate) continue;
         o.info.id = static_cast<std::uint32_t>(objects.size() + 1);
+        objects_of[static_cast<std::size_t>(session)].push_back(objects.size());
+        report.cad_objects += o.model != nullptr;
+        report.unknown_objects += !o.info.cls;
         objects.push_back(std::move(o));
         ++report.objects;
     }
@@ -467,6 +470,7 @@ LabelResult Labeller::finish(const verification::CadLibrary* library, const Unkn
     m.trace(progress);
     result.seconds_trace = seconds_since(t0);
     t0 = Clock::now();
+    m.objects_of.assign(m.sessions.size(), {});
     for (std::size_t i = 0; i < m.sessions.size(); ++i) {
         m.find_objects(static_cast<int>(i), library, classify_unknown, result.reports[i]);
         if (progress) progress("objects", i + 1, m.sessions.size());

@@ -35,7 +35,11 @@ struct SceneObject {
     std::string style;             ///< furniture style name; empty for a user mesh
     std::uint64_t model_seed = 0;  ///< dimensions of the procedural model
     std::string mesh_file;         ///< user mesh (OBJ/PLY/STL/DAE), relative to the scene file
-    double scale = 1.0;            ///< applied to a user mesh
+    double scale = 1.0;            ///< applied to a user mesh (on top of its units)
+    std::string units = "m";       ///< a user mesh's length unit: m, cm, mm, in, ft
+    std::string up_axis = "z";     ///< a user mesh's up (Collada files are turned Z-up by their own declaration first)
+    std::string forward_axis = "x";  ///< a user mesh's front (where a sitter faces; a table's length)
+    bool recentre = true;          ///< a user mesh's footprint centred on its origin, its lowest point on the floor
     /// The loaded user mesh in its object frame (scaled); filled by io when the scene is read.
     std::shared_ptr<const TriangleMesh> user_mesh;
     Pose2 pose;                    ///< T_world_object on the floor at time 0
