@@ -67,6 +67,13 @@ rosio::SourceOptions session_source(const fs::path& dir, const LabelOptions& o, 
     for (const fs::path& odo : {dir / o.odometry_name, fs::path(so.clouds) / o.odometry_name}) {
         if (fs::is_regular_file(odo)) so.odometry = odo.string();
     }
+    if (!o.poses_name.empty()) {
+        so.odometry.clear();
+        for (const fs::path& poses : {dir / o.poses_name, fs::path(so.clouds) / o.poses_name}) {
+            if (fs::is_regular_file(poses)) so.poses = poses.string();
+        }
+        if (so.poses.empty()) throw io::FileError(dir / o.poses_name, "no such pose file (--poses-name)");
+    }
     return so;
 }
 
@@ -97,8 +104,9 @@ void write_point_labels(const fs::path& path, const std::vector<std::uint32_t>& 
 
 int run_label(const LabelOptions& o) {
     const io::Config cfg = o.config.empty() ? io::Config{} : io::load_config(o.config);
-    labelling::LabelParams params;
+    labelling::LabelParams params = cfg.labelling;
     params.system = io::online_system_params(cfg);
+    if (!o.poses_name.empty()) params.system.lidar_odometry = false;  // the given poses are the pose
     std::optional<verification::CadLibrary> library;
     if (!o.cad.empty()) library = io::read_cad_folder(o.cad);
     std::optional<perception::Detector> detector;
@@ -208,11 +216,15 @@ int run_bench_label(const BenchLabelOptions& o) {
                           {"alignment_residual_m", s.alignment_residual_m}, {"alignment_correction_m", s.alignment_correction_m},
                           {"iou", {{"ground", iou[0]}, {"permanent", iou[1]}, {"movable", iou[2]}, {"dynamic", iou[3]}}},
                           {"panoptic", panoptic_json(s.panoptic)}, {"boxes", metrics_json(s.boxes)},
+                          {"still_boxes", metrics_json(s.still_boxes)}, {"iou_by_motion", {{"movable", eval::class_iou(s.confusion_by_motion)[2]}, {"dynamic", eval::class_iou(s.confusion_by_motion)[3]}}},
                           {"label_seconds", s.label_seconds}});
     }
     const io::Json j = {{"scenes", p.scenes}, {"sessions", p.sessions}, {"seed", p.seed}, {"cad", p.cad},
                         {"iou", {{"ground", r.iou[0]}, {"permanent", r.iou[1]}, {"movable", r.iou[2]}, {"dynamic", r.iou[3]}}},
                         {"confusion_truth_by_predicted", r.confusion},
+                        {"iou_by_motion", {{"ground", r.iou_by_motion[0]}, {"permanent", r.iou_by_motion[1]}, {"movable", r.iou_by_motion[2]}, {"dynamic", r.iou_by_motion[3]}}},
+                        {"still_boxes", metrics_json(r.still_boxes)},
+                        {"still_yaw_within_10deg", yaw_within_10(r.still_boxes)},
                         {"panoptic", panoptic_json(r.panoptic)},
                         {"boxes", metrics_json(r.boxes)},
                         {"yaw_within_10deg", yaw_within_10(r.boxes)},
@@ -222,7 +234,9 @@ int run_bench_label(const BenchLabelOptions& o) {
     std::cout << "point IoU: ground " << r.iou[0] << ", permanent " << r.iou[1] << ", movable " << r.iou[2] << ", dynamic " << r.iou[3]
               << "\ninstances: PQ " << r.panoptic.pq() << " (SQ " << r.panoptic.sq() << ", RQ " << r.panoptic.rq() << ")"
               << "\nboxes: AP@0.25 " << r.boxes.map_25 << ", AP@0.5 " << r.boxes.map_50 << ", yaw within 10 deg "
-              << yaw_within_10(r.boxes) << "\nwrote " << (out / "summary.json").string() << "\n";
+              << yaw_within_10(r.boxes) << "\nby motion (chairs pulled during a session as dynamic): movable IoU " << r.iou_by_motion[2]
+              << ", dynamic IoU " << r.iou_by_motion[3] << ", box AP@0.25 " << r.still_boxes.map_25 << ", AP@0.5 " << r.still_boxes.map_50
+              << ", yaw within 10 deg " << yaw_within_10(r.still_boxes) << "\nwrote " << (out / "summary.json").string() << "\n";
     return 0;
 }
 
@@ -239,6 +253,7 @@ int run_bench_sessions(const BenchSessionsOptions& o) {
     p.max_sweeps = o.max_sweeps;
     p.seed = o.seed;
     p.eval_scenes = o.eval_scenes;
+    p.replay_scenes = o.replay_scenes;
     p.left_out_styles = o.left_out_styles;
     p.train.epochs = o.epochs;
     p.train.threads = o.threads;
@@ -263,7 +278,8 @@ int run_bench_sessions(const BenchSessionsOptions& o) {
         table += line;
     }
     io::write_json(out / "summary.json", {{"left_out_styles", p.left_out_styles}, {"rounds", rows}, {"scenes_per_round", p.scenes_per_round},
-                                          {"sessions", p.sessions}, {"epochs", p.train.epochs}, {"seed", p.seed}});
+                                          {"sessions", p.sessions}, {"epochs", p.train.epochs}, {"replay_scenes", p.replay_scenes},
+                                          {"eval_scenes", p.eval_scenes}, {"seed", p.seed}});
     io::write_file_atomic(out / "table.md", table);
     detector.save(out / "model.pt");
     std::cout << table;

@@ -263,6 +263,7 @@ struct LabelOptions {
     std::string model;                  ///< the previous round's detector: classes of model-less clusters
     std::string config;
     std::string odometry_name = "odometry.txt";
+    std::string poses_name;             ///< external poses (TUM T_world_sensor) in every session folder; the odometry does not run
     std::string out;
     int max_sweeps = 0;                 ///< per session; 0: all
 };
@@ -286,6 +287,7 @@ struct BenchSessionsOptions {
     int max_sweeps = 300;
     int epochs = 4;
     int eval_scenes = 3;
+    int replay_scenes = 6;
     int threads = 2;
     std::uint64_t seed = 0;
     std::vector<std::string> left_out_styles{"armchair", "round_table", "lounge_chair", "pedestal_table"};

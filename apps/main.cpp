@@ -309,6 +309,8 @@ void add_label(CLI::App& app, LabelOptions& o) {
     sub->add_option("--model", o.model, "Detector weights of the previous round: the class of objects no CAD model fits");
     sub->add_option("--config", o.config, "YAML configuration (the front end's sections)");
     sub->add_option("--odometry-name", o.odometry_name, "Wheel odometry file name in each session folder (TUM)")->capture_default_str();
+    sub->add_option("--poses-name", o.poses_name, "External poses in each session folder (TUM T_world_sensor at each sweep's "
+                                                  "start, e.g. makeway run's poses.txt): the odometry does not run");
     sub->add_option("--max-sweeps", o.max_sweeps, "Sweeps per session at most (0: all)")->check(CLI::Range(0, 10000000))->capture_default_str();
     sub->add_option("--out", o.out, "Output folder: clouds/, labels/ (as makeway dataset), point_labels/ (uint32: "
                                     "semantic low 16 bits, instance high 16), objects.json, meta.json")->required();
@@ -327,6 +329,9 @@ void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchV
     ses->add_option("--sessions", ses_o.sessions, "Sessions per room")->check(CLI::Range(2, 20))->capture_default_str();
     ses->add_option("--max-sweeps", ses_o.max_sweeps, "Sweeps per session at most")->check(CLI::Range(10, 100000))->capture_default_str();
     ses->add_option("--epochs", ses_o.epochs, "Fine-tuning epochs per round")->check(CLI::Range(1, 1000))->capture_default_str();
+    ses->add_option("--replay-scenes", ses_o.replay_scenes, "Simulated scenes of the trained styles replayed in fine-tuning")
+        ->check(CLI::Range(0, 1000))
+        ->capture_default_str();
     ses->add_option("--eval-scenes", ses_o.eval_scenes, "Held-out scenes per scored set")->check(CLI::Range(1, 100))->capture_default_str();
     ses->add_option("--left-out-styles", ses_o.left_out_styles, "Styles the detector never saw")->delimiter(',')->capture_default_str();
     ses->add_option("--threads", ses_o.threads, "Torch threads")->check(CLI::Range(1, 256))->capture_default_str();

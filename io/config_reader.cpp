@@ -299,6 +299,43 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
     }
 }
 
+// The automatic annotation's section (labelling/labeller.hpp documents each parameter).
+void read_labelling(const YAML::Node& node, labelling::LabelParams& l, std::vector<std::string>& problems) {
+    YamlSection s(node, "labelling", problems);
+    s.read("voxel_m", l.occupancy.voxel_m);
+    s.read("end_margin_m", l.occupancy.end_margin_m);
+    s.read("range_margin", l.occupancy.range_margin);
+    s.read("min_free_sweeps", l.occupancy.min_free_sweeps);
+    s.read("absent_hit_ratio", l.occupancy.absent_hit_ratio);
+    s.read("dynamic_min_free", l.occupancy.dynamic_min_free);
+    s.read("dynamic_hit_ratio", l.occupancy.dynamic_hit_ratio);
+    s.read("trace_every", l.trace_every);
+    s.read("trace_voxel_m", l.trace_voxel_m);
+    s.read("map_voxel_m", l.map_voxel_m);
+    s.read("dbscan_eps_m", l.dbscan.eps_m);
+    s.read("dbscan_min_points", l.dbscan.min_points);
+    s.read("dbscan_z_scale", l.dbscan_z_scale);
+    s.read("min_cluster_points", l.min_cluster_points);
+    s.read("min_object_points", l.min_object_points);
+    s.read("min_object_height_m", l.min_object_height_m);
+    s.read("max_object_height_m", l.max_object_height_m);
+    s.read("max_object_length_m", l.max_object_length_m);
+    s.read("movable_share", l.movable_share);
+    s.read("min_coverage", l.min_coverage);
+    s.read("max_splits", l.max_splits);
+    s.read("split_share", l.split_share);
+    s.read("split_distance_m", l.split_distance_m);
+    s.read("duplicate_iou", l.duplicate_iou);
+    s.read("cad_max_residual_m", l.verify.e_max_m);
+    s.read("label_distance_m", l.label_distance_m);
+    s.read("min_points", l.min_points);
+    s.read("range_m", l.range_m);
+    s.finish();
+    labelling::LabelParams without_system = l;  // the system's sections report their own problems
+    without_system.system = pipeline::SystemParams{};
+    s.add_validation(without_system.validate());
+}
+
 }  // namespace
 
 Config parse_config(std::string_view yaml_text) {
@@ -315,7 +352,8 @@ Config parse_config(std::string_view yaml_text) {
     }
     Config cfg;
     const std::vector<std::string> sections{"scene",      "lidar",        "robot",    "odometry", "simulation",
-                                            "affordance", "lidar_odometry", "perception", "verification", "tracking", "costmap", "planning"};
+                                            "affordance", "lidar_odometry", "perception", "verification", "tracking", "costmap", "planning",
+                                            "labelling"};
     if (root.IsMap()) {
         for (const auto& kv : root) {
             const std::string name = kv.first.as<std::string>("");
@@ -419,6 +457,7 @@ Config parse_config(std::string_view yaml_text) {
         s.add_validation(a.validate());
     }
     read_system(const_root, cfg.system, problems);
+    read_labelling(const_root["labelling"], cfg.labelling, problems);
     cfg.system.navigator.affordance = cfg.affordance;
     cfg.scene.robot = cfg.robot;
     if (!problems.empty()) throw FormatError(join_problems(problems));

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "makeway/costmap/affordance.hpp"
+#include "makeway/labelling/labeller.hpp"
 #include "makeway/pipeline/system_params.hpp"
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/robot.hpp"
@@ -81,6 +82,8 @@ struct Config {
     /// The online system: sections perception, verification, tracking, costmap, planning
     /// (system.navigator.affordance is filled from `affordance` by the commands).
     pipeline::SystemParams system;
+    /// The automatic annotation (`makeway label`); its front end is `system`'s.
+    labelling::LabelParams labelling;
 };
 
 /// The online system's parameters as the program runs it on a robot (`ours`): the configuration's

@@ -72,6 +72,18 @@ TEST(Cli, LabelTwoSessionsAndTrainOnTheLabels) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(fs::exists(dir / "model.pt"));
 
+    // Recorded sweeps with poses from elsewhere (here makeway odometry's): the labeller's odometry
+    // does not run, and the same furniture comes out.
+    for (const char* s : {"room", "room2"}) {
+        ASSERT_EQ(run_makeway("odometry --clouds " + (dir / s / "clouds").string() + " --odometry " + (dir / s / "odometry.txt").string() +
+                                  " --out " + (dir / s / "poses.txt").string(), dir).exit_code, 0);
+    }
+    r = run_makeway("label --sessions " + (dir / "room").string() + " " + (dir / "room2").string() + " --poses-name poses.txt --cad " +
+                        (dir / "cad").string() + " --out " + (dir / "labels_poses").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const io::Json with_poses = io::read_json(dir / "labels_poses" / "objects.json")["objects"];
+    EXPECT_EQ(with_poses.size(), objects.size()) << with_poses.dump();
+
     // Bad input: one line naming the path, exit 2, nothing written.
     r = run_makeway("label --sessions " + (dir / "room").string() + " " + (dir / "nowhere").string() + " --out " + (dir / "l2").string(), dir);
     EXPECT_EQ(r.exit_code, 2);

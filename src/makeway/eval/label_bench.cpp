@@ -2,8 +2,10 @@
 
 #include <chrono>
 #include <deque>
+#include <set>
 #include <map>
 
+#include "makeway/common/box_overlap.hpp"
 #include "makeway/eval/keyframe_stages.hpp"
 
 #include "makeway/eval/scene_cad.hpp"
@@ -34,6 +36,8 @@ struct Sample {
     std::vector<std::uint8_t> label;
     std::vector<std::uint32_t> instance;
     LabelledKeyframe truth;                     ///< truth boxes in the true sensor frame
+    std::vector<OrientedBox> moving_boxes;      ///< chairs a person pulls during the session, same frame
+    std::set<std::uint32_t> moving_ids;
 };
 
 }  // namespace
@@ -111,8 +115,8 @@ void add_panoptic(const std::vector<std::uint32_t>& truth, const std::vector<std
 
 LabelBenchResult run_label_bench(const LabelBenchParams& params, const std::function<void(int, int)>& progress) {
     LabelBenchResult result;
-    std::vector<std::vector<Detection>> all_labels;
-    std::vector<std::vector<LabelledBox>> all_truth;
+    std::vector<std::vector<Detection>> all_labels, all_still_labels;
+    std::vector<std::vector<LabelledBox>> all_truth, all_still_truth;
     for (int k = 0; k < params.scenes; ++k) {
         sim::SceneGenParams g;
         g.seed = params.seed + static_cast<std::uint64_t>(k);
@@ -154,8 +158,10 @@ LabelBenchResult run_label_bench(const LabelBenchParams& params, const std::func
                 for (const auto& [id, n] : counts) points_of[id] += n;
             }
             const Isometry3 T_sensor_world = frame.T_world_sensor.inverse();
+            for (const sim::ChairPusher& pusher : scene.pushers) sample.moving_ids.insert(pusher.chair_id);
             for (const sim::ObjectState& o : frame.objects) {
                 const OrientedBox box = o.box_world.transformed(T_sensor_world);
+                if (sample.moving_ids.count(o.id)) sample.moving_boxes.push_back(box);
                 if (std::abs(box.centre_m.x()) > lp.range_m || std::abs(box.centre_m.y()) > lp.range_m) continue;
                 const auto it = std::find_if(scene.objects.begin(), scene.objects.end(), [&](const sim::SceneObject& so) { return so.id == o.id; });
                 const LabelledObject label{o.id, o.cls, it == scene.objects.end() ? "" : it->style, box, points_of[o.id]};
@@ -178,14 +184,17 @@ LabelBenchResult run_label_bench(const LabelBenchParams& params, const std::func
         }
         // Score: samples are in session order, keyframes in the same order as the labeller's.
         std::vector<std::size_t> next_keyframe(labels.sessions.size(), 0);
-        std::vector<std::vector<Detection>> scene_labels;
-        std::vector<std::vector<LabelledBox>> scene_truth;
+        std::vector<std::vector<Detection>> scene_labels, scene_still_labels;
+        std::vector<std::vector<LabelledBox>> scene_truth, scene_still_truth;
         for (const Sample& sample : samples) {
             const std::vector<labelling::PointLabel> predicted = labeller.label_points(sample.session, sample.points_world);
             std::vector<std::uint32_t> truth_instance(sample.label.size(), 0), predicted_instance(sample.label.size(), 0);
             for (std::size_t i = 0; i < predicted.size(); ++i) {
                 const PointClass t = truth_class(sample.label[i]);
                 ++row.confusion[static_cast<std::size_t>(t)][static_cast<std::size_t>(predicted[i].cls)];
+                // By motion (Thomas et al.'s definitions): what moves within the session is Dynamic.
+                const bool moving = t == PointClass::kMovable && sample.moving_ids.count(sample.instance[i]);
+                ++row.confusion_by_motion[static_cast<std::size_t>(moving ? PointClass::kDynamic : t)][static_cast<std::size_t>(predicted[i].cls)];
                 if (t == PointClass::kMovable) truth_instance[i] = sample.instance[i];
                 if (predicted[i].instance && predicted[i].semantic != SemanticLabel::kClutter) predicted_instance[i] = predicted[i].instance;
             }
@@ -202,16 +211,36 @@ LabelBenchResult run_label_bench(const LabelBenchParams& params, const std::func
                 d.score = std::min(1.0, static_cast<double>(o.points) / 1000.0);  // better-seen labels first
                 dets.push_back(d);
             }
+            // Still objects only: the chairs pulled during the session are neither truth nor false
+            // labels (a static label cannot hold an object that moves under it).
+            LabelledKeyframe still = sample.truth;
+            still.objects.erase(std::remove_if(still.objects.begin(), still.objects.end(),
+                                               [&](const LabelledObject& o) { return sample.moving_ids.count(o.id) > 0; }),
+                                still.objects.end());
+            std::vector<Detection> still_dets;
+            for (const Detection& d : dets) {
+                const bool on_moving = std::any_of(sample.moving_boxes.begin(), sample.moving_boxes.end(),
+                                                   [&](const OrientedBox& b) { return iou_bev(b, d.box_sensor) > 0.1; });
+                if (!on_moving) still_dets.push_back(d);
+            }
+            scene_still_labels.push_back(std::move(still_dets));
+            scene_still_truth.push_back(ground_truth_of(still));
             scene_labels.push_back(dets);
             scene_truth.push_back(ground_truth_of(sample.truth));
         }
         row.boxes = evaluate_detections(scene_labels, scene_truth);
+        row.still_boxes = evaluate_detections(scene_still_labels, scene_still_truth);
         for (std::size_t i = 0; i < scene_labels.size(); ++i) {
             all_labels.push_back(std::move(scene_labels[i]));
             all_truth.push_back(std::move(scene_truth[i]));
+            all_still_labels.push_back(std::move(scene_still_labels[i]));
+            all_still_truth.push_back(std::move(scene_still_truth[i]));
         }
         for (int a = 0; a < labelling::kNumPointClasses; ++a) {
-            for (int b = 0; b < labelling::kNumPointClasses; ++b) result.confusion[a][b] += row.confusion[a][b];
+            for (int b = 0; b < labelling::kNumPointClasses; ++b) {
+                result.confusion[a][b] += row.confusion[a][b];
+                result.confusion_by_motion[a][b] += row.confusion_by_motion[a][b];
+            }
         }
         result.panoptic.tp += row.panoptic.tp;
         result.panoptic.fp += row.panoptic.fp;
@@ -221,7 +250,9 @@ LabelBenchResult run_label_bench(const LabelBenchParams& params, const std::func
         if (progress) progress(k + 1, params.scenes);
     }
     result.iou = class_iou(result.confusion);
+    result.iou_by_motion = class_iou(result.confusion_by_motion);
     result.boxes = evaluate_detections(all_labels, all_truth);
+    result.still_boxes = evaluate_detections(all_still_labels, all_still_truth);
     return result;
 }
 
