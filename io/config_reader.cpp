@@ -322,6 +322,7 @@ void read_labelling(const YAML::Node& node, labelling::LabelParams& l, std::vect
     s.read("max_object_length_m", l.max_object_length_m);
     s.read("movable_share", l.movable_share);
     s.read("min_coverage", l.min_coverage);
+    s.read("max_seen_through", l.max_seen_through);
     s.read("max_splits", l.max_splits);
     s.read("split_share", l.split_share);
     s.read("split_distance_m", l.split_distance_m);

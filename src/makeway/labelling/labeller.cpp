@@ -24,13 +24,6 @@ std::vector<Eigen::Vector3d> to_world(const PointCloud& cloud, const Isometry3& 
     return out;
 }
 
-const verification::CadModel* find_model(const verification::CadLibrary& library, const std::string& name) {
-    for (const verification::CadModel& m : library.models()) {
-        if (m.name == name) return &m;
-    }
-    throw std::logic_error("labeller: the verifier chose a model not in the library: " + name);
-}
-
 // Points within `distance` of the model's surface (finest level) at T_object_world.
 std::size_t count_explained(const std::vector<Eigen::Vector3d>& points, const verification::CadModel& model,
                             const Isometry3& T_object_world, double distance = 0.06) {
@@ -105,6 +98,15 @@ struct Labeller::Impl {
     std::unique_ptr<MultiSessionOccupancy> occupancy;
     std::vector<Object> objects;
     std::vector<std::vector<std::size_t>> objects_of;  ///< per session: indices into objects
+    std::vector<verification::CadLibrary> single_models;  ///< the library split into one-model libraries
+
+    const verification::CadLibrary& single_model(const verification::CadLibrary& library, std::size_t index) {
+        if (single_models.size() != library.models().size()) {
+            single_models.clear();
+            for (std::size_t i = 0; i < library.models().size(); ++i) single_models.push_back(library.only(i));
+        }
+        return single_models[index];
+    }
     bool finished = false;
     double seconds_front_end = 0.0;
 
@@ -138,6 +140,19 @@ struct Labeller::Impl {
             case PointClass::kMovable: return {PointClass::kMovable, SemanticLabel::kClutter, 0};
             default: return {PointClass::kPermanent, SemanticLabel::kStructure, 0};
         }
+    }
+
+    // Share of the model's surface (finest level at T_world_object) that `session` saw through: free
+    // in at least min_free_sweeps sweeps and never hit; over the surface it observed at all.
+    double seen_through(int session, const verification::CadModel& model, const Isometry3& T_world_object) const {
+        std::size_t observed = 0, through = 0;
+        for (const Eigen::Vector3d& q : model.levels.back().points_object) {
+            const MultiSessionOccupancy::Evidence e = occupancy->evidence(session, T_world_object * q);
+            if (e.hits + e.free == 0) continue;
+            ++observed;
+            through += e.hits == 0 && e.free >= params.occupancy.min_free_sweeps;
+        }
+        return observed ? static_cast<double>(through) / static_cast<double>(observed) : 0.0;
     }
 
     void align(LabelResult& result, const LabelProgress& progress);
@@ -317,34 +332,42 @@ void Labeller::Impl::find_objects(int session, const verification::CadLibrary* l
             }
             continue;
         }
-        // Step 5: every model of either class, from the PCA box turned by 0 and 45 deg (the verifier
-        // tries the four quarter turns of each: a square footprint's PCA yaw says nothing); the
-        // lowest accepted residual that explains enough of the cluster wins.
+        // Step 5: every model of either class, one at a time, from the PCA box turned by 0 and 45 deg
+        // (the verifier tries the four quarter turns of each: a square footprint's PCA yaw says
+        // nothing); the lowest accepted residual that explains enough of the cluster and is not
+        // contradicted by free space wins.
         std::optional<verification::VerifiedDetection> best;
         const verification::CadModel* best_model = nullptr;
         std::size_t best_explained = 0;
+        double best_through = 0.0;
         if (library && !library->models().empty()) {
             PointCloud cloud;
             for (const Eigen::Vector3d& p : c.points) cloud.xyz.push_back(p.cast<float>());
-            for (ObjectClass cls : kAllObjectClasses) {
-                if (library->models_of(cls).empty()) continue;
+            for (std::size_t mi = 0; mi < library->models().size(); ++mi) {
+                const verification::CadModel& model = library->models()[mi];
+                const verification::CadLibrary& one = single_model(*library, mi);
                 for (double turn : {0.0, 0.25 * kPi}) {
                     Detection det;
                     det.box_sensor = box;
                     det.box_sensor.yaw_rad += turn;
-                    det.cls = cls;
+                    det.cls = model.cls;
                     det.class_probabilities.fill(0.0);
-                    det.class_probabilities[static_cast<std::size_t>(cls)] = 1.0;
-                    verification::VerifiedDetection v = verification::verify_detection(cloud, det, *library, params.verify, floor_z);
+                    det.class_probabilities[static_cast<std::size_t>(model.cls)] = 1.0;
+                    verification::VerifiedDetection v = verification::verify_detection(cloud, det, one, params.verify, floor_z);
                     if (!v.accepted || (best && v.residual_m >= best->residual_m)) continue;
-                    const verification::CadModel* model = find_model(*library, v.model);
-                    const std::size_t explained = count_explained(c.points, *model, v.T_sensor_object.inverse(), params.label_distance_m);
+                    const std::size_t explained = count_explained(c.points, model, v.T_sensor_object.inverse(), params.label_distance_m);
                     if (static_cast<double>(explained) < params.min_coverage * static_cast<double>(n) ||
                         explained < params.min_object_points) {
                         continue;
                     }
+                    // Free-space test: where the session's rays passed through the model's surface, the
+                    // object is not there (a table's top placed over a chair whose legs it matched, an
+                    // office chair's armrests on one that has none).
+                    const double through = seen_through(session, model, v.T_sensor_object);
+                    if (through > params.max_seen_through) continue;
+                    best_through = through;
                     best = std::move(v);
-                    best_model = model;
+                    best_model = &model;
                     best_explained = explained;
                 }
             }
@@ -379,6 +402,7 @@ void Labeller::Impl::find_objects(int session, const verification::CadLibrary* l
             o.info.model = best->model;
             o.info.class_source = "cad";
             o.info.residual_m = best->residual_m;
+            o.info.seen_through = best_through;
             o.info.T_world_object = best->T_sensor_object;
         } else if (share >= params.movable_share && n >= params.min_object_points) {
             o.info.box_world = box;

@@ -53,6 +53,9 @@ struct LabelParams {
     double split_share = 0.25;          ///< a fit leaving this share of the cluster unexplained splits it
     double split_distance_m = 0.12;     ///< points this close to the fitted model are the object's own
     double min_coverage = 0.3;          ///< a fit must explain this share of the cluster's points
+    /// ... and the session must not have seen through more than this share of the model's observed
+    /// surface (rays that passed where the fitted model would stand: it is not there).
+    double max_seen_through = 0.45;
     double duplicate_iou = 0.2;         ///< a later object overlapping an earlier one of its class (BEV IoU) is dropped
     double label_distance_m = 0.06;     ///< step 6: a point this close to the aligned model is the object's
     double unknown_box_margin_m = 0.05; ///< points of a model-less object: inside its box grown by this
@@ -71,6 +74,7 @@ struct LabelledWorldObject {
     std::string model;                    ///< the aligned CAD model (empty: PCA box only)
     std::string class_source;             ///< "cad", "detector" or "unknown"
     double residual_m = 0.0;              ///< the CAD fit's
+    double seen_through = 0.0;            ///< share of the fitted model's observed surface the session saw through
     std::size_t map_points = 0;           ///< the cluster's points in the session map
     double movable_share = 0.0;
     Isometry3 T_world_object = Isometry3::Identity();  ///< the model's pose (with a model)

@@ -140,6 +140,12 @@ void CadLibrary::add(const std::string& name, ObjectClass cls, const TriangleMes
     models_.push_back(std::move(model));
 }
 
+CadLibrary CadLibrary::only(std::size_t index) const {
+    CadLibrary one(params_);
+    one.models_.push_back(models_.at(index));
+    return one;
+}
+
 std::vector<const CadModel*> CadLibrary::models_of(ObjectClass cls) const {
     std::vector<const CadModel*> out;
     for (const auto& m : models_) {

@@ -61,6 +61,9 @@ public:
     void add(const std::string& name, ObjectClass cls, const TriangleMesh& mesh_object);
     const std::vector<CadModel>& models() const { return models_; }
     std::vector<const CadModel*> models_of(ObjectClass cls) const;
+    /// A library of the one model at `index` (shares its sampled points and indices: cheap), for
+    /// callers that rank models by more than the residual.
+    CadLibrary only(std::size_t index) const;
     const CadLibraryParams& params() const { return params_; }
 
 private:
