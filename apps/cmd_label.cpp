@@ -179,7 +179,8 @@ int run_label(const LabelOptions& o) {
     for (const labelling::LabelledWorldObject& w : r.objects) {
         objects.push_back({{"id", w.id}, {"session", w.session}, {"class", w.cls ? std::string(to_string(*w.cls)) : "unknown"},
                            {"class_source", w.class_source}, {"model", w.model}, {"box_world", io::to_json(w.box_world)},
-                           {"residual_m", w.residual_m}, {"map_points", w.map_points}, {"movable_share", w.movable_share}});
+                           {"residual_m", w.residual_m}, {"seen_through", w.seen_through}, {"map_points", w.map_points},
+                           {"movable_share", w.movable_share}});
     }
     io::Json counts = io::Json::object();
     for (int c = 0; c < labelling::kNumPointClasses; ++c) counts[std::string(labelling::to_string(static_cast<labelling::PointClass>(c)))] = r.point_class_counts[c];

@@ -282,12 +282,12 @@ int run_bench_label(const BenchLabelOptions& options);
 struct BenchSessionsOptions {
     std::string model;  ///< the detector to start from (default weights when empty)
     int rounds = 2;
-    int scenes_per_round = 3;
+    int scenes_per_round = 4;
     int sessions = 3;
     int max_sweeps = 300;
-    int epochs = 4;
+    int epochs = 6;
     int eval_scenes = 3;
-    int replay_scenes = 6;
+    int replay_scenes = 16;
     int threads = 2;
     std::uint64_t seed = 0;
     std::vector<std::string> left_out_styles{"armchair", "round_table", "lounge_chair", "pedestal_table"};

@@ -18,7 +18,7 @@ namespace makeway::eval {
 
 struct SessionBenchParams {
     int rounds = 2;
-    int scenes_per_round = 3;
+    int scenes_per_round = 4;
     int sessions = 3;
     int max_sweeps = 300;              ///< per session
     std::uint64_t seed = 0;
@@ -26,7 +26,7 @@ struct SessionBenchParams {
     /// of the wider world (lounge chair, pedestal cafe table).
     std::vector<std::string> left_out_styles{"armchair", "round_table", "lounge_chair", "pedestal_table"};
     int eval_scenes = 3;               ///< held-out scenes per set (seeds from 1,000,000)
-    int replay_scenes = 6;             ///< simulated scenes of the trained styles mixed into fine-tuning
+    int replay_scenes = 16;            ///< simulated scenes of the trained styles mixed into fine-tuning
     int keyframe_stride = 2;           ///< every n-th auto-labelled keyframe is trained on
     perception::TrainParams train;     ///< fine-tuning (epochs, learning rate)
     labelling::LabelParams label;

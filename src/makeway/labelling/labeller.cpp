@@ -290,7 +290,7 @@ void Labeller::Impl::find_objects(int session, const verification::CadLibrary* l
     };
     std::deque<Pending> queue;
     auto cluster_into_queue = [&](const std::vector<Eigen::Vector3d>& pts, const std::vector<char>& mov, int depth) {
-        // Vertical gaps count for less (an office chair's thin column, a table top over its legs).
+        // Heights scaled first: below 1, vertical gaps count for less (an office chair's thin column).
         std::vector<Eigen::Vector3d> scaled = pts;
         for (Eigen::Vector3d& q : scaled) q.z() *= params.dbscan_z_scale;
         const DbscanResult clusters = dbscan(scaled, params.dbscan);
