@@ -29,7 +29,7 @@ int run_convert(const ConvertOptions& options) {
         throw io::FileError(options.input, "no finite points left to convert");
     }
     if (!file.info.ignored_fields.empty()) {
-        print_warning(options.input + ": fields not kept (makeway has no channel for them): " +
+        io::print_warning(options.input + ": fields not kept (makeway has no channel for them): " +
                       join(file.info.ignored_fields));
     }
     io::CloudWriteOptions write;
@@ -37,7 +37,7 @@ int run_convert(const ConvertOptions& options) {
     write.ply = *io::parse_ply_encoding(options.ply_encoding);
     const auto dropped = io::write_point_cloud(options.output, file.cloud, write);
     if (!dropped.empty()) {
-        print_warning(options.output + ": the format cannot hold " + join(dropped) + "; dropped");
+        io::print_warning(options.output + ": the format cannot hold " + join(dropped) + "; dropped");
     }
     return 0;
 }

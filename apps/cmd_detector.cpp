@@ -43,7 +43,7 @@ int run_dataset(const DatasetOptions& o) {
     p.furniture_share = o.furniture_share;
     p.all_styles = o.all_styles;
     if (!o.furniture.empty()) {
-        for (io::FurnitureMesh& m : io::read_furniture_folder(o.furniture, [](const std::string& w) { std::cerr << "makeway: warning: " << w << "\n"; })) {
+        for (io::FurnitureMesh& m : io::read_furniture_folder(o.furniture, io::print_warning)) {
             p.furniture.push_back({m.name, m.cls, std::move(m.mesh_object)});
         }
     }

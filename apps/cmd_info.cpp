@@ -7,9 +7,6 @@
 namespace makeway::apps {
 
 void print_error(const std::string& message) { std::cerr << "makeway: " << message << "\n"; }
-void print_warning(const std::string& message) {
-    std::cerr << "makeway: warning: " << message << "\n";
-}
 
 int run_info(const InfoOptions& options) {
     const io::CloudFile file =

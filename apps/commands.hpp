@@ -32,7 +32,6 @@ int run_demo(const DemoOptions& options);
 
 /// Prints "makeway: MESSAGE" to stderr.
 void print_error(const std::string& message);
-void print_warning(const std::string& message);
 
 }  // namespace makeway::apps
 

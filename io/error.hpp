@@ -24,4 +24,8 @@ private:
     std::string problem_;
 };
 
+/// "makeway: warning: MESSAGE" on stderr: input that is readable but suspicious (a mesh whose size
+/// cannot be furniture of its class, fields a format cannot keep).
+void print_warning(const std::string& message);
+
 }  // namespace makeway::io

@@ -3,10 +3,9 @@
 // a scene are loaded relative to the scene file. Reads list every problem at once.
 #include <filesystem>
 #include <functional>
-#include <iostream>
-#include <string>
 #include <string>
 
+#include "io/error.hpp"
 #include "makeway/sim/scene.hpp"
 
 namespace makeway::io {
@@ -17,7 +16,7 @@ struct SceneReadOptions {
     bool allow_outside_paths = false;
     /// Told what is readable but suspicious (a user mesh whose size cannot be furniture of its
     /// class); by default a line on stderr.
-    std::function<void(const std::string&)> warn = [](const std::string& w) { std::cerr << "makeway: warning: " << w << "\n"; };
+    std::function<void(const std::string&)> warn = print_warning;
 };
 
 /// Throws FileError ("PATH: 2 problems: ...") on any problem, including unreadable user meshes.
