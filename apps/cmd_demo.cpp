@@ -72,7 +72,6 @@ int run_demo(const DemoOptions& options) {
 
     // Navigation: every method on the same scene, with the same planners.
     const eval::NavParams nav = nav_params(cfg);
-    std::vector<eval::NavRunResult> runs;
     std::vector<io::DrivenPath> paths;
     io::Json runs_json = io::Json::array();
     // The full system `ours` runs when the default detector weights are there.
@@ -97,15 +96,18 @@ int run_demo(const DemoOptions& options) {
                           scene.name + " / " + line, nav.system.navigator.affordance);
         paths.push_back({line, r.trajectory});
         runs_json.push_back(run_to_json(r, true));
-        runs.push_back(std::move(r));
+        runs_json.back()["scene"] = scene.name;
+        runs_json.back()["scene_index"] = 0;
+
     }
     io::write_nav_png(out / "routes" / "all_methods.png", scene, Costmap{}, paths, {}, scene.name + ": every method", nav.system.navigator.affordance);
-    const io::Json agg = aggregate_runs(runs, methods);
+    const io::Json summary = summarise_nav({{"scenes", 1}, {"seed", cfg.simulation.seed}, {"methods", methods}}, runs_json);
+    const io::Json& agg = summary["aggregate"];
     const std::string report =
         "# makeway demo report\n\nScene `" + scene.name + "` (" + std::to_string(scene.objects.size()) +
         " objects; `scene.png`). Each method drives start -> waypoint -> goal with the same A* and DWA; "
         "risk time is the time the robot's centre spends inside the ground-truth affordance zones.\n\n" +
-        table_markdown(agg, methods, 1) +
+        nav_table_markdown(summary) +
         "\n![every method](routes/all_methods.png)\n\nPer method, with its final costmap: "
         "[con](routes/con.png), [oppo](routes/oppo.png), [gt-perc](routes/gt-perc.png)" +
         (detector ? std::string(", [ours](routes/ours.png) (the online system on wheel odometry: detector, verification, object map; "

@@ -4,6 +4,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <mutex>
@@ -51,9 +53,59 @@ int run_navigate(const NavigateOptions& options) {
     return 0;
 }
 
+namespace {
+
+constexpr const char* kPartialKind = "makeway bench nav partial";
+
+// results.json, table.md, risk_time.png and timing.json from the runs of every scene: the same
+// function for one run and for merged shards, so both give the same bytes.
+void write_nav_results(const std::filesystem::path& out, const io::Json& header, const io::Json& runs,
+                       const io::Json& timing, double time_limit_s) {
+    const io::Json summary = summarise_nav(header, runs);
+    io::write_json(out / "results.json", summary);
+    const auto methods = header["methods"].get<std::vector<std::string>>();
+    const io::Json timing_summary = summarise_timing(timing, methods);
+    io::write_json(out / "timing.json", {{"aggregate", timing_summary}, {"runs", timing}});
+    const std::string table = "# Navigation benchmark: " + std::to_string(header["scenes"].get<int>()) + " scenes, seed " +
+                              std::to_string(header["seed"].get<std::uint64_t>()) + "\n\n" + nav_table_markdown(summary) +
+                              "\nSums and means over successful runs (success = goal reached in " +
+                              std::to_string(static_cast<int>(time_limit_s)) +
+                              " s without touching a wall, pillar or piece of furniture; walking people do "
+                              "not avoid the robot, so contacts with them are counted apart). Avoidable risk = risk "
+                              "time - the least risk time any collision-free route has at top speed (unavoidable). "
+                              "Intervals: 2,000 bootstrap resamples of the scenes.\n\n![risk vs time](risk_time.png)\n";
+    io::write_file_atomic(out / "table.md", table);
+    write_risk_time_plot(out / "risk_time.png", summary);
+    std::cout << table;
+    for (const std::string& m : methods) {
+        std::cout << m << ": control cycle " << timing_summary[m]["cycle_ms_median"].get<double>()
+                  << " ms median (of the runs' medians), " << timing_summary[m]["cycle_ms_p99"].get<double>() << " ms p99";
+        if (m == "ours") {  // the full system drives on its own pose (LiDAR odometry fused with the wheels)
+            const io::Json& a = summary["aggregate"][m];
+            std::cout << "; its pose: ATE " << 100 * a["pose_ate_m_median"].get<double>() << " cm median, "
+                      << 100 * a["pose_ate_m_max"].get<double>() << " cm max, final error "
+                      << 100 * a["final_pose_error_m_median"].get<double>() << " cm median";
+        }
+        std::cout << "\n";
+    }
+}
+
+}  // namespace
+
+std::optional<std::pair<int, int>> parse_shard(const std::string& text) {
+    int k = -1, n = -1;
+    char slash = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%d %c %d %c", &k, &slash, &n, &extra) != 3 || slash != '/') return std::nullopt;
+    if (n < 1 || n > 100000 || k < 0 || k >= n) return std::nullopt;
+    return std::make_pair(k, n);
+}
+
 int run_bench_nav(const BenchNavOptions& options) {
     const io::Config cfg = options.config.empty() ? io::Config{} : io::load_config(options.config);
-    io::StagedOutput staged(options.out_dir);  // scenes, routes, results.json, table.md: all or none
+    const auto shard = parse_shard(options.shard.empty() ? "0/1" : options.shard);
+    if (!shard) throw std::invalid_argument("--shard " + options.shard + ": expected K/N with 0 <= K < N");
+    const bool partial = !options.shard.empty();
+    io::StagedOutput staged(options.out_dir);  // scenes, routes, results (or the partial): all or none
     const std::filesystem::path out = staged.staging();
     // The full system `ours` joins when detector weights are there (given, or the default ones).
     std::vector<std::string> methods = eval::nav_method_names();
@@ -71,13 +123,16 @@ int run_bench_nav(const BenchNavOptions& options) {
             return std::find(options.methods.begin(), options.methods.end(), m) == options.methods.end();
         });
     }
+    // Scene i is the same scene in every shard (its seed is seed + i); shard K takes i = K, K + N, ...
     const sim::Density densities[] = {sim::Density::kSparse, sim::Density::kMedium, sim::Density::kDense};
+    std::vector<int> indices;
     std::vector<sim::Scene> scenes;
-    for (int i = 0; i < options.scenes; ++i) {
+    for (int i = shard->first; i < options.scenes; i += shard->second) {
         sim::SceneGenParams g;
         g.seed = options.seed + static_cast<std::uint64_t>(i);
         g.density = densities[i % 3];
         g.robot = cfg.robot;
+        indices.push_back(i);
         scenes.push_back(sim::generate_scene(g));
         io::write_scene(out / "scenes" / (scenes.back().name + ".yaml"), scenes.back());
     }
@@ -89,7 +144,7 @@ int run_bench_nav(const BenchNavOptions& options) {
     tbb::parallel_for(std::size_t{0}, scenes.size() * methods.size(), [&](std::size_t job) {
         const std::size_t s = job / methods.size(), m = job % methods.size();
         eval::NavParams params = nav_params(cfg);
-        params.seed = options.seed + s;
+        params.seed = options.seed + static_cast<std::uint64_t>(indices[s]);
         params.time_limit_s = options.time_limit_s;
         eval::NavRunResult r = run_nav_method(scenes[s], methods[m], params, detector ? &*detector : nullptr);
         std::lock_guard<std::mutex> lock(mutex);
@@ -99,44 +154,108 @@ int run_bench_nav(const BenchNavOptions& options) {
     });
     bar.finish();
 
-    std::vector<eval::NavRunResult> all;
-    io::Json runs = io::Json::array();
+    io::Json runs = io::Json::array(), timing = io::Json::array();
     for (std::size_t s = 0; s < scenes.size(); ++s) {
         std::vector<io::DrivenPath> paths;
         for (const auto& r : results[s]) {
             io::Json j = run_to_json(r, false);
             j["scene"] = scenes[s].name;
+            j["scene_index"] = indices[s];
             j["density"] = scenes[s].density;
             runs.push_back(j);
+            io::Json t = run_timing_json(r);
+            t["scene"] = scenes[s].name;
+            t["scene_index"] = indices[s];
+            timing.push_back(t);
             paths.push_back({r.method + (r.success ? "" : " (failed: " + r.failure + ")") + ": risk " +
                                  std::to_string(r.risk_time_s).substr(0, 4) + " s, time " + std::to_string(r.time_s).substr(0, 5) + " s",
                              r.trajectory});
-            all.push_back(r);
         }
         io::write_nav_png(out / "routes" / (scenes[s].name + ".png"), scenes[s], Costmap{}, paths, {},
                           scenes[s].name + ": every method", cfg.affordance);
     }
-    const io::Json agg = aggregate_runs(all, methods);
-    io::write_json(out / "results.json", {{"scenes", options.scenes}, {"seed", options.seed}, {"runs", runs}, {"aggregate", agg}});
-    const std::string table = "# Navigation benchmark: " + std::to_string(options.scenes) + " scenes, seed " +
-                              std::to_string(options.seed) + "\n\n" + table_markdown(agg, methods, options.scenes) +
-                              "\nSums and means over successful runs (success = goal reached in " +
-                              std::to_string(static_cast<int>(options.time_limit_s)) +
-                              " s without touching a wall, pillar or piece of furniture; walking people do "
-                              "not avoid the robot, so contacts with them are counted apart).\n";
-    io::write_file_atomic(out / "table.md", table);
-    staged.commit();
-    std::cout << table;
-    for (const std::string& m : methods) {
-        std::cout << m << ": control cycle " << agg[m]["cycle_ms_median"].get<double>() << " ms median, "
-                  << agg[m]["cycle_ms_p99"].get<double>() << " ms p99";
-        if (m == "ours") {  // the full system drives on its own pose (LiDAR odometry fused with the wheels)
-            std::cout << "; its pose: ATE " << 100 * agg[m]["pose_ate_m_median"].get<double>() << " cm median, "
-                      << 100 * agg[m]["pose_ate_m_max"].get<double>() << " cm max, final error "
-                      << 100 * agg[m]["final_pose_error_m_median"].get<double>() << " cm median";
-        }
-        std::cout << "\n";
+    // What every shard of one benchmark shares; a merge refuses partials that differ in it.
+    const io::Json header = {{"scenes", options.scenes},
+                             {"seed", options.seed},
+                             {"methods", methods},
+                             {"time_limit_s", options.time_limit_s},
+                             {"config", options.config.empty() ? std::string() : io::read_file(options.config)}};
+    if (partial) {
+        io::Json p = {{"kind", kPartialKind}, {"header", header}, {"shard", {{"index", shard->first}, {"count", shard->second}}},
+                      {"runs", runs}, {"timing", timing}};
+        io::write_json(out / "partial.json", p);
+        staged.commit();
+        std::cout << "bench nav shard " << shard->first << "/" << shard->second << ": " << scenes.size() << " scenes, "
+                  << runs.size() << " runs in " << (std::filesystem::path(options.out_dir) / "partial.json").string()
+                  << " (join with `makeway bench merge`)\n";
+        return 0;
     }
+    write_nav_results(out, header, runs, timing, options.time_limit_s);
+    staged.commit();
+    return 0;
+}
+
+int run_bench_merge(const BenchMergeOptions& options) {
+    // Read and check every partial before writing anything.
+    struct Part {
+        std::filesystem::path dir;
+        io::Json json;
+    };
+    std::vector<Part> parts;
+    for (const std::string& d : options.dirs) {
+        const std::filesystem::path file = std::filesystem::path(d) / "partial.json";
+        io::Json j = io::read_json(file);
+        if (!j.is_object() || j.value("kind", "") != kPartialKind || !j.contains("header") || !j.contains("shard") ||
+            !j.contains("runs") || !j.contains("timing")) {
+            throw io::FileError(file.string(), "not a `makeway bench nav --shard` partial result");
+        }
+        parts.push_back({d, std::move(j)});
+    }
+    if (parts.empty()) throw std::invalid_argument("bench merge: no partial results given");
+    const io::Json& header = parts.front().json["header"];
+    const int count = parts.front().json["shard"]["count"].get<int>();
+    std::vector<int> seen(static_cast<std::size_t>(count), 0);
+    for (const Part& p : parts) {
+        const std::string name = (p.dir / "partial.json").string();
+        if (p.json["header"] != header) throw io::FileError(name, "a different benchmark (scenes, seed, methods, time limit or configuration) than " + (parts.front().dir / "partial.json").string());
+        if (p.json["shard"]["count"].get<int>() != count) throw io::FileError(name, "shard count differs from the first partial's");
+        const int k = p.json["shard"]["index"].get<int>();
+        if (k < 0 || k >= count) throw io::FileError(name, "shard index out of range");
+        if (seen[k]++) throw io::FileError(name, "shard " + std::to_string(k) + "/" + std::to_string(count) + " given twice");
+    }
+    for (int k = 0; k < count; ++k) {
+        if (!seen[k]) throw io::FileError((parts.front().dir / "partial.json").string(), "shard " + std::to_string(k) + "/" + std::to_string(count) + " is missing from the folders given");
+    }
+    // Runs in the order one unsharded run writes them: scene index, then method order.
+    const auto methods = header["methods"].get<std::vector<std::string>>();
+    auto rank = [&](const io::Json& r) {
+        const auto it = std::find(methods.begin(), methods.end(), r["method"].get<std::string>());
+        return std::make_pair(r["scene_index"].get<int>(), static_cast<int>(it - methods.begin()));
+    };
+    io::Json runs = io::Json::array(), timing = io::Json::array();
+    for (const Part& p : parts) {
+        for (const io::Json& r : p.json["runs"]) runs.push_back(r);
+        for (const io::Json& t : p.json["timing"]) timing.push_back(t);
+    }
+    std::stable_sort(runs.begin(), runs.end(), [&](const io::Json& a, const io::Json& b) { return rank(a) < rank(b); });
+    std::stable_sort(timing.begin(), timing.end(), [&](const io::Json& a, const io::Json& b) { return rank(a) < rank(b); });
+    const std::size_t expected = static_cast<std::size_t>(header["scenes"].get<int>()) * methods.size();
+    if (runs.size() != expected) {
+        throw io::FileError((parts.front().dir / "partial.json").string(), "the partials hold " + std::to_string(runs.size()) + " runs, the benchmark " + std::to_string(expected));
+    }
+    io::StagedOutput staged(options.out_dir);
+    const std::filesystem::path out = staged.staging();
+    for (const Part& p : parts) {  // every shard's scenes and route pictures
+        for (const char* sub : {"scenes", "routes"}) {
+            if (!std::filesystem::is_directory(p.dir / sub)) continue;
+            std::filesystem::create_directories(out / sub);
+            for (const auto& e : std::filesystem::directory_iterator(p.dir / sub)) {
+                std::filesystem::copy_file(e.path(), out / sub / e.path().filename(), std::filesystem::copy_options::overwrite_existing);
+            }
+        }
+    }
+    write_nav_results(out, header, runs, timing, header["time_limit_s"].get<double>());
+    staged.commit();
     return 0;
 }
 

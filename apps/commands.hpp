@@ -100,8 +100,18 @@ struct BenchNavOptions {
     int threads = 2;
     double time_limit_s = 180.0;
     std::vector<std::string> methods;  ///< empty: every method (ours when weights are there)
+    std::string shard;  ///< "K/N": run scenes K, K + N, ... and write partial.json (empty: every scene, the results)
 };
 int run_bench_nav(const BenchNavOptions& options);
+/// "K/N" with 0 <= K < N, or nullopt.
+std::optional<std::pair<int, int>> parse_shard(const std::string& text);
+
+struct BenchMergeOptions {
+    std::vector<std::string> dirs;  ///< folders holding partial.json (one per shard)
+    std::string out_dir = "out/bench_nav";
+};
+/// Joins `bench nav --shard` partials into exactly what the unsharded run writes.
+int run_bench_merge(const BenchMergeOptions& options);
 
 }  // namespace makeway::apps
 

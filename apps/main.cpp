@@ -316,8 +316,8 @@ void add_label(CLI::App& app, LabelOptions& o) {
                                     "semantic low 16 bits, instance high 16), objects.json, meta.json")->required();
 }
 
-void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchVerifyOptions& ver_o, BenchTrackOptions& trk_o,
-               BenchOdometryOptions& odo_o, BenchLabelOptions& lab_o, BenchSessionsOptions& ses_o) {
+void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchMergeOptions& merge_o, BenchVerifyOptions& ver_o,
+               BenchTrackOptions& trk_o, BenchOdometryOptions& odo_o, BenchLabelOptions& lab_o, BenchSessionsOptions& ses_o) {
     auto* bench = app.add_subcommand("bench", "Benchmarks that print JSON");
     bench->require_subcommand(1);
     auto* ses = bench->add_subcommand("sessions", "Session after session: a detector trained without some styles is fine-tuned "
@@ -393,6 +393,13 @@ void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchV
     nav->add_option("--time-limit", nav_o.time_limit_s, "Seconds per run before it counts as failed [s]")
         ->check(CLI::Range(1.0, 3600.0))
         ->capture_default_str();
+    nav->add_option("--shard", nav_o.shard, "K/N: run only scenes K, K+N, K+2N, ... (0 <= K < N) and write partial.json; "
+                                            "`makeway bench merge` joins the N partials into the unsharded results")
+        ->check(CLI::Validator([](std::string& v) { return parse_shard(v) ? std::string() : "expected K/N with 0 <= K < N"; }, "K/N"));
+    auto* merge = bench->add_subcommand("merge", "Join `bench nav --shard K/N` partial results (one folder per shard) into "
+                                                 "exactly the results one unsharded run writes");
+    merge->add_option("dirs", merge_o.dirs, "Folders holding partial.json, one per shard, in any order")->required()->check(CLI::ExistingDirectory);
+    merge->add_option("--out", merge_o.out_dir, "Output folder")->capture_default_str();
     auto* sim = bench->add_subcommand("sim", "LiDAR simulation speed: full VLP-32C sweeps (57,600 rays) in a "
                                              "20 x 20 m room with 40 objects, on 1 and 2 threads");
     sim->add_option("--seed", o.seed, "Scene seed")->capture_default_str();
@@ -448,6 +455,7 @@ int main(int argc, char** argv) {
     BenchSimOptions bench_sim;
     NavigateOptions navigate;
     BenchNavOptions bench_nav;
+    BenchMergeOptions bench_merge;
     BenchVerifyOptions bench_verify;
     VerifyOptions verify;
     DatasetOptions dataset;
@@ -476,7 +484,7 @@ int main(int argc, char** argv) {
     add_detector(app, dataset, train_detector, detect, eval_detection);
     add_odometry(app, odometry);
     add_run(app, run);
-    add_bench(app, bench_sim, bench_nav, bench_verify, bench_track, bench_odometry, bench_label, bench_sessions);
+    add_bench(app, bench_sim, bench_nav, bench_merge, bench_verify, bench_track, bench_odometry, bench_label, bench_sessions);
     check_numbers(app);
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
@@ -526,6 +534,7 @@ int main(int argc, char** argv) {
             if (app.got_subcommand("bench")) {
                 const CLI::App* bench = app.get_subcommand("bench");
                 if (bench->got_subcommand("nav")) return run_bench_nav(bench_nav);
+                if (bench->got_subcommand("merge")) return run_bench_merge(bench_merge);
                 if (bench->got_subcommand("verify")) return run_bench_verify(bench_verify);
                 if (bench->got_subcommand("track")) return run_bench_track(bench_track);
                 if (bench->got_subcommand("odometry")) return run_bench_odometry(bench_odometry);

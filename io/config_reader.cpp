@@ -266,8 +266,9 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
     pipeline::NavigatorParams& n = sys.navigator;
     {
         YamlSection s(root["costmap"], "costmap", problems);
-        s.read("obstacle_min_height_m", n.obstacle.min_height_m);
-        s.read("obstacle_max_height_m", n.obstacle.max_height_m);
+        s.read("low_obstacle_range_m", n.obstacle.low_mark_range_m);
+        s.read("low_obstacle_min_returns", n.obstacle.low_min_returns);
+        s.read("low_obstacle_min_share", n.obstacle.low_min_share);
         s.read("mark_range_m", n.obstacle.mark_range_m);
         s.read("clear_range_m", n.obstacle.clear_range_m);
         s.read("inflation_cost_scaling", n.inflation.cost_scaling);
@@ -281,6 +282,8 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("astar_allow_unknown", n.astar.allow_unknown);
         s.read("dwa_horizon_s", n.dwa.horizon_s);
         s.read("dwa_lookahead_m", n.dwa.lookahead_m);
+        s.read("dwa_plan_envelope", n.dwa.plan_envelope);
+        s.read("dwa_envelope_margin", n.dwa.envelope_margin);
         s.read("replan_period_s", n.replan_period_s);
         s.read("blocked_lookahead_m", n.blocked_lookahead_m);
         s.read("blocked_ignore_m", n.blocked_ignore_m);
@@ -292,6 +295,7 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("backup_duration_s", n.backup_duration_s);
         s.read("waypoint_tolerance_m", n.waypoint_tolerance_m);
         s.read("goal_tolerance_m", n.goal_tolerance_m);
+        s.read("plan_to_tolerance", n.plan_to_tolerance);
         s.finish();
         s.add_validation(n.astar.validate());
         s.add_validation(n.dwa.validate());
@@ -408,6 +412,7 @@ Config parse_config(std::string_view yaml_text) {
         s.read("length_m", r.length_m);
         s.read("width_m", r.width_m);
         s.read("body_height_m", r.body_height_m);
+        s.read("ground_clearance_m", r.ground_clearance_m);
         s.read("lidar_height_m", r.lidar_height_m);
         s.read("max_v_mps", r.max_v_mps);
         s.read("max_w_radps", r.max_w_radps);
@@ -481,6 +486,7 @@ pipeline::SystemParams online_system_params(const Config& config) {
     n.affordance_layer = true;
     n.inflation.inscribed_radius_m = config.robot.inscribed_radius_m();
     n.inflation.inflation_radius_m = config.robot.circumscribed_radius_m();
+    n.obstacle.body = config.robot.body();  // what the robot can hit is what the costmap marks
     n.dwa.footprint_length_m = config.robot.length_m;
     n.dwa.footprint_width_m = config.robot.width_m;
     n.dwa.max_w_radps = config.robot.max_w_radps;

@@ -100,5 +100,65 @@ TEST(Dwa, HeadsForTheCarrotInFreeSpace) {
     EXPECT_NEAR(r.command.w_radps, 0.0, 0.25);
 }
 
+
+TEST(AStar, AZoneNeverClosesTheOnlyPassage) {
+    // A wall across the map with one passage, the passage filled with the highest soft cost a zone
+    // can have: the plan still goes through it, at any cost weight.
+    Costmap m({0, 0}, 0.1, 60, 40);
+    for (int y = 14; y < 26; ++y) {
+        for (int x = 26; x < 35; ++x) m.at(x, y) = cost::kMaxSoft;  // the zone, around the passage
+    }
+    for (int y = 0; y < 40; ++y) {
+        if (y < 18 || y >= 22) m.at(30, y) = cost::kLethal;  // the wall; the passage is y in [1.8, 2.2)
+    }
+    const PlanResult r = plan_astar(m, {0.5, 2.0}, {5.5, 2.0}, {.cost_weight = 100.0});
+    ASSERT_EQ(r.status, PlanStatus::kOk);
+    bool through = false;
+    for (const auto& p : r.path_m) through |= m.cell_of(p).x() == 30;
+    EXPECT_TRUE(through);
+    // With goal tolerance: a goal inside the zone is reached at its edge.
+    const PlanResult edge = plan_astar(m, {0.5, 2.0}, {3.0, 2.0}, {.cost_weight = 10.0}, 0.6);
+    ASSERT_EQ(edge.status, PlanStatus::kOk);
+    EXPECT_LE((edge.path_m.back() - Eigen::Vector2d(3.0, 2.0)).norm(), 0.6 + 1e-9);
+    EXPECT_LT(edge.cost, plan_astar(m, {0.5, 2.0}, {3.0, 2.0}, {.cost_weight = 10.0}).cost);
+    // A goal whose own cell is lethal is reachable within a radius, not without one.
+    EXPECT_EQ(plan_astar(m, {0.5, 2.0}, {3.05, 0.5}, {}).status, PlanStatus::kGoalBlocked);
+    EXPECT_EQ(plan_astar(m, {0.5, 2.0}, {3.05, 0.5}, {}, 0.3).status, PlanStatus::kOk);
+}
+
+TEST(Dwa, KeepsToThePlansCostEnvelopeAroundAZoneCorner) {
+    // The plan turns left around the inside corner of a zone (x in [1.2, 2.35], y > 2.65); the
+    // carrot lies beyond the corner, so the straight way to it cuts the zone. Within the plan's
+    // envelope DWA does not; without it, it does.
+    Costmap m({0, 0}, 0.05, 100, 100);
+    for (int y = 0; y < 100; ++y) {
+        for (int x = 0; x < 100; ++x) {
+            const Eigen::Vector2d c = m.centre_of(x, y);
+            if (c.x() > 1.2 && c.x() < 2.35 && c.y() > 2.65) m.at(x, y) = 120;
+        }
+    }
+    std::vector<Eigen::Vector2d> path;
+    for (double x = 1.0; x < 2.5; x += 0.05) path.emplace_back(x, 2.5);
+    for (double y = 2.5; y < 4.5; y += 0.05) path.emplace_back(2.5, y);
+    DwaState st;
+    st.pose = {2.0, 2.5, 0.6};
+    st.v_mps = 0.4;
+    auto enters_zone = [&](const DwaResult& r) {
+        for (const Pose2& p : r.best_rollout) {
+            if (*m.cost_at({p.x_m, p.y_m}) > 0) return true;
+        }
+        return false;
+    };
+    DwaParams on;
+    const DwaResult kept = dwa_step(m, st, path, on);
+    ASSERT_TRUE(kept.found);
+    EXPECT_FALSE(enters_zone(kept));
+    DwaParams off;
+    off.plan_envelope = false;
+    const DwaResult cut = dwa_step(m, st, path, off);
+    ASSERT_TRUE(cut.found);
+    EXPECT_TRUE(enters_zone(cut));
+}
+
 }  // namespace
 }  // namespace makeway::planning

@@ -1,14 +1,26 @@
 #pragma once
-// Obstacles seen by the LiDAR: cells holding a return between min_height_m and max_height_m are
-// marked lethal; every ray (to returns below max_height_m, ground included) clears the cells it
-// crosses. Marks persist until a ray clears them, so objects that moved leave no stale cost.
+// Obstacles seen by the LiDAR: cells holding a return the robot's body can hit (between its ground
+// clearance and its top, common/robot_body.hpp) are marked lethal; every ray (to returns below the
+// top, ground included) clears the cells it crosses, but a low mark only where the ray passes no
+// higher than it (a ray over a floor runner proves nothing about the runner). Marks persist until
+// a ray clears them, so objects that moved leave no stale cost.
+//
+// Low returns (below low_band_top_m) are where floor noise lives: they mark only within
+// low_mark_range_m of the sensor (a pose estimate tilted by a tenth of a degree lifts the floor
+// 1 cm at 6 m) and only when at least low_min_returns of them, and low_min_share of the cell's
+// returns below the low band's top, stand above the clearance in one sweep: range noise lifts a
+// few floor returns of a cell (sigma 6 mm at the lowest ring), a runner or a foot plate most.
+#include "makeway/common/robot_body.hpp"
 #include "makeway/costmap/layer.hpp"
 
 namespace makeway::costmap {
 
 struct ObstacleLayerParams {
-    double min_height_m = 0.05;      ///< returns below are floor
-    double max_height_m = 0.6;       ///< returns above cannot touch the robot (table tops at 0.75 m)
+    BodyHeights body;                ///< what the robot can hit: returns outside are floor or overhead
+    double low_band_top_m = 0.05;    ///< returns below this are "low" (see above)
+    double low_mark_range_m = 2.5;
+    int low_min_returns = 2;
+    double low_min_share = 0.5;
     double mark_range_m = 6.0;
     double clear_range_m = 8.0;
     std::vector<std::string> validate() const;
@@ -26,6 +38,12 @@ private:
     ObstacleLayerParams params_;
     Costmap grid_;
     std::vector<std::uint8_t> endpoint_;  ///< per cell, during one update: 0 none, 1 clear-only, 2 mark (zero between updates)
+    std::vector<std::uint16_t> low_;      ///< per cell, during one update: low returns the body can hit (zero between updates)
+    std::vector<std::uint16_t> floor_;    ///< per cell, during one update: returns below the clearance, or too far (zero between)
+    std::vector<float> low_top_;          ///< per cell, during one update: the highest low return [m]
+    std::vector<float> top_;              ///< per marked cell: the highest return behind its mark [m]
+    std::vector<float> end_z_;            ///< per cell, during one update: its lowest return [m]
+    static constexpr double kClearMargin_m = 0.05;  ///< a ray this far above a mark's top still clears it (range noise)
     std::vector<int> cells_;              ///< the cells with an endpoint in this update
 };
 

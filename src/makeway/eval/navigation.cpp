@@ -7,6 +7,7 @@
 #include "makeway/costmap/affordance.hpp"
 #include "makeway/costmap/static_layer.hpp"
 #include "makeway/eval/odometry_bench.hpp"
+#include "makeway/eval/unavoidable_risk.hpp"
 #include "makeway/perception/accumulator.hpp"
 #include "makeway/pipeline/navigator.hpp"
 #include "makeway/sim/route.hpp"
@@ -107,6 +108,12 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
     const sim::CollisionChecker checker(scene, models, params.robot);
     if (auto shortest = sim::mission_route(scene, sim::make_nav_grid(scene, checker, params.robot))) {
         out.shortest_m = sim::route_length_m(*shortest);
+    }
+    {
+        const pipeline::NavigatorParams& n = params.system.navigator;
+        const UnavoidableRisk u = unavoidable_risk(scene, checker, ground_truth_objects(scene, models, 0.0), params.robot,
+                                                   n.affordance, n.waypoint_tolerance_m, n.goal_tolerance_m, params.resolution_m);
+        out.unavoidable_risk_s = u.reachable ? u.risk_time_s : -1.0;
     }
     sim::World world(scene, models);
     pipeline::Navigator navigator(params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m),

@@ -74,6 +74,10 @@ struct NavRunResult {
     double time_s = 0.0;        ///< total time to goal (or to the end of the run)
     double distance_m = 0.0;
     double risk_time_s = 0.0;   ///< time with the robot's centre inside a ground-truth affordance zone
+    /// The least risk time any collision-free route (start, waypoint, goal within the navigator's
+    /// tolerances) must have at top speed, furniture where it stands at the start
+    /// (unavoidable_risk.hpp); -1 when the truth has no route. avoidable = risk - this.
+    double unavoidable_risk_s = 0.0;
     int collisions = 0;         ///< contacts with walls, pillars or furniture (counted when they start)
     int person_contacts = 0;    ///< contacts with walking people (who do not avoid the robot)
     int near_misses = 0;        ///< a moving chair within near_miss_m of the robot's body

@@ -36,7 +36,11 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
     costmap_.update(in.points_world, in.sensor_world_m, in.objects);
     // Global plan when there is none, when it is due, or when something now blocks it.
     if (plan_.empty() || in.t_s - last_plan_t_ >= params_.replan_period_s || plan_blocked(here)) {
-        const planning::PlanResult p = planning::plan_astar(costmap_.master(), here, legs_[leg_], params_.astar);
+        // The plan ends inside the leg's tolerance (a goal in a zone is reached from its cheap side),
+        // short enough of the tolerance that the robot still crosses it on its pose estimate.
+        const double tolerance = leg_ + 1 == legs_.size() ? params_.goal_tolerance_m : params_.waypoint_tolerance_m;
+        const planning::PlanResult p = planning::plan_astar(costmap_.master(), here, legs_[leg_], params_.astar,
+                                                            params_.plan_to_tolerance * tolerance);
         if (p.status == planning::PlanStatus::kOk) plan_ = p.path_m;
         out.plan_status = p.status;
         last_plan_t_ = in.t_s;

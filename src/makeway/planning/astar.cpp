@@ -26,7 +26,7 @@ std::string_view to_string(PlanStatus s) {
 }
 
 PlanResult plan_astar(const Costmap& map, const Eigen::Vector2d& start_m, const Eigen::Vector2d& goal_m,
-                      const AStarParams& params) {
+                      const AStarParams& params, double goal_radius_m) {
     PlanResult r;
     const Eigen::Vector2i s = map.cell_of(start_m), g = map.cell_of(goal_m);
     if (!map.inside(s.x(), s.y()) || !map.inside(g.x(), g.y())) {
@@ -42,7 +42,16 @@ PlanResult plan_astar(const Costmap& map, const Eigen::Vector2d& start_m, const 
         r.status = PlanStatus::kStartBlocked;
         return r;
     }
-    if (!passable(g.x(), g.y())) {
+    const double radius = std::max(goal_radius_m, 0.0);
+    bool goal_open = passable(g.x(), g.y());
+    const int reach = static_cast<int>(std::ceil(radius / map.resolution_m));
+    for (int dy = -reach; dy <= reach && !goal_open; ++dy) {  // any free cell of the goal's disc will do
+        for (int dx = -reach; dx <= reach && !goal_open; ++dx) {
+            const int x = g.x() + dx, y = g.y() + dy;
+            goal_open = map.inside(x, y) && (map.centre_of(x, y) - goal_m).norm() <= radius && passable(x, y);
+        }
+    }
+    if (!goal_open) {
         r.status = PlanStatus::kGoalBlocked;
         return r;
     }
@@ -54,11 +63,15 @@ PlanResult plan_astar(const Costmap& map, const Eigen::Vector2d& start_m, const 
     const double res = map.resolution_m;
     auto heuristic = [&](int idx) {  // octile distance [m]
         const double dx = std::abs(idx % w - g.x()), dy = std::abs(idx / w - g.y());
-        return res * (std::max(dx, dy) + (std::sqrt(2.0) - 1.0) * std::min(dx, dy));
+        return std::max(0.0, res * (std::max(dx, dy) + (std::sqrt(2.0) - 1.0) * std::min(dx, dy)) - radius);
+    };
+    auto is_goal = [&](int idx) {
+        return radius == 0.0 ? idx == g.y() * w + g.x() : (map.centre_of(idx % w, idx / w) - goal_m).norm() <= radius;
     };
     using Entry = std::pair<double, int>;
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
-    const int start = s.y() * w + s.x(), goal = g.y() * w + g.x();
+    const int start = s.y() * w + s.x();
+    int goal = -1;
     best[start] = 0.0;
     open.emplace(heuristic(start), start);
     while (!open.empty()) {
@@ -67,7 +80,10 @@ PlanResult plan_astar(const Costmap& map, const Eigen::Vector2d& start_m, const 
         if (closed[idx]) continue;
         closed[idx] = 1;
         ++r.expansions;
-        if (idx == goal) break;
+        if (is_goal(idx)) {
+            goal = idx;
+            break;
+        }
         const int x = idx % w, y = idx / w;
         for (int dy = -1; dy <= 1; ++dy) {
             for (int dx = -1; dx <= 1; ++dx) {
@@ -87,14 +103,14 @@ PlanResult plan_astar(const Costmap& map, const Eigen::Vector2d& start_m, const 
             }
         }
     }
-    if (!closed[goal]) {
+    if (goal < 0) {
         r.status = PlanStatus::kNoPath;
         return r;
     }
     for (int idx = goal; idx >= 0; idx = parent[idx]) r.path_m.push_back(map.centre_of(idx % w, idx / w));
     std::reverse(r.path_m.begin(), r.path_m.end());
     r.path_m.front() = start_m;
-    r.path_m.back() = goal_m;
+    if (radius == 0.0) r.path_m.back() = goal_m;
     for (std::size_t i = 1; i < r.path_m.size(); ++i) r.length_m += (r.path_m[i] - r.path_m[i - 1]).norm();
     r.cost = best[goal];
     r.status = PlanStatus::kOk;

@@ -28,7 +28,10 @@ struct PlanResult {
 
 std::string_view to_string(PlanStatus status);
 
+/// `goal_radius_m` > 0: any cell whose centre lies within it of the goal ends the search (a goal
+/// inside an affordance zone is then reached from its cheapest side); the path ends at that cell's
+/// centre. kGoalBlocked when no cell of the disc can be entered.
 PlanResult plan_astar(const Costmap& costmap, const Eigen::Vector2d& start_m, const Eigen::Vector2d& goal_m,
-                      const AStarParams& params = {});
+                      const AStarParams& params = {}, double goal_radius_m = 0.0);
 
 }  // namespace makeway::planning

@@ -45,15 +45,29 @@ Pose2 advance(const Pose2& p, double v, double w, double dt) {
     return q;
 }
 
-Eigen::Vector2d carrot(const std::vector<Eigen::Vector2d>& path, const Eigen::Vector2d& p, double lookahead) {
+int soft_cost(const Costmap& map, const Eigen::Vector2d& p) {
+    const auto c = map.cost_at(p);
+    return c && *c != cost::kUnknown ? std::min<int>(*c, cost::kMaxSoft) : cost::kMaxSoft;
+}
+
+// The carrot `lookahead` along the path from the point nearest p, and the highest cost the path
+// takes from that point to the carrot.
+Eigen::Vector2d carrot(const Costmap& map, const std::vector<Eigen::Vector2d>& path, const Eigen::Vector2d& p,
+                       double lookahead, int& envelope) {
     std::size_t nearest = 0;
     for (std::size_t i = 1; i < path.size(); ++i) {
         if ((path[i] - p).squaredNorm() < (path[nearest] - p).squaredNorm()) nearest = i;
     }
+    envelope = soft_cost(map, path[nearest]);
     double left = lookahead;
     for (std::size_t i = nearest; i + 1 < path.size(); ++i) {
         const double seg = (path[i + 1] - path[i]).norm();
-        if (seg >= left) return path[i] + (path[i + 1] - path[i]) * (left / seg);
+        if (seg >= left) {
+            const Eigen::Vector2d c = path[i] + (path[i + 1] - path[i]) * (left / seg);
+            envelope = std::max(envelope, soft_cost(map, c));
+            return c;
+        }
+        envelope = std::max(envelope, soft_cost(map, path[i + 1]));
         left -= seg;
     }
     return path.back();
@@ -69,6 +83,7 @@ std::vector<std::string> DwaParams::validate() const {
     if (!(control_dt_s > 0.0 && rollout_dt_s > 0.0 && horizon_s >= rollout_dt_s)) out.push_back("need 0 < rollout_dt_s <= horizon_s, control_dt_s > 0");
     if (v_samples < 2 || w_samples < 2 || v_samples * w_samples > 10000) out.push_back("v_samples and w_samples must be >= 2 (at most 10000 pairs)");
     if (!(footprint_length_m > 0.0 && footprint_width_m > 0.0)) out.push_back("footprint must be positive");
+    if (!(envelope_margin >= 0.0 && envelope_margin <= 252.0)) out.push_back("envelope_margin must be in [0, 252]");
     return out;
 }
 
@@ -81,7 +96,10 @@ DwaResult dwa_step(const Costmap& map, const DwaState& st, const std::vector<Eig
     DwaResult result;
     if (path.empty()) return result;
     const auto samples = footprint_samples(p, 0.5 * map.resolution_m);
-    const Eigen::Vector2d goal = carrot(path, {st.pose.x_m, st.pose.y_m}, p.lookahead_m);
+    int envelope = 0;
+    const Eigen::Vector2d goal = carrot(map, path, {st.pose.x_m, st.pose.y_m}, p.lookahead_m, envelope);
+    // Where the robot stands is inside the envelope too: it may always leave the way it came.
+    envelope = std::max(envelope, soft_cost(map, {st.pose.x_m, st.pose.y_m})) + static_cast<int>(p.envelope_margin);
     const double v_lo = std::max(p.min_v_mps, st.v_mps - p.acc_v_mps2 * p.control_dt_s);
     const double v_hi = std::min(p.max_v_mps, st.v_mps + p.acc_v_mps2 * p.control_dt_s);
     const double w_lo = std::max(-p.max_w_radps, st.w_radps - p.acc_w_radps2 * p.control_dt_s);
@@ -89,7 +107,7 @@ DwaResult dwa_step(const Costmap& map, const DwaState& st, const std::vector<Eig
     const int steps = static_cast<int>(std::lround(p.horizon_s / p.rollout_dt_s));
 
     struct Candidate {
-        double v, w, path, heading, clearance, speed;
+        double v, w, path, heading, clearance, speed, excess;
         std::vector<Pose2> rollout;
     };
     std::vector<Candidate> admissible;
@@ -98,15 +116,16 @@ DwaResult dwa_step(const Costmap& map, const DwaState& st, const std::vector<Eig
         for (int j = 0; j < p.w_samples; ++j) {
             const double w = w_lo + (w_hi - w_lo) * j / (p.w_samples - 1);
             ++result.samples;
-            Candidate c{v, w, 0, 0, 0, 0, {}};
+            Candidate c{v, w, 0, 0, 0, 0, 0, {}};
             Pose2 pose = st.pose;
             bool hit = false;
             double cost_sum = 0.0;
             for (int k = 0; k < steps && !hit; ++k) {
                 pose = advance(pose, v, w, p.rollout_dt_s);
                 hit = collides(map, pose, samples);
-                const auto centre_cost = map.cost_at({pose.x_m, pose.y_m});
-                cost_sum += centre_cost && *centre_cost != cost::kUnknown ? std::min<int>(*centre_cost, cost::kMaxSoft) : cost::kMaxSoft;
+                const int centre_cost = soft_cost(map, {pose.x_m, pose.y_m});
+                cost_sum += centre_cost;
+                c.excess += std::max(0, centre_cost - envelope);
                 c.rollout.push_back(pose);
             }
             if (hit) continue;  // never choose a velocity that collides within the horizon
@@ -120,6 +139,11 @@ DwaResult dwa_step(const Costmap& map, const DwaState& st, const std::vector<Eig
     }
     result.admissible = static_cast<int>(admissible.size());
     if (admissible.empty()) return result;
+    if (p.plan_envelope) {  // only the rollouts that leave the plan's envelope least
+        double least = std::numeric_limits<double>::infinity();
+        for (const auto& c : admissible) least = std::min(least, c.excess);
+        std::erase_if(admissible, [&](const Candidate& c) { return c.excess > least; });
+    }
     auto normalise = [&](double Candidate::*term) {
         double lo = std::numeric_limits<double>::infinity(), hi = -lo;
         for (const auto& c : admissible) lo = std::min(lo, c.*term), hi = std::max(hi, c.*term);

@@ -4,6 +4,13 @@
 // with the robot's rectangular footprint; velocities whose rollout collides, or that could not
 // stop before the first collision, are inadmissible; the rest are scored by path alignment, goal
 // heading, clearance (costmap cost) and speed, each normalised over the samples.
+//
+// The plan's cost envelope: A* routes around affordance zones at a price, and a carrot 1.2 m
+// ahead lets DWA cut the corners the plan went around. With `plan_envelope`, a rollout is charged
+// the cost it takes above the highest cost the plan itself accepts between the robot and the
+// carrot (plus `envelope_margin`); only the rollouts with the least such excess are scored. A zone
+// the plan crosses (the only way, or the goal inside it) stays open to DWA; one it avoids does too
+// when no other velocity is admissible.
 #include <string>
 #include <vector>
 
@@ -31,6 +38,8 @@ struct DwaParams {
     double w_heading = 0.6;
     double w_clearance = 0.5;
     double w_speed = 0.4;
+    bool plan_envelope = true;
+    double envelope_margin = 10.0;  ///< cost units above the plan's highest cost still inside the envelope
     std::vector<std::string> validate() const;
 };
 

@@ -26,12 +26,13 @@ void add_rectangle_outline(std::vector<Eigen::Vector2d>& out, const Eigen::Vecto
     }
 }
 
-// Surface samples of the mesh parts below max_z, projected to the floor, thinned on a grid.
-std::vector<Eigen::Vector2d> low_surface_points(const TriangleMesh& mesh, double max_z, double spacing_m) {
+// Surface samples of the mesh parts the body can hit (between its ground clearance and its top),
+// projected to the floor, thinned on a grid.
+std::vector<Eigen::Vector2d> low_surface_points(const TriangleMesh& mesh, const BodyHeights& body, double spacing_m) {
     std::set<std::pair<long, long>> seen;
     std::vector<Eigen::Vector2d> out;
     auto keep = [&](const Eigen::Vector3d& p) {
-        if (p.z() > max_z) return;
+        if (!body.can_hit(p.z())) return;
         const auto key = std::make_pair(std::lround(p.x() / (0.5 * spacing_m)), std::lround(p.y() / (0.5 * spacing_m)));
         if (seen.insert(key).second) out.emplace_back(p.x(), p.y());
     };
@@ -39,7 +40,7 @@ std::vector<Eigen::Vector2d> low_surface_points(const TriangleMesh& mesh, double
         const Eigen::Vector3d a = mesh.vertices_m[t[0]].cast<double>();
         const Eigen::Vector3d b = mesh.vertices_m[t[1]].cast<double>();
         const Eigen::Vector3d c = mesh.vertices_m[t[2]].cast<double>();
-        if (std::min({a.z(), b.z(), c.z()}) > max_z) continue;
+        if (std::min({a.z(), b.z(), c.z()}) > body.top_m || std::max({a.z(), b.z(), c.z()}) < body.ground_clearance_m) continue;
         const double longest = std::max({(b - a).norm(), (c - a).norm(), (c - b).norm()});
         const int n = std::max(1, static_cast<int>(std::ceil(longest / spacing_m)));
         for (int i = 0; i <= n; ++i) {
@@ -59,6 +60,7 @@ std::vector<std::string> RobotParams::validate() const {
     if (!(width_m > 0.05 && width_m < 5.0)) p.push_back("width_m must be in (0.05, 5)");
     if (!(lidar_height_m > 0.0 && lidar_height_m < 3.0)) p.push_back("lidar_height_m must be in (0, 3)");
     if (!(body_height_m > 0.0 && body_height_m < 3.0)) p.push_back("body_height_m must be in (0, 3)");
+    if (!(ground_clearance_m >= 0.0 && ground_clearance_m < body_height_m)) p.push_back("ground_clearance_m must be in [0, body_height_m)");
     if (!(max_v_mps > 0.0 && max_v_mps <= 5.0)) p.push_back("max_v_mps must be in (0, 5]");
     if (!(max_w_radps > 0.0 && max_w_radps <= 10.0)) p.push_back("max_w_radps must be in (0, 10]");
     if (!(max_acc_mps2 > 0.0 && max_acc_mps2 <= 20.0)) p.push_back("max_acc_mps2 must be in (0, 20]");
@@ -127,7 +129,7 @@ CollisionChecker::CollisionChecker(const Scene& scene, const std::vector<ObjectM
     }
     for (const Pillar& p : scene.pillars) add_rectangle_outline(static_points_, p.centre_m, p.size_m, 0.0, spacing_m);
     for (const ObjectModel& m : models) {
-        object_points_.push_back(low_surface_points(m.mesh_object, robot.body_height_m, spacing_m));
+        object_points_.push_back(low_surface_points(m.mesh_object, robot.body(), spacing_m));
         double r = 0.0;
         for (const auto& p : object_points_.back()) r = std::max(r, p.norm());
         object_radius_m_.push_back(r);

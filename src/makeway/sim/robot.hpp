@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "makeway/common/random.hpp"
+#include "makeway/common/robot_body.hpp"
 #include "makeway/common/transforms.hpp"
 #include "makeway/common/velocity_command.hpp"
 #include "makeway/sim/scene.hpp"
@@ -17,6 +18,7 @@ struct RobotParams {
     double length_m = 0.508;        ///< Jackal footprint along x
     double width_m = 0.430;         ///< Jackal footprint along y
     double body_height_m = 0.50;    ///< top of the robot with its sensor: collisions below this
+    double ground_clearance_m = 0.02;  ///< parts lower than this are rolled over (common/robot_body.hpp)
     double lidar_height_m = 0.45;   ///< LiDAR optical centre above the floor (on a mount)
     double max_v_mps = 0.75;        ///< top speed, as in the paper
     double max_w_radps = 2.0;
@@ -24,6 +26,8 @@ struct RobotParams {
     double max_ang_acc_radps2 = 3.0;
 
     double inscribed_radius_m() const { return 0.5 * std::min(length_m, width_m); }
+    /// What the robot can hit, in height: shared with the costmap's obstacle layer.
+    BodyHeights body() const { return {ground_clearance_m, body_height_m}; }
     double circumscribed_radius_m() const { return 0.5 * std::hypot(length_m, width_m); }
     Isometry3 T_robot_sensor() const { return make_T_xyz_yaw({0.0, 0.0, lidar_height_m}, 0.0); }
     std::vector<std::string> validate() const;
