@@ -296,6 +296,7 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("waypoint_tolerance_m", n.waypoint_tolerance_m);
         s.read("goal_tolerance_m", n.goal_tolerance_m);
         s.read("plan_to_tolerance", n.plan_to_tolerance);
+        s.read("give_up_s", n.give_up_s);
         s.finish();
         s.add_validation(n.astar.validate());
         s.add_validation(n.dwa.validate());

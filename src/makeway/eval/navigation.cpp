@@ -94,6 +94,7 @@ struct Scorer {
 pipeline::NavigatorParams navigator_params(const NavMethod& method, const NavParams& params) {
     pipeline::NavigatorParams n = params.system.navigator;
     n.inflation.inflation_radius_m = method.inflation_radius_m;
+    n.inflation.inscribed_radius_m *= method.inscribed_scale;
     n.affordance_layer = method.affordance;
     n.dwa.max_v_mps = std::min(n.dwa.max_v_mps, params.robot.max_v_mps);
     return n;
@@ -158,6 +159,11 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
             out.time_s = t + period;
             break;
         }
+        if (step.gave_up) {
+            out.time_s = t + period;
+            out.gave_up = true;
+            break;
+        }
         out.cycle_ms.push_back(step.update_ms);
         cmd = step.command;
     }
@@ -169,7 +175,9 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
     const double to_goal = std::hypot(state.pose.x_m - scene.goal.x_m, state.pose.y_m - scene.goal.y_m);
     out.stop_distance_m = to_goal;
     out.reached_goal = navigator.arrived() && to_goal < params.arrival_radius_m;
-    if (!navigator.arrived()) {
+    if (out.gave_up) {
+        out.failure = "gave up (no plan or no progress for " + std::to_string(static_cast<int>(params.system.navigator.give_up_s)) + " s)";
+    } else if (!navigator.arrived()) {
         out.time_s = params.time_limit_s;
         out.failure = "time limit";
     } else if (!out.reached_goal) {
@@ -193,10 +201,10 @@ const std::vector<std::string>& nav_method_names() {
 
 std::optional<NavMethod> nav_method(std::string_view name, const sim::RobotParams& robot) {
     const double r = robot.circumscribed_radius_m();
-    if (name == "con") return NavMethod{"con", 3.0 * r, false, false};
-    if (name == "oppo") return NavMethod{"oppo", r, false, false};
-    if (name == "gt-perc") return NavMethod{"gt-perc", r, true, false};
-    if (name == "ours") return NavMethod{"ours", r, true, true};  // gt-perc's planner on the online system
+    if (name == "con") return NavMethod{"con", 3.0 * r, 3.0, false, false};
+    if (name == "oppo") return NavMethod{"oppo", r, 1.0, false, false};
+    if (name == "gt-perc") return NavMethod{"gt-perc", r, 1.0, true, false};
+    if (name == "ours") return NavMethod{"ours", r, 1.0, true, true};  // gt-perc's planner on the online system
     return std::nullopt;
 }
 

@@ -22,13 +22,16 @@
 
 namespace makeway::eval {
 
-/// con: no semantics, inflation 3x the robot radius; oppo: no semantics, inflation = robot radius;
-/// gt-perc: affordance zones from ground-truth objects; ours: the same zones from the online
-/// pipeline on its own pose. The robot radius is the circumscribed one. nav_method_names() lists
-/// the methods that need no trained model.
+/// con: no semantics, the robot taken 3x its size (the planner keeps 3x its inscribed radius from
+/// everything, and inflation reaches 3x its circumscribed radius), so it cannot pass where a robot
+/// of that size could not, as the paper's conservative planner; oppo: no semantics, inflation =
+/// robot radius; gt-perc: affordance zones from ground-truth objects; ours: the same zones from the
+/// online pipeline on its own pose. The robot radius is the circumscribed one. nav_method_names()
+/// lists the methods that need no trained model.
 struct NavMethod {
     std::string name;
     double inflation_radius_m = 0.333;
+    double inscribed_scale = 1.0;  ///< the planner's keep-out (the inflation's inscribed radius) in robot inscribed radii
     bool affordance = false;
     bool online = false;  ///< the full system: pipeline perception and pose, no ground truth
 };
@@ -71,6 +74,7 @@ struct NavRunResult {
     bool reached_goal = false;  ///< the robot stopped within arrival_radius_m of the goal (true position)
     double stop_distance_m = 0.0;  ///< true distance from the goal where the robot stopped
     std::string failure;        ///< why not, when not
+    bool gave_up = false;       ///< the navigator gave up (no plan or no progress for its give_up_s)
     double time_s = 0.0;        ///< total time to goal (or to the end of the run)
     double distance_m = 0.0;
     double risk_time_s = 0.0;   ///< time with the robot's centre inside a ground-truth affordance zone

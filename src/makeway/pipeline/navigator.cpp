@@ -41,10 +41,19 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
         const double tolerance = leg_ + 1 == legs_.size() ? params_.goal_tolerance_m : params_.waypoint_tolerance_m;
         const planning::PlanResult p = planning::plan_astar(costmap_.master(), here, legs_[leg_], params_.astar,
                                                             params_.plan_to_tolerance * tolerance);
-        if (p.status == planning::PlanStatus::kOk) plan_ = p.path_m;
+        if (p.status == planning::PlanStatus::kOk) {
+            plan_ = p.path_m;
+            planned_t_ = in.t_s;
+        }
         out.plan_status = p.status;
         last_plan_t_ = in.t_s;
         out.replanned = true;
+    }
+    // A robot that cannot plan, or cannot make progress, gives up instead of waiting forever.
+    if (in.t_s - planned_t_ > params_.give_up_s || in.t_s - moved_t_ > params_.give_up_s) {
+        out.gave_up = true;
+        out.update_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        return out;
     }
     // Local control: back up while recovering, else DWA along the plan.
     out.recovering = in.t_s < recovery_until_;
@@ -87,7 +96,9 @@ void Navigator::check_progress(const NavigatorInput& in, NavigatorStep& out) {
     // Stuck: little progress for stuck_timeout_s -> back up for backup_duration_s, then replan.
     const Eigen::Vector2d here(in.pose.x_m, in.pose.y_m);
     if (!started_ || (here - progress_anchor_).norm() > params_.stuck_progress_m) {
+        if (!started_) planned_t_ = in.t_s;
         started_ = true;
+        moved_t_ = in.t_s;
         progress_anchor_ = here;
         progress_t_ = in.t_s;
     } else if (in.t_s - progress_t_ > params_.stuck_timeout_s && in.t_s >= recovery_until_) {

@@ -35,6 +35,7 @@ struct NavigatorStep {
     bool started_recovery = false;
     bool reached_waypoint = false;
     bool arrived = false;         ///< the last leg's goal is reached (by the pose estimate)
+    bool gave_up = false;         ///< no plan, or no progress despite recoveries, for give_up_s: the mission failed
     double update_ms = 0.0;       ///< costmap update + planning + DWA
 };
 
@@ -66,6 +67,8 @@ private:
     double last_plan_t_ = -1e9;
     Eigen::Vector2d progress_anchor_ = Eigen::Vector2d::Zero();
     double progress_t_ = 0.0, recovery_until_ = -1.0;
+    double moved_t_ = 0.0;      ///< when the robot last made progress (recoveries do not reset it)
+    double planned_t_ = 0.0;    ///< when A* last found a plan
     bool started_ = false;
 };
 

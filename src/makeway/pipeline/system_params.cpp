@@ -56,6 +56,7 @@ std::vector<std::string> NavigatorParams::validate_policy() const {
     positive(backup_duration_s, "backup_duration_s", 60);
     positive(waypoint_tolerance_m, "waypoint_tolerance_m", 10);
     positive(goal_tolerance_m, "goal_tolerance_m", 10);
+    positive(give_up_s, "give_up_s", 3600);
     if (!(plan_to_tolerance >= 0.0 && plan_to_tolerance < 1.0)) p.push_back("plan_to_tolerance must be in [0, 1)");
     return p;
 }

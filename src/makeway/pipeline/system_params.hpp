@@ -47,6 +47,7 @@ struct NavigatorParams {
     double backup_duration_s = 1.0;
     double waypoint_tolerance_m = 0.5;    ///< a waypoint counts as reached this close
     double goal_tolerance_m = 0.3;        ///< the goal counts as reached this close (own pose estimate)
+    double give_up_s = 20.0;              ///< no plan found, or no progress despite recoveries, this long: the mission fails
     double plan_to_tolerance = 0.6;       ///< A* ends anywhere within this share of the leg's tolerance (0: at the point)
     std::vector<std::string> validate() const;         ///< everything, layers and planners included
     std::vector<std::string> validate_policy() const;  ///< the policy constants alone

@@ -188,6 +188,49 @@ void seat_chairs(Builder& b, const SceneObject table, double occupancy, int max_
     }
 }
 
+// The paper's dense layouts: rows of tables with chairs on both sitting sides, the rows parallel to
+// the room's long axis, chair back to chair back `passage` apart (0.8-1.5 m: wide enough for the
+// robot, and narrow enough that a planner keeping 3x its radius cannot pass).
+void add_table_rows(Builder& b, double x_centre, double y_first, int rows, int tables_per_row) {
+    Rng& rng = b.rng_;
+    double y = y_first;
+    for (int r = 0; r < rows; ++r) {
+        SceneObject probe;
+        probe.cls = ObjectClass::kTable;
+        probe.style = "rect_table";
+        probe.model_seed = static_cast<std::uint64_t>(uniform_int(rng, 0, 1 << 30));
+        const FurnitureModel tm = make_furniture(FurnitureStyle::kRectTable, probe.model_seed);
+        const double L = tm.box_object.size_m.x(), W = tm.box_object.size_m.y();
+        const double row_depth = W + 2 * (0.5 + 0.05);  // the table and a chair tucked in on each side
+        for (int t = 0; t < tables_per_row; ++t) {
+            SceneObject table = probe;
+            if (t > 0) table.model_seed = probe.model_seed + static_cast<std::uint64_t>(t);  // a row of one model's copies
+            table.pose = {x_centre + (t - 0.5 * (tables_per_row - 1)) * (L + 0.02), y + 0.5 * row_depth, normal(rng, 0, deg_to_rad(1))};
+            if (b.try_add(table, 0.0)) seat_chairs(b, b.scene_.objects.back(), 0.85);
+        }
+        y += row_depth + uniform(rng, 0.8, 1.5);
+    }
+}
+
+// Rows of chairs facing one way (a lecture or waiting area), `passage` (0.8-1.5 m) between rows.
+void add_chair_rows(Builder& b, double x_centre, double y_first, int rows, int per_row) {
+    Rng& rng = b.rng_;
+    const FurnitureStyle style = bernoulli(rng, 0.5) ? FurnitureStyle::kFourLegChair : FurnitureStyle::kOfficeChair;
+    double y = y_first;
+    for (int r = 0; r < rows; ++r) {
+        for (int k = 0; k < per_row; ++k) {
+            SceneObject chair;
+            chair.cls = ObjectClass::kChair;
+            chair.style = std::string(to_string(style));
+            chair.model_seed = static_cast<std::uint64_t>(uniform_int(rng, 0, 1 << 30));
+            chair.pose = {x_centre + (k - 0.5 * (per_row - 1)) * 0.62 + normal(rng, 0, 0.03), y + 0.25 + normal(rng, 0, 0.03),
+                          kPi / 2 + normal(rng, 0, deg_to_rad(6))};
+            b.try_add(chair, 0.0);
+        }
+        y += 0.5 + uniform(rng, 0.8, 1.5);
+    }
+}
+
 Scene random_layout(const SceneGenParams& params, Rng& rng) {
     const Counts k = counts_for(params.density);
     Scene s;
@@ -204,6 +247,13 @@ Scene random_layout(const SceneGenParams& params, Rng& rng) {
 
     Builder b(s, rng);
     b.set_walls(V2(-w / 2, -h / 2), V2(w / 2, h / 2));
+    if (params.density == Density::kDense) {
+        // As in the paper's dense rooms: a block of table rows on one side of the room and rows of
+        // chairs on the other, with passages of 0.8-1.5 m between rows.
+        const double side = bernoulli(rng, 0.5) ? -1.0 : 1.0;  // the blocks stand across the way from start to goal
+        add_table_rows(b, side * w / 4 + normal(rng, 0, 0.3), -h / 2 + uniform(rng, 0.4, 1.4), 4, static_cast<int>(uniform_int(rng, 1, 2)));
+        add_chair_rows(b, -side * w / 4 + normal(rng, 0, 0.3), -h / 2 + uniform(rng, 0.6, 1.6), 5, static_cast<int>(uniform_int(rng, 4, 6)));
+    }
     const int tables = static_cast<int>(uniform_int(rng, k.tables_lo, k.tables_hi));
     for (int t = 0, tries = 0; t < tables && tries < 400; ++tries) {
         SceneObject table;
