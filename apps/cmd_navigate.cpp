@@ -131,6 +131,7 @@ int run_bench_nav(const BenchNavOptions& options) {
         sim::SceneGenParams g;
         g.seed = options.seed + static_cast<std::uint64_t>(i);
         g.density = densities[i % 3];
+        g.layout = *sim::parse_layout(options.layout);
         g.robot = cfg.robot;
         indices.push_back(i);
         scenes.push_back(sim::generate_scene(g));
@@ -179,6 +180,7 @@ int run_bench_nav(const BenchNavOptions& options) {
                              {"seed", options.seed},
                              {"methods", methods},
                              {"time_limit_s", options.time_limit_s},
+                             {"layout", options.layout},
                              {"config", options.config.empty() ? std::string() : io::read_file(options.config)}};
     if (partial) {
         io::Json p = {{"kind", kPartialKind}, {"header", header}, {"shard", {{"index", shard->first}, {"count", shard->second}}},

@@ -393,6 +393,9 @@ void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchM
     nav->add_option("--time-limit", nav_o.time_limit_s, "Seconds per run before it counts as failed [s]")
         ->check(CLI::Range(1.0, 3600.0))
         ->capture_default_str();
+    nav->add_option("--layout", nav_o.layout, "random (densities cycle sparse, medium, dense) or study_space (the paper's room of 12 tables and 22 chairs, one per seed)")
+        ->check(CLI::IsMember({"random", "study_space"}))
+        ->capture_default_str();
     nav->add_option("--shard", nav_o.shard, "K/N: run only scenes K, K+N, K+2N, ... (0 <= K < N) and write partial.json; "
                                             "`makeway bench merge` joins the N partials into the unsharded results")
         ->check(CLI::Validator([](std::string& v) { return parse_shard(v) ? std::string() : "expected K/N with 0 <= K < N"; }, "K/N"));
