@@ -8,6 +8,7 @@
 
 #include "makeway/odometry/lidar_odometry.hpp"
 #include "makeway/perception/accumulator.hpp"
+#include "makeway/pipeline/navigator.hpp"
 #include "makeway/pipeline/object_costmap.hpp"
 #include "makeway/sim/route.hpp"
 #include "makeway/sim/scene_generator.hpp"
@@ -22,6 +23,7 @@ struct Drive {
     Pose2 start;
     std::vector<ObjectEstimate> objects;  // the truth, as the affordance layer's input
     Costmap free_map;
+    Eigen::Vector2d goal = Eigen::Vector2d::Zero();  // the scene's goal
 };
 
 const Drive& medium_drive() {
@@ -44,6 +46,7 @@ const Drive& medium_drive() {
             d.objects.push_back(o);
         }
         d.free_map = Costmap(Eigen::Vector2d(d.start.x_m - 20.0, d.start.y_m - 20.0), 0.05, 800, 800);
+        d.goal = {scene.goal.x_m, scene.goal.y_m};
         return d;
     }();
     return drive;
@@ -73,6 +76,36 @@ void BM_PerSweep(benchmark::State& state) {
     state.counters["sweeps_per_s"] = benchmark::Counter(static_cast<double>(sweeps), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_PerSweep)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The control cycle of bench nav's methods (issue 18's target: at most 10 ms median on one core):
+// Navigator::step = costmap update (obstacles, affordance zones, inflation) + A* when due + DWA
+// inside the plan's envelope, on the same drive's de-skewed sweeps and true poses, toward the
+// scene's goal; one benchmark iteration is one cycle.
+void BM_ControlCycle(benchmark::State& state) {
+    const tbb::global_control one_core(tbb::global_control::max_allowed_parallelism, 1);
+    const Drive& d = medium_drive();
+    const sim::RobotParams robot;
+    std::vector<PointCloud> worlds;
+    for (const sim::SimFrame& f : d.frames) {
+        worlds.push_back(perception::deskew_sweep({f.points_sensor, f.stamp_s, 0.1, f.T_world_sensor, f.T_world_sensor},
+                                                  Isometry3::Identity(), false));
+    }
+    pipeline::NavigatorParams params;
+    params.affordance_layer = state.range(0) != 0;
+    params.inflation.inscribed_radius_m = robot.inscribed_radius_m();
+    params.inflation.inflation_radius_m = robot.circumscribed_radius_m();
+    pipeline::Navigator nav(d.free_map, params);
+    nav.set_route({d.goal});
+    std::size_t k = 0;
+    for (auto _ : state) {
+        const sim::SimFrame& f = d.frames[k % d.frames.size()];
+        const auto step = nav.step({0.1 * static_cast<double>(k), f.true_pose, 0.5, 0.0, &worlds[k % worlds.size()],
+                                    f.T_world_sensor.translation(), d.objects});
+        benchmark::DoNotOptimize(step.command);
+        ++k;
+    }
+}
+BENCHMARK(BM_ControlCycle)->Arg(0)->Arg(1)->ArgName("affordance")->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -50,7 +50,7 @@ TEST(Deploy, SlurmArrayScriptDryRunThenMerge) {
     const auto dir = testing_util::fresh_dir("deploy_slurm");
     std::ofstream(dir / "fast.yaml") << "lidar:\n  azimuth_step_deg: 1.0\n";
     const std::string env = "MAKEWAY=" + std::string(MAKEWAY_BIN) + " RESULTS=" + (dir / "res").string() +
-                            " SCENES=2 EXTRA='--methods oppo --time-limit 30 --config " + (dir / "fast.yaml").string() + "'";
+                            " SCENES=2 EXTRA='--methods oppo --time-limit 20 --config " + (dir / "fast.yaml").string() + "'";
     const std::string script = "bash " + (kDeploy / "slurm" / "bench-nav.sbatch").string();
     EXPECT_EQ(run_shell("bash -n " + (kDeploy / "slurm" / "bench-nav.sbatch").string() + " && bash -n " +
                             (kDeploy / "slurm" / "submit.sh").string(), dir).exit_code, 0);

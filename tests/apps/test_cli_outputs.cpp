@@ -128,10 +128,10 @@ TEST_F(CliOutputs, InterruptedNavigationWritesNothing) {
 
 TEST_F(CliOutputs, FullDiskLeavesNoHalfOutput) {
     // A file-size limit makes every larger write fail as a full disk would (EFBIG instead of ENOSPC).
-    // At most 100 KB per file (bash counts KiB): run.json (53 KB) and the costmap (72 KB) are
-    // written, the picture (110 KB) is not; a 1.4 MB cloud is not.
+    // At most 85 KiB per file (bash counts KiB): gt-perc's run.json (57 KiB) and the costmap (71 KiB)
+    // are written, the picture (89 KiB) is not; a 1.4 MB cloud is not.
     const auto limited = [&](const std::string& args) {
-        return testing_util::run_shell("bash -c \"ulimit -f 100; trap '' XFSZ; exec " + std::string(MAKEWAY_BIN) + " " + args + "\"", dir_);
+        return testing_util::run_shell("bash -c \"ulimit -f 85; trap '' XFSZ; exec " + std::string(MAKEWAY_BIN) + " " + args + "\"", dir_);
     };
     // Recording: the first cloud (1.4 MB) cannot be written.
     const std::string rec = (dir_ / "rec").string();
@@ -144,7 +144,7 @@ TEST_F(CliOutputs, FullDiskLeavesNoHalfOutput) {
     EXPECT_EQ(count_files(fs::path(rec) / "clouds"), 0u);
     // Navigation: run.json and the costmap fit, the picture does not: none of them is delivered,
     // and the error names the file the user asked for, not the staging folder.
-    r = limited("navigate --scene " + scene_ + " --method con --out " + (dir_ / "nav").string());
+    r = limited("navigate --scene " + scene_ + " --method gt-perc --out " + (dir_ / "nav").string());
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_EQ(lines(r.err), 1u) << r.err;
     EXPECT_EQ(r.err, "makeway: " + (dir_ / "nav" / "route.png").string() + ": write failed: File too large\n");
