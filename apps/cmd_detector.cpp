@@ -7,6 +7,7 @@
 #include "apps/commands.hpp"
 #include "io/furniture_folder.hpp"
 #include "apps/model_path.hpp"
+#include "makeway/shape/learned_prior.hpp"
 #include "io/dataset_io.hpp"
 #include "io/error.hpp"
 #include "io/json_io.hpp"
@@ -134,7 +135,12 @@ int run_eval_detection(const EvalDetectionOptions& o) {
     eval::DetectionEvalParams p;
     p.scenes = o.scenes;
     p.seed = o.seed;
-    p.cad = o.default_cad ? eval::CadSource::kDefault : eval::CadSource::kScene;
+    p.cad = o.no_cad ? eval::CadSource::kNone : o.default_cad ? eval::CadSource::kDefault : eval::CadSource::kScene;
+    std::unique_ptr<shape::LearnedShapePrior> prior;
+    if (!o.shape_model.empty()) {
+        prior = std::make_unique<shape::LearnedShapePrior>(std::make_shared<const shape::ShapeModel>(load_shape_model(o.shape_model)));
+        p.shape_prior = prior.get();
+    }
     io::ProgressBar bar("eval-detection", static_cast<std::size_t>(2 * o.scenes));
     int arm = 0;
     std::string last;
@@ -151,7 +157,8 @@ int run_eval_detection(const EvalDetectionOptions& o) {
     j["left_out"] = metrics_json(r.left_out.network);
     j["left_out"]["styles"] = p.left_out_styles;
     j["left_out"]["stages"] = stages(r.left_out);
-    j["cad_library"] = o.default_cad ? "default" : "scene";
+    j["cad_library"] = o.no_cad ? "none" : o.default_cad ? "default" : "scene";
+    j["shape_model"] = o.shape_model.empty() ? io::Json(nullptr) : io::Json(o.shape_model);
     j["latency_ms_median_1t"] = r.latency_ms_median_1t;
     j["latency_ms_p99_1t"] = r.latency_ms_p99_1t;
     j["latency_ms_median_2t"] = r.latency_ms_median_2t;

@@ -14,6 +14,7 @@
 #include "apps/nav_report.hpp"
 #include "ros/sweep_source.hpp"
 #include "io/cad_folder.hpp"
+#include "makeway/shape/learned_prior.hpp"
 #include "io/canvas.hpp"
 #include "io/config_reader.hpp"
 #include "io/error.hpp"
@@ -91,12 +92,19 @@ int run_run(const RunOptions& o) {
     const Pose2 start = !o.start.empty() ? Pose2{o.start[0], o.start[1], o.start[2]} : source->first_pose().value_or(Pose2{});
     const Costmap static_map = !o.map.empty() ? io::read_map_server(o.map) : pipeline::free_area(start, o.costmap_size_m, o.resolution_m);
     pipeline::MappingSystem system(params, start, static_map, !o.map.empty(), &detector, library ? &*library : nullptr);
+    std::unique_ptr<shape::LearnedShapePrior> prior;
+    if (!o.shape_model.empty()) {
+        prior = std::make_unique<shape::LearnedShapePrior>(std::make_shared<const shape::ShapeModel>(load_shape_model(o.shape_model)));
+        system.set_shape_prior(prior.get());
+    }
 
     io::StagedOutput staged(o.out);  // everything or nothing
     const fs::path out = staged.staging();
     std::optional<rosio::BagWriter> bag;
     if (!o.out_bag.empty()) bag.emplace(o.out_bag);
-    std::cout << "run: " << source->describe() << (library ? ", " + std::to_string(library->models().size()) + " CAD models" : ", no CAD models (verification skipped)")
+    std::cout << "run: " << source->describe()
+              << (library ? ", " + std::to_string(library->models().size()) + " CAD models" : prior ? ", no CAD models" : ", no CAD models (verification skipped)")
+              << (prior ? ", shape networks" : "")
               << (external ? ", external poses (no odometry)" : params.lidar_odometry ? ", LiDAR odometry" : ", wheel odometry alone") << "\n";
 
     Timings timings;
@@ -135,7 +143,7 @@ int run_run(const RunOptions& o) {
             timings.add("accumulate_ms", r.timing.accumulate_ms);
             timings.add("ground_ms", r.timing.ground_ms);
             timings.add("detect_ms", r.timing.detect_ms);
-            if (library) timings.add("verify_ms", r.timing.verify_ms);
+            if (library || prior) timings.add("verify_ms", r.timing.verify_ms);
             timings.add("track_ms", r.timing.track_ms);
             detections += k.detections.size();
             accepted += std::count_if(k.verified.begin(), k.verified.end(), [](const auto& v) { return v.accepted; });
@@ -181,8 +189,9 @@ int run_run(const RunOptions& o) {
                         {"points", points},
                         {"keyframes", keyframes},
                         {"detections", detections},
-                        {"verification", library ? "on: " + std::to_string(library->models().size()) + " CAD models from " + o.cad
-                                                 : std::string("skipped: no --cad")},
+                        {"verification", (library ? "on: " + std::to_string(library->models().size()) + " CAD models from " + o.cad
+                                                  : prior ? std::string("on: no CAD models") : std::string("skipped: no --cad")) +
+                                             (prior ? ", shape networks from " + o.shape_model : std::string())},
                         {"verified_accepted", accepted},
                         {"pose", external ? "external (--poses)" : params.lidar_odometry ? "LiDAR odometry" : "wheel odometry"},
                         {"objects", objects.size()},

@@ -193,6 +193,7 @@ struct RunOptions {
     std::string cloud_topic = "/velodyne_points", odom_topic = "/odom";
     std::string map;                    ///< map_server YAML: the static layer (optional)
     std::string cad;                    ///< CAD folder for verification (optional: skipped without)
+    std::string shape_model;            ///< shape networks for what no CAD model fits (optional)
     std::vector<double> extrinsics;     ///< x y z roll pitch yaw of the sensor on the base (default: the config's robot)
     std::vector<double> start;          ///< x y yaw of the base at the first sweep (default: the first pose)
     std::string config, model;
@@ -260,6 +261,8 @@ struct EvalDetectionOptions {
     std::uint64_t seed = 1000000;
     std::string out_dir = "out/eval_detection";
     bool default_cad = false;  ///< verify against default-dimension models instead of the scene's own
+    bool no_cad = false;       ///< no CAD models at all
+    std::string shape_model;   ///< learned shapes for what no CAD model fits
 };
 int run_eval_detection(const EvalDetectionOptions& options);
 
@@ -304,5 +307,39 @@ struct BenchSessionsOptions {
     std::string out_dir = "out/bench_sessions";
 };
 int run_bench_sessions(const BenchSessionsOptions& options);
+
+}  // namespace makeway::apps
+
+namespace makeway::apps {
+
+struct TrainShapeOptions {
+    int scenes = 24;
+    std::uint64_t seed = 0;
+    std::vector<std::string> exclude_styles{"armchair", "round_table"};
+    double steps_scale = 1.0;  ///< every stage's step count times this
+    int threads = 2;
+    std::string out = "models/shape.pt";
+};
+int run_train_shape(const TrainShapeOptions& options);
+
+struct BenchShapeOptions {
+    std::string model;  ///< empty: models/shape.pt
+    int scenes = 6;
+    std::uint64_t seed = 1000;
+    std::vector<std::string> left_out{"armchair", "round_table"};
+    int threads = 1;
+    std::string out_dir = "out/bench_shape";
+};
+int run_bench_shape(const BenchShapeOptions& options);
+
+struct CompleteOptions {
+    std::string model;  ///< empty: models/shape.pt
+    std::string cloud;
+    std::string box;    ///< "cx,cy,cz,length,width,height,yaw" in the cloud's frame
+    std::string cls;
+    std::string sensor = "0,0,0";  ///< where the returns were seen from, in the cloud's frame
+    std::string out;
+};
+int run_complete(const CompleteOptions& options);
 
 }  // namespace makeway::apps

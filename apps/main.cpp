@@ -240,6 +240,8 @@ void add_detector(CLI::App& app, DatasetOptions& ds, TrainDetectorOptions& tr, D
     e->add_option("--scenes", ev.scenes, "Held-out scenes per set")->check(CLI::Range(1, 1000))->capture_default_str();
     e->add_option("--seed", ev.seed, "Seed of the held-out scenes (training uses smaller seeds)")->capture_default_str();
     e->add_option("--out", ev.out_dir, "Output folder (summary.json)")->capture_default_str();
+    e->add_flag("--no-cad", ev.no_cad, "No CAD models at all (with --shape-model: the learned shapes alone)");
+    e->add_option("--shape-model", ev.shape_model, "Shape networks (models/shape.pt) for detections no CAD model fits")->check(CLI::ExistingFile);
     e->add_flag("--default-cad", ev.default_cad, "Verify against one default-dimension model per style instead of the "
                                                  "CAD models of each scene's own furniture");
 }
@@ -271,6 +273,9 @@ void add_run(CLI::App& app, RunOptions& o) {
     sub->add_option("--odom-topic", o.odom_topic, "With --bag: the wheel odometry topic (optional in the bag)")->capture_default_str();
     sub->add_option("--map", o.map, "Static map (map_server YAML + PGM) for the costmap's static layer; objects stand in its free space");
     sub->add_option("--cad", o.cad, "Folder of CAD meshes (chair_*/table_*) for verification; without it the stage is skipped");
+    sub->add_option("--shape-model", o.shape_model, "Shape networks (models/shape.pt): detections no CAD model fits (all, without "
+                                                    "--cad) are verified against their completed shape")
+        ->check(CLI::ExistingFile);
     sub->add_option("--extrinsics", o.extrinsics, "The sensor on the base: x y z roll pitch yaw [m, rad] (default: the "
                                                   "config's robot section, 0.4 m above the base)")
         ->expected(6);
@@ -316,8 +321,30 @@ void add_label(CLI::App& app, LabelOptions& o) {
                                     "semantic low 16 bits, instance high 16), objects.json, meta.json")->required();
 }
 
+void add_shape(CLI::App& app, TrainShapeOptions& tr, BenchShapeOptions& be, CompleteOptions& co) {
+    auto* t = app.add_subcommand("train-shape", "Train the shape networks (F_n correspondences + 7-DoF solve, F_0 DeepSDF prior, "
+                                                "F_1 TSDF-to-occupancy completion) on the simulator's furniture, from a fixed seed");
+    t->add_option("--scenes", tr.scenes, "Rooms rendered for training")->check(CLI::Range(1, 10000))->capture_default_str();
+    t->add_option("--seed", tr.seed, "Seed of rooms, initialisation and sampling")->capture_default_str();
+    t->add_option("--exclude-styles", tr.exclude_styles, "Styles left out of training (bench shape scores them apart)")
+        ->delimiter(',')
+        ->capture_default_str();
+    t->add_option("--steps-scale", tr.steps_scale, "Every stage's step count times this")->check(CLI::Range(0.001, 100.0))->capture_default_str();
+    t->add_option("--threads", tr.threads, "Threads (torch and the targets)")->check(CLI::Range(1, 256))->capture_default_str();
+    t->add_option("--out", tr.out, "Model file (.pt); a report beside it (.pt.json)")->capture_default_str();
+    auto* c = app.add_subcommand("complete", "Pose one object with F_n and complete its shape with F_1 (F_0's code as prior); "
+                                             "writes the mesh in the cloud's frame");
+    c->add_option("--model", co.model, "Shape model (default: models/shape.pt)");
+    c->add_option("--cloud", co.cloud, "Cloud holding the object (.pcd, .ply, .bin), ground not removed is fine")->required();
+    c->add_option("--box", co.box, "The object's box in the cloud's frame: cx,cy,cz,length,width,height,yaw (a detection)")->required();
+    c->add_option("--class", co.cls, "chair or table")->required();
+    c->add_option("--sensor", co.sensor, "Where the cloud was seen from, in its frame: x,y,z")->capture_default_str();
+    c->add_option("--out", co.out, "Mesh file (.obj, .ply, .stl)")->required();
+    (void)be;
+}
+
 void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchMergeOptions& merge_o, BenchVerifyOptions& ver_o,
-               BenchTrackOptions& trk_o, BenchOdometryOptions& odo_o, BenchLabelOptions& lab_o, BenchSessionsOptions& ses_o) {
+               BenchTrackOptions& trk_o, BenchOdometryOptions& odo_o, BenchLabelOptions& lab_o, BenchSessionsOptions& ses_o, BenchShapeOptions& shape_o) {
     auto* bench = app.add_subcommand("bench", "Benchmarks that print JSON");
     bench->require_subcommand(1);
     auto* ses = bench->add_subcommand("sessions", "Session after session: a detector trained without some styles is fine-tuned "
@@ -403,6 +430,17 @@ void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchM
                                                  "exactly the results one unsharded run writes");
     merge->add_option("dirs", merge_o.dirs, "Folders holding partial.json, one per shard, in any order")->required()->check(CLI::ExistingDirectory);
     merge->add_option("--out", merge_o.out_dir, "Output folder")->capture_default_str();
+    auto* shp = bench->add_subcommand("shape", "The shape networks on held-out rooms and on the styles left out of training: "
+                                               "F_n pose accuracy, completion (Chamfer-L1, IoU) of the partial cloud, F_0 and F_1, "
+                                               "timing; writes summary.json, table.md, gallery.png");
+    shp->add_option("--model", shape_o.model, "Shape model (default: models/shape.pt)");
+    shp->add_option("--scenes", shape_o.scenes, "Rooms per set")->check(CLI::Range(1, 1000))->capture_default_str();
+    shp->add_option("--seed", shape_o.seed, "Seed of the rooms (training uses small seeds)")->capture_default_str();
+    shp->add_option("--left-out", shape_o.left_out, "Styles left out of training: a second set furnished only with them")
+        ->delimiter(',')
+        ->capture_default_str();
+    shp->add_option("--threads", shape_o.threads, "Torch threads (timing is per object on these)")->check(CLI::Range(1, 256))->capture_default_str();
+    shp->add_option("--out", shape_o.out_dir, "Output folder")->capture_default_str();
     auto* sim = bench->add_subcommand("sim", "LiDAR simulation speed: full VLP-32C sweeps (57,600 rays) in a "
                                              "20 x 20 m room with 40 objects, on 1 and 2 threads");
     sim->add_option("--seed", o.seed, "Scene seed")->capture_default_str();
@@ -474,6 +512,9 @@ int main(int argc, char** argv) {
     BenchSessionsOptions bench_sessions;
     LabelOptions label;
     RunOptions run;
+    TrainShapeOptions train_shape;
+    BenchShapeOptions bench_shape;
+    CompleteOptions complete;
     add_info(app, info);
     add_convert(app, convert);
     add_demo(app, demo);
@@ -487,7 +528,8 @@ int main(int argc, char** argv) {
     add_detector(app, dataset, train_detector, detect, eval_detection);
     add_odometry(app, odometry);
     add_run(app, run);
-    add_bench(app, bench_sim, bench_nav, bench_merge, bench_verify, bench_track, bench_odometry, bench_label, bench_sessions);
+    add_shape(app, train_shape, bench_shape, complete);
+    add_bench(app, bench_sim, bench_nav, bench_merge, bench_verify, bench_track, bench_odometry, bench_label, bench_sessions, bench_shape);
     check_numbers(app);
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
@@ -534,6 +576,8 @@ int main(int argc, char** argv) {
             if (app.got_subcommand("detect")) return run_detect(detect);
             if (app.got_subcommand("eval-detection")) return run_eval_detection(eval_detection);
             if (app.got_subcommand("eval-tracking")) return run_eval_tracking(eval_tracking);
+            if (app.got_subcommand("train-shape")) return run_train_shape(train_shape);
+            if (app.got_subcommand("complete")) return run_complete(complete);
             if (app.got_subcommand("bench")) {
                 const CLI::App* bench = app.get_subcommand("bench");
                 if (bench->got_subcommand("nav")) return run_bench_nav(bench_nav);
@@ -543,6 +587,7 @@ int main(int argc, char** argv) {
                 if (bench->got_subcommand("odometry")) return run_bench_odometry(bench_odometry);
                 if (bench->got_subcommand("label")) return run_bench_label(bench_label);
                 if (bench->got_subcommand("sessions")) return run_bench_sessions(bench_sessions);
+                if (bench->got_subcommand("shape")) return run_bench_shape(bench_shape);
                 return run_bench_sim(bench_sim);
             }
             return 1;

@@ -9,17 +9,18 @@
 
 #include "io/error.hpp"
 #include "makeway/perception/detector.hpp"
+#include "makeway/shape/shape_model.hpp"
 
 namespace makeway::apps {
 
-inline std::optional<std::filesystem::path> default_model_path() {
+inline std::optional<std::filesystem::path> default_model_path(const std::string& name = "detector.pt") {
     namespace fs = std::filesystem;
-    const fs::path local = fs::path("models") / "detector.pt";
+    const fs::path local = fs::path("models") / name;
     if (fs::exists(local)) return local;
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     if (!ec) {
-        const fs::path beside = exe.parent_path().parent_path().parent_path() / "models" / "detector.pt";
+        const fs::path beside = exe.parent_path().parent_path().parent_path() / "models" / name;
         if (fs::exists(beside)) return beside;
     }
     return std::nullopt;
@@ -32,6 +33,17 @@ inline perception::Detector load_detector(const std::string& given) {
                                                       : default_model_path().value_or(std::filesystem::path("models") / "detector.pt");
     try {
         return perception::Detector::load(path);
+    } catch (const std::runtime_error& e) {
+        throw io::FileError(path.string(), std::string(e.what()).substr(path.string().size() + 2));
+    }
+}
+
+/// The given shape model file, else models/shape.pt; throws io::FileError naming the file.
+inline shape::ShapeModel load_shape_model(const std::string& given) {
+    const std::filesystem::path path = !given.empty() ? std::filesystem::path(given)
+                                                      : default_model_path("shape.pt").value_or(std::filesystem::path("models") / "shape.pt");
+    try {
+        return shape::ShapeModel::load(path);
     } catch (const std::runtime_error& e) {
         throw io::FileError(path.string(), std::string(e.what()).substr(path.string().size() + 2));
     }

@@ -52,7 +52,8 @@ DetectionEvalResult run_detection_eval(const perception::Detector& detector, con
         std::vector<std::vector<Detection>> net, ver, evidence;
         for (const LabelledKeyframe& kf : kfs) {
             net.push_back(detector.detect(kf.cloud_sensor));
-            const verification::CadLibrary* lib = default_library ? &*default_library : nullptr;
+            static const verification::CadLibrary kNoModels;
+            const verification::CadLibrary* lib = default_library ? &*default_library : p.cad == CadSource::kNone ? &kNoModels : nullptr;
             if (!lib) {
                 auto it = scene_libraries.find(kf.sequence);
                 if (it == scene_libraries.end()) it = scene_libraries.emplace(kf.sequence, scene_cad_library(scenes.at(kf.sequence))).first;
@@ -69,7 +70,7 @@ DetectionEvalResult run_detection_eval(const perception::Detector& detector, con
                 if (!ground.found) return std::nullopt;
                 return ground.floor_z_at(x, y);
             };
-            const auto verified = verification::verify_detections(kf.cloud_sensor, net.back(), *lib, p.system.verify, floor_z);
+            const auto verified = verification::verify_detections(kf.cloud_sensor, net.back(), *lib, p.system.verify, floor_z, p.shape_prior);
             ver.push_back(verification::accepted_detections(verified, verification::ScoreFrom::kDetector));
             evidence.push_back(verification::accepted_detections(verified, verification::ScoreFrom::kExistence));
         }

@@ -20,6 +20,7 @@ namespace makeway::eval {
 enum class CadSource {
     kScene,    ///< the models of the scene's own furniture (the paper's setting)
     kDefault,  ///< one model per style at default dimensions (furniture whose models are unknown)
+    kNone,     ///< no CAD models at all (with a shape prior: the learned shapes alone)
 };
 
 struct DetectionEvalParams {
@@ -30,6 +31,8 @@ struct DetectionEvalParams {
     int keyframe_every = 5;
     int max_keyframes_per_scene = 60;
     CadSource cad = CadSource::kScene;
+    /// Learned shapes for detections no CAD model fits (null: none). Must outlive the run.
+    const verification::ShapePrior* shape_prior = nullptr;
     pipeline::SystemParams system;           ///< the online system's front end, verification and tracker
     int latency_keyframes = 20;              ///< timed on 1 and 2 threads
 };

@@ -30,6 +30,8 @@ public:
                   const perception::ObjectDetector* detector, const verification::CadLibrary* library);
 
     MappingStep process(const Sweep& sweep);
+    /// See Pipeline::set_shape_prior.
+    void set_shape_prior(const verification::ShapePrior* prior) { pipeline_.set_shape_prior(prior); }
 
     const Costmap& costmap() const { return costmap_.master(); }
     const std::vector<ObjectEstimate>& objects() const { return objects_; }

@@ -81,10 +81,11 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
     // Verify against the CAD models: accepted boxes become the aligned model's, scored by p_exist (eq. 2).
     t = Clock::now();
     kf.evidence = kf.detections;
-    if (params_.verification && library_ && !library_->models().empty()) {
+    const bool have_cad = library_ && !library_->models().empty();
+    if (params_.verification && (have_cad || prior_)) {
         const PreparedKeyframe& prepared = kf.prepared;
-        kf.verified = verification::verify_detections(prepared.cloud_sensor, kf.detections, *library_, params_.verify,
-                                                      [&](double x, double y) { return prepared.floor_z_at(x, y); });
+        kf.verified = verification::verify_detections(prepared.cloud_sensor, kf.detections, have_cad ? *library_ : no_library_, params_.verify,
+                                                      [&](double x, double y) { return prepared.floor_z_at(x, y); }, prior_);
         kf.evidence = verification::accepted_detections(kf.verified);
     }
     timing.verify_ms = ms_since(t);

@@ -78,6 +78,9 @@ public:
     /// Where objects can stand: the free space of the prebuilt map of walls (a robot has it).
     /// Objects outside it (beyond the walls, inside them) never enter the object map.
     void set_object_region(std::function<bool(const Eigen::Vector2d&)> allowed) { map_.set_region(std::move(allowed)); }
+    /// A learned shape prior (may be null; must outlive the pipeline): detections no CAD model
+    /// fits, or all detections when there is no library, are verified against its completed shape.
+    void set_shape_prior(const verification::ShapePrior* prior) { prior_ = prior; }
 
     const SystemParams& params() const { return params_; }
     std::size_t keyframes() const { return keyframes_; }
@@ -88,6 +91,8 @@ private:
     SystemParams params_;
     const perception::ObjectDetector* detector_;
     const verification::CadLibrary* library_;
+    const verification::ShapePrior* prior_ = nullptr;
+    verification::CadLibrary no_library_;  ///< what verification sees with a prior and no CAD models
     FrontEnd front_end_;
     tracking::ObjectMap map_;
     std::vector<ObjectEstimate> objects_;

@@ -36,11 +36,15 @@ Completion complete_shape(const ShapeModel& model, ObjectClass cls, const std::v
         }
     }
     out.code = model.fit_latent(cls, surface, free, params.fit_iterations);
-    const std::vector<Eigen::Vector3d> centres = model.params().grid.centres();
-    out.prior_sdf = model.sdf(cls, out.code, centres);
+    out.grid = model.params().grid;
+    if (params.mesh_resolution > 0) out.grid.resolution = params.mesh_resolution;
+    const std::vector<Eigen::Vector3d> centres = out.grid.centres();
+    if (params.prior_field) {
+        out.prior_sdf = model.sdf(cls, out.code, centres);
+        out.prior_mesh = grid_isosurface(out.grid, out.prior_sdf, 0.0, true);
+    }
     out.occupancy = model.occupancy(cls, tsdf, out.code, centres);
-    out.prior_mesh = grid_isosurface(model.params().grid, out.prior_sdf, 0.0, true);
-    out.mesh = grid_isosurface(model.params().grid, out.occupancy, 0.5, false);
+    out.mesh = grid_isosurface(out.grid, out.occupancy, 0.5, false);
     return out;
 }
 

@@ -9,15 +9,18 @@
 namespace makeway::shape {
 
 struct CompletionParams {
-    int fit_iterations = 60;      ///< F_0's code fit
+    int fit_iterations = 60;      ///< F_0's code fit (0: F_0's mean code, no fit)
     int fit_points = 256;         ///< surface points the fit uses (every k-th)
     double free_offset = 0.15;    ///< free-space points this far in front of each return (canonical units)
+    bool prior_field = true;      ///< also F_0's SDF on the grid and its mesh (the prior alone, for comparison)
+    int mesh_resolution = 0;      ///< cells per side of the grid F_1 is queried on (0: the model's TSDF grid)
 };
 
 struct Completion {
     Latent code{};
-    std::vector<float> prior_sdf;   ///< F_0 on the grid's cell centres
-    std::vector<float> occupancy;   ///< F_1 on the grid's cell centres
+    CubeGrid grid;                  ///< where the fields below are sampled (cell centres)
+    std::vector<float> prior_sdf;   ///< F_0 (empty without prior_field)
+    std::vector<float> occupancy;   ///< F_1
     TriangleMesh prior_mesh, mesh;  ///< canonical
     std::size_t observed_cells = 0;
 };

@@ -11,6 +11,10 @@ namespace makeway::shape {
 
 namespace F = torch::nn::functional;
 
+void set_threads(int threads) {
+    if (threads > 0) torch::set_num_threads(threads);
+}
+
 int shape_class_index(ObjectClass cls) {
     switch (cls) {
         case ObjectClass::kChair: return 0;
@@ -335,7 +339,7 @@ Latent ShapeModel::fit_latent(ObjectClass cls, const std::vector<Eigen::Vector3d
     ClassNets& n = nets_of(*impl_, cls);
     torch::Tensor code = n.mean_code.clone().unsqueeze(0).set_requires_grad(true);
     Latent out{};
-    if (surface.empty()) {
+    if (surface.empty() || iterations <= 0) {
         std::copy(n.mean_code.data_ptr<float>(), n.mean_code.data_ptr<float>() + kLatentDim, out.begin());
         return out;
     }

@@ -97,4 +97,7 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+/// Threads torch uses for the shape networks in this process (0: leave the default).
+void set_threads(int threads);
+
 }  // namespace makeway::shape

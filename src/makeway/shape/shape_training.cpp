@@ -275,10 +275,19 @@ ShapeTrainReport train_shape_model(ShapeModel& model, const ShapeTrainingSet& da
             views_of_shape[static_cast<std::size_t>(local_of[static_cast<std::size_t>(view.shape)])].push_back(v);
         }
         ClassNets& nets = model.impl().nets[static_cast<std::size_t>(k)];
+        auto ts = std::chrono::steady_clock::now();
+        auto lap = [&](int stage) {
+            const auto now = std::chrono::steady_clock::now();
+            report.stage_seconds[stage] += std::chrono::duration<double>(now - ts).count();
+            ts = now;
+        };
         report.correspondence[k] = train_correspondence(nets, data, views, model.params(), p, rng, name + " F_n", progress);
+        lap(0);
         torch::Tensor codes;
         report.sdf[k] = train_sdf(nets, codes, data, shapes, model.params(), p, rng, name + " F_0", progress);
+        lap(1);
         report.occupancy[k] = train_occupancy(nets, codes, data, shapes, views_of_shape, model.params(), p, rng, name + " F_1", progress);
+        lap(2);
     }
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return report;

@@ -40,9 +40,9 @@ struct ShapeTrainingSet {
 
 struct ShapeTrainParams {
     int correspondence_steps = 1500;
-    int sdf_steps = 1500;
-    int occupancy_steps = 1000;
-    int correspondence_batch = 32;
+    int sdf_steps = 1000;
+    int occupancy_steps = 600;
+    int correspondence_batch = 16;
     int sdf_batch_shapes = 16, sdf_samples = 256;
     int occupancy_batch = 8, occupancy_samples = 512;
     int fusions_per_shape = 4;       ///< TSDF volumes fused per shape for F_1 (1-3 of its views each)
@@ -59,6 +59,7 @@ struct NetLoss {
 struct ShapeTrainReport {
     NetLoss correspondence[2], sdf[2], occupancy[2];  ///< per class (chair, table)
     double seconds = 0.0;
+    double stage_seconds[3] = {0.0, 0.0, 0.0};  ///< F_n, F_0, F_1 over both classes
 };
 
 /// Trains all six networks in place. `progress(stage, step, steps, loss)` after each step.

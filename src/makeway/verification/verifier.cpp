@@ -42,8 +42,10 @@ double existence_probability(double e, double e_min, double e_max) {
     return std::clamp(1.0 - 0.5 * (e - e_min) / (e_max - e_min), 0.5, 1.0);  // eq. (2)
 }
 
-VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det, const CadLibrary& library,
-                                   const VerifyParams& params, std::optional<double> floor_z_m) {
+namespace {
+
+VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det, const CadLibrary& library, const VerifyParams& params,
+                                  std::optional<double> floor_z_m) {
     VerifiedDetection out;
     out.detection = det;
     const std::vector<Eigen::Vector3d> segment = segment_points(cloud, det.box_sensor, params.box_margin_m);
@@ -149,13 +151,41 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
     return out;
 }
 
+}  // namespace
+
+VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det, const CadLibrary& library, const VerifyParams& params,
+                                   std::optional<double> floor_z_m, const ShapePrior* prior) {
+    VerifiedDetection cad = verify_with_cad(cloud, det, library, params, floor_z_m);
+    if (cad.accepted || !prior || cad.segment_points < params.min_points) return cad;
+    // No CAD model fits: the prior's model of this object, verified the same way from its pose.
+    const std::vector<Eigen::Vector3d> segment = segment_points(cloud, det.box_sensor, params.box_margin_m);
+    const double floor_z = floor_z_m.value_or(det.box_sensor.z_min_m());
+    const auto estimate = prior->estimate(segment, det.cls, floor_z);
+    if (!estimate || estimate->mesh_object.triangles.empty()) {
+        cad.reason += "; shape prior: no estimate";
+        return cad;
+    }
+    CadLibrary own(library.params());
+    own.add("completed shape", det.cls, estimate->mesh_object);
+    Detection seeded = det;
+    seeded.box_sensor = own.models().front().box_object.transformed(estimate->T_sensor_object);
+    VerifiedDetection shaped = verify_with_cad(cloud, seeded, own, params, floor_z);
+    shaped.detection = det;
+    if (!shaped.accepted) {
+        cad.reason += "; completed shape: " + shaped.reason;
+        return cad;
+    }
+    return shaped;
+}
+
 std::vector<VerifiedDetection> verify_detections(const PointCloud& cloud, const std::vector<Detection>& detections, const CadLibrary& library,
-                                                 const VerifyParams& params, const std::function<std::optional<double>(double, double)>& floor_z_at) {
+                                                 const VerifyParams& params, const std::function<std::optional<double>(double, double)>& floor_z_at,
+                                                 const ShapePrior* prior) {
     std::vector<VerifiedDetection> out(detections.size());
     auto verify_one = [&](std::size_t i) {
         const Detection& d = detections[i];
         const std::optional<double> floor_z = floor_z_at ? floor_z_at(d.box_sensor.centre_m.x(), d.box_sensor.centre_m.y()) : std::nullopt;
-        out[i] = verify_detection(cloud, d, library, params, floor_z);
+        out[i] = verify_detection(cloud, d, library, params, floor_z, prior);
     };
     if (params.num_threads <= 1 || detections.size() < 2) {
         for (std::size_t i = 0; i < detections.size(); ++i) verify_one(i);

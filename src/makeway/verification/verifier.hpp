@@ -12,6 +12,7 @@
 #include "makeway/common/detection.hpp"
 #include "makeway/common/point_cloud.hpp"
 #include "makeway/verification/icp.hpp"
+#include "makeway/verification/shape_prior.hpp"
 
 namespace makeway::verification {
 
@@ -60,14 +61,19 @@ double existence_probability(double residual_m, double e_min_m, double e_max_m);
 
 /// `floor_z_m`: the floor's height in the sensor frame under the object (from the ground plane),
 /// where the object's origin sits; without it the detection box's bottom is used.
+/// With a shape prior, a detection no CAD model fits is verified against the prior's model of it
+/// instead (a library of that one completed mesh, from the prior's pose): accepted when that fit's
+/// residual is, with the model named "completed shape".
 VerifiedDetection verify_detection(const PointCloud& cloud_sensor, const Detection& detection, const CadLibrary& library,
-                                   const VerifyParams& params, std::optional<double> floor_z_m = std::nullopt);
+                                   const VerifyParams& params, std::optional<double> floor_z_m = std::nullopt,
+                                   const ShapePrior* prior = nullptr);
 
 /// verify_detection() of every detection, in order; `floor_z_at(x_m, y_m)` gives the floor height
 /// under a detection (none: the box bottom).
 std::vector<VerifiedDetection> verify_detections(const PointCloud& cloud_sensor, const std::vector<Detection>& detections,
                                                  const CadLibrary& library, const VerifyParams& params,
-                                                 const std::function<std::optional<double>(double, double)>& floor_z_at = {});
+                                                 const std::function<std::optional<double>(double, double)>& floor_z_at = {},
+                                                 const ShapePrior* prior = nullptr);
 
 /// Which score an accepted detection carries on.
 enum class ScoreFrom {
