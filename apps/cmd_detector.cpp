@@ -140,6 +140,7 @@ int run_eval_detection(const EvalDetectionOptions& o) {
     if (!o.shape_model.empty()) {
         prior = std::make_unique<shape::LearnedShapePrior>(std::make_shared<const shape::ShapeModel>(load_shape_model(o.shape_model)));
         p.shape_prior = prior.get();
+        shape::set_threads(1);  // verification runs detections on parallel threads instead
     }
     io::ProgressBar bar("eval-detection", static_cast<std::size_t>(2 * o.scenes));
     int arm = 0;

@@ -16,6 +16,7 @@
 #include "apps/model_path.hpp"
 #include "apps/nav_report.hpp"
 #include "apps/nav_run.hpp"
+#include "makeway/shape/learned_prior.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
 #include "io/map_server_io.hpp"
@@ -118,6 +119,10 @@ int run_bench_nav(const BenchNavOptions& options) {
     } else {
         std::cout << "no detector weights (models/detector.pt; `make model`): the full system `ours` is left out\n";
     }
+    std::unique_ptr<shape::LearnedShapePrior> prior;  // ours without CAD models: the learned shapes
+    if (!options.shape_model.empty()) {
+        prior = std::make_unique<shape::LearnedShapePrior>(std::make_shared<const shape::ShapeModel>(load_shape_model(options.shape_model)));
+    }
     if (!options.methods.empty()) {
         std::erase_if(methods, [&](const std::string& m) {
             return std::find(options.methods.begin(), options.methods.end(), m) == options.methods.end();
@@ -147,7 +152,7 @@ int run_bench_nav(const BenchNavOptions& options) {
         eval::NavParams params = nav_params(cfg);
         params.seed = options.seed + static_cast<std::uint64_t>(indices[s]);
         params.time_limit_s = options.time_limit_s;
-        eval::NavRunResult r = run_nav_method(scenes[s], methods[m], params, detector ? &*detector : nullptr);
+        eval::NavRunResult r = run_nav_method(scenes[s], methods[m], params, detector ? &*detector : nullptr, prior.get());
         std::lock_guard<std::mutex> lock(mutex);
         results[s].resize(methods.size());
         results[s][m] = std::move(r);

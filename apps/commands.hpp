@@ -102,6 +102,7 @@ struct BenchNavOptions {
     std::vector<std::string> methods;  ///< empty: every method (ours when weights are there)
     std::string shard;  ///< "K/N": run scenes K, K + N, ... and write partial.json (empty: every scene, the results)
     std::string layout = "random";  ///< random (densities cycle) or study_space (the paper's room, seeded)
+    std::string shape_model;  ///< `ours` verifies against these learned shapes instead of the scenes' CAD models
 };
 int run_bench_nav(const BenchNavOptions& options);
 /// "K/N" with 0 <= K < N, or nullopt.

@@ -414,6 +414,9 @@ void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchM
     nav->add_option("--threads", nav_o.threads, "Runs in parallel")->check(CLI::Range(1, 256))->capture_default_str();
     nav->add_option("--model", nav_o.model, "Detector weights for the full system ours (default: models/detector.pt "
                                             "when present; without weights ours is left out)");
+    nav->add_option("--shape-model", nav_o.shape_model, "Shape networks: `ours` verifies against its learned shapes instead of "
+                                                         "the scenes' CAD models")
+        ->check(CLI::ExistingFile);
     nav->add_option("--methods", nav_o.methods, "Only these methods (con, oppo, gt-perc, ours), comma-separated")
         ->delimiter(',')
         ->check(CLI::IsMember({"con", "oppo", "gt-perc", "ours"}));

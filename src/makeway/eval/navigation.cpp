@@ -225,11 +225,13 @@ NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, Ob
 
 NavRunResult run_navigation_online(const sim::Scene& scene, const NavMethod& method,
                                    const perception::ObjectDetector& detector,
-                                   const verification::CadLibrary* library, const NavParams& params) {
+                                   const verification::CadLibrary* library, const NavParams& params,
+                                   const verification::ShapePrior* prior) {
     pipeline::SystemParams system = params.system;
     system.T_base_sensor = params.robot.T_robot_sensor();
     // What a robot has: its start pose, its sweeps and its wheel odometry. Nothing else passes.
     pipeline::Pipeline online(system, scene.start, &detector, library);
+    online.set_shape_prior(prior);
     // The prebuilt map of walls the navigator gets: objects stand in its free space.
     const Costmap walls = params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m);
     online.set_object_region([&walls](const Eigen::Vector2d& p) {

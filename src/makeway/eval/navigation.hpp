@@ -19,6 +19,7 @@
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/robot.hpp"
 #include "makeway/verification/cad_library.hpp"
+#include "makeway/verification/shape_prior.hpp"
 
 namespace makeway::eval {
 
@@ -105,9 +106,11 @@ struct NavRunResult {
 /// A truth-fed method (con, oppo, gt-perc): the true pose and `source`'s objects.
 NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, ObjectSource& source,
                             const NavParams& params);
-/// The full system (ours): the online pipeline with `detector` and the CAD `library` (may be null).
+/// The full system (ours): the online pipeline with `detector` and the CAD `library` (may be null),
+/// and a learned shape prior for detections no CAD model fits (may be null).
 NavRunResult run_navigation_online(const sim::Scene& scene, const NavMethod& method,
                                    const perception::ObjectDetector& detector,
-                                   const verification::CadLibrary* library, const NavParams& params);
+                                   const verification::CadLibrary* library, const NavParams& params,
+                                   const verification::ShapePrior* prior = nullptr);
 
 }  // namespace makeway::eval
