@@ -34,7 +34,7 @@ model: build
 	@$(MAKEWAY) eval-detection --model models/detector.pt --scenes 6 --out models/detector_eval
 
 # The shape networks' weights (models/shape.pt, F_n + F_0 + F_1 for chairs and tables), from a
-# fixed seed on 2 threads (about 25 min here), then their benchmark on held-out rooms and styles.
+# fixed seed on 2 threads (36 min here), then their benchmark on held-out rooms and styles (10 min).
 shape-model: build
 	@$(MAKEWAY) train-shape --scenes 24 --seed 0 --threads 2 --out models/shape.pt
 	@$(MAKEWAY) bench shape --model models/shape.pt --scenes 6 --seed 1000 --threads 1 --out models/shape_eval

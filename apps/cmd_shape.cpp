@@ -160,6 +160,9 @@ int run_bench_shape(const BenchShapeOptions& o) {
     p.scenes = o.scenes;
     p.seed = o.seed;
     p.left_out_styles = o.left_out;
+    p.solve.inlier_distance = o.inlier_distance;
+    p.solve.hypotheses = o.hypotheses;
+    p.completion = !o.pose_only;
     std::unique_ptr<io::ProgressBar> bar;
     std::string current;
     const eval::ShapeBenchResult r = eval::run_shape_bench(model, p, [&](const std::string& what, int done, int total) {

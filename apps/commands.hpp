@@ -329,6 +329,9 @@ struct BenchShapeOptions {
     std::uint64_t seed = 1000;
     std::vector<std::string> left_out{"armchair", "round_table"};
     int threads = 1;
+    double inlier_distance = 0.05;  ///< the robust solve's inlier residual [m]
+    int hypotheses = 0;             ///< the robust solve's minimal samples (0: the weighted solve alone)
+    bool pose_only = false;
     std::string out_dir = "out/bench_shape";
 };
 int run_bench_shape(const BenchShapeOptions& options);

@@ -443,6 +443,11 @@ void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchM
         ->delimiter(',')
         ->capture_default_str();
     shp->add_option("--threads", shape_o.threads, "Torch threads (timing is per object on these)")->check(CLI::Range(1, 256))->capture_default_str();
+    shp->add_option("--inlier-distance", shape_o.inlier_distance, "The 7-DoF solve's inlier residual [m]")->check(CLI::Range(0.001, 1.0))->capture_default_str();
+    shp->add_option("--hypotheses", shape_o.hypotheses, "The 7-DoF solve's minimal samples (0: the weighted least squares alone)")
+        ->check(CLI::Range(0, 100000))
+        ->capture_default_str();
+    shp->add_flag("--pose-only", shape_o.pose_only, "Score F_n's pose only (no completion)");
     shp->add_option("--out", shape_o.out_dir, "Output folder")->capture_default_str();
     auto* sim = bench->add_subcommand("sim", "LiDAR simulation speed: full VLP-32C sweeps (57,600 rays) in a "
                                              "20 x 20 m room with 40 objects, on 1 and 2 threads");

@@ -79,7 +79,7 @@ ShapeBenchResult run_shape_bench(const shape::ShapeModel& model, const ShapeBenc
             SetAccumulator& a = acc[c];
             ++a.views;
             const auto t0 = Clock::now();
-            const auto T = model.estimate_pose(ex.cls, view.points);
+            const auto T = model.estimate_pose(ex.cls, view.points, p.solve);
             fn_ms.push_back(ms_since(t0));
             const auto yaw_err = yaw_error_deg(ex.style, T ? T->yaw_rad() : 0.0, view.truth.yaw_rad());
             if (!T) {
@@ -102,6 +102,7 @@ ShapeBenchResult run_shape_bench(const shape::ShapeModel& model, const ShapeBenc
         for (std::size_t v = 0; v < data.views.size(); ++v) views_of[{data.scene_of_view[v], data.object_of_view[v]}].push_back(v);
         int done = 0;
         for (const auto& [key, vs] : views_of) {
+            if (!p.completion) break;
             if (progress) progress("completing " + specs[si].name, ++done, static_cast<int>(views_of.size()));
             std::size_t own = 0;
             for (const std::size_t v : vs) own += data.own_points_of_view[v];

@@ -21,6 +21,8 @@ struct ShapeBenchParams {
     std::size_t min_points = 100;
     int fit_iterations = 60;                   ///< F_0's code fit
     int showcase = 4;                          ///< completed shapes kept per class for pictures
+    shape::RobustSolveParams solve;            ///< F_n's 7-DoF solve
+    bool completion = true;                    ///< false: pose only
 };
 
 struct PoseStats {

@@ -40,7 +40,7 @@ using Latent = std::array<float, kLatentDim>;
 int shape_class_index(ObjectClass cls);  ///< -1 for a class without networks
 
 struct ShapeModelParams {
-    int points = 256;          ///< F_n's input size (clouds are resampled to it, seeded)
+    int points = 128;          ///< F_n's input size (clouds are resampled to it, seeded)
     int correspondence_width = 64;
     int sdf_width = 128;
     int occupancy_width = 64;

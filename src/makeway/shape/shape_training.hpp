@@ -39,9 +39,9 @@ struct ShapeTrainingSet {
 };
 
 struct ShapeTrainParams {
-    int correspondence_steps = 1500;
+    int correspondence_steps = 4000;
     int sdf_steps = 1000;
-    int occupancy_steps = 600;
+    int occupancy_steps = 1200;
     int correspondence_batch = 16;
     int sdf_batch_shapes = 16, sdf_samples = 256;
     int occupancy_batch = 8, occupancy_samples = 512;

@@ -71,6 +71,16 @@ std::optional<RobustSolveResult> solve_similarity_robust(const std::vector<Eigen
     }
     const std::size_t minimal = params.upright ? 2 : 3;
     if (usable.size() < 3) return std::nullopt;
+    if (params.hypotheses <= 0) {  // the weighted least squares alone
+        const auto all = solve_similarity(v, p, w, params.upright);
+        if (!all) return std::nullopt;
+        RobustSolveResult out;
+        out.similarity = *all;
+        out.inlier.assign(v.size(), false);
+        for (const std::size_t i : usable) out.inlier[i] = true;
+        out.inliers = usable.size();
+        return out;
+    }
     const double d2 = params.inlier_distance * params.inlier_distance;
     auto support = [&](const Similarity3& T, std::vector<bool>* inlier) {
         double score = 0.0;

@@ -8,7 +8,7 @@
 // upright option keeps R a turn about z: yaw = atan2 of the covariance's antisymmetric and
 // symmetric xy parts, the same least squares restricted to yaw.
 //
-// The robust solve wraps it: minimal samples (3 points, 2 when upright) drawn with a seed score
+// The robust solve can wrap it: minimal samples (3 points, 2 when upright) drawn with a seed score
 // the weighted points whose residual is under the inlier distance, the best hypothesis is refined
 // by the weighted solve on its inliers, twice. It recovers the similarity as long as the inliers
 // outnumber what the sampling can miss: 50 % outliers at the default 200 hypotheses (tested).
@@ -40,7 +40,11 @@ std::optional<Similarity3> solve_similarity(const std::vector<Eigen::Vector3d>& 
 
 struct RobustSolveParams {
     bool upright = true;
-    int hypotheses = 200;
+    /// 0 (default): the weighted least squares alone, every pair an inlier: F_n is trained end to
+    /// end through that solve, and its spread of errors defeats a residual threshold (measured:
+    /// median yaw error 10 deg with it, 78 deg with 200 hypotheses at 5 cm). Sampling is for
+    /// correspondences that are exact or wrong.
+    int hypotheses = 0;
     double inlier_distance = 0.05;  ///< residual [units of `observed`] under which a pair supports a hypothesis
     double min_scale = 0.05, max_scale = 20.0;  ///< hypotheses outside are discarded
     std::uint64_t seed = 0;
