@@ -154,6 +154,7 @@ ShapeBenchResult run_shape_bench(const shape::ShapeModel& model, const ShapeBenc
                 done_occ[i] = done_shape.occupancy[i] > 0.5f;
             }
             for (const auto& q : partial) {
+                if (!(q.array().abs() < grid.half_extent).all()) continue;  // off the grid (also NaN)
                 const Eigen::Array3i cell = ((q.array() + grid.half_extent) / grid.cell()).floor().cast<int>();
                 if ((cell >= 0).all() && (cell < grid.resolution).all()) part_occ[grid.index(cell.x(), cell.y(), cell.z())] = 1;
             }
