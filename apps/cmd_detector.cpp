@@ -141,6 +141,7 @@ int run_eval_detection(const EvalDetectionOptions& o) {
         prior = std::make_unique<shape::LearnedShapePrior>(std::make_shared<const shape::ShapeModel>(load_shape_model(o.shape_model)));
         p.shape_prior = prior.get();
         shape::set_threads(1);  // verification runs detections on parallel threads instead
+        p.system.verify.shape_e_max_m = o.shape_e_max;
     }
     io::ProgressBar bar("eval-detection", static_cast<std::size_t>(2 * o.scenes));
     int arm = 0;

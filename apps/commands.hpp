@@ -264,6 +264,7 @@ struct EvalDetectionOptions {
     bool default_cad = false;  ///< verify against default-dimension models instead of the scene's own
     bool no_cad = false;       ///< no CAD models at all
     std::string shape_model;   ///< learned shapes for what no CAD model fits
+    double shape_e_max = 0.035;  ///< verification's residual bound for completed shapes [m]
 };
 int run_eval_detection(const EvalDetectionOptions& options);
 

@@ -242,6 +242,7 @@ void add_detector(CLI::App& app, DatasetOptions& ds, TrainDetectorOptions& tr, D
     e->add_option("--out", ev.out_dir, "Output folder (summary.json)")->capture_default_str();
     e->add_flag("--no-cad", ev.no_cad, "No CAD models at all (with --shape-model: the learned shapes alone)");
     e->add_option("--shape-model", ev.shape_model, "Shape networks (models/shape.pt) for detections no CAD model fits")->check(CLI::ExistingFile);
+    e->add_option("--shape-e-max", ev.shape_e_max, "Verification's residual bound for completed shapes [m]")->check(CLI::Range(0.005, 0.5))->capture_default_str();
     e->add_flag("--default-cad", ev.default_cad, "Verify against one default-dimension model per style instead of the "
                                                  "CAD models of each scene's own furniture");
 }

@@ -218,6 +218,7 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("min_yaw_margin", v.min_yaw_margin);
         s.read("e_min_m", v.e_min_m);
         s.read("e_max_m", v.e_max_m);
+        s.read("shape_e_max_m", v.shape_e_max_m);
         s.read("min_points", v.min_points);
         s.finish();
         s.add_validation(v.validate());

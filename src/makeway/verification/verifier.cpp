@@ -15,6 +15,7 @@ std::vector<std::string> VerifyParams::validate() const {
     std::vector<std::string> p;
     if (!(box_margin_m >= 0.0 && box_margin_m < 2.0)) p.push_back("box_margin_m must be in [0, 2)");
     if (!(e_min_m >= 0.0 && e_min_m < e_max_m)) p.push_back("need 0 <= e_min_m < e_max_m");
+    if (!(shape_e_max_m > e_min_m && shape_e_max_m < 1.0)) p.push_back("need e_min_m < shape_e_max_m < 1");
     if (candidate_iterations < 0 || candidate_iterations > 100) p.push_back("candidate_iterations must be in [0, 100]");
     if (max_models < 1) p.push_back("max_models must be at least 1");
     if (!(min_yaw_margin >= 0.0)) p.push_back("min_yaw_margin must be >= 0");
@@ -169,7 +170,9 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
     own.add("completed shape", det.cls, estimate->mesh_object);
     Detection seeded = det;
     seeded.box_sensor = own.models().front().box_object.transformed(estimate->T_sensor_object);
-    VerifiedDetection shaped = verify_with_cad(cloud, seeded, own, params, floor_z);
+    VerifyParams shape_params = params;
+    shape_params.e_max_m = std::max(params.shape_e_max_m, params.e_min_m + 1e-6);
+    VerifiedDetection shaped = verify_with_cad(cloud, seeded, own, shape_params, floor_z);
     shaped.detection = det;
     if (!shaped.accepted) {
         cad.reason += "; completed shape: " + shaped.reason;

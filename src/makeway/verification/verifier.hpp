@@ -30,6 +30,8 @@ struct VerifyParams {
     double min_yaw_margin = 0.0;
     double e_min_m = 0.01;           ///< residual at or below which p_exist = 1
     double e_max_m = 0.035;          ///< residual above which the detection is rejected
+    /// e_max for a learned shape prior's completed mesh (coarser than a CAD model: its own bound).
+    double shape_e_max_m = 0.035;
     std::size_t min_points = 15;     ///< fewer segment points: rejected without fitting
     /// verify_detections: 1 serial; > 1 that many TBB threads over detections (each is independent).
     int num_threads = 2;
