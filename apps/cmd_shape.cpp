@@ -14,6 +14,7 @@
 #include "io/mesh_io.hpp"
 #include "io/point_cloud_io.hpp"
 #include "io/progress.hpp"
+#include "io/staged_output.hpp"
 #include "makeway/common/angles.hpp"
 #include "makeway/eval/shape_bench.hpp"
 #include "makeway/shape/shape_training.hpp"
@@ -174,7 +175,8 @@ int run_bench_shape(const BenchShapeOptions& o) {
         bar->update(static_cast<std::size_t>(done));
     });
     if (bar) bar->finish();
-    fs::create_directories(o.out_dir);
+    io::StagedOutput staged(o.out_dir);  // summary, table and gallery: all or none
+    const fs::path out = staged.staging();
     io::Json j = {{"scenes", o.scenes}, {"seed", o.seed}, {"left_out_styles", o.left_out}, {"min_points", p.min_points}};
     std::ostringstream md;
     md << "| set | class | views | yaw <= 10 deg | centre <= 5 cm | median yaw err | median centre err | objects | Chamfer-L1 partial / F_0 / F_1 [cm] | IoU partial / F_0 / F_1 |\n"
@@ -200,9 +202,10 @@ int run_bench_shape(const BenchShapeOptions& o) {
     md << "\nPer object on " << o.threads << " thread(s): F_n + solve " << fixed(r.fn_ms_median, 1) << " ms median (" << fixed(r.fn_ms_p90, 1)
        << " ms p90); F_1 update (TSDF of a view + encoder) " << fixed(r.f1_update_ms_median, 1) << " ms; F_1 on the whole grid + isosurface "
        << fixed(r.f1_mesh_ms_median, 1) << " ms; F_0 (code fit + its field on the grid) " << fixed(r.f0_fit_ms_median, 1) << " ms.\n";
-    io::write_json(fs::path(o.out_dir) / "summary.json", j);
-    io::write_file_atomic(fs::path(o.out_dir) / "table.md", md.str());
-    write_gallery(fs::path(o.out_dir) / "gallery.png", r.showcase);
+    io::write_json(out / "summary.json", j);
+    io::write_file_atomic(out / "table.md", md.str());
+    write_gallery(out / "gallery.png", r.showcase);
+    staged.commit();
     std::cout << md.str();
     return 0;
 }
