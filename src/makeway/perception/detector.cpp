@@ -86,30 +86,8 @@ void Detector::save(const std::filesystem::path& path) const {
     std::filesystem::rename(tmp, path);
 }
 
-namespace {
-
-// The first non-empty line of a library's message, at most 120 characters (error lines are one line).
-std::string first_line(const std::string& text) {
-    std::size_t start = text.find_first_not_of("\n\r ");
-    if (start == std::string::npos) return "unknown error";
-    const std::size_t end = text.find_first_of("\n\r", start);
-    return text.substr(start, std::min<std::size_t>(end == std::string::npos ? text.size() - start : end - start, 120));
-}
-
-}  // namespace
-
 Detector Detector::load(const std::filesystem::path& path) {
-    if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path.string() + ": no such model file");
-    std::string bytes;
-    {
-        std::ifstream in(path, std::ios::binary);
-        bytes.assign(std::istreambuf_iterator<char>(in), {});
-        if (!in.good() && !in.eof()) throw std::runtime_error(path.string() + ": cannot read the model file");
-    }
-    // torch trusts its archive (a damaged one can crash it): the container is checked first.
-    if (const std::string problem = model_archive_problem(bytes); !problem.empty()) {
-        throw std::runtime_error(path.string() + ": " + problem);
-    }
+    const std::string bytes = read_checked_model_archive(path, "model");
     try {
         torch::serialize::InputArchive archive;
         archive.load_from(bytes.data(), bytes.size());

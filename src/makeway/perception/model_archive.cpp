@@ -2,7 +2,11 @@
 
 #include <zip.h>
 
+#include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 namespace makeway::perception {
@@ -49,6 +53,28 @@ std::string model_archive_problem(std::string_view bytes) {
     }
     if (!has_data) return "not a model archive (no data.pkl record)";
     return {};
+}
+
+std::string read_checked_model_archive(const std::filesystem::path& path, const std::string& kind) {
+    if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path.string() + ": no such " + kind + " file");
+    std::string bytes;
+    {
+        std::ifstream in(path, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+        if (!in.good() && !in.eof()) throw std::runtime_error(path.string() + ": cannot read the " + kind + " file");
+    }
+    // torch trusts its archive (a damaged one can crash it): the container is checked first.
+    if (const std::string problem = model_archive_problem(bytes); !problem.empty()) {
+        throw std::runtime_error(path.string() + ": " + problem);
+    }
+    return bytes;
+}
+
+std::string first_line(const std::string& text) {
+    const std::size_t start = text.find_first_not_of("\n\r ");
+    if (start == std::string::npos) return "unknown error";
+    const std::size_t end = text.find_first_of("\n\r", start);
+    return text.substr(start, std::min<std::size_t>(end == std::string::npos ? text.size() - start : end - start, 120));
 }
 
 }  // namespace makeway::perception

@@ -188,13 +188,6 @@ torch::Tensor params_tensor(const ShapeModelParams& p) {
                          torch::kFloat64);
 }
 
-std::string first_line(const std::string& text) {
-    const std::size_t start = text.find_first_not_of("\n\r ");
-    if (start == std::string::npos) return "unknown error";
-    const std::size_t end = text.find_first_of("\n\r", start);
-    return text.substr(start, std::min<std::size_t>(end == std::string::npos ? text.size() - start : end - start, 120));
-}
-
 }  // namespace
 
 void ShapeModel::save(const std::filesystem::path& path) const {
@@ -218,16 +211,7 @@ void ShapeModel::save(const std::filesystem::path& path) const {
 }
 
 ShapeModel ShapeModel::load(const std::filesystem::path& path) {
-    if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path.string() + ": no such shape model file");
-    std::string bytes;
-    {
-        std::ifstream in(path, std::ios::binary);
-        bytes.assign(std::istreambuf_iterator<char>(in), {});
-        if (!in.good() && !in.eof()) throw std::runtime_error(path.string() + ": cannot read the shape model file");
-    }
-    if (const std::string problem = perception::model_archive_problem(bytes); !problem.empty()) {
-        throw std::runtime_error(path.string() + ": " + problem);
-    }
+    const std::string bytes = perception::read_checked_model_archive(path, "shape model");
     try {
         torch::serialize::InputArchive archive;
         archive.load_from(bytes.data(), bytes.size());
@@ -271,13 +255,13 @@ ShapeModel ShapeModel::load(const std::filesystem::path& path) {
         }
         return model;
     } catch (const c10::Error& e) {
-        throw std::runtime_error(path.string() + ": not a readable shape model (" + first_line(e.what_without_backtrace()) + ")");
+        throw std::runtime_error(path.string() + ": not a readable shape model (" + perception::first_line(e.what_without_backtrace()) + ")");
     } catch (const std::runtime_error& e) {
         const std::string what = e.what();
         if (what.rfind(path.string(), 0) == 0) throw;
-        throw std::runtime_error(path.string() + ": " + first_line(what));
+        throw std::runtime_error(path.string() + ": " + perception::first_line(what));
     } catch (const std::exception& e) {
-        throw std::runtime_error(path.string() + ": not a readable shape model (" + first_line(e.what()) + ")");
+        throw std::runtime_error(path.string() + ": not a readable shape model (" + perception::first_line(e.what()) + ")");
     }
 }
 
