@@ -219,9 +219,13 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("e_min_m", v.e_min_m);
         s.read("e_max_m", v.e_max_m);
         s.read("shape_e_max_m", v.shape_e_max_m);
+        s.read("shape_match_distance_m", sys.shapes.match_distance_m);
+        s.read("shape_max_views", sys.shapes.max_views);
+        s.read("shape_view_margin_m", sys.shapes.view_margin_m);
         s.read("min_points", v.min_points);
         s.finish();
         s.add_validation(v.validate());
+        s.add_validation(sys.shapes.validate());
     }
     {
         YamlSection s(root["tracking"], "tracking", problems);

@@ -43,6 +43,10 @@ TEST(Config, ShippedDefaultFileMatchesBuiltInDefaults) {
     EXPECT_EQ(c.affordance.table.sides_m, d.affordance.table.sides_m);
     EXPECT_EQ(c.affordance.table.ends_m, d.affordance.table.ends_m);
     EXPECT_EQ(c.affordance.min_existence, d.affordance.min_existence);
+    EXPECT_EQ(c.system.verify.shape_e_max_m, d.system.verify.shape_e_max_m);
+    EXPECT_EQ(c.system.shapes.match_distance_m, d.system.shapes.match_distance_m);
+    EXPECT_EQ(c.system.shapes.max_views, d.system.shapes.max_views);
+    EXPECT_EQ(c.system.shapes.view_margin_m, d.system.shapes.view_margin_m);
     const auto& ct = c.system.tracker;
     const auto& dt = d.system.tracker;
     EXPECT_EQ(ct.tracked_classes, dt.tracked_classes);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <optional>
+#include <unordered_set>
 
 namespace makeway::pipeline {
 namespace {
@@ -39,6 +40,10 @@ Pipeline::Pipeline(const SystemParams& params, const Pose2& start_pose, const pe
       library_(library),
       front_end_(params, start_pose),
       map_(tracker_params_for(detector, params.tracker)) {}
+
+void Pipeline::set_shape_prior(const verification::ShapePrior* prior) {
+    shapes_ = prior ? std::make_unique<TrackedShapes>(prior, params_.shapes) : nullptr;
+}
 
 SweepResult Pipeline::process_sweep(const Sweep& sweep) {
     const Clock::time_point t0 = Clock::now();
@@ -82,10 +87,11 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
     t = Clock::now();
     kf.evidence = kf.detections;
     const bool have_cad = library_ && !library_->models().empty();
-    if (params_.verification && (have_cad || prior_)) {
+    if (shapes_) shapes_->begin_keyframe(kf.T_world_keyframe);
+    if (params_.verification && (have_cad || shapes_)) {
         const PreparedKeyframe& prepared = kf.prepared;
         kf.verified = verification::verify_detections(prepared.cloud_sensor, kf.detections, have_cad ? *library_ : no_library_, params_.verify,
-                                                      [&](double x, double y) { return prepared.floor_z_at(x, y); }, prior_);
+                                                      [&](double x, double y) { return prepared.floor_z_at(x, y); }, shapes_.get());
         kf.evidence = verification::accepted_detections(kf.verified);
     }
     timing.verify_ms = ms_since(t);
@@ -99,6 +105,15 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
     }
     kf.tracking = map_.update(kf.evidence, kf.T_world_keyframe, stamp_s, nullptr, floor ? &*floor : nullptr);
     timing.track_ms = ms_since(t);
+    // Learned shapes: each object verified against one gains this view, and its shape is completed
+    // from all of its views; the next keyframe verifies it against that shape.
+    if (shapes_ && !kf.verified.empty()) {
+        t = Clock::now();
+        std::unordered_set<std::uint32_t> live;
+        for (const auto& [id, track] : map_.tracks()) live.insert(id);
+        kf.shapes_completed = shapes_->add_views(kf.prepared.cloud_sensor, kf.verified, kf.tracking.track_of_detection, live);
+        timing.shape_ms = ms_since(t);
+    }
     return kf;
 }
 

@@ -13,6 +13,7 @@
 //     detector -> verification against the CAD models (p_exist) -> object map (tracker)
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -24,6 +25,7 @@
 #include "makeway/pipeline/front_end.hpp"
 #include "makeway/pipeline/keyframe.hpp"
 #include "makeway/pipeline/system_params.hpp"
+#include "makeway/pipeline/tracked_shapes.hpp"
 #include "makeway/tracking/object_map.hpp"
 #include "makeway/verification/cad_library.hpp"
 #include "makeway/verification/verifier.hpp"
@@ -35,9 +37,10 @@ struct StageTiming {
     double deskew_ms = 0.0;  ///< every sweep: its pose and de-skewing into the world
     double odometry_ms = 0.0;  ///< ... of which the LiDAR odometry's registration
     double accumulate_ms = 0.0, ground_ms = 0.0, detect_ms = 0.0, verify_ms = 0.0, track_ms = 0.0;  ///< keyframes
+    double shape_ms = 0.0;   ///< keyframes with a shape prior: the tracked objects' shapes completed from their views
     double total_ms = 0.0;   ///< the whole process_sweep
     /// The keyframe chain: accumulation to the object map.
-    double keyframe_ms() const { return accumulate_ms + ground_ms + detect_ms + verify_ms + track_ms; }
+    double keyframe_ms() const { return accumulate_ms + ground_ms + detect_ms + verify_ms + track_ms + shape_ms; }
 };
 
 /// Everything one keyframe produced, for tests, evaluation and pictures (no side channels).
@@ -50,6 +53,7 @@ struct KeyframeResult {
     std::vector<verification::VerifiedDetection> verified;  ///< empty without a CAD library
     std::vector<Detection> evidence;                     ///< what the tracker was fed
     tracking::TrackerFrameResult tracking;
+    std::size_t shapes_completed = 0;                    ///< tracked objects whose shape was completed anew
 };
 
 struct SweepResult {
@@ -79,8 +83,11 @@ public:
     /// Objects outside it (beyond the walls, inside them) never enter the object map.
     void set_object_region(std::function<bool(const Eigen::Vector2d&)> allowed) { map_.set_region(std::move(allowed)); }
     /// A learned shape prior (may be null; must outlive the pipeline): detections no CAD model
-    /// fits, or all detections when there is no library, are verified against its completed shape.
-    void set_shape_prior(const verification::ShapePrior* prior) { prior_ = prior; }
+    /// fits, or all detections when there is no library, are verified against its completed shape,
+    /// kept per tracked object and completed again from each new view (TrackedShapes).
+    void set_shape_prior(const verification::ShapePrior* prior);
+    /// The learned shapes of the tracked objects (null without a shape prior).
+    const TrackedShapes* tracked_shapes() const { return shapes_.get(); }
 
     const SystemParams& params() const { return params_; }
     std::size_t keyframes() const { return keyframes_; }
@@ -91,7 +98,7 @@ private:
     SystemParams params_;
     const perception::ObjectDetector* detector_;
     const verification::CadLibrary* library_;
-    const verification::ShapePrior* prior_ = nullptr;
+    std::unique_ptr<TrackedShapes> shapes_;  ///< wraps the shape prior
     verification::CadLibrary no_library_;  ///< what verification sees with a prior and no CAD models
     FrontEnd front_end_;
     tracking::ObjectMap map_;

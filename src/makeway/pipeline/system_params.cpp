@@ -67,6 +67,7 @@ std::vector<std::string> SystemParams::validate() const {
     if (lidar_odometry) add(p, "lidar_odometry", odometry.validate());
     add(p, "keyframe", keyframe.validate());
     add(p, "verification", verify.validate());
+    add(p, "verification.shapes", shapes.validate());
     add(p, "tracking", tracker.validate());
     add(p, "navigation", navigator.validate());
     return p;

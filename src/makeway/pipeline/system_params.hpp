@@ -10,6 +10,7 @@
 #include "makeway/costmap/obstacle_layer.hpp"
 #include "makeway/odometry/lidar_odometry.hpp"
 #include "makeway/perception/ground.hpp"
+#include "makeway/pipeline/tracked_shapes.hpp"
 #include "makeway/planning/astar.hpp"
 #include "makeway/planning/dwa.hpp"
 #include "makeway/tracking/object_map.hpp"
@@ -63,6 +64,7 @@ struct SystemParams {
     KeyframeParams keyframe;
     bool verification = true;  ///< with a CAD library: 4-DoF ICP, p_exist as existence evidence
     verification::VerifyParams verify;
+    TrackedShapeParams shapes;  ///< with a shape prior: learned shapes kept per tracked object
     tracking::TrackerParams tracker;
     NavigatorParams navigator;
     /// Every problem, prefixed by its section ("tracker.min_hits must be >= 1").

@@ -21,6 +21,9 @@ class LearnedShapePrior : public verification::ShapePrior {
 public:
     LearnedShapePrior(std::shared_ptr<const ShapeModel> model, const LearnedPriorParams& params = {});
     std::optional<Estimate> estimate(const std::vector<Eigen::Vector3d>& segment_sensor, ObjectClass cls, double floor_z_m) const override;
+    /// The views back in the canonical frame, fused into one TSDF, and F_1's shape of all of them.
+    std::optional<TriangleMesh> complete(const std::vector<View>& views, ObjectClass cls, double scale,
+                                         const Eigen::Vector3d& offset_m) const override;
 
 private:
     std::shared_ptr<const ShapeModel> model_;

@@ -161,13 +161,13 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
     // No CAD model fits: the prior's model of this object, verified the same way from its pose.
     const std::vector<Eigen::Vector3d> segment = segment_points(cloud, det.box_sensor, params.box_margin_m);
     const double floor_z = floor_z_m.value_or(det.box_sensor.z_min_m());
-    const auto estimate = prior->estimate(segment, det.cls, floor_z);
+    auto estimate = prior->estimate(segment, det.cls, floor_z);
     if (!estimate || estimate->mesh_object.triangles.empty()) {
         cad.reason += "; shape prior: no estimate";
         return cad;
     }
     CadLibrary own(library.params());
-    own.add("completed shape", det.cls, estimate->mesh_object);
+    own.add(kCompletedShapeModel, det.cls, estimate->mesh_object);
     Detection seeded = det;
     seeded.box_sensor = own.models().front().box_object.transformed(estimate->T_sensor_object);
     VerifyParams shape_params = params;
@@ -178,6 +178,7 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
         cad.reason += "; completed shape: " + shaped.reason;
         return cad;
     }
+    shaped.shape = std::move(*estimate);
     return shaped;
 }
 

@@ -53,6 +53,9 @@ struct VerifiedDetection {
     double p_exist = 0.0;
     std::string model;
     std::size_t segment_points = 0;
+    /// Accepted against a shape prior's mesh (model == kCompletedShapeModel): that estimate, whose
+    /// mesh T_sensor_object above places (its own T_sensor_object is the prior's, before ICP).
+    std::optional<ShapePrior::Estimate> shape;
 };
 
 /// The segment: points of the cloud inside the detection box grown by margin.
