@@ -186,6 +186,7 @@ int run_bench_nav(const BenchNavOptions& options) {
                              {"methods", methods},
                              {"time_limit_s", options.time_limit_s},
                              {"layout", options.layout},
+                             {"shape_model", options.shape_model},  // ours with learned shapes: a different benchmark
                              {"config", options.config.empty() ? std::string() : io::read_file(options.config)}};
     if (partial) {
         io::Json p = {{"kind", kPartialKind}, {"header", header}, {"shard", {{"index", shard->first}, {"count", shard->second}}},
@@ -224,7 +225,7 @@ int run_bench_merge(const BenchMergeOptions& options) {
     std::vector<int> seen(static_cast<std::size_t>(count), 0);
     for (const Part& p : parts) {
         const std::string name = (p.dir / "partial.json").string();
-        if (p.json["header"] != header) throw io::FileError(name, "a different benchmark (scenes, seed, methods, time limit or configuration) than " + (parts.front().dir / "partial.json").string());
+        if (p.json["header"] != header) throw io::FileError(name, "a different benchmark (scenes, seed, methods, time limit, shape model or configuration) than " + (parts.front().dir / "partial.json").string());
         if (p.json["shard"]["count"].get<int>() != count) throw io::FileError(name, "shard count differs from the first partial's");
         const int k = p.json["shard"]["index"].get<int>();
         if (k < 0 || k >= count) throw io::FileError(name, "shard index out of range");
