@@ -11,6 +11,8 @@
 //     keyframe: the last `window` sweeps de-skewed and accumulated into the newest sweep's frame
 //     ground plane (RANSAC, first keyframe), ground and ceiling removed
 //     detector -> verification against the CAD models (p_exist) -> object map (tracker)
+//     with a shape prior: what no CAD model fits is verified against a learned shape, kept per
+//     tracked object and completed again from each new view (TrackedShapes)
 #include <cstddef>
 #include <functional>
 #include <memory>
