@@ -113,6 +113,7 @@ TEST(TrackedShapes, AnObjectsViewsAreFusedInItsFrameAndItsShapeServesLaterKeyfra
     EXPECT_LT((s.T_world_object.translation() - T_world_chair.translation()).norm(), 0.03);
     EXPECT_LT(std::abs(rad_to_deg(angle_diff(yaw_of(s.T_world_object), 0.4))), 3.0);
     EXPECT_DOUBLE_EQ(s.scale, 0.8);
+    EXPECT_LT((s.centre_object - room.model.box_object.centre_m).norm(), 1e-6);  // where estimate() looks
 
     // Keyframe 2, from the south: the segment stands where the track's shape is, so that shape
     // is verified (the prior is not asked again), and the second view lands on the same mesh in

@@ -50,6 +50,18 @@ std::optional<verification::ShapePrior::Estimate> TrackedShapes::estimate(const 
     return prior_->estimate(segment, cls, floor_z_m);
 }
 
+namespace {
+
+// The mesh's box centre: where estimate() looks for the object.
+Eigen::Vector3d box_centre(const TriangleMesh& mesh) {
+    if (mesh.vertices_m.empty()) return Eigen::Vector3d::Zero();
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const auto& q : mesh.vertices_m) lo = lo.cwiseMin(q.cast<double>()), hi = hi.cwiseMax(q.cast<double>());
+    return 0.5 * (lo + hi);
+}
+
+}  // namespace
+
 std::size_t TrackedShapes::add_views(const PointCloud& cloud, const std::vector<verification::VerifiedDetection>& verified,
                                      const std::vector<int>& track_of_accepted, const std::unordered_set<std::uint32_t>& live) {
     for (auto it = shapes_.begin(); it != shapes_.end();) it = live.count(it->first) ? std::next(it) : shapes_.erase(it);
@@ -67,6 +79,7 @@ std::size_t TrackedShapes::add_views(const PointCloud& cloud, const std::vector<
             s = Shape{};
             s.cls = v.detection.cls;
             s.mesh_object = v.shape->mesh_object;
+            s.centre_object = box_centre(s.mesh_object);
             s.scale = v.shape->scale;
             s.offset_m = v.shape->offset_m;
         }
@@ -86,13 +99,10 @@ std::size_t TrackedShapes::add_views(const PointCloud& cloud, const std::vector<
         if (s.views.size() < 2) continue;
         if (auto mesh = prior_->complete({s.views.begin(), s.views.end()}, s.cls, s.scale, s.offset_m)) {
             s.mesh_object = std::move(*mesh);
+            s.centre_object = box_centre(s.mesh_object);
             ++s.completions;
             ++completed;
         }
-        // The mesh's box centre: where estimate() looks for this object.
-        Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-        for (const auto& q : s.mesh_object.vertices_m) lo = lo.cwiseMin(q.cast<double>()), hi = hi.cwiseMax(q.cast<double>());
-        s.centre_object = s.mesh_object.vertices_m.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.5 * (lo + hi));
     }
     return completed;
 }
