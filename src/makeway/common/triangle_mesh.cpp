@@ -24,4 +24,14 @@ void TriangleMesh::append(const TriangleMesh& other) {
     for (const auto& tri : other.triangles) triangles.push_back(tri + Eigen::Vector3i::Constant(offset));
 }
 
+void mesh_bounds(const TriangleMesh& mesh, Eigen::Vector3d& min_m, Eigen::Vector3d& max_m) {
+    min_m = max_m = Eigen::Vector3d::Zero();
+    if (mesh.vertices_m.empty()) return;
+    min_m = max_m = mesh.vertices_m.front().cast<double>();
+    for (const auto& v : mesh.vertices_m) {
+        min_m = min_m.cwiseMin(v.cast<double>());
+        max_m = max_m.cwiseMax(v.cast<double>());
+    }
+}
+
 }  // namespace makeway

@@ -17,4 +17,7 @@ struct TriangleMesh {
     void append(const TriangleMesh& other);
 };
 
+/// Axis-aligned bounds of the vertices [m]; zero when empty.
+void mesh_bounds(const TriangleMesh& mesh, Eigen::Vector3d& min_m, Eigen::Vector3d& max_m);
+
 }  // namespace makeway

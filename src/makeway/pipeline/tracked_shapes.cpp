@@ -1,6 +1,5 @@
 #include "makeway/pipeline/tracked_shapes.hpp"
 
-#include <limits>
 #include <stdexcept>
 
 #include "makeway/pipeline/system_params.hpp"
@@ -54,9 +53,8 @@ namespace {
 
 // The mesh's box centre: where estimate() looks for the object.
 Eigen::Vector3d box_centre(const TriangleMesh& mesh) {
-    if (mesh.vertices_m.empty()) return Eigen::Vector3d::Zero();
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (const auto& q : mesh.vertices_m) lo = lo.cwiseMin(q.cast<double>()), hi = hi.cwiseMax(q.cast<double>());
+    Eigen::Vector3d lo, hi;
+    mesh_bounds(mesh, lo, hi);
     return 0.5 * (lo + hi);
 }
 

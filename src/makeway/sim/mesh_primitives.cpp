@@ -109,16 +109,6 @@ void transform_mesh(TriangleMesh& mesh, const Isometry3& T) {
     for (auto& v : mesh.vertices_m) v = Tf * v;
 }
 
-void mesh_bounds(const TriangleMesh& mesh, Eigen::Vector3d& min_m, Eigen::Vector3d& max_m) {
-    min_m = max_m = Eigen::Vector3d::Zero();
-    if (mesh.vertices_m.empty()) return;
-    min_m = max_m = mesh.vertices_m.front().cast<double>();
-    for (const auto& v : mesh.vertices_m) {
-        min_m = min_m.cwiseMin(v.cast<double>());
-        max_m = max_m.cwiseMax(v.cast<double>());
-    }
-}
-
 double surface_area_m2(const TriangleMesh& mesh) {
     double area = 0.0;
     for (const auto& t : mesh.triangles) {

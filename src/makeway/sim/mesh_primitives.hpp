@@ -26,9 +26,6 @@ void add_sphere(TriangleMesh& mesh, const Eigen::Vector3d& centre_m, double radi
 /// Applies T to every vertex.
 void transform_mesh(TriangleMesh& mesh, const Isometry3& T);
 
-/// Axis-aligned bounds of the vertices [m]; zero when empty.
-void mesh_bounds(const TriangleMesh& mesh, Eigen::Vector3d& min_m, Eigen::Vector3d& max_m);
-
 /// Total surface area [m^2].
 double surface_area_m2(const TriangleMesh& mesh);
 
