@@ -72,6 +72,14 @@ io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory) {
                   {"pose_ate_m", r.pose_ate_m},
                   {"stop_distance_m", r.stop_distance_m}};
     j["avoidable_risk_s"] = avoidable_of(j);
+    // Contacts by kind and by who caused them; the collision monitor's cycles per action.
+    auto contacts = [](const eval::ContactCounts& c) { return io::Json{{"robot_caused", c.robot_caused}, {"other_caused", c.other_caused}}; };
+    j["contacts"] = {{"walls", contacts(r.wall_contacts)}, {"furniture", contacts(r.furniture_contacts)}, {"people", contacts(r.people_contacts)}};
+    j["robot_caused_contacts"] = r.wall_contacts.robot_caused + r.furniture_contacts.robot_caused + r.people_contacts.robot_caused;
+    io::Json monitor = io::Json::object();
+    for (int a = 0; a < planning::kMonitorActions; ++a) monitor[std::string(planning::to_string(static_cast<planning::MonitorAction>(a)))] = 0;
+    for (const planning::MonitorAction a : r.monitor_actions) monitor[std::string(planning::to_string(a))] = monitor[std::string(planning::to_string(a))].get<int>() + 1;
+    j["monitor_cycles"] = monitor;
     if (!r.keyframes.empty()) {  // the online system: its keyframes, its map's sanity, its final object map
         j["keyframes"] = r.keyframes.size();
         const eval::MapSanity& m = r.map_sanity;
@@ -91,6 +99,9 @@ io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory) {
         io::Json believed = io::Json::array();
         for (const Pose2& p : r.estimated_trajectory) believed.push_back({p.x_m, p.y_m, p.yaw_rad});
         j["estimated_trajectory_xyyaw"] = believed;
+        io::Json reasons = io::Json::array();  // the collision monitor's action per control cycle
+        for (const planning::MonitorAction a : r.monitor_actions) reasons.push_back(std::string(planning::to_string(a)));
+        j["stop_reason"] = reasons;
     }
     return j;
 }
@@ -153,6 +164,11 @@ io::Json summarise_nav(const io::Json& header, const io::Json& runs) {
         std::vector<double> pose_error, pose_ate, success_flags, collision_counts;
         std::map<std::string, std::vector<double>> values;  // over successful runs
         eval::MapSanity sanity;
+        io::Json contacts = {{"walls", {{"robot_caused", 0}, {"other_caused", 0}}},
+                             {"furniture", {{"robot_caused", 0}, {"other_caused", 0}}},
+                             {"people", {{"robot_caused", 0}, {"other_caused", 0}}}};
+        io::Json monitor = io::Json::object();
+        int robot_caused = 0;
         bool online = false;
         for (const auto& [scene, rp] : by_method[m]) {
             const io::Json& r = *rp;
@@ -162,6 +178,13 @@ io::Json summarise_nav(const io::Json& header, const io::Json& runs) {
             collisions += r["collisions"].get<int>();
             people += r["person_contacts"].get<int>();
             near += r["near_misses"].get<int>();
+            if (r.contains("contacts")) {
+                for (auto& [kind, c] : contacts.items()) {
+                    for (auto& [who, count] : c.items()) count = count.get<int>() + r["contacts"][kind][who].get<int>();
+                }
+                robot_caused += r["robot_caused_contacts"].get<int>();
+                for (const auto& [action, cycles] : r["monitor_cycles"].items()) monitor[action] = monitor.value(action, 0) + cycles.get<int>();
+            }
             spl += r["spl"].get<double>();
             success_flags.push_back(r["success"].get<bool>() ? 1.0 : 0.0);
             collision_counts.push_back(r["collisions"].get<double>());
@@ -201,6 +224,9 @@ io::Json summarise_nav(const io::Json& header, const io::Json& runs) {
                       {"collisions", collisions},
                       {"person_contacts", people},
                       {"near_misses", near},
+                      {"contacts", contacts},
+                      {"robot_caused_contacts", robot_caused},
+                      {"monitor_cycles", monitor},
                       {"spl_mean", n ? spl / n : 0.0},
                       {"final_pose_error_m_median", percentile(pose_error, 0.5)},
                       {"final_pose_error_m_max", percentile(pose_error, 1.0)},
@@ -258,18 +284,25 @@ std::string nav_table_markdown(const io::Json& summary) {
         std::snprintf(buf, sizeof(buf), fmt, i["mean"].get<double>(), i["lo"].get<double>(), i["hi"].get<double>());
         return std::string(buf);
     };
-    std::string out = "| method | total time [s] (sum / mean) | risk time [s] (sum / mean) | distance [m] (sum / mean) | success | collisions | person contacts | near-misses | SPL "
+    std::string out = "| method | total time [s] (sum / mean) | risk time [s] (sum / mean) | distance [m] (sum / mean) | success | collisions | person contacts "
+                      "| robot-caused contacts (walls / furniture / people) | other-caused contacts (walls / furniture / people) | near-misses | SPL "
                       "| total time mean [95 % CI] | risk time mean [95 % CI] | avoidable risk mean [95 % CI] | unavoidable risk sum [s] | success rate [95 % CI] |\n"
-                      "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+                      "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
     char line[1024];
     for (const std::string& m : methods) {
         const io::Json& a = summary["aggregate"].at(m);
         const io::Json& i = a["interval_95"];
-        std::snprintf(line, sizeof(line), "| %s | %.1f / %.1f | %.1f / %.2f | %.1f / %.2f | %d/%d | %d | %d | %d | %.2f | %s | %s | %s | %.1f | %s |\n",
+        const io::Json& c = a["contacts"];
+        auto who = [&](const char* k) {
+            return std::to_string(c["walls"][k].get<int>()) + " / " + std::to_string(c["furniture"][k].get<int>()) + " / " +
+                   std::to_string(c["people"][k].get<int>());
+        };
+        std::snprintf(line, sizeof(line), "| %s | %.1f / %.1f | %.1f / %.2f | %.1f / %.2f | %d/%d | %d | %d | %s | %s | %d | %.2f | %s | %s | %s | %.1f | %s |\n",
                       m.c_str(), a["total_time_s_sum"].get<double>(), a["total_time_s_mean"].get<double>(),
                       a["risk_time_s_sum"].get<double>(), a["risk_time_s_mean"].get<double>(),
                       a["distance_m_sum"].get<double>(), a["distance_m_mean"].get<double>(), a["success"].get<int>(),
-                      scenes, a["collisions"].get<int>(), a["person_contacts"].get<int>(), a["near_misses"].get<int>(),
+                      scenes, a["collisions"].get<int>(), a["person_contacts"].get<int>(), who("robot_caused").c_str(),
+                      who("other_caused").c_str(), a["near_misses"].get<int>(),
                       a["spl_mean"].get<double>(), ci(i["total_time_s"], "%.1f [%.1f, %.1f]").c_str(),
                       ci(i["risk_time_s"], "%.2f [%.2f, %.2f]").c_str(), ci(i["avoidable_risk_s"], "%.2f [%.2f, %.2f]").c_str(),
                       a["unavoidable_risk_s_sum"].get<double>(), ci(i["success_rate"], "%.3f [%.3f, %.3f]").c_str());

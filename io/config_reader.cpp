@@ -307,6 +307,30 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.add_validation(n.dwa.validate());
         s.add_validation(n.validate_policy());
     }
+    {
+        YamlSection s(root["collision_monitor"], "collision_monitor", problems);
+        planning::CollisionMonitorParams& m = n.monitor;
+        s.read("enabled", m.enabled);
+        s.read("latency_s", m.latency_s);
+        s.read("min_points", m.min_points);
+        s.read("stop_padding_m", m.stop_padding_m);
+        s.read("slowdown_padding_m", m.slowdown_padding_m);
+        s.read("slowdown_time_s", m.slowdown_time_s);
+        s.read("slowdown_ratio", m.slowdown_ratio);
+        s.read("time_before_collision_s", m.time_before_collision_s);
+        s.read("simulation_time_step_s", m.simulation_time_step_s);
+        s.read("min_scale", m.min_scale);
+        s.read("lowest_beam_deg", m.lowest_beam_deg);
+        s.read("blind_memory_s", m.blind_memory_s);
+        s.read("max_range_m", m.max_range_m);
+        s.read("recovery_after_s", m.recovery_after_s);
+        s.read("backup_speed_mps", m.backup_speed_mps);
+        s.read("backup_distance_m", m.backup_distance_m);
+        s.read("rotate_speed_radps", m.rotate_speed_radps);
+        s.read("rotate_angle_rad", m.rotate_angle_rad);
+        s.finish();
+        s.add_validation(m.validate());
+    }
 }
 
 // The automatic annotation's section (labelling/labeller.hpp documents each parameter).
@@ -364,6 +388,7 @@ Config parse_config(std::string_view yaml_text) {
     Config cfg;
     const std::vector<std::string> sections{"scene",      "lidar",        "robot",    "odometry", "simulation",
                                             "affordance", "lidar_odometry", "perception", "verification", "tracking", "costmap", "planning",
+                                            "collision_monitor",
                                             "labelling"};
     if (root.IsMap()) {
         for (const auto& kv : root) {
@@ -498,6 +523,12 @@ pipeline::SystemParams online_system_params(const Config& config) {
     n.dwa.max_w_radps = config.robot.max_w_radps;
     n.dwa.acc_v_mps2 = config.robot.max_acc_mps2;
     n.dwa.acc_w_radps2 = config.robot.max_ang_acc_radps2;
+    n.monitor.footprint_length_m = config.robot.length_m;
+    n.monitor.footprint_width_m = config.robot.width_m;
+    n.monitor.body = config.robot.body();
+    n.monitor.max_acc_mps2 = config.robot.max_acc_mps2;
+    n.monitor.max_ang_acc_radps2 = config.robot.max_ang_acc_radps2;
+    n.monitor.sensor_height_m = config.robot.lidar_height_m;
     p.T_base_sensor = config.robot.T_robot_sensor();
     return p;
 }

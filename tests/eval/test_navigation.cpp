@@ -60,6 +60,23 @@ TEST(Navigation, EveryMethodReachesTheGoalWithoutCollisions) {
     }
 }
 
+// Contacts built by hand: who moved toward whom at the moment of contact.
+TEST(Navigation, ContactsAreTheRobotsWhenItMovesTowardWhatItTouches) {
+    const double L = 0.508, W = 0.430;
+    const Pose2 pose{2.0, 1.0, kPi / 2};  // facing +y
+    const Eigen::Vector2d ahead(2.0, 1.25), left(1.8, 1.1), behind(2.0, 0.75);
+    EXPECT_TRUE(robot_caused_contact(pose, 0.5, 0.0, ahead, L, W));    // drives into it
+    EXPECT_FALSE(robot_caused_contact(pose, 0.0, 0.0, ahead, L, W));   // stopped: walked into
+    EXPECT_FALSE(robot_caused_contact(pose, -0.3, 0.0, ahead, L, W));  // backing away from it
+    EXPECT_TRUE(robot_caused_contact(pose, -0.3, 0.0, behind, L, W));  // backing into it
+    EXPECT_FALSE(robot_caused_contact(pose, 0.5, 0.0, left, L, W));    // passing alongside: it came in from the side
+    EXPECT_FALSE(robot_caused_contact(pose, 0.04, 0.0, ahead, L, W));  // creeping, below 0.05 m/s
+    // Turning on the spot swings the front into what is on its left front (robot frame (0.2, 0.21)).
+    const Eigen::Vector2d left_front = to_isometry(pose) * Eigen::Vector2d(0.2, 0.21);
+    EXPECT_TRUE(robot_caused_contact(pose, 0.0, 1.0, left_front, L, W));
+    EXPECT_FALSE(robot_caused_contact(pose, 0.0, -1.0, left_front, L, W));
+}
+
 TEST(Navigation, MethodsDifferOnlyInInflationAndObjects) {
     const sim::RobotParams robot;
     EXPECT_NEAR(nav_method("con", robot)->inflation_radius_m, 3 * robot.circumscribed_radius_m(), 1e-12);

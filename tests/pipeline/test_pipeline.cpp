@@ -203,5 +203,31 @@ TEST(Navigator, ReachesTheGoalInAnEmptyRoomAndReportsBlockedGoals) {
     EXPECT_EQ(s.command.v_mps, 0.0);
 }
 
+// Progress is the way left along the plan, not motion: a robot circling 2 m from its goal (as the
+// conservative planner did in front of gaps it could not pass) gives up after give_up_s, while one
+// creeping along its plan at 8 cm/s never does.
+TEST(Navigator, ARobotCirclingWithoutProgressAlongItsPlanGivesUpEarly) {
+    const Costmap map({-5.0, -5.0}, 0.05, 200, 200, cost::kFree);
+    NavigatorParams params;
+    params.affordance_layer = false;
+    Navigator circling(map, params);
+    circling.set_route({{3.0, 0.0}});
+    int gave_up_at = -1;
+    for (int k = 0; k < 600 && gave_up_at < 0; ++k) {  // 1 m circles at 0.5 m/s around (0, 0), forever
+        const double a = 0.5 * 0.1 * k;
+        const Pose2 pose{std::cos(a), std::sin(a), wrap_angle(a + kPi / 2)};
+        if (circling.step({0.1 * k, pose, 0.5, 0.5, nullptr, Eigen::Vector3d::Zero(), {}}).gave_up) gave_up_at = k;
+    }
+    ASSERT_GE(gave_up_at, 0) << "circled for 60 s without giving up";
+    EXPECT_NEAR(0.1 * gave_up_at, params.give_up_s, 2.0);  // moved all the time, never came closer than at the start
+    Navigator creeping(map, params);
+    creeping.set_route({{3.0, 0.0}});
+    for (int k = 0; k < 800; ++k) {  // 6 m at 8 cm/s: 75 s, always shortening the way left
+        const NavigatorStep s = creeping.step({0.1 * k, {-3.0 + 0.008 * k, 0.0, 0.0}, 0.08, 0.0, nullptr, Eigen::Vector3d::Zero(), {}});
+        ASSERT_FALSE(s.gave_up) << k;
+        if (s.arrived) break;
+    }
+}
+
 }  // namespace
 }  // namespace makeway::pipeline

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "makeway/common/angles.hpp"
 #include "makeway/common/random.hpp"
 #include "makeway/costmap/inflation_layer.hpp"
 #include "makeway/planning/astar.hpp"
@@ -158,6 +159,47 @@ TEST(Dwa, KeepsToThePlansCostEnvelopeAroundAZoneCorner) {
     const DwaResult cut = dwa_step(m, st, path, off);
     ASSERT_TRUE(cut.found);
     EXPECT_TRUE(enters_zone(cut));
+}
+
+// The true footprint (a 0.508 x 0.430 m rectangle) against the circles a round-robot check uses.
+TEST(Dwa, FootprintRefusesWhatTheInscribedCircleAcceptsAndPassesWhatTheCircumscribedRefuses) {
+    const DwaParams p;
+    const double inscribed = 0.5 * std::min(p.footprint_length_m, p.footprint_width_m);
+    const double circumscribed = 0.5 * std::hypot(p.footprint_length_m, p.footprint_width_m);
+    auto circle_collides = [](const Costmap& m, const Pose2& pose, double r) {  // brute force over cells
+        for (int y = 0; y < m.height; ++y) {
+            for (int x = 0; x < m.width; ++x) {
+                if (m.at(x, y) == cost::kLethal && (m.centre_of(x, y) - Eigen::Vector2d(pose.x_m, pose.y_m)).norm() <= r) return true;
+            }
+        }
+        return false;
+    };
+    // One lethal cell just inside the front-left corner, 0.30 m from the centre: the inscribed
+    // circle (0.215 m) misses it, the rectangle does not.
+    Costmap corner({0, 0}, 0.02, 100, 100);
+    const Pose2 at{1.0, 1.0, 0.0};
+    const Eigen::Vector2i c = corner.cell_of({1.0 + 0.24, 1.0 + 0.19});
+    corner.at(c.x(), c.y()) = cost::kLethal;
+    EXPECT_FALSE(circle_collides(corner, at, inscribed));
+    EXPECT_TRUE(footprint_collides(corner, at, p));
+    // A 0.48 m passage along x: the circumscribed circle (0.666 m across) cannot pass, the robot
+    // driving along it can; turned across it, it cannot.
+    Costmap gap({0, 0}, 0.02, 150, 100);
+    for (int x = 0; x < gap.width; ++x) {
+        for (int y = 0; y < gap.height; ++y) {
+            const double wy = gap.centre_of(x, y).y();
+            if (std::abs(wy - 1.0) > 0.24) gap.at(x, y) = cost::kLethal;
+        }
+    }
+    const Pose2 along{1.5, 1.0, 0.0}, across{1.5, 1.0, kPi / 2};
+    EXPECT_TRUE(circle_collides(gap, along, circumscribed));
+    EXPECT_FALSE(footprint_collides(gap, along, p));
+    EXPECT_TRUE(footprint_collides(gap, across, p));
+    // DWA drives through it: every rollout it picks is checked with the rectangle.
+    const DwaResult r = dwa_step(gap, {{0.6, 1.0, 0.0}, 0.3, 0.0}, {{0.6, 1.0}, {2.8, 1.0}}, p);
+    ASSERT_TRUE(r.found);
+    EXPECT_GT(r.command.v_mps, 0.0);
+    for (const Pose2& q : r.best_rollout) EXPECT_FALSE(footprint_collides(gap, q, p));
 }
 
 }  // namespace

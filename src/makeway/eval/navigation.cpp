@@ -1,5 +1,6 @@
 #include "makeway/eval/navigation.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <functional>
 
@@ -66,16 +67,31 @@ struct Scorer {
     const NavParams& params;
     NavRunResult& out;
     bool in_collision = false, touching_person = false;
+    bool touching[3] = {false, false, false};  // walls, furniture, people
     std::vector<bool> near_chair;
 
-    void step(const Pose2& pose, double ts, double dt) {
+    void step(const sim::RobotState& state, double ts, double dt) {
         using Against = sim::CollisionChecker::Against;
+        const Pose2& pose = state.pose;
         const bool colliding = checker.collides(pose, ts, Against::kStructureAndFurniture);
         out.collisions += colliding && !in_collision;
         in_collision = colliding;
         const bool person = !scene.walkers.empty() && checker.collides(pose, ts, Against::kPeople);
         out.person_contacts += person && !touching_person;
         touching_person = person;
+        // Each contact, when it starts, is the robot's or another's doing.
+        const Against kinds[3] = {Against::kStructure, Against::kFurniture, Against::kPeople};
+        ContactCounts* counts[3] = {&out.wall_contacts, &out.furniture_contacts, &out.people_contacts};
+        for (int i = 0; i < 3; ++i) {
+            const bool any = i == 2 ? person : colliding;
+            const std::optional<Eigen::Vector2d> c = any ? checker.contact_point(pose, ts, kinds[i]) : std::nullopt;
+            if (c && !touching[i]) {
+                const bool robot = robot_caused_contact(pose, state.v_mps, state.w_radps, *c, params.robot.length_m,
+                                                        params.robot.width_m, params.robot_caused_speed_mps);
+                ++(robot ? counts[i]->robot_caused : counts[i]->other_caused);
+            }
+            touching[i] = c.has_value();
+        }
         const Eigen::Vector2d c(pose.x_m, pose.y_m);
         const auto truth = ground_truth_objects(scene, models, ts);
         bool risky = false;
@@ -100,6 +116,18 @@ pipeline::NavigatorParams navigator_params(const NavMethod& method, const NavPar
     return n;
 }
 
+// The monitor sees the robot the simulator drives: its footprint, body and braking limits.
+planning::CollisionMonitorParams monitor_params(const NavParams& params) {
+    planning::CollisionMonitorParams m = params.system.navigator.monitor;
+    m.footprint_length_m = params.robot.length_m;
+    m.footprint_width_m = params.robot.width_m;
+    m.body = params.robot.body();
+    m.max_acc_mps2 = params.robot.max_acc_mps2;
+    m.max_ang_acc_radps2 = params.robot.max_ang_acc_radps2;
+    m.sensor_height_m = params.robot.lidar_height_m;
+    return m;
+}
+
 // The simulator's loop: act on the last command while the LiDAR sweeps (the robot moves within
 // the sweep), score every physics step, then let the robot's software see the sweep and decide.
 NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavParams& params, const Perceive& perceive) {
@@ -120,6 +148,7 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
     pipeline::Navigator navigator(params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m),
                                   navigator_params(method, params));
     navigator.set_route({{scene.waypoint.x_m, scene.waypoint.y_m}, {scene.goal.x_m, scene.goal.y_m}});
+    planning::CollisionMonitor monitor(monitor_params(params));
     sim::WheelOdometry odometry(scene.start, params.odometry, params.seed ^ 0x0D0ULL);
     Scorer scorer{scene, models, checker, params, out};
     sim::RobotState state;
@@ -141,7 +170,7 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
             odometry.update(before, state.pose);
             out.distance_m += std::hypot(state.pose.x_m - before.x_m, state.pose.y_m - before.y_m);
             poses.push_back(state.pose);
-            scorer.step(state.pose, t + (i + 1) * dt, dt);
+            scorer.step(state, t + (i + 1) * dt, dt);
         }
         out.min_clearance_m = std::min(out.min_clearance_m, checker.clearance_m(state.pose, t + period, 2.0));
         // Sense: the sweep over that period, from the moving sensor.
@@ -164,8 +193,15 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
             out.gave_up = true;
             break;
         }
-        out.cycle_ms.push_back(step.update_ms);
-        cmd = step.command;
+        // Act: the collision monitor between the navigator and the motors, on the same sweep.
+        const auto m0 = std::chrono::steady_clock::now();
+        const planning::MonitorResult guarded = monitor.filter({t + period, belief.pose, &belief.points_world, step.command});
+        const double monitor_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - m0).count();
+        out.monitor_ms_max = std::max(out.monitor_ms_max, monitor_ms);
+        out.monitor_actions.push_back(guarded.action);
+        out.recoveries += guarded.started_recovery;
+        out.cycle_ms.push_back(step.update_ms + monitor_ms);
+        cmd = guarded.command;
     }
     out.trajectory.push_back(state.pose);
     const Pose2 believed = out.estimated_trajectory.empty() ? state.pose : out.estimated_trajectory.back();
@@ -193,6 +229,17 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
 }
 
 }  // namespace
+
+bool robot_caused_contact(const Pose2& pose, double v, double w, const Eigen::Vector2d& contact_world,
+                          double length_m, double width_m, double threshold) {
+    const Eigen::Vector2d r = to_isometry(pose).inverse() * contact_world;  // robot frame
+    // The outward normal of the side nearest the contact (the point lies in or on the footprint).
+    const double to_front = 0.5 * length_m - std::abs(r.x()), to_side = 0.5 * width_m - std::abs(r.y());
+    const Eigen::Vector2d normal = to_front <= to_side ? Eigen::Vector2d(r.x() >= 0.0 ? 1.0 : -1.0, 0.0)
+                                                       : Eigen::Vector2d(0.0, r.y() >= 0.0 ? 1.0 : -1.0);
+    const Eigen::Vector2d body_velocity(v - w * r.y(), w * r.x());  // v x-hat + w z-hat x r
+    return body_velocity.dot(normal) > threshold;
+}
 
 const std::vector<std::string>& nav_method_names() {
     static const std::vector<std::string> kNames{"con", "oppo", "gt-perc"};

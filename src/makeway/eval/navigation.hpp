@@ -16,6 +16,7 @@
 #include "makeway/perception/object_detector.hpp"
 #include "makeway/pipeline/pipeline.hpp"
 #include "makeway/pipeline/system_params.hpp"
+#include "makeway/planning/collision_monitor.hpp"
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/robot.hpp"
 #include "makeway/verification/cad_library.hpp"
@@ -46,7 +47,8 @@ struct NavParams {
     pipeline::SystemParams system;      ///< the online system; navigator.inflation radius is the method's
     double resolution_m = 0.05;
     double time_limit_s = 180.0;
-    double near_miss_m = 0.25;  ///< robot body this close to a chair being moved: a near-miss
+    double near_miss_m = 0.25;
+    double robot_caused_speed_mps = 0.05;  ///< a contact is the robot's when it moved toward it faster than this  ///< robot body this close to a chair being moved: a near-miss
     /// The judge of arrival: the robot stops when it believes it is within the navigator's goal
     /// tolerance (0.3 m); the run has arrived when its true centre is within this of the goal then.
     /// Truth-fed methods stop within 0.3 m for real; the margin is the full system's pose error
@@ -69,6 +71,19 @@ struct KeyframeObjects {
     std::vector<ObjectEstimate> objects;
 };
 
+/// Contacts with one kind of thing, split by who caused them (counted when they start).
+struct ContactCounts {
+    int robot_caused = 0;  ///< the robot was moving toward what it touched (> robot_caused_speed_mps)
+    int other_caused = 0;  ///< a walker or a pushed chair came into a stopped or receding robot
+    int total() const { return robot_caused + other_caused; }
+};
+
+/// Whether a contact at `contact_world` was the robot's doing: the velocity of the body at the
+/// contact point (rigid body: v along the heading plus w x r) has a component of more than
+/// `threshold_mps` along the outward normal of the footprint side nearest the contact.
+bool robot_caused_contact(const Pose2& pose, double v_mps, double w_radps, const Eigen::Vector2d& contact_world,
+                          double length_m, double width_m, double threshold_mps = 0.05);
+
 struct NavRunResult {
     std::string method;
     bool success = false;       ///< goal reached in time without colliding with structure or furniture
@@ -86,6 +101,11 @@ struct NavRunResult {
     int collisions = 0;         ///< contacts with walls, pillars or furniture (counted when they start)
     int person_contacts = 0;    ///< contacts with walking people (who do not avoid the robot)
     int near_misses = 0;        ///< a moving chair within near_miss_m of the robot's body
+    ContactCounts wall_contacts, furniture_contacts, people_contacts;  ///< by who caused them
+    /// The collision monitor per control cycle (none, slowdown, approach, stop, recovery_backup,
+    /// recovery_rotate, blocked), and the cycles it spent on each.
+    std::vector<planning::MonitorAction> monitor_actions;
+    double monitor_ms_max = 0.0;
     double min_clearance_m = 0.0;
     double shortest_m = 0.0;    ///< shortest collision-free route length start -> waypoint -> goal
     double spl = 0.0;           ///< success weighted by shortest / driven length

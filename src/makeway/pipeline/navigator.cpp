@@ -92,14 +92,31 @@ VelocityCommand Navigator::follow_plan(const NavigatorInput& in, NavigatorStep& 
     return {0.0, std::copysign(params_.turn_rate_radps, angle_diff(heading, in.pose.yaw_rad))};
 }
 
+double Navigator::remaining_m(const Eigen::Vector2d& robot) const {
+    // Along the plan from its point nearest the robot; straight to the target without a plan.
+    if (plan_.empty()) return leg_ < legs_.size() ? (legs_[leg_] - robot).norm() : 0.0;
+    std::size_t nearest = 0;
+    for (std::size_t i = 1; i < plan_.size(); ++i) {
+        if ((plan_[i] - robot).squaredNorm() < (plan_[nearest] - robot).squaredNorm()) nearest = i;
+    }
+    double left = (plan_[nearest] - robot).norm();
+    for (std::size_t i = nearest + 1; i < plan_.size(); ++i) left += (plan_[i] - plan_[i - 1]).norm();
+    return left;
+}
+
 void Navigator::check_progress(const NavigatorInput& in, NavigatorStep& out) {
-    // Stuck: little progress for stuck_timeout_s -> back up for backup_duration_s, then replan.
+    // Progress is the way left to the leg's target getting shorter than it has ever been on this
+    // leg by stuck_progress_m; motion alone is not progress (a robot circling in front of a gap it
+    // cannot pass moves all the time). None for stuck_timeout_s: back up for backup_duration_s,
+    // then replan; none for give_up_s (step()): the mission fails.
     const Eigen::Vector2d here(in.pose.x_m, in.pose.y_m);
-    if (!started_ || (here - progress_anchor_).norm() > params_.stuck_progress_m) {
+    const double left = remaining_m(here);
+    if (!started_ || progress_leg_ != leg_ || left < best_remaining_m_ - params_.stuck_progress_m) {
         if (!started_) planned_t_ = in.t_s;
         started_ = true;
+        progress_leg_ = leg_;
         moved_t_ = in.t_s;
-        progress_anchor_ = here;
+        best_remaining_m_ = left;
         progress_t_ = in.t_s;
     } else if (in.t_s - progress_t_ > params_.stuck_timeout_s && in.t_s >= recovery_until_) {
         recovery_until_ = in.t_s + params_.backup_duration_s;

@@ -58,6 +58,7 @@ private:
     bool plan_blocked(const Eigen::Vector2d& robot_m) const;
     VelocityCommand follow_plan(const NavigatorInput& input, NavigatorStep& step) const;
     void check_progress(const NavigatorInput& input, NavigatorStep& step);
+    double remaining_m(const Eigen::Vector2d& robot_m) const;  ///< the way left to the leg's target
 
     NavigatorParams params_;
     ObjectCostmap costmap_;
@@ -65,9 +66,10 @@ private:
     std::size_t leg_ = 0;
     std::vector<Eigen::Vector2d> plan_;
     double last_plan_t_ = -1e9;
-    Eigen::Vector2d progress_anchor_ = Eigen::Vector2d::Zero();
+    double best_remaining_m_ = 0.0;  ///< the shortest way left seen on this leg
+    std::size_t progress_leg_ = 0;
     double progress_t_ = 0.0, recovery_until_ = -1.0;
-    double moved_t_ = 0.0;      ///< when the robot last made progress (recoveries do not reset it)
+    double moved_t_ = 0.0;      ///< when the robot last made progress along its plan (recoveries do not reset it)
     double planned_t_ = 0.0;    ///< when A* last found a plan
     bool started_ = false;
 };

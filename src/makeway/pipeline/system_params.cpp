@@ -36,6 +36,7 @@ std::vector<std::string> NavigatorParams::validate() const {
     add(p, "affordance", affordance.validate());
     add(p, "astar", astar.validate());
     add(p, "dwa", dwa.validate());
+    add(p, "collision_monitor", monitor.validate());
     for (std::string& m : validate_policy()) p.push_back(std::move(m));
     return p;
 }

@@ -12,6 +12,7 @@
 #include "makeway/perception/ground.hpp"
 #include "makeway/pipeline/tracked_shapes.hpp"
 #include "makeway/planning/astar.hpp"
+#include "makeway/planning/collision_monitor.hpp"
 #include "makeway/planning/dwa.hpp"
 #include "makeway/tracking/object_map.hpp"
 #include "makeway/verification/verifier.hpp"
@@ -37,12 +38,15 @@ struct NavigatorParams {
     costmap::AffordanceParams affordance;
     planning::AStarParams astar;
     planning::DwaParams dwa;
+    /// Between the navigator and the motors, on the raw sweep (the footprint and the body from the
+    /// robot description; config section `collision_monitor`).
+    planning::CollisionMonitorParams monitor;
     double replan_period_s = 1.0;         ///< the global plan is renewed at least this often
     double blocked_lookahead_m = 3.0;     ///< a lethal cell on the plan this far ahead forces a replan ...
     double blocked_ignore_m = 0.3;        ///< ... unless it is this close to the robot (under its own body)
     int turn_target_index = 3;            ///< DWA finds nothing: turn on the spot toward this plan point (cells from its start)
     double turn_rate_radps = 1.0;
-    double stuck_progress_m = 0.3;        ///< moving less than this ...
+    double stuck_progress_m = 0.3;        ///< the way left along the plan shrinking by less than this ...
     double stuck_timeout_s = 6.0;         ///< ... for this long means stuck: back up and replan
     double backup_speed_mps = 0.15;
     double backup_duration_s = 1.0;

@@ -140,10 +140,12 @@ template <typename Fn>
 void CollisionChecker::for_each_point_near(const Eigen::Vector2d& centre, double radius, double t_s,
                                            Fn&& fn, Against against) const {
     if (against != Against::kPeople) {
-        for (const auto& p : static_points_) {
-            if ((p - centre).squaredNorm() <= radius * radius) fn(p);
+        if (against != Against::kFurniture) {
+            for (const auto& p : static_points_) {
+                if ((p - centre).squaredNorm() <= radius * radius) fn(p);
+            }
         }
-        for (std::size_t i = 0; i < object_points_.size(); ++i) {
+        for (std::size_t i = 0; against != Against::kStructure && i < object_points_.size(); ++i) {
             const Pose2 pose = object_pose_at(scene_, i, t_s);
             const Eigen::Vector2d c(pose.x_m, pose.y_m);
             if ((c - centre).norm() > radius + object_radius_m_[i]) continue;
@@ -151,7 +153,7 @@ void CollisionChecker::for_each_point_near(const Eigen::Vector2d& centre, double
             for (const auto& p : object_points_[i]) fn(T * p);
         }
     }
-    if (against == Against::kStructureAndFurniture) return;
+    if (against != Against::kEverything && against != Against::kPeople) return;
     for (const Walker& w : scene_.walkers) {
         const Eigen::Vector2d c = walker_position_at(w, t_s);
         if ((c - centre).norm() > radius + kPersonRadius_m) continue;
@@ -172,6 +174,20 @@ bool CollisionChecker::collides(const Pose2& pose, double t_s, Against against) 
                             inside |= std::abs(p.x()) <= hl && std::abs(p.y()) <= hw;
                         }, against);
     return inside;
+}
+
+std::optional<Eigen::Vector2d> CollisionChecker::contact_point(const Pose2& pose, double t_s, Against against) const {
+    const Isometry2 T_robot_world = to_isometry(pose).inverse();
+    const double hl = 0.5 * robot_.length_m, hw = 0.5 * robot_.width_m;
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    int n = 0;
+    for_each_point_near(Eigen::Vector2d(pose.x_m, pose.y_m), robot_.circumscribed_radius_m() + 1e-9, t_s,
+                        [&](const Eigen::Vector2d& p_world) {
+                            const Eigen::Vector2d p = T_robot_world * p_world;
+                            if (std::abs(p.x()) <= hl && std::abs(p.y()) <= hw) sum += p_world, ++n;
+                        }, against);
+    if (n == 0) return std::nullopt;
+    return Eigen::Vector2d(sum / n);
 }
 
 double CollisionChecker::clearance_m(const Pose2& pose, double t_s, double max_m) const {

@@ -2,6 +2,7 @@
 // The simulated robot: a Clearpath Jackal (differential drive) with a LiDAR on top, its wheel
 // odometry (with drift), and footprint collision checks against everything in the scene.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -73,9 +74,12 @@ public:
                      double spacing_m = 0.02);
 
     /// What a check looks at.
-    enum class Against { kEverything, kStructureAndFurniture, kPeople };
+    enum class Against { kEverything, kStructureAndFurniture, kPeople, kStructure, kFurniture };
     /// Whether the footprint at `pose` overlaps anything (of `against`) at t_s.
     bool collides(const Pose2& pose, double t_s, Against against = Against::kEverything) const;
+    /// Where the footprint at `pose` overlaps something (of `against`) at t_s: the mean of the
+    /// obstacle points inside it, world frame; nothing when it overlaps nothing.
+    std::optional<Eigen::Vector2d> contact_point(const Pose2& pose, double t_s, Against against) const;
     /// Distance from the footprint to the nearest obstacle at t_s [m], capped at max_m.
     double clearance_m(const Pose2& pose, double t_s, double max_m = 5.0) const;
     /// Every obstacle point at t_s, floor plane [m] (for rasterising).

@@ -1,0 +1,224 @@
+#include "makeway/planning/collision_monitor.hpp"
+
+#include <algorithm>
+#include <optional>
+#include <cmath>
+#include <stdexcept>
+#include <unordered_set>
+
+#include "makeway/common/angles.hpp"
+
+namespace makeway::planning {
+namespace {
+
+// Returns of one sweep are thinned to one per cell of this size: the zones' paddings are several
+// cells, so nothing the robot could touch is lost, and the memory stays a few thousand points.
+constexpr double kThinCell_m = 0.03;
+
+// The pose after following (v, w) for u seconds from the origin (exact arc).
+Pose2 along_arc(double v, double w, double u) {
+    if (std::abs(w) < 1e-9) return {v * u, 0.0, 0.0};
+    const double th = w * u;
+    return {v / w * std::sin(th), v / w * (1.0 - std::cos(th)), th};
+}
+
+// Signed distance from p to the centred rectangle with half sizes h (negative inside).
+double rect_signed_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& h) {
+    const Eigen::Vector2d q = p.cwiseAbs() - h;
+    return q.cwiseMax(0.0).norm() + std::min(std::max(q.x(), q.y()), 0.0);
+}
+
+}  // namespace
+
+std::string_view to_string(MonitorAction a) {
+    switch (a) {
+        case MonitorAction::kNone: return "none";
+        case MonitorAction::kSlowdown: return "slowdown";
+        case MonitorAction::kApproach: return "approach";
+        case MonitorAction::kStop: return "stop";
+        case MonitorAction::kBackup: return "recovery_backup";
+        case MonitorAction::kRotate: return "recovery_rotate";
+        case MonitorAction::kBlocked: return "blocked";
+    }
+    return "none";
+}
+
+std::vector<std::string> CollisionMonitorParams::validate() const {
+    std::vector<std::string> p;
+    if (!(footprint_length_m > 0.0 && footprint_width_m > 0.0)) p.push_back("footprint must be positive");
+    if (!(body.top_m > body.ground_clearance_m)) p.push_back("body top must be above its ground clearance");
+    if (!(max_acc_mps2 > 0.0 && max_ang_acc_radps2 > 0.0)) p.push_back("accelerations must be > 0");
+    if (!(latency_s >= 0.0 && latency_s <= 2.0)) p.push_back("latency_s must be in [0, 2]");
+    if (min_points < 1) p.push_back("min_points must be >= 1");
+    if (!(stop_padding_m >= 0.0 && stop_padding_m <= 1.0)) p.push_back("stop_padding_m must be in [0, 1]");
+    if (!(slowdown_padding_m >= stop_padding_m && slowdown_padding_m <= 2.0)) p.push_back("slowdown_padding_m must be in [stop_padding_m, 2]");
+    if (!(slowdown_time_s >= 0.0 && slowdown_time_s <= 10.0)) p.push_back("slowdown_time_s must be in [0, 10]");
+    if (!(slowdown_ratio > 0.0 && slowdown_ratio <= 1.0)) p.push_back("slowdown_ratio must be in (0, 1]");
+    if (!(time_before_collision_s >= 0.0 && time_before_collision_s <= 10.0)) p.push_back("time_before_collision_s must be in [0, 10]");
+    if (!(simulation_time_step_s >= 0.005 && simulation_time_step_s <= 1.0)) p.push_back("simulation_time_step_s must be in [0.005, 1]");
+    if (!(min_scale >= 0.0 && min_scale < 1.0)) p.push_back("min_scale must be in [0, 1)");
+    if (!(sensor_height_m >= 0.0 && sensor_height_m <= 5.0)) p.push_back("sensor_height_m must be in [0, 5]");
+    if (!(lowest_beam_deg >= -90.0 && lowest_beam_deg <= 90.0)) p.push_back("lowest_beam_deg must be in [-90, 90]");
+    if (!(blind_memory_s >= 0.0 && blind_memory_s <= 60.0)) p.push_back("blind_memory_s must be in [0, 60]");
+    if (!(max_range_m > 0.0 && max_range_m <= 50.0)) p.push_back("max_range_m must be in (0, 50]");
+    if (!(recovery_after_s > 0.0)) p.push_back("recovery_after_s must be > 0");
+    if (!(backup_speed_mps > 0.0 && backup_distance_m >= 0.0)) p.push_back("backup_speed_mps must be > 0, backup_distance_m >= 0");
+    if (!(rotate_speed_radps > 0.0 && rotate_angle_rad >= 0.0)) p.push_back("rotate_speed_radps must be > 0, rotate_angle_rad >= 0");
+    return p;
+}
+
+CollisionMonitor::CollisionMonitor(const CollisionMonitorParams& params) : params_(params) {
+    std::string all;
+    for (const std::string& s : params_.validate()) all += (all.empty() ? "" : "; ") + s;
+    if (!all.empty()) throw std::invalid_argument("collision monitor: " + all);
+}
+
+double CollisionMonitor::first_contact(double v, double w, double padding, double u_max,
+                                       const std::vector<Eigen::Vector2d>& pts) const {
+    const Eigen::Vector2d half(0.5 * params_.footprint_length_m, 0.5 * params_.footprint_width_m);
+    // Only returns the padded footprint can reach over the arc.
+    const double reach = half.norm() + padding + std::abs(v) * u_max + 1e-9;
+    std::vector<Eigen::Vector2d> near;
+    std::vector<double> now;  // each return's distance to the footprint where the robot stands
+    for (const Eigen::Vector2d& p : pts) {
+        if (p.squaredNorm() > reach * reach) continue;
+        near.push_back(p);
+        now.push_back(rect_signed_distance(p, half));
+    }
+    if (static_cast<int>(near.size()) < params_.min_points) return -1.0;
+    const int steps = std::max(1, static_cast<int>(std::ceil(u_max / params_.simulation_time_step_s - 1e-9)));
+    for (int i = 0; i <= steps; ++i) {
+        const double u = std::min(u_max, i * params_.simulation_time_step_s);
+        const Pose2 q = along_arc(v, w, u);
+        const double c = std::cos(q.yaw_rad), s = std::sin(q.yaw_rad);
+        int hits = 0;
+        for (std::size_t j = 0; j < near.size(); ++j) {
+            const Eigen::Vector2d d = near[j] - Eigen::Vector2d(q.x_m, q.y_m);
+            const double sd = rect_signed_distance({c * d.x() + s * d.y(), -s * d.x() + c * d.y()}, half);
+            // Inside the zone, and closer than now: a robot may always move away from what is near.
+            if (sd <= padding && sd < now[j] - 1e-4 && ++hits >= params_.min_points) return u;
+        }
+    }
+    return -1.0;
+}
+
+MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const std::vector<Eigen::Vector2d>& pts) const {
+    MonitorResult r;
+    r.command = cmd;
+    if (!params_.enabled || (cmd.v_mps == 0.0 && cmd.w_radps == 0.0)) return r;
+    const double v = cmd.v_mps, w = cmd.w_radps, L = params_.latency_s;
+    const double k = std::max(std::abs(v) / params_.max_acc_mps2, std::abs(w) / params_.max_ang_acc_radps2);
+    const double u_brake = L + 0.5 * k;
+    auto hold = [&](MonitorAction a) {
+        r.command = {};
+        r.scale = 0.0;
+        r.action = a;
+        return r;
+    };
+    if (first_contact(v, w, params_.stop_padding_m, u_brake, pts) >= 0.0) return hold(MonitorAction::kStop);
+    double scale = 1.0;
+    const double T = params_.time_before_collision_s;
+    const double u_c = T > 0.0 ? first_contact(v, w, params_.stop_padding_m, T, pts) : -1.0;
+    if (u_c >= 0.0 && u_c / T < scale) {  // contact at least T away at the scaled speed
+        scale = u_c / T;
+        r.action = MonitorAction::kApproach;
+    }
+    if (params_.slowdown_ratio < scale &&
+        first_contact(v, w, params_.slowdown_padding_m, u_brake + params_.slowdown_time_s, pts) >= 0.0) {
+        scale = params_.slowdown_ratio;
+        r.action = MonitorAction::kSlowdown;
+    }
+    if (scale < params_.min_scale) return hold(MonitorAction::kApproach);
+    r.scale = scale;
+    r.command = {scale * v, scale * w};
+    return r;
+}
+
+bool CollisionMonitor::recovery_free(const VelocityCommand& c, double duration_s, const std::vector<Eigen::Vector2d>& pts) const {
+    const double k = std::max(std::abs(c.v_mps) / params_.max_acc_mps2, std::abs(c.w_radps) / params_.max_ang_acc_radps2);
+    return first_contact(c.v_mps, c.w_radps, params_.stop_padding_m, duration_s + params_.latency_s + 0.5 * k, pts) < 0.0;
+}
+
+MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
+    // Forget what the sensor could see again (the new sweep shows it if it is still there), and
+    // what is older than blind_memory_s.
+    const Eigen::Vector2d here(in.pose.x_m, in.pose.y_m);
+    std::erase_if(memory_, [&](const Remembered& m) {
+        return m.t_s < in.t_s - params_.blind_memory_s - 1e-9 || (m.p_world - here).norm() >= m.blind_m;
+    });
+    const Isometry2 T_base_world = to_isometry(in.pose).inverse();
+    std::vector<Eigen::Vector2d> pts;
+    for (const Remembered& m : memory_) pts.push_back(T_base_world * m.p_world);
+    // The new sweep: the returns the body can hit, thinned; each remembered while the sensor,
+    // closing in, could no longer see it.
+    if (in.points_world != nullptr) {
+        std::unordered_set<std::int64_t> seen;
+        const double r2 = params_.max_range_m * params_.max_range_m;
+        const double tan_down = std::tan(-params_.lowest_beam_deg * kPi / 180.0);
+        for (const Eigen::Vector3f& p : in.points_world->xyz) {
+            if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()) || !params_.body.can_hit(p.z())) continue;
+            const Eigen::Vector2d q(p.x(), p.y());
+            const double d2 = (q - here).squaredNorm();
+            if (d2 > r2) continue;
+            const std::int64_t key = (static_cast<std::int64_t>(std::floor(q.x() / kThinCell_m)) << 32) ^
+                                     (static_cast<std::int64_t>(std::floor(q.y() / kThinCell_m)) & 0xffffffffLL);
+            if (!seen.insert(key).second) continue;
+            pts.push_back(T_base_world * q);
+            const double blind = tan_down > 0.0 ? (params_.sensor_height_m - p.z()) / tan_down : 0.0;
+            const double keep = std::min(blind, std::sqrt(d2)) - kThinCell_m;  // closer than where it was seen, and blind there
+            if (keep > 0.0) memory_.push_back({q, in.t_s, keep});
+        }
+    }
+
+    if (in.t_s < recovery_until_) {  // recovering: the recovery's own command, stop-checked
+        MonitorResult r = check(recovery_command_, pts);
+        r.recovering = true;
+        if (r.scale < params_.min_scale) {  // something came into the way: end the recovery, held
+            recovery_until_ = -1.0;
+            held_since_ = in.t_s;
+            r.recovering = false;
+            r.action = MonitorAction::kBlocked;
+            return r;
+        }
+        r.action = recovery_command_.v_mps != 0.0 ? MonitorAction::kBackup : MonitorAction::kRotate;
+        return r;
+    }
+    MonitorResult r = check(in.command, pts);
+    if (r.scale >= params_.min_scale) {
+        held_since_ = -1.0;
+        return r;
+    }
+    if (held_since_ < 0.0) held_since_ = in.t_s;
+    if (in.t_s - held_since_ + 1e-9 < params_.recovery_after_s) return r;
+    // Held for a while: back up into free space, else turn on the spot toward free space.
+    const VelocityCommand backup{-params_.backup_speed_mps, 0.0};
+    const double turn_sign = in.command.w_radps < 0.0 ? -1.0 : 1.0;
+    const VelocityCommand turns[2] = {{0.0, turn_sign * params_.rotate_speed_radps}, {0.0, -turn_sign * params_.rotate_speed_radps}};
+    std::optional<std::pair<VelocityCommand, double>> chosen;
+    if (params_.backup_distance_m > 0.0 && recovery_free(backup, params_.backup_distance_m / params_.backup_speed_mps, pts)) {
+        chosen = {backup, params_.backup_distance_m / params_.backup_speed_mps};
+    } else {
+        for (const VelocityCommand& t : turns) {
+            const double d = params_.rotate_angle_rad / params_.rotate_speed_radps;
+            if (params_.rotate_angle_rad > 0.0 && recovery_free(t, d, pts)) {
+                chosen = {t, d};
+                break;
+            }
+        }
+    }
+    held_since_ = in.t_s;  // the next recovery (or retry) after another recovery_after_s
+    if (!chosen) {
+        r.action = MonitorAction::kBlocked;
+        return r;
+    }
+    recovery_command_ = chosen->first;
+    recovery_until_ = in.t_s + chosen->second;
+    r.command = recovery_command_;
+    r.scale = 1.0;
+    r.recovering = true;
+    r.started_recovery = true;
+    r.action = recovery_command_.v_mps != 0.0 ? MonitorAction::kBackup : MonitorAction::kRotate;
+    return r;
+}
+
+}  // namespace makeway::planning

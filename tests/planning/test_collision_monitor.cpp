@@ -1,0 +1,213 @@
+// The collision monitor with known answers: closed loops on the simulator's own drive model (the
+// command acts one control period after the sweep it was decided on, as in bench nav), and single
+// checks whose zones are worked out by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "makeway/common/angles.hpp"
+#include "makeway/planning/collision_monitor.hpp"
+#include "makeway/sim/robot.hpp"
+
+namespace makeway::planning {
+namespace {
+
+CollisionMonitorParams jackal() {
+    const sim::RobotParams r;
+    CollisionMonitorParams p;
+    p.footprint_length_m = r.length_m;
+    p.footprint_width_m = r.width_m;
+    p.body = r.body();
+    p.max_acc_mps2 = r.max_acc_mps2;
+    p.max_ang_acc_radps2 = r.max_ang_acc_radps2;
+    return p;
+}
+
+// Distance from a point to the footprint at `pose` (0 inside).
+double footprint_distance(const Pose2& pose, const Eigen::Vector2d& p) {
+    const sim::RobotParams r;
+    const Eigen::Vector2d q = to_isometry(pose).inverse() * p;
+    return Eigen::Vector2d(std::max(std::abs(q.x()) - 0.5 * r.length_m, 0.0), std::max(std::abs(q.y()) - 0.5 * r.width_m, 0.0)).norm();
+}
+
+// A box's outline (centre, half size), sampled every 2 cm at heights the body can hit.
+std::vector<Eigen::Vector2d> box_outline(const Eigen::Vector2d& c, const Eigen::Vector2d& h) {
+    std::vector<Eigen::Vector2d> out;
+    for (double s = -1.0; s <= 1.0 + 1e-9; s += 0.02 / h.x()) out.push_back(c + Eigen::Vector2d(s * h.x(), -h.y())), out.push_back(c + Eigen::Vector2d(s * h.x(), h.y()));
+    for (double s = -1.0; s <= 1.0 + 1e-9; s += 0.02 / h.y()) out.push_back(c + Eigen::Vector2d(-h.x(), s * h.y())), out.push_back(c + Eigen::Vector2d(h.x(), s * h.y()));
+    return out;
+}
+
+// What a VLP-32C 0.45 m up sees of 2D points: nothing closer than `blind_m` to the sensor (its
+// lowest beam, -25 deg, reaches a 10 cm high part only from ~0.75 m), at 0.1 m height.
+PointCloud sweep_of(const std::vector<Eigen::Vector2d>& pts, const Pose2& sensor, double blind_m) {
+    PointCloud c;
+    for (const Eigen::Vector2d& p : pts) {
+        if ((p - Eigen::Vector2d(sensor.x_m, sensor.y_m)).norm() < blind_m) continue;
+        c.xyz.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), 0.1f);
+    }
+    return c;
+}
+
+TEST(CollisionMonitor, ABoxAppearingOneMetreAheadAtFullSpeedIsNeverTouched) {
+    const sim::RobotParams robot;
+    for (const double blind_m : {0.0, 0.75}) {  // with and without the sensor's blind ring
+        CollisionMonitor monitor(jackal());
+        sim::RobotState state;
+        state.v_mps = robot.max_v_mps;
+        VelocityCommand cmd{robot.max_v_mps, 0.0};
+        std::vector<Eigen::Vector2d> box;
+        double closest = 1e9;
+        bool stopped = false;
+        for (int k = 0; k < 60; ++k) {
+            const double t = 0.1 * k;
+            for (int i = 0; i < 10; ++i) {  // the last command acts for one period
+                state = sim::step_diff_drive(state, cmd, 0.01, robot);
+                for (const auto& p : box) closest = std::min(closest, footprint_distance(state.pose, p));
+            }
+            if (k == 5) {  // the box appears 1 m ahead of the bumper
+                box = box_outline({state.pose.x_m + 0.5 * robot.length_m + 1.0 + 0.2, 0.0}, {0.2, 0.3});
+            }
+            const PointCloud sweep = sweep_of(box, state.pose, blind_m);
+            // The navigator keeps asking for full speed; the monitor alone must stop the robot.
+            const MonitorResult r = monitor.filter({t + 0.1, state.pose, &sweep, {robot.max_v_mps, 0.0}});
+            cmd = r.command;
+            stopped |= r.action == MonitorAction::kStop || (r.action == MonitorAction::kApproach && r.scale == 0.0);
+            if (r.recovering) break;
+        }
+        EXPECT_TRUE(stopped) << blind_m;
+        EXPECT_GT(closest, 0.0) << blind_m;
+        EXPECT_LT(closest, 0.5) << blind_m;  // it stopped near the box, not far short of it
+    }
+}
+
+TEST(CollisionMonitor, SlowdownZoneScalesTheCommand) {
+    const CollisionMonitor monitor(jackal());
+    const double front = 0.254, side = 0.215;
+    // Ahead, 0.5 m from the bumper at 0.5 m/s: beyond the stop zone (latency 0.2 s + braking
+    // 0.125 m = 0.225 m, + 4 cm) and the approach check's limit, inside the slowdown zone
+    // (0.225 + 0.3 m further + 15 cm).
+    const std::vector<Eigen::Vector2d> ahead{{front + 0.5, 0.0}, {front + 0.5, 0.02}};
+    const MonitorResult a = monitor.check({0.5, 0.0}, ahead);
+    EXPECT_EQ(a.action, MonitorAction::kSlowdown);
+    EXPECT_NEAR(a.command.v_mps, 0.25, 1e-12);
+    // Beside the path, 10 cm out from the side: only the slowdown zone's padding reaches it.
+    const std::vector<Eigen::Vector2d> beside{{front + 0.3, side + 0.1}, {front + 0.32, side + 0.1}};
+    const MonitorResult b = monitor.check({0.5, 0.0}, beside);
+    EXPECT_EQ(b.action, MonitorAction::kSlowdown);
+    EXPECT_NEAR(b.command.v_mps, 0.25, 1e-12);
+    // Nothing near: the command passes unchanged; beside the robot and behind it, nothing closes in.
+    EXPECT_EQ(monitor.check({0.5, 0.1}, {{5.0, 5.0}, {5.0, 5.02}}).action, MonitorAction::kNone);
+    const std::vector<Eigen::Vector2d> alongside{{0.0, side + 0.05}, {0.02, side + 0.05}, {-front - 0.05, 0.0}, {-front - 0.05, 0.02}};
+    const MonitorResult c = monitor.check({0.5, 0.0}, alongside);
+    EXPECT_EQ(c.action, MonitorAction::kNone);
+    EXPECT_NEAR(c.command.v_mps, 0.5, 1e-12);
+    // Just ahead, within the braking distance: stop.
+    EXPECT_EQ(monitor.check({0.5, 0.0}, {{front + 0.15, 0.0}, {front + 0.15, 0.02}}).action, MonitorAction::kStop);
+    // Touching the bumper: forward is stopped, backing away is not.
+    const std::vector<Eigen::Vector2d> touching{{front + 0.01, 0.0}, {front + 0.01, 0.05}};
+    EXPECT_EQ(monitor.check({0.3, 0.0}, touching).command.v_mps, 0.0);
+    EXPECT_EQ(monitor.check({-0.15, 0.0}, touching).action, MonitorAction::kNone);
+    // One return is not enough (min_points 2): sensor noise does not stop the robot.
+    EXPECT_EQ(monitor.check({0.5, 0.0}, {{front + 0.15, 0.0}}).action, MonitorAction::kNone);
+}
+
+TEST(CollisionMonitor, ApproachKeepsContactAtLeastTimeBeforeCollisionAway) {
+    CollisionMonitorParams p = jackal();
+    p.slowdown_ratio = 1.0;  // the approach check alone
+    const CollisionMonitor monitor(p);
+    // 0.7 m from the bumper at full speed (0.75 m/s): beyond the stop zone (0.2 s latency + 0.28 m
+    // braking + 4 cm = 0.47 m), but contact in 0.88 s, under time_before_collision_s (1.2 s).
+    const double gap = 0.7;
+    const MonitorResult r = monitor.check({0.75, 0.3}, {{0.254 + gap, -0.01}, {0.254 + gap, 0.01}});
+    EXPECT_EQ(r.action, MonitorAction::kApproach);
+    ASSERT_GT(r.scale, 0.0);
+    ASSERT_LT(r.scale, 1.0);
+    EXPECT_NEAR(r.command.w_radps / r.command.v_mps, 0.3 / 0.75, 1e-12);  // the same arc, slower
+    // Straight ahead: contact (gap less the padding) at the scaled speed takes time_before_collision_s,
+    // to within one step of the arc's sampling.
+    const MonitorResult straight = monitor.check({0.75, 0.0}, {{0.254 + gap, -0.01}, {0.254 + gap, 0.01}});
+    const double v = straight.command.v_mps;
+    EXPECT_NEAR((gap - p.stop_padding_m) / v, p.time_before_collision_s, p.simulation_time_step_s * 0.75 / v + 1e-9);
+    // Far enough: untouched.
+    EXPECT_EQ(monitor.check({0.75, 0.0}, {{0.254 + 1.0, -0.01}, {0.254 + 1.0, 0.01}}).action, MonitorAction::kNone);
+}
+
+TEST(CollisionMonitor, WaitsForAWalkerCrossingThePathThenPasses) {
+    const sim::RobotParams robot;
+    CollisionMonitor monitor(jackal());
+    sim::RobotState state;
+    VelocityCommand cmd;
+    const double crossing_x = 2.0, radius = 0.25;
+    auto walker_at = [&](double t) { return Eigen::Vector2d(crossing_x, 3.0 - 1.0 * t); };  // 1 m/s, left to right
+    double closest = 1e9;
+    bool waited = false;
+    for (int k = 0; k < 120; ++k) {
+        const double t = 0.1 * k;
+        for (int i = 0; i < 10; ++i) {
+            state = sim::step_diff_drive(state, cmd, 0.01, robot);
+            closest = std::min(closest, footprint_distance(state.pose, walker_at(t + 0.01 * (i + 1))) - radius);
+        }
+        std::vector<Eigen::Vector2d> legs;
+        for (int a = 0; a < 36; ++a) legs.push_back(walker_at(t + 0.1) + radius * Eigen::Vector2d(std::cos(a * kPi / 18), std::sin(a * kPi / 18)));
+        const PointCloud sweep = sweep_of(legs, state.pose, 0.0);
+        const MonitorResult r = monitor.filter({t + 0.1, state.pose, &sweep, {0.5, 0.0}});
+        waited |= r.scale == 0.0 && state.pose.x_m < crossing_x;
+        cmd = r.command;
+    }
+    EXPECT_TRUE(waited);
+    EXPECT_GT(closest, 0.0);                     // never touched
+    EXPECT_GT(state.pose.x_m, crossing_x + 1.0);  // and went on once the walker had passed
+}
+
+TEST(CollisionMonitor, HeldRobotBacksUpIntoFreeSpaceThenTurnsWhenBoxedIn) {
+    CollisionMonitorParams p = jackal();
+    CollisionMonitor monitor(p);
+    const double front = 0.254;
+    PointCloud wall;
+    for (double y = -1.0; y <= 1.0; y += 0.02) wall.xyz.emplace_back(static_cast<float>(front + 0.05), static_cast<float>(y), 0.2f);
+    MonitorResult r;
+    int t = 0;
+    for (; t < 50 && !r.started_recovery; ++t) r = monitor.filter({0.1 * t, {}, &wall, {0.5, 0.0}});
+    ASSERT_TRUE(r.started_recovery);
+    EXPECT_NEAR(0.1 * (t - 1), p.recovery_after_s, 0.15);
+    EXPECT_EQ(r.action, MonitorAction::kBackup);
+    EXPECT_LT(r.command.v_mps, 0.0);
+    // Walls 0.38 m ahead and behind: no room to back up 0.3 m, room to turn (the corners reach
+    // 0.333 m, + 4 cm padding), so it turns on the spot.
+    CollisionMonitor boxed(p);
+    PointCloud both;
+    for (double y = -1.0; y <= 1.0; y += 0.02) {
+        both.xyz.emplace_back(0.38f, static_cast<float>(y), 0.2f);
+        both.xyz.emplace_back(-0.38f, static_cast<float>(y), 0.2f);
+    }
+    r = {};
+    for (t = 0; t < 50 && !r.started_recovery; ++t) r = boxed.filter({0.1 * t, {}, &both, {0.5, 0.0}});
+    ASSERT_TRUE(r.started_recovery);
+    EXPECT_EQ(r.action, MonitorAction::kRotate);
+    EXPECT_EQ(r.command.v_mps, 0.0);
+    EXPECT_NE(r.command.w_radps, 0.0);
+}
+
+TEST(CollisionMonitor, IgnoresReturnsTheBodyCannotHitAndRejectsBadParams) {
+    CollisionMonitor monitor(jackal());
+    PointCloud overhead;  // a table top above the robot, and the floor
+    for (double y = -0.3; y <= 0.3; y += 0.02) {
+        overhead.xyz.emplace_back(0.5f, static_cast<float>(y), 0.72f);
+        overhead.xyz.emplace_back(0.5f, static_cast<float>(y), 0.0f);
+    }
+    EXPECT_EQ(monitor.filter({0.1, {}, &overhead, {0.5, 0.0}}).action, MonitorAction::kNone);
+    CollisionMonitorParams bad = jackal();
+    bad.slowdown_ratio = 0.0;
+    bad.min_points = 0;
+    try {
+        CollisionMonitor m(bad);
+        FAIL() << "accepted bad parameters";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("slowdown_ratio"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("min_points"), std::string::npos);
+    }
+}
+
+}  // namespace
+}  // namespace makeway::planning
