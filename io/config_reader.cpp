@@ -319,6 +319,8 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("slowdown_ratio", m.slowdown_ratio);
         s.read("time_before_collision_s", m.time_before_collision_s);
         s.read("simulation_time_step_s", m.simulation_time_step_s);
+        s.read("dynamic_speed_mps", m.dynamic_speed_mps);
+        s.read("dynamic_history", m.dynamic_history);
         s.read("min_scale", m.min_scale);
         s.read("lowest_beam_deg", m.lowest_beam_deg);
         s.read("blind_memory_s", m.blind_memory_s);
@@ -526,6 +528,8 @@ pipeline::SystemParams online_system_params(const Config& config) {
     n.monitor.footprint_length_m = config.robot.length_m;
     n.monitor.footprint_width_m = config.robot.width_m;
     n.monitor.body = config.robot.body();
+    n.monitor.max_v_mps = config.robot.max_v_mps;
+    n.monitor.max_w_radps = config.robot.max_w_radps;
     n.monitor.max_acc_mps2 = config.robot.max_acc_mps2;
     n.monitor.max_ang_acc_radps2 = config.robot.max_ang_acc_radps2;
     n.monitor.sensor_height_m = config.robot.lidar_height_m;

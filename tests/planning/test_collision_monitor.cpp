@@ -18,6 +18,8 @@ CollisionMonitorParams jackal() {
     p.footprint_length_m = r.length_m;
     p.footprint_width_m = r.width_m;
     p.body = r.body();
+    p.max_v_mps = r.max_v_mps;
+    p.max_w_radps = r.max_w_radps;
     p.max_acc_mps2 = r.max_acc_mps2;
     p.max_ang_acc_radps2 = r.max_ang_acc_radps2;
     return p;
@@ -81,21 +83,23 @@ TEST(CollisionMonitor, ABoxAppearingOneMetreAheadAtFullSpeedIsNeverTouched) {
     }
 }
 
-TEST(CollisionMonitor, SlowdownZoneScalesTheCommand) {
+TEST(CollisionMonitor, SlowdownZoneCapsTheSpeed) {
     const CollisionMonitor monitor(jackal());
     const double front = 0.254, side = 0.215;
-    // Ahead, 0.5 m from the bumper at 0.5 m/s: beyond the stop zone (latency 0.2 s + braking
-    // 0.125 m = 0.225 m, + 4 cm) and the approach check's limit, inside the slowdown zone
-    // (0.225 + 0.3 m further + 15 cm).
-    const std::vector<Eigen::Vector2d> ahead{{front + 0.5, 0.0}, {front + 0.5, 0.02}};
-    const MonitorResult a = monitor.check({0.5, 0.0}, ahead);
+    // Ahead, 0.55 m from the bumper at 0.6 m/s: beyond the stop zone (latency 0.2 s + braking
+    // 0.18 m = 0.30 m, + 4 cm) and the approach check (contact in 0.85 s > 0.8 s), inside the
+    // slowdown zone (0.30 + 0.3 s x 0.6 m/s + 10 cm = 0.58 m).
+    const std::vector<Eigen::Vector2d> ahead{{front + 0.55, 0.0}, {front + 0.55, 0.02}};
+    const MonitorResult a = monitor.check({0.6, 0.12}, ahead);
     EXPECT_EQ(a.action, MonitorAction::kSlowdown);
-    EXPECT_NEAR(a.command.v_mps, 0.25, 1e-12);
-    // Beside the path, 10 cm out from the side: only the slowdown zone's padding reaches it.
-    const std::vector<Eigen::Vector2d> beside{{front + 0.3, side + 0.1}, {front + 0.32, side + 0.1}};
-    const MonitorResult b = monitor.check({0.5, 0.0}, beside);
+    EXPECT_NEAR(a.command.v_mps, 0.45, 1e-12);  // 60 % of the top speed, on the same arc
+    EXPECT_NEAR(a.command.w_radps, 0.09, 1e-12);
+    EXPECT_EQ(monitor.check({0.3, 0.0}, ahead).command.v_mps, 0.3);  // slow enough: the zone is shorter
+    // Beside the path, 7 cm out from the side: only the slowdown zone's padding reaches it.
+    const std::vector<Eigen::Vector2d> beside{{front + 0.3, side + 0.07}, {front + 0.32, side + 0.07}};
+    const MonitorResult b = monitor.check({0.6, 0.0}, beside);
     EXPECT_EQ(b.action, MonitorAction::kSlowdown);
-    EXPECT_NEAR(b.command.v_mps, 0.25, 1e-12);
+    EXPECT_NEAR(b.command.v_mps, 0.45, 1e-12);
     // Nothing near: the command passes unchanged; beside the robot and behind it, nothing closes in.
     EXPECT_EQ(monitor.check({0.5, 0.1}, {{5.0, 5.0}, {5.0, 5.02}}).action, MonitorAction::kNone);
     const std::vector<Eigen::Vector2d> alongside{{0.0, side + 0.05}, {0.02, side + 0.05}, {-front - 0.05, 0.0}, {-front - 0.05, 0.02}};
@@ -116,9 +120,9 @@ TEST(CollisionMonitor, ApproachKeepsContactAtLeastTimeBeforeCollisionAway) {
     CollisionMonitorParams p = jackal();
     p.slowdown_ratio = 1.0;  // the approach check alone
     const CollisionMonitor monitor(p);
-    // 0.7 m from the bumper at full speed (0.75 m/s): beyond the stop zone (0.2 s latency + 0.28 m
-    // braking + 4 cm = 0.47 m), but contact in 0.88 s, under time_before_collision_s (1.2 s).
-    const double gap = 0.7;
+    // 0.58 m from the bumper at full speed (0.75 m/s): beyond the stop zone (0.2 s latency + 0.28 m
+    // braking + 4 cm = 0.47 m), but contact in 0.72 s, under time_before_collision_s (0.8 s).
+    const double gap = 0.58;
     const MonitorResult r = monitor.check({0.75, 0.3}, {{0.254 + gap, -0.01}, {0.254 + gap, 0.01}});
     EXPECT_EQ(r.action, MonitorAction::kApproach);
     ASSERT_GT(r.scale, 0.0);

@@ -122,6 +122,8 @@ planning::CollisionMonitorParams monitor_params(const NavParams& params) {
     m.footprint_length_m = params.robot.length_m;
     m.footprint_width_m = params.robot.width_m;
     m.body = params.robot.body();
+    m.max_v_mps = params.robot.max_v_mps;
+    m.max_w_radps = params.robot.max_w_radps;
     m.max_acc_mps2 = params.robot.max_acc_mps2;
     m.max_ang_acc_radps2 = params.robot.max_ang_acc_radps2;
     m.sensor_height_m = params.robot.lidar_height_m;

@@ -48,6 +48,7 @@ std::vector<std::string> CollisionMonitorParams::validate() const {
     if (!(footprint_length_m > 0.0 && footprint_width_m > 0.0)) p.push_back("footprint must be positive");
     if (!(body.top_m > body.ground_clearance_m)) p.push_back("body top must be above its ground clearance");
     if (!(max_acc_mps2 > 0.0 && max_ang_acc_radps2 > 0.0)) p.push_back("accelerations must be > 0");
+    if (!(max_v_mps > 0.0 && max_w_radps > 0.0)) p.push_back("top speeds must be > 0");
     if (!(latency_s >= 0.0 && latency_s <= 2.0)) p.push_back("latency_s must be in [0, 2]");
     if (min_points < 1) p.push_back("min_points must be >= 1");
     if (!(stop_padding_m >= 0.0 && stop_padding_m <= 1.0)) p.push_back("stop_padding_m must be in [0, 1]");
@@ -57,6 +58,8 @@ std::vector<std::string> CollisionMonitorParams::validate() const {
     if (!(time_before_collision_s >= 0.0 && time_before_collision_s <= 10.0)) p.push_back("time_before_collision_s must be in [0, 10]");
     if (!(simulation_time_step_s >= 0.005 && simulation_time_step_s <= 1.0)) p.push_back("simulation_time_step_s must be in [0.005, 1]");
     if (!(min_scale >= 0.0 && min_scale < 1.0)) p.push_back("min_scale must be in [0, 1)");
+    if (!(dynamic_speed_mps >= 0.0 && dynamic_speed_mps <= 5.0)) p.push_back("dynamic_speed_mps must be in [0, 5]");
+    if (dynamic_history < 1 || dynamic_history > 100) p.push_back("dynamic_history must be in [1, 100]");
     if (!(sensor_height_m >= 0.0 && sensor_height_m <= 5.0)) p.push_back("sensor_height_m must be in [0, 5]");
     if (!(lowest_beam_deg >= -90.0 && lowest_beam_deg <= 90.0)) p.push_back("lowest_beam_deg must be in [-90, 90]");
     if (!(blind_memory_s >= 0.0 && blind_memory_s <= 60.0)) p.push_back("blind_memory_s must be in [0, 60]");
@@ -74,16 +77,22 @@ CollisionMonitor::CollisionMonitor(const CollisionMonitorParams& params) : param
 }
 
 double CollisionMonitor::first_contact(double v, double w, double padding, double u_max,
-                                       const std::vector<Eigen::Vector2d>& pts) const {
+                                       const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic) const {
     const Eigen::Vector2d half(0.5 * params_.footprint_length_m, 0.5 * params_.footprint_width_m);
     // Only returns the padded footprint can reach over the arc.
+    const double grow = params_.dynamic_speed_mps, L = params_.latency_s;
     const double reach = half.norm() + padding + std::abs(v) * u_max + 1e-9;
+    const double reach_dynamic = reach + grow * (L + u_max);
     std::vector<Eigen::Vector2d> near;
-    std::vector<double> now;  // each return's distance to the footprint where the robot stands
-    for (const Eigen::Vector2d& p : pts) {
-        if (p.squaredNorm() > reach * reach) continue;
-        near.push_back(p);
-        now.push_back(rect_signed_distance(p, half));
+    std::vector<double> now;     // each return's distance to the footprint where the robot stands
+    std::vector<double> growth;  // its padding's growth per second along the arc
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        const bool moving = !dynamic.empty() && dynamic[i] != 0 && grow > 0.0;
+        const double r = moving ? reach_dynamic : reach;
+        if (pts[i].squaredNorm() > r * r) continue;
+        near.push_back(pts[i]);
+        now.push_back(rect_signed_distance(pts[i], half));
+        growth.push_back(moving ? grow : 0.0);
     }
     if (static_cast<int>(near.size()) < params_.min_points) return -1.0;
     const int steps = std::max(1, static_cast<int>(std::ceil(u_max / params_.simulation_time_step_s - 1e-9)));
@@ -96,13 +105,14 @@ double CollisionMonitor::first_contact(double v, double w, double padding, doubl
             const Eigen::Vector2d d = near[j] - Eigen::Vector2d(q.x_m, q.y_m);
             const double sd = rect_signed_distance({c * d.x() + s * d.y(), -s * d.x() + c * d.y()}, half);
             // Inside the zone, and closer than now: a robot may always move away from what is near.
-            if (sd <= padding && sd < now[j] - 1e-4 && ++hits >= params_.min_points) return u;
+            if (sd <= padding + growth[j] * (L + u) && sd < now[j] - 1e-4 && ++hits >= params_.min_points) return u;
         }
     }
     return -1.0;
 }
 
-MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const std::vector<Eigen::Vector2d>& pts) const {
+MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const std::vector<Eigen::Vector2d>& pts,
+                                      const std::vector<char>& dynamic) const {
     MonitorResult r;
     r.command = cmd;
     if (!params_.enabled || (cmd.v_mps == 0.0 && cmd.w_radps == 0.0)) return r;
@@ -115,17 +125,18 @@ MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const std::vec
         r.action = a;
         return r;
     };
-    if (first_contact(v, w, params_.stop_padding_m, u_brake, pts) >= 0.0) return hold(MonitorAction::kStop);
+    if (first_contact(v, w, params_.stop_padding_m, u_brake, pts, dynamic) >= 0.0) return hold(MonitorAction::kStop);
     double scale = 1.0;
     const double T = params_.time_before_collision_s;
-    const double u_c = T > 0.0 ? first_contact(v, w, params_.stop_padding_m, T, pts) : -1.0;
+    const double u_c = T > 0.0 ? first_contact(v, w, params_.stop_padding_m, T, pts, dynamic) : -1.0;
     if (u_c >= 0.0 && u_c / T < scale) {  // contact at least T away at the scaled speed
         scale = u_c / T;
         r.action = MonitorAction::kApproach;
     }
-    if (params_.slowdown_ratio < scale &&
-        first_contact(v, w, params_.slowdown_padding_m, u_brake + params_.slowdown_time_s, pts) >= 0.0) {
-        scale = params_.slowdown_ratio;
+    const double cap = params_.slowdown_ratio * std::min(params_.max_v_mps / std::max(std::abs(v), 1e-9),
+                                                         params_.max_w_radps / std::max(std::abs(w), 1e-9));
+    if (cap < scale && first_contact(v, w, params_.slowdown_padding_m, u_brake + params_.slowdown_time_s, pts) >= 0.0) {
+        scale = cap;
         r.action = MonitorAction::kSlowdown;
     }
     if (scale < params_.min_scale) return hold(MonitorAction::kApproach);
@@ -134,9 +145,10 @@ MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const std::vec
     return r;
 }
 
-bool CollisionMonitor::recovery_free(const VelocityCommand& c, double duration_s, const std::vector<Eigen::Vector2d>& pts) const {
+bool CollisionMonitor::recovery_free(const VelocityCommand& c, double duration_s, const std::vector<Eigen::Vector2d>& pts,
+                                     const std::vector<char>& dynamic) const {
     const double k = std::max(std::abs(c.v_mps) / params_.max_acc_mps2, std::abs(c.w_radps) / params_.max_ang_acc_radps2);
-    return first_contact(c.v_mps, c.w_radps, params_.stop_padding_m, duration_s + params_.latency_s + 0.5 * k, pts) < 0.0;
+    return first_contact(c.v_mps, c.w_radps, params_.stop_padding_m, duration_s + params_.latency_s + 0.5 * k, pts, dynamic) < 0.0;
 }
 
 MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
@@ -149,10 +161,13 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     const Isometry2 T_base_world = to_isometry(in.pose).inverse();
     std::vector<Eigen::Vector2d> pts;
     for (const Remembered& m : memory_) pts.push_back(T_base_world * m.p_world);
+    std::vector<char> dynamic(pts.size(), 0);  // remembered returns are where they were
     // The new sweep: the returns the body can hit, thinned; each remembered while the sensor,
     // closing in, could no longer see it.
     if (in.points_world != nullptr) {
         std::unordered_set<std::int64_t> seen;
+        std::vector<std::int64_t> cells;
+        auto key_of = [](std::int64_t ix, std::int64_t iy) { return (ix << 32) ^ (iy & 0xffffffffLL); };
         const double r2 = params_.max_range_m * params_.max_range_m;
         const double tan_down = std::tan(-params_.lowest_beam_deg * kPi / 180.0);
         for (const Eigen::Vector3f& p : in.points_world->xyz) {
@@ -160,18 +175,31 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             const Eigen::Vector2d q(p.x(), p.y());
             const double d2 = (q - here).squaredNorm();
             if (d2 > r2) continue;
-            const std::int64_t key = (static_cast<std::int64_t>(std::floor(q.x() / kThinCell_m)) << 32) ^
-                                     (static_cast<std::int64_t>(std::floor(q.y() / kThinCell_m)) & 0xffffffffLL);
-            if (!seen.insert(key).second) continue;
+            const auto ix = static_cast<std::int64_t>(std::floor(q.x() / kThinCell_m));
+            const auto iy = static_cast<std::int64_t>(std::floor(q.y() / kThinCell_m));
+            if (!seen.insert(key_of(ix, iy)).second) continue;
+            cells.push_back(key_of(ix, iy));
             pts.push_back(T_base_world * q);
+            // New: no return in this cell or next to it in the previous sweep (none before the first).
+            bool known = previous_cells_.empty();
+            for (const std::vector<std::int64_t>& earlier : previous_cells_) {
+                for (std::int64_t dx = -1; dx <= 1 && !known; ++dx) {
+                    for (std::int64_t dy = -1; dy <= 1 && !known; ++dy) known = std::binary_search(earlier.begin(), earlier.end(), key_of(ix + dx, iy + dy));
+                }
+                if (known) break;
+            }
+            dynamic.push_back(known ? 0 : 1);
             const double blind = tan_down > 0.0 ? (params_.sensor_height_m - p.z()) / tan_down : 0.0;
             const double keep = std::min(blind, std::sqrt(d2)) - kThinCell_m;  // closer than where it was seen, and blind there
-            if (keep > 0.0) memory_.push_back({q, in.t_s, keep});
+            if (keep > 0.0 && known) memory_.push_back({q, in.t_s, keep});  // a walker's new returns leave no trail
         }
+        std::sort(cells.begin(), cells.end());
+        previous_cells_.push_back(std::move(cells));
+        while (static_cast<int>(previous_cells_.size()) > params_.dynamic_history) previous_cells_.pop_front();
     }
 
     if (in.t_s < recovery_until_) {  // recovering: the recovery's own command, stop-checked
-        MonitorResult r = check(recovery_command_, pts);
+        MonitorResult r = check(recovery_command_, pts, dynamic);
         r.recovering = true;
         if (r.scale < params_.min_scale) {  // something came into the way: end the recovery, held
             recovery_until_ = -1.0;
@@ -183,7 +211,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
         r.action = recovery_command_.v_mps != 0.0 ? MonitorAction::kBackup : MonitorAction::kRotate;
         return r;
     }
-    MonitorResult r = check(in.command, pts);
+    MonitorResult r = check(in.command, pts, dynamic);
     if (r.scale >= params_.min_scale) {
         held_since_ = -1.0;
         return r;
@@ -195,12 +223,12 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     const double turn_sign = in.command.w_radps < 0.0 ? -1.0 : 1.0;
     const VelocityCommand turns[2] = {{0.0, turn_sign * params_.rotate_speed_radps}, {0.0, -turn_sign * params_.rotate_speed_radps}};
     std::optional<std::pair<VelocityCommand, double>> chosen;
-    if (params_.backup_distance_m > 0.0 && recovery_free(backup, params_.backup_distance_m / params_.backup_speed_mps, pts)) {
+    if (params_.backup_distance_m > 0.0 && recovery_free(backup, params_.backup_distance_m / params_.backup_speed_mps, pts, dynamic)) {
         chosen = {backup, params_.backup_distance_m / params_.backup_speed_mps};
     } else {
         for (const VelocityCommand& t : turns) {
             const double d = params_.rotate_angle_rad / params_.rotate_speed_radps;
-            if (params_.rotate_angle_rad > 0.0 && recovery_free(t, d, pts)) {
+            if (params_.rotate_angle_rad > 0.0 && recovery_free(t, d, pts, dynamic)) {
                 chosen = {t, d};
                 break;
             }

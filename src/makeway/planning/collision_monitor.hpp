@@ -11,8 +11,8 @@
 // from (sensor_height_m - z) / tan(-lowest_beam_deg) away (a VLP-32C 0.45 m up: 0.92 m for a part
 // 2 cm above the floor): a chair leg the robot closes in on vanishes from its sweeps. So a return
 // is remembered (up to blind_memory_s) while it lies closer to the sensor than both that radius
-// and where it was seen from; once the sensor could see its place again, only the new sweep counts
-// (a walker that has moved on leaves no trail).
+// and where it was seen from; once the sensor could see its place again, only the new sweep counts.
+// New returns (below) are not remembered: a walker that has moved on leaves no trail.
 //
 // Along the arc, u is the time the commanded (v, w) would take to get there ("command seconds").
 // Scaling the command by s in (0, 1] keeps the arc and travels it at rate s; stopping from there
@@ -21,17 +21,27 @@
 //   stop     : min_points returns in the footprint + stop_padding_m swept over u in
 //              [0, u_brake(1)] (latency plus braking distance at the commanded speed) -> v = w = 0.
 //   slowdown : returns in the footprint + slowdown_padding_m swept over
-//              u in [0, u_brake(1) + slowdown_time_s] -> (v, w) *= slowdown_ratio.
+//              u in [0, u_brake(1) + slowdown_time_s] -> at most slowdown_ratio of the top speed
+//              (a cap, not a factor on the command: DWA samples around the current velocity, so
+//              a factor would compound cycle after cycle down to a crawl).
 //   approach : the first u_c at which the footprint + stop_padding_m touches returns; the command
 //              is slowed so that contact stays at least time_before_collision_s away:
 //              s = u_c / time_before_collision_s (nav2's approach polygon).
 // A return counts only where the motion brings the footprint closer to it than it is now, so a
 // robot standing next to a wall may always drive or turn away from it.
 //
+// People: a return in a cell (or next to one) that held no return in the last dynamic_history
+// sweeps is new, maybe moving (a surface coming out of another's shadow is new for one sweep); for the stop zone and the approach check its padding grows by dynamic_speed_mps
+// for every second until the robot would be there (latency included). So the robot stops for a
+// walker who could step into its way before it has braked, and waits while the walker is near
+// its path; a walker standing still is an obstacle like any other (its returns are not new).
+//
 // Recovery: when the monitor has held the robot (stop, or approach below min_scale) for
 // recovery_after_s, it backs up (straight, backup_distance_m at backup_speed_mps) if the sweep
 // shows that space free, else turns on the spot (rotate_angle_rad, the free side first); the
 // recovery's own command passes the same stop check every cycle.
+#include <cstdint>
+#include <deque>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -51,20 +61,24 @@ struct CollisionMonitorParams {
     double footprint_length_m = 0.508;  ///< the robot's true footprint (a rectangle on the base)
     double footprint_width_m = 0.430;
     BodyHeights body;                   ///< returns outside [ground_clearance_m, top_m] are ignored (nav2 min/max_height)
+    double max_v_mps = 0.75;            ///< the robot's top speeds (the slowdown zone caps a share of them)
+    double max_w_radps = 2.0;
     double max_acc_mps2 = 1.0;          ///< braking deceleration, linear
     double max_ang_acc_radps2 = 3.0;    ///< braking deceleration, angular
     double latency_s = 0.2;             ///< sweep age + one control period before a command acts
     int min_points = 2;                 ///< returns in a zone before it acts (nav2 min_points)
     double stop_padding_m = 0.04;       ///< the stop zone and the approach check: footprint grown by this
-    double slowdown_padding_m = 0.15;   ///< the slowdown zone: footprint grown by this ...
-    double slowdown_time_s = 0.6;       ///< ... swept this far past the braking arc [command s]
-    double slowdown_ratio = 0.5;        ///< the command's share inside the slowdown zone
-    double time_before_collision_s = 1.2;  ///< approach: contact kept at least this far ahead [s]; 0: off
+    double slowdown_padding_m = 0.1;    ///< the slowdown zone: footprint grown by this ...
+    double slowdown_time_s = 0.3;       ///< ... swept this far past the braking arc [command s]
+    double slowdown_ratio = 0.6;        ///< inside the slowdown zone: at most this share of the top speeds
+    double time_before_collision_s = 0.8;  ///< approach: contact kept at least this far ahead [s]; 0: off
     double simulation_time_step_s = 0.05;  ///< approach and zones: the step along the arc [command s]
+    double dynamic_speed_mps = 1.0;     ///< new returns may move this fast (a walking person); 0: all static
+    int dynamic_history = 5;            ///< sweeps a cell is remembered as seen (new: seen in none of them)
     double min_scale = 0.05;            ///< an approach scale below this holds the robot (counts as a stop)
     double sensor_height_m = 0.45;      ///< the LiDAR above the floor (on the base's centre) ...
     double lowest_beam_deg = -25.0;     ///< ... and its lowest beam: what it cannot see near it is remembered ...
-    double blind_memory_s = 3.0;        ///< ... at most this long
+    double blind_memory_s = 10.0;       ///< ... at most this long (a robot held in front of a chair leg keeps it)
     double max_range_m = 4.0;           ///< returns farther than this from the base are not looked at
     double recovery_after_s = 3.0;      ///< held this long: start a recovery
     double backup_speed_mps = 0.15;
@@ -102,7 +116,9 @@ public:
     MonitorResult filter(const MonitorInput& input);
     /// The check alone, on returns already in the base frame (x forward, y left): no memory, no
     /// recovery. What filter() does per cycle, exposed for tests and tools.
-    MonitorResult check(const VelocityCommand& command, const std::vector<Eigen::Vector2d>& points_base) const;
+    /// `dynamic` (empty, or one flag per point): returns that are new in this sweep.
+    MonitorResult check(const VelocityCommand& command, const std::vector<Eigen::Vector2d>& points_base,
+                        const std::vector<char>& dynamic = {}) const;
     const CollisionMonitorParams& params() const { return params_; }
 
 private:
@@ -113,11 +129,15 @@ private:
     };
     /// The first u in [0, u_max] (steps of simulation_time_step_s) where the padded footprint
     /// swept along (v, w) holds min_points returns it is closing in on; a negative value: none.
-    double first_contact(double v, double w, double padding, double u_max, const std::vector<Eigen::Vector2d>& pts) const;
-    bool recovery_free(const VelocityCommand& c, double duration_s, const std::vector<Eigen::Vector2d>& pts) const;
+    /// With `dynamic` flags, a flagged return's padding grows by dynamic_speed_mps (latency_s + u).
+    double first_contact(double v, double w, double padding, double u_max, const std::vector<Eigen::Vector2d>& pts,
+                         const std::vector<char>& dynamic = {}) const;
+    bool recovery_free(const VelocityCommand& c, double duration_s, const std::vector<Eigen::Vector2d>& pts,
+                       const std::vector<char>& dynamic) const;
 
     CollisionMonitorParams params_;
     std::vector<Remembered> memory_;
+    std::deque<std::vector<std::int64_t>> previous_cells_;  ///< the last sweeps' thinned cells (each sorted), for new returns
     double held_since_ = -1.0;     ///< when the current hold began (-1: not held)
     double recovery_until_ = -1.0;
     VelocityCommand recovery_command_;
