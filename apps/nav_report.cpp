@@ -80,6 +80,12 @@ io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory) {
     for (int a = 0; a < planning::kMonitorActions; ++a) monitor[std::string(planning::to_string(static_cast<planning::MonitorAction>(a)))] = 0;
     for (const planning::MonitorAction a : r.monitor_actions) monitor[std::string(planning::to_string(a))] = monitor[std::string(planning::to_string(a))].get<int>() + 1;
     j["monitor_cycles"] = monitor;
+    io::Json events = io::Json::array();
+    for (const eval::ContactEvent& e : r.contact_events) {
+        events.push_back({{"t_s", e.t_s}, {"kind", e.kind}, {"robot_caused", e.robot_caused}, {"toward_mps", e.toward_mps},
+                          {"where_m", {e.where_m.x(), e.where_m.y()}}});
+    }
+    j["contact_events"] = events;
     if (!r.keyframes.empty()) {  // the online system: its keyframes, its map's sanity, its final object map
         j["keyframes"] = r.keyframes.size();
         const eval::MapSanity& m = r.map_sanity;

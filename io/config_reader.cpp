@@ -321,6 +321,7 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("simulation_time_step_s", m.simulation_time_step_s);
         s.read("dynamic_speed_mps", m.dynamic_speed_mps);
         s.read("dynamic_history", m.dynamic_history);
+        s.read("dynamic_min_height_m", m.dynamic_min_height_m);
         s.read("min_scale", m.min_scale);
         s.read("lowest_beam_deg", m.lowest_beam_deg);
         s.read("blind_memory_s", m.blind_memory_s);

@@ -40,13 +40,13 @@ std::vector<Eigen::Vector2d> box_outline(const Eigen::Vector2d& c, const Eigen::
     return out;
 }
 
-// What a VLP-32C 0.45 m up sees of 2D points: nothing closer than `blind_m` to the sensor (its
-// lowest beam, -25 deg, reaches a 10 cm high part only from ~0.75 m), at 0.1 m height.
-PointCloud sweep_of(const std::vector<Eigen::Vector2d>& pts, const Pose2& sensor, double blind_m) {
+// What a VLP-32C 0.45 m up sees of 2D points at height z: nothing closer than `blind_m` to the
+// sensor (its lowest beam, -25 deg, reaches a 10 cm high part only from ~0.75 m).
+PointCloud sweep_of(const std::vector<Eigen::Vector2d>& pts, const Pose2& sensor, double blind_m, float z = 0.1f) {
     PointCloud c;
     for (const Eigen::Vector2d& p : pts) {
         if ((p - Eigen::Vector2d(sensor.x_m, sensor.y_m)).norm() < blind_m) continue;
-        c.xyz.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), 0.1f);
+        c.xyz.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), z);
     }
     return c;
 }
@@ -154,7 +154,7 @@ TEST(CollisionMonitor, WaitsForAWalkerCrossingThePathThenPasses) {
         }
         std::vector<Eigen::Vector2d> legs;
         for (int a = 0; a < 36; ++a) legs.push_back(walker_at(t + 0.1) + radius * Eigen::Vector2d(std::cos(a * kPi / 18), std::sin(a * kPi / 18)));
-        const PointCloud sweep = sweep_of(legs, state.pose, 0.0);
+        const PointCloud sweep = sweep_of(legs, state.pose, 0.0, 0.3f);  // a body, 30 cm up
         const MonitorResult r = monitor.filter({t + 0.1, state.pose, &sweep, {0.5, 0.0}});
         waited |= r.scale == 0.0 && state.pose.x_m < crossing_x;
         cmd = r.command;

@@ -86,9 +86,11 @@ struct Scorer {
             const bool any = i == 2 ? person : colliding;
             const std::optional<Eigen::Vector2d> c = any ? checker.contact_point(pose, ts, kinds[i]) : std::nullopt;
             if (c && !touching[i]) {
-                const bool robot = robot_caused_contact(pose, state.v_mps, state.w_radps, *c, params.robot.length_m,
-                                                        params.robot.width_m, params.robot_caused_speed_mps);
+                const double toward = speed_toward_contact(pose, state.v_mps, state.w_radps, *c, params.robot.length_m, params.robot.width_m);
+                const bool robot = toward > params.robot_caused_speed_mps;
                 ++(robot ? counts[i]->robot_caused : counts[i]->other_caused);
+                static const char* const kKinds[3] = {"walls", "furniture", "people"};
+                out.contact_events.push_back({ts, kKinds[i], robot, toward, *c});
             }
             touching[i] = c.has_value();
         }
@@ -234,13 +236,18 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
 
 bool robot_caused_contact(const Pose2& pose, double v, double w, const Eigen::Vector2d& contact_world,
                           double length_m, double width_m, double threshold) {
+    return speed_toward_contact(pose, v, w, contact_world, length_m, width_m) > threshold;
+}
+
+double speed_toward_contact(const Pose2& pose, double v, double w, const Eigen::Vector2d& contact_world,
+                            double length_m, double width_m) {
     const Eigen::Vector2d r = to_isometry(pose).inverse() * contact_world;  // robot frame
     // The outward normal of the side nearest the contact (the point lies in or on the footprint).
     const double to_front = 0.5 * length_m - std::abs(r.x()), to_side = 0.5 * width_m - std::abs(r.y());
     const Eigen::Vector2d normal = to_front <= to_side ? Eigen::Vector2d(r.x() >= 0.0 ? 1.0 : -1.0, 0.0)
                                                        : Eigen::Vector2d(0.0, r.y() >= 0.0 ? 1.0 : -1.0);
     const Eigen::Vector2d body_velocity(v - w * r.y(), w * r.x());  // v x-hat + w z-hat x r
-    return body_velocity.dot(normal) > threshold;
+    return body_velocity.dot(normal);
 }
 
 const std::vector<std::string>& nav_method_names() {

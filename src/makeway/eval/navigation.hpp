@@ -78,6 +78,21 @@ struct ContactCounts {
     int total() const { return robot_caused + other_caused; }
 };
 
+/// One contact, when it started.
+struct ContactEvent {
+    double t_s = 0.0;
+    std::string kind;           ///< walls, furniture or people
+    bool robot_caused = false;
+    double toward_mps = 0.0;    ///< the body's speed toward what it touched
+    Eigen::Vector2d where_m = Eigen::Vector2d::Zero();
+};
+
+/// The body's speed toward a contact at `contact_world` [m/s]: the velocity of the body at the
+/// contact point (rigid body: v along the heading plus w x r) along the outward normal of the
+/// footprint side nearest the contact.
+double speed_toward_contact(const Pose2& pose, double v_mps, double w_radps, const Eigen::Vector2d& contact_world,
+                            double length_m, double width_m);
+
 /// Whether a contact at `contact_world` was the robot's doing: the velocity of the body at the
 /// contact point (rigid body: v along the heading plus w x r) has a component of more than
 /// `threshold_mps` along the outward normal of the footprint side nearest the contact.
@@ -102,6 +117,7 @@ struct NavRunResult {
     int person_contacts = 0;    ///< contacts with walking people (who do not avoid the robot)
     int near_misses = 0;        ///< a moving chair within near_miss_m of the robot's body
     ContactCounts wall_contacts, furniture_contacts, people_contacts;  ///< by who caused them
+    std::vector<ContactEvent> contact_events;
     /// The collision monitor per control cycle (none, slowdown, approach, stop, recovery_backup,
     /// recovery_rotate, blocked), and the cycles it spent on each.
     std::vector<planning::MonitorAction> monitor_actions;

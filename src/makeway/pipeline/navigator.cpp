@@ -1,5 +1,6 @@
 #include "makeway/pipeline/navigator.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -8,8 +9,20 @@
 
 namespace makeway::pipeline {
 
+namespace {
+
+// DWA never picks a velocity the collision monitor would stop: its rollouts keep the monitor's
+// stop padding clear of lethal cells (else the robot creeps at a gap the monitor will not let it
+// through, until it gives up).
+NavigatorParams with_monitor_padding(NavigatorParams p) {
+    if (p.monitor.enabled) p.dwa.footprint_padding_m = std::max(p.dwa.footprint_padding_m, p.monitor.stop_padding_m);
+    return p;
+}
+
+}  // namespace
+
 Navigator::Navigator(const Costmap& static_map, const NavigatorParams& params)
-    : params_(params), costmap_(static_map, params) {}
+    : params_(with_monitor_padding(params)), costmap_(static_map, params) {}
 
 void Navigator::set_route(std::vector<Eigen::Vector2d> legs_m) {
     legs_ = std::move(legs_m);

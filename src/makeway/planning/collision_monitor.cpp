@@ -59,6 +59,7 @@ std::vector<std::string> CollisionMonitorParams::validate() const {
     if (!(simulation_time_step_s >= 0.005 && simulation_time_step_s <= 1.0)) p.push_back("simulation_time_step_s must be in [0.005, 1]");
     if (!(min_scale >= 0.0 && min_scale < 1.0)) p.push_back("min_scale must be in [0, 1)");
     if (!(dynamic_speed_mps >= 0.0 && dynamic_speed_mps <= 5.0)) p.push_back("dynamic_speed_mps must be in [0, 5]");
+    if (!(dynamic_min_height_m >= 0.0 && dynamic_min_height_m <= 3.0)) p.push_back("dynamic_min_height_m must be in [0, 3]");
     if (dynamic_history < 1 || dynamic_history > 100) p.push_back("dynamic_history must be in [1, 100]");
     if (!(sensor_height_m >= 0.0 && sensor_height_m <= 5.0)) p.push_back("sensor_height_m must be in [0, 5]");
     if (!(lowest_beam_deg >= -90.0 && lowest_beam_deg <= 90.0)) p.push_back("lowest_beam_deg must be in [-90, 90]");
@@ -188,7 +189,9 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
                 }
                 if (known) break;
             }
-            dynamic.push_back(known ? 0 : 1);
+            // Near the floor, noise: the lowest rings graze it ~0.9 m out, and a return 2 cm up
+            // there is new in every sweep. People are seen higher up.
+            dynamic.push_back(known || p.z() < params_.dynamic_min_height_m ? 0 : 1);
             const double blind = tan_down > 0.0 ? (params_.sensor_height_m - p.z()) / tan_down : 0.0;
             const double keep = std::min(blind, std::sqrt(d2)) - kThinCell_m;  // closer than where it was seen, and blind there
             if (keep > 0.0 && known) memory_.push_back({q, in.t_s, keep});  // a walker's new returns leave no trail

@@ -31,7 +31,8 @@
 // robot standing next to a wall may always drive or turn away from it.
 //
 // People: a return in a cell (or next to one) that held no return in the last dynamic_history
-// sweeps is new, maybe moving (a surface coming out of another's shadow is new for one sweep); for the stop zone and the approach check its padding grows by dynamic_speed_mps
+// sweeps, and at least dynamic_min_height_m up, is new, maybe moving (a surface coming out of
+// another's shadow is new for one sweep; near the floor the lowest rings' noise is new every sweep); for the stop zone and the approach check its padding grows by dynamic_speed_mps
 // for every second until the robot would be there (latency included). So the robot stops for a
 // walker who could step into its way before it has braked, and waits while the walker is near
 // its path; a walker standing still is an obstacle like any other (its returns are not new).
@@ -75,6 +76,7 @@ struct CollisionMonitorParams {
     double simulation_time_step_s = 0.05;  ///< approach and zones: the step along the arc [command s]
     double dynamic_speed_mps = 1.0;     ///< new returns may move this fast (a walking person); 0: all static
     int dynamic_history = 5;            ///< sweeps a cell is remembered as seen (new: seen in none of them)
+    double dynamic_min_height_m = 0.1;  ///< lower returns are never new (floor noise at the lowest rings' reach)
     double min_scale = 0.05;            ///< an approach scale below this holds the robot (counts as a stop)
     double sensor_height_m = 0.45;      ///< the LiDAR above the floor (on the base's centre) ...
     double lowest_beam_deg = -25.0;     ///< ... and its lowest beam: what it cannot see near it is remembered ...

@@ -11,13 +11,11 @@ namespace {
 
 std::vector<Eigen::Vector2d> footprint_samples(const DwaParams& p, double spacing_m) {
     std::vector<Eigen::Vector2d> out;
-    const int nx = std::max(2, static_cast<int>(std::ceil(p.footprint_length_m / spacing_m)) + 1);
-    const int ny = std::max(2, static_cast<int>(std::ceil(p.footprint_width_m / spacing_m)) + 1);
+    const double length = p.footprint_length_m + 2.0 * p.footprint_padding_m, width = p.footprint_width_m + 2.0 * p.footprint_padding_m;
+    const int nx = std::max(2, static_cast<int>(std::ceil(length / spacing_m)) + 1);
+    const int ny = std::max(2, static_cast<int>(std::ceil(width / spacing_m)) + 1);
     for (int i = 0; i < nx; ++i) {
-        for (int j = 0; j < ny; ++j) {
-            out.emplace_back(-0.5 * p.footprint_length_m + p.footprint_length_m * i / (nx - 1),
-                             -0.5 * p.footprint_width_m + p.footprint_width_m * j / (ny - 1));
-        }
+        for (int j = 0; j < ny; ++j) out.emplace_back(-0.5 * length + length * i / (nx - 1), -0.5 * width + width * j / (ny - 1));
     }
     return out;
 }
@@ -83,6 +81,7 @@ std::vector<std::string> DwaParams::validate() const {
     if (!(control_dt_s > 0.0 && rollout_dt_s > 0.0 && horizon_s >= rollout_dt_s)) out.push_back("need 0 < rollout_dt_s <= horizon_s, control_dt_s > 0");
     if (v_samples < 2 || w_samples < 2 || v_samples * w_samples > 10000) out.push_back("v_samples and w_samples must be >= 2 (at most 10000 pairs)");
     if (!(footprint_length_m > 0.0 && footprint_width_m > 0.0)) out.push_back("footprint must be positive");
+    if (!(footprint_padding_m >= 0.0 && footprint_padding_m <= 1.0)) out.push_back("footprint_padding_m must be in [0, 1]");
     if (!(envelope_margin >= 0.0 && envelope_margin <= 252.0)) out.push_back("envelope_margin must be in [0, 252]");
     return out;
 }

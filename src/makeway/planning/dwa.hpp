@@ -33,6 +33,7 @@ struct DwaParams {
     int w_samples = 15;
     double footprint_length_m = 0.508;
     double footprint_width_m = 0.430;
+    double footprint_padding_m = 0.0;  ///< rollouts keep this clear of lethal cells (the collision monitor's stop padding)
     double lookahead_m = 1.2;  ///< carrot distance along the global path
     double w_path = 1.0;
     double w_heading = 0.6;
