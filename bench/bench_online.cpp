@@ -127,7 +127,8 @@ void BM_CollisionMonitor(benchmark::State& state) {
     std::size_t k = 0;
     for (auto _ : state) {
         const sim::SimFrame& f = d.frames[k % d.frames.size()];
-        const auto r = monitor.filter({0.1 * static_cast<double>(k), f.true_pose, &worlds[k % worlds.size()], {robot.max_v_mps, 0.3}});
+        const auto r = monitor.filter({0.1 * static_cast<double>(k), f.true_pose, &worlds[k % worlds.size()], {robot.max_v_mps, 0.3},
+                                        robot.max_v_mps, 0.3});
         benchmark::DoNotOptimize(r.command);
         ++k;
     }

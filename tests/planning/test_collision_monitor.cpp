@@ -72,7 +72,7 @@ TEST(CollisionMonitor, ABoxAppearingOneMetreAheadAtFullSpeedIsNeverTouched) {
             }
             const PointCloud sweep = sweep_of(box, state.pose, blind_m);
             // The navigator keeps asking for full speed; the monitor alone must stop the robot.
-            const MonitorResult r = monitor.filter({t + 0.1, state.pose, &sweep, {robot.max_v_mps, 0.0}});
+            const MonitorResult r = monitor.filter({t + 0.1, state.pose, &sweep, {robot.max_v_mps, 0.0}, state.v_mps, state.w_radps});
             cmd = r.command;
             stopped |= r.action == MonitorAction::kStop || (r.action == MonitorAction::kApproach && r.scale == 0.0);
             if (r.recovering) break;
@@ -155,7 +155,7 @@ TEST(CollisionMonitor, WaitsForAWalkerCrossingThePathThenPasses) {
         std::vector<Eigen::Vector2d> legs;
         for (int a = 0; a < 36; ++a) legs.push_back(walker_at(t + 0.1) + radius * Eigen::Vector2d(std::cos(a * kPi / 18), std::sin(a * kPi / 18)));
         const PointCloud sweep = sweep_of(legs, state.pose, 0.0, 0.3f);  // a body, 30 cm up
-        const MonitorResult r = monitor.filter({t + 0.1, state.pose, &sweep, {0.5, 0.0}});
+        const MonitorResult r = monitor.filter({t + 0.1, state.pose, &sweep, {0.5, 0.0}, state.v_mps, state.w_radps});
         waited |= r.scale == 0.0 && state.pose.x_m < crossing_x;
         cmd = r.command;
     }
@@ -177,20 +177,32 @@ TEST(CollisionMonitor, HeldRobotBacksUpIntoFreeSpaceThenTurnsWhenBoxedIn) {
     EXPECT_NEAR(0.1 * (t - 1), p.recovery_after_s, 0.15);
     EXPECT_EQ(r.action, MonitorAction::kBackup);
     EXPECT_LT(r.command.v_mps, 0.0);
-    // Walls 0.38 m ahead and behind: no room to back up 0.3 m, room to turn (the corners reach
-    // 0.333 m, + 4 cm padding), so it turns on the spot.
+    // A table edge just off the left front corner (0.39 m from the centre: the stop zone from a
+    // standstill reaches it, a turn on the spot does not: corners at 0.333 m + 4 cm padding) and a
+    // wall 0.40 m behind: no room to back up 0.3 m, so it turns on the spot.
     CollisionMonitor boxed(p);
     PointCloud both;
-    for (double y = -1.0; y <= 1.0; y += 0.02) {
-        both.xyz.emplace_back(0.38f, static_cast<float>(y), 0.2f);
-        both.xyz.emplace_back(-0.38f, static_cast<float>(y), 0.2f);
-    }
+    both.xyz.emplace_back(0.31f, 0.23f, 0.2f);
+    both.xyz.emplace_back(0.31f, 0.245f, 0.2f);
+    for (double y = -1.0; y <= 1.0; y += 0.02) both.xyz.emplace_back(-0.40f, static_cast<float>(y), 0.2f);
     r = {};
     for (t = 0; t < 50 && !r.started_recovery; ++t) r = boxed.filter({0.1 * t, {}, &both, {0.5, 0.0}});
     ASSERT_TRUE(r.started_recovery);
     EXPECT_EQ(r.action, MonitorAction::kRotate);
     EXPECT_EQ(r.command.v_mps, 0.0);
     EXPECT_NE(r.command.w_radps, 0.0);
+    // Closed in on every side: held, and it says so.
+    CollisionMonitor closed(p);
+    PointCloud ring;
+    for (int k = 0; k < 72; ++k) ring.xyz.emplace_back(0.36f * static_cast<float>(std::cos(k * kPi / 36)), 0.3f * static_cast<float>(std::sin(k * kPi / 36)), 0.2f);
+    bool blocked = false, moved = false;
+    for (t = 0; t < 40; ++t) {
+        r = closed.filter({0.1 * t, {}, &ring, {0.5, 0.0}});
+        blocked |= r.action == MonitorAction::kBlocked;
+        moved |= r.command.v_mps != 0.0 || r.command.w_radps != 0.0;
+    }
+    EXPECT_TRUE(blocked);
+    EXPECT_FALSE(moved);
 }
 
 TEST(CollisionMonitor, IgnoresReturnsTheBodyCannotHitAndRejectsBadParams) {

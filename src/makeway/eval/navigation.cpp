@@ -199,7 +199,7 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
         }
         // Act: the collision monitor between the navigator and the motors, on the same sweep.
         const auto m0 = std::chrono::steady_clock::now();
-        const planning::MonitorResult guarded = monitor.filter({t + period, belief.pose, &belief.points_world, step.command});
+        const planning::MonitorResult guarded = monitor.filter({t + period, belief.pose, &belief.points_world, step.command, belief.v_mps, belief.w_radps});
         const double monitor_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - m0).count();
         out.monitor_ms_max = std::max(out.monitor_ms_max, monitor_ms);
         out.monitor_actions.push_back(guarded.action);

@@ -10,7 +10,7 @@
 namespace makeway::planning {
 
 struct AStarParams {
-    double cost_weight = 10.0;
+    double cost_weight = 30.0;
     std::uint8_t blocked_cost = cost::kInscribed;
     bool allow_unknown = false;
     std::vector<std::string> validate() const;

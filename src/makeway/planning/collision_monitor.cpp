@@ -77,16 +77,42 @@ CollisionMonitor::CollisionMonitor(const CollisionMonitorParams& params) : param
     if (!all.empty()) throw std::invalid_argument("collision monitor: " + all);
 }
 
-double CollisionMonitor::first_contact(double v, double w, double padding, double u_max,
-                                       const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic) const {
+std::vector<std::pair<double, Pose2>> CollisionMonitor::trajectory(const Motion& m) const {
+    // The unicycle of the simulator and the DWA: each velocity moves toward its target within the
+    // acceleration limits, the pose follows the exact arc of each step.
+    const double dt = params_.simulation_time_step_s;
+    auto approach = [](double x, double target, double step) { return x + std::clamp(target - x, -step, step); };
+    std::vector<std::pair<double, Pose2>> out{{0.0, Pose2{}}};
+    double v = m.current.v_mps, w = m.current.w_radps, t = 0.0;
+    Pose2 pose;
+    for (int i = 0; i < 10000; ++i) {
+        const bool commanding = t < m.command_s - 1e-9;
+        if (!commanding && (!m.brake || (v == 0.0 && w == 0.0))) break;
+        const VelocityCommand target = commanding ? m.command : VelocityCommand{};
+        v = approach(v, target.v_mps, params_.max_acc_mps2 * dt);
+        w = approach(w, target.w_radps, params_.max_ang_acc_radps2 * dt);
+        const Pose2 d = along_arc(v, w, dt);
+        const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
+        pose = {pose.x_m + c * d.x_m - s * d.y_m, pose.y_m + s * d.x_m + c * d.y_m, wrap_angle(pose.yaw_rad + d.yaw_rad)};
+        t += dt;
+        out.emplace_back(t, pose);
+    }
+    return out;
+}
+
+double CollisionMonitor::first_contact(const Motion& m, double padding, const std::vector<Eigen::Vector2d>& pts,
+                                       const std::vector<char>& dynamic) const {
     const Eigen::Vector2d half(0.5 * params_.footprint_length_m, 0.5 * params_.footprint_width_m);
-    // Only returns the padded footprint can reach over the arc.
+    const std::vector<std::pair<double, Pose2>> poses = trajectory(m);
+    // Only returns the padded footprint can reach along the way.
     const double grow = params_.dynamic_speed_mps, L = params_.latency_s;
-    const double reach = half.norm() + padding + std::abs(v) * u_max + 1e-9;
-    const double reach_dynamic = reach + grow * (L + u_max);
+    double travel = 0.0;
+    for (const auto& [t, q] : poses) travel = std::max(travel, std::hypot(q.x_m, q.y_m));
+    const double reach = half.norm() + padding + travel + 1e-9;
+    const double reach_dynamic = reach + grow * (L + poses.back().first);
     std::vector<Eigen::Vector2d> near;
     std::vector<double> now;     // each return's distance to the footprint where the robot stands
-    std::vector<double> growth;  // its padding's growth per second along the arc
+    std::vector<double> growth;  // its padding's growth per second along the way
     for (std::size_t i = 0; i < pts.size(); ++i) {
         const bool moving = !dynamic.empty() && dynamic[i] != 0 && grow > 0.0;
         const double r = moving ? reach_dynamic : reach;
@@ -96,17 +122,14 @@ double CollisionMonitor::first_contact(double v, double w, double padding, doubl
         growth.push_back(moving ? grow : 0.0);
     }
     if (static_cast<int>(near.size()) < params_.min_points) return -1.0;
-    const int steps = std::max(1, static_cast<int>(std::ceil(u_max / params_.simulation_time_step_s - 1e-9)));
-    for (int i = 0; i <= steps; ++i) {
-        const double u = std::min(u_max, i * params_.simulation_time_step_s);
-        const Pose2 q = along_arc(v, w, u);
+    for (const auto& [t, q] : poses) {
         const double c = std::cos(q.yaw_rad), s = std::sin(q.yaw_rad);
         int hits = 0;
         for (std::size_t j = 0; j < near.size(); ++j) {
             const Eigen::Vector2d d = near[j] - Eigen::Vector2d(q.x_m, q.y_m);
             const double sd = rect_signed_distance({c * d.x() + s * d.y(), -s * d.x() + c * d.y()}, half);
             // Inside the zone, and closer than now: a robot may always move away from what is near.
-            if (sd <= padding + growth[j] * (L + u) && sd < now[j] - 1e-4 && ++hits >= params_.min_points) return u;
+            if (sd <= padding + growth[j] * (L + t) && sd < now[j] - 1e-4 && ++hits >= params_.min_points) return t;
         }
     }
     return -1.0;
@@ -114,29 +137,39 @@ double CollisionMonitor::first_contact(double v, double w, double padding, doubl
 
 MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const std::vector<Eigen::Vector2d>& pts,
                                       const std::vector<char>& dynamic) const {
+    return check(cmd, cmd, pts, dynamic);
+}
+
+MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const VelocityCommand& current,
+                                      const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic) const {
     MonitorResult r;
     r.command = cmd;
-    if (!params_.enabled || (cmd.v_mps == 0.0 && cmd.w_radps == 0.0)) return r;
-    const double v = cmd.v_mps, w = cmd.w_radps, L = params_.latency_s;
-    const double k = std::max(std::abs(v) / params_.max_acc_mps2, std::abs(w) / params_.max_ang_acc_radps2);
-    const double u_brake = L + 0.5 * k;
+    if (!params_.enabled) return r;
     auto hold = [&](MonitorAction a) {
         r.command = {};
         r.scale = 0.0;
         r.action = a;
         return r;
     };
-    if (first_contact(v, w, params_.stop_padding_m, u_brake, pts, dynamic) >= 0.0) return hold(MonitorAction::kStop);
+    // Stop: the command for latency_s, then braking, must stay clear. Standing still is always
+    // allowed (there is nothing better to do than brake).
+    const bool still = cmd.v_mps == 0.0 && cmd.w_radps == 0.0;
+    if (still) return r;
+    if (first_contact({current, cmd, params_.latency_s, true}, params_.stop_padding_m, pts, dynamic) >= 0.0) {
+        return hold(MonitorAction::kStop);
+    }
     double scale = 1.0;
     const double T = params_.time_before_collision_s;
-    const double u_c = T > 0.0 ? first_contact(v, w, params_.stop_padding_m, T, pts, dynamic) : -1.0;
-    if (u_c >= 0.0 && u_c / T < scale) {  // contact at least T away at the scaled speed
-        scale = u_c / T;
+    const double t_c = T > 0.0 ? first_contact({current, cmd, T, false}, params_.stop_padding_m, pts, dynamic) : -1.0;
+    if (t_c >= 0.0 && t_c / T < scale) {  // contact kept at least T away at the scaled speed
+        scale = t_c / T;
         r.action = MonitorAction::kApproach;
     }
+    const double v = cmd.v_mps, w = cmd.w_radps;
     const double cap = params_.slowdown_ratio * std::min(params_.max_v_mps / std::max(std::abs(v), 1e-9),
                                                          params_.max_w_radps / std::max(std::abs(w), 1e-9));
-    if (cap < scale && first_contact(v, w, params_.slowdown_padding_m, u_brake + params_.slowdown_time_s, pts) >= 0.0) {
+    if (cap < scale &&
+        first_contact({current, cmd, params_.latency_s + params_.slowdown_time_s, true}, params_.slowdown_padding_m, pts) >= 0.0) {
         scale = cap;
         r.action = MonitorAction::kSlowdown;
     }
@@ -146,10 +179,9 @@ MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const std::vec
     return r;
 }
 
-bool CollisionMonitor::recovery_free(const VelocityCommand& c, double duration_s, const std::vector<Eigen::Vector2d>& pts,
-                                     const std::vector<char>& dynamic) const {
-    const double k = std::max(std::abs(c.v_mps) / params_.max_acc_mps2, std::abs(c.w_radps) / params_.max_ang_acc_radps2);
-    return first_contact(c.v_mps, c.w_radps, params_.stop_padding_m, duration_s + params_.latency_s + 0.5 * k, pts, dynamic) < 0.0;
+bool CollisionMonitor::recovery_free(const VelocityCommand& c, const VelocityCommand& current, double duration_s,
+                                     const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic) const {
+    return first_contact({current, c, duration_s + params_.latency_s, true}, params_.stop_padding_m, pts, dynamic) < 0.0;
 }
 
 MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
@@ -201,8 +233,9 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
         while (static_cast<int>(previous_cells_.size()) > params_.dynamic_history) previous_cells_.pop_front();
     }
 
+    const VelocityCommand current{in.v_mps, in.w_radps};
     if (in.t_s < recovery_until_) {  // recovering: the recovery's own command, stop-checked
-        MonitorResult r = check(recovery_command_, pts, dynamic);
+        MonitorResult r = check(recovery_command_, current, pts, dynamic);
         r.recovering = true;
         if (r.scale < params_.min_scale) {  // something came into the way: end the recovery, held
             recovery_until_ = -1.0;
@@ -214,7 +247,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
         r.action = recovery_command_.v_mps != 0.0 ? MonitorAction::kBackup : MonitorAction::kRotate;
         return r;
     }
-    MonitorResult r = check(in.command, pts, dynamic);
+    MonitorResult r = check(in.command, current, pts, dynamic);
     if (r.scale >= params_.min_scale) {
         held_since_ = -1.0;
         return r;
@@ -226,12 +259,12 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     const double turn_sign = in.command.w_radps < 0.0 ? -1.0 : 1.0;
     const VelocityCommand turns[2] = {{0.0, turn_sign * params_.rotate_speed_radps}, {0.0, -turn_sign * params_.rotate_speed_radps}};
     std::optional<std::pair<VelocityCommand, double>> chosen;
-    if (params_.backup_distance_m > 0.0 && recovery_free(backup, params_.backup_distance_m / params_.backup_speed_mps, pts, dynamic)) {
+    if (params_.backup_distance_m > 0.0 && recovery_free(backup, current, params_.backup_distance_m / params_.backup_speed_mps, pts, dynamic)) {
         chosen = {backup, params_.backup_distance_m / params_.backup_speed_mps};
     } else {
         for (const VelocityCommand& t : turns) {
             const double d = params_.rotate_angle_rad / params_.rotate_speed_radps;
-            if (params_.rotate_angle_rad > 0.0 && recovery_free(t, d, pts, dynamic)) {
+            if (params_.rotate_angle_rad > 0.0 && recovery_free(t, current, d, pts, dynamic)) {
                 chosen = {t, d};
                 break;
             }

@@ -14,19 +14,20 @@
 // and where it was seen from; once the sensor could see its place again, only the new sweep counts.
 // New returns (below) are not remembered: a walker that has moved on leaves no trail.
 //
-// Along the arc, u is the time the commanded (v, w) would take to get there ("command seconds").
-// Scaling the command by s in (0, 1] keeps the arc and travels it at rate s; stopping from there
-// takes u_brake(s) = s * latency_s + s^2 * k / 2 with k = max(|v| / a_v, |w| / a_w) (both axes
-// brake at their acceleration limits). So:
-//   stop     : min_points returns in the footprint + stop_padding_m swept over u in
-//              [0, u_brake(1)] (latency plus braking distance at the commanded speed) -> v = w = 0.
-//   slowdown : returns in the footprint + slowdown_padding_m swept over
-//              u in [0, u_brake(1) + slowdown_time_s] -> at most slowdown_ratio of the top speed
-//              (a cap, not a factor on the command: DWA samples around the current velocity, so
-//              a factor would compound cycle after cycle down to a crawl).
-//   approach : the first u_c at which the footprint + stop_padding_m touches returns; the command
-//              is slowed so that contact stays at least time_before_collision_s away:
-//              s = u_c / time_before_collision_s (nav2's approach polygon).
+// Each zone follows the robot's own motion model (the simulator's and DWA's): from the current
+// velocity, each axis moves toward its target within the acceleration limits. With a_v, a_w the
+// limits and L = latency_s (the sweep's age and one control period, during which the command
+// runs before the next check can change it):
+//   stop     : the command for L, then braking to a standstill: min_points returns in the
+//              footprint + stop_padding_m anywhere along it -> v = w = 0 (braking is the least
+//              motion left; standing still always passes).
+//   slowdown : the command for L + slowdown_time_s, then braking, with the footprint +
+//              slowdown_padding_m -> at most slowdown_ratio of the top speeds (a cap, not a
+//              factor on the command: DWA samples around the current velocity, so a factor would
+//              compound cycle after cycle down to a crawl).
+//   approach : the command for time_before_collision_s; first contact of the footprint +
+//              stop_padding_m at t_c -> the command scaled by t_c / time_before_collision_s, so
+//              that contact stays that far ahead (nav2's approach polygon).
 // A return counts only where the motion brings the footprint closer to it than it is now, so a
 // robot standing next to a wall may always drive or turn away from it.
 //
@@ -44,6 +45,7 @@
 #include <cstdint>
 #include <deque>
 #include <optional>
+#include <utility>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -70,10 +72,10 @@ struct CollisionMonitorParams {
     int min_points = 2;                 ///< returns in a zone before it acts (nav2 min_points)
     double stop_padding_m = 0.04;       ///< the stop zone and the approach check: footprint grown by this
     double slowdown_padding_m = 0.1;    ///< the slowdown zone: footprint grown by this ...
-    double slowdown_time_s = 0.3;       ///< ... swept this far past the braking arc [command s]
+    double slowdown_time_s = 0.3;       ///< ... along the command this much longer before braking [s]
     double slowdown_ratio = 0.6;        ///< inside the slowdown zone: at most this share of the top speeds
     double time_before_collision_s = 0.8;  ///< approach: contact kept at least this far ahead [s]; 0: off
-    double simulation_time_step_s = 0.05;  ///< approach and zones: the step along the arc [command s]
+    double simulation_time_step_s = 0.05;  ///< the zones' time step along the predicted motion [s]
     double dynamic_speed_mps = 1.0;     ///< new returns may move this fast (a walking person); 0: all static
     int dynamic_history = 5;            ///< sweeps a cell is remembered as seen (new: seen in none of them)
     double dynamic_min_height_m = 0.1;  ///< lower returns are never new (floor noise at the lowest rings' reach)
@@ -100,6 +102,7 @@ struct MonitorInput {
     Pose2 pose;                                ///< the base in the world frame of the points (estimated)
     const PointCloud* points_world = nullptr;  ///< the latest de-skewed sweep; null: only the memory
     VelocityCommand command;                   ///< what the navigator asks for
+    double v_mps = 0.0, w_radps = 0.0;         ///< the base's velocity now (wheel odometry)
 };
 
 struct MonitorResult {
@@ -118,9 +121,12 @@ public:
     MonitorResult filter(const MonitorInput& input);
     /// The check alone, on returns already in the base frame (x forward, y left): no memory, no
     /// recovery. What filter() does per cycle, exposed for tests and tools.
-    /// `dynamic` (empty, or one flag per point): returns that are new in this sweep.
+    /// `dynamic` (empty, or one flag per point): returns that are new in this sweep; `current`:
+    /// the velocity now (the first form: already at the commanded velocity).
     MonitorResult check(const VelocityCommand& command, const std::vector<Eigen::Vector2d>& points_base,
                         const std::vector<char>& dynamic = {}) const;
+    MonitorResult check(const VelocityCommand& command, const VelocityCommand& current,
+                        const std::vector<Eigen::Vector2d>& points_base, const std::vector<char>& dynamic = {}) const;
     const CollisionMonitorParams& params() const { return params_; }
 
 private:
@@ -129,13 +135,22 @@ private:
         double t_s;
         double blind_m;  ///< remembered while closer than this to the sensor
     };
-    /// The first u in [0, u_max] (steps of simulation_time_step_s) where the padded footprint
-    /// swept along (v, w) holds min_points returns it is closing in on; a negative value: none.
-    /// With `dynamic` flags, a flagged return's padding grows by dynamic_speed_mps (latency_s + u).
-    double first_contact(double v, double w, double padding, double u_max, const std::vector<Eigen::Vector2d>& pts,
+    /// A motion: from `current`, `command` for command_s, then (brake) to a standstill.
+    struct Motion {
+        VelocityCommand current, command;
+        double command_s = 0.0;
+        bool brake = true;
+    };
+    /// The base's poses along a motion (time, pose in the base frame at time 0), every
+    /// simulation_time_step_s.
+    std::vector<std::pair<double, Pose2>> trajectory(const Motion& m) const;
+    /// The first time along `m` at which the footprint grown by `padding` holds min_points returns
+    /// it is closing in on; negative: none. A flagged (`dynamic`) return's padding grows by
+    /// dynamic_speed_mps (latency_s + t).
+    double first_contact(const Motion& m, double padding, const std::vector<Eigen::Vector2d>& pts,
                          const std::vector<char>& dynamic = {}) const;
-    bool recovery_free(const VelocityCommand& c, double duration_s, const std::vector<Eigen::Vector2d>& pts,
-                       const std::vector<char>& dynamic) const;
+    bool recovery_free(const VelocityCommand& c, const VelocityCommand& current, double duration_s,
+                       const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic) const;
 
     CollisionMonitorParams params_;
     std::vector<Remembered> memory_;
