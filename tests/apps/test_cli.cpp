@@ -147,7 +147,20 @@ TEST(Cli, DemoWritesItsOutputs) {
         EXPECT_GE(s["navigation"][3]["final_objects"].size(), 8u) << s["navigation"][3].dump();
         EXPECT_TRUE(std::filesystem::exists(dir / "out" / "routes" / "ours.png"));
     }
-    for (const auto& run : s["navigation"]) EXPECT_TRUE(run["reached_goal"].get<bool>()) << run["method"];
+    // Every method ends within 60 s of driving or says why it stopped; all but `con` (the robot
+    // taken 3x its size, for which the rows of the study space may be closed) reach the goal; the
+    // object-aware methods drive into nothing (issue 29).
+    for (const auto& run : s["navigation"]) {
+        const std::string method = run["method"].get<std::string>();
+        if (method != "con") {
+            EXPECT_TRUE(run["reached_goal"].get<bool>()) << method;
+        }
+        EXPECT_TRUE(run["reached_goal"].get<bool>() || (!run["failure"].get<std::string>().empty() && run["total_time_s"].get<double>() <= 60.0))
+            << run.dump();
+        if (method == "gt-perc" || method == "ours") {
+            EXPECT_EQ(run["robot_caused_contacts"].get<int>(), 0) << run.dump();
+        }
+    }
     for (const char* f : {"scene.yaml", "scene.png", "report.md", "routes/all_methods.png", "routes/con.png",
                           "routes/oppo.png", "routes/gt-perc.png", "sequence/poses_gt.txt", "sequence/clouds/000010.pcd",
                           "sequence/objects/000019.json"}) {
