@@ -202,5 +202,43 @@ TEST(BodyModel, LowMarksNeedTwoReturnsAndSurviveRaysPassingOverThem) {
     EXPECT_EQ(*layer.grid().cost_at({2.0, 2.51}), cost::kFree);
 }
 
+// People in the costmap: a walker crossing 1.5 m ahead is marked from the live sweep while it
+// stands there and cleared by the rays of a later sweep once it has walked on (issue 29).
+TEST(BodyModel, AWalkerIsMarkedWhileThereAndClearedWhenGone) {
+    sim::Scene scene;
+    scene.floor_min_m = {-4.0, -4.0};
+    scene.floor_max_m = {4.0, 4.0};
+    scene.walls = {{{-3.0, -3.0}, {3.0, -3.0}, 0.2, 3.0}, {{3.0, -3.0}, {3.0, 3.0}, 0.2, 3.0},
+                   {{3.0, 3.0}, {-3.0, 3.0}, 0.2, 3.0}, {{-3.0, 3.0}, {-3.0, -3.0}, 0.2, 3.0}};
+    scene.walkers = {{{{1.5, -2.0}, {1.5, 2.0}}, 1.0, 0.0}};  // at (1.5, 0) at t = 2 s, at (1.5, 2) at t = 4 s
+    sim::World world(scene, {});
+    const sim::RobotParams robot;
+    const Isometry3 T_world_sensor = make_T_xyz_yaw({0.0, 0.0, robot.lidar_height_m}, 0.0);
+    const Costmap geometry({-4.0, -4.0}, 0.05, 160, 160);
+    costmap::ObstacleLayer layer(geometry, {.body = robot.body()});
+    auto sweep_at = [&](double t, std::uint64_t k) {
+        const PointCloud sweep = sim::simulate_sweep(world, {}, [&](double) { return T_world_sensor; }, t, 3, k);
+        const PointCloud world_points = perception::deskew_to_world({sweep, t, 0.1, T_world_sensor, T_world_sensor});
+        Costmap master = geometry;
+        GridWindow window;
+        costmap::LayerInput in;
+        in.points_world = &world_points;
+        in.sensor_world_m = T_world_sensor.translation();
+        layer.update_bounds(master, in, window);
+    };
+    auto marked_near = [&](const Eigen::Vector2d& p) {
+        int n = 0;
+        for (int y = 0; y < 160; ++y) {
+            for (int x = 0; x < 160; ++x) n += layer.grid().at(x, y) == cost::kLethal && (geometry.centre_of(x, y) - p).norm() < 0.35;
+        }
+        return n;
+    };
+    sweep_at(1.95, 0);
+    EXPECT_GE(marked_near({1.5, 0.0}), 3);
+    sweep_at(3.95, 1);
+    EXPECT_EQ(marked_near({1.5, 0.0}), 0);
+    EXPECT_GE(marked_near({1.5, 2.0}), 1);  // where it stands now
+}
+
 }  // namespace
 }  // namespace makeway::eval

@@ -200,7 +200,9 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     if (in.points_world != nullptr) {
         std::unordered_set<std::int64_t> seen;
         std::vector<std::int64_t> cells;
-        auto key_of = [](std::int64_t ix, std::int64_t iy) { return (ix << 32) ^ (iy & 0xffffffffLL); };
+        auto key_of = [](std::int64_t ix, std::int64_t iy) {  // unsigned: no shift of a negative value
+            return static_cast<std::int64_t>((static_cast<std::uint64_t>(ix) << 32) ^ (static_cast<std::uint64_t>(iy) & 0xffffffffULL));
+        };
         const double r2 = params_.max_range_m * params_.max_range_m;
         const double tan_down = std::tan(-params_.lowest_beam_deg * kPi / 180.0);
         for (const Eigen::Vector3f& p : in.points_world->xyz) {
@@ -213,7 +215,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             if (!seen.insert(key_of(ix, iy)).second) continue;
             cells.push_back(key_of(ix, iy));
             pts.push_back(T_base_world * q);
-            // New: no return in this cell or next to it in the previous sweep (none before the first).
+            // New: no return in this cell or next to it in the last dynamic_history sweeps (none before the first).
             bool known = previous_cells_.empty();
             for (const std::vector<std::int64_t>& earlier : previous_cells_) {
                 for (std::int64_t dx = -1; dx <= 1 && !known; ++dx) {
