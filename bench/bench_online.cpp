@@ -25,6 +25,7 @@ struct Drive {
     std::vector<ObjectEstimate> objects;  // the truth, as the affordance layer's input
     Costmap free_map;
     Eigen::Vector2d goal = Eigen::Vector2d::Zero();  // the scene's goal
+    std::vector<PointCloud> worlds;                  // each sweep de-skewed on the true poses, world frame
 };
 
 const Drive& medium_drive() {
@@ -48,6 +49,10 @@ const Drive& medium_drive() {
         }
         d.free_map = Costmap(Eigen::Vector2d(d.start.x_m - 20.0, d.start.y_m - 20.0), 0.05, 800, 800);
         d.goal = {scene.goal.x_m, scene.goal.y_m};
+        for (const sim::SimFrame& f : d.frames) {
+            d.worlds.push_back(perception::deskew_sweep({f.points_sensor, f.stamp_s, 0.1, f.T_world_sensor, f.T_world_sensor},
+                                                        Isometry3::Identity(), false));
+        }
         return d;
     }();
     return drive;
@@ -86,11 +91,7 @@ void BM_ControlCycle(benchmark::State& state) {
     const tbb::global_control one_core(tbb::global_control::max_allowed_parallelism, 1);
     const Drive& d = medium_drive();
     const sim::RobotParams robot;
-    std::vector<PointCloud> worlds;
-    for (const sim::SimFrame& f : d.frames) {
-        worlds.push_back(perception::deskew_sweep({f.points_sensor, f.stamp_s, 0.1, f.T_world_sensor, f.T_world_sensor},
-                                                  Isometry3::Identity(), false));
-    }
+    const std::vector<PointCloud>& worlds = d.worlds;
     pipeline::NavigatorParams params;
     params.affordance_layer = state.range(0) != 0;
     params.inflation.inscribed_radius_m = robot.inscribed_radius_m();
@@ -114,11 +115,7 @@ BENCHMARK(BM_ControlCycle)->Arg(0)->Arg(1)->ArgName("affordance")->Unit(benchmar
 void BM_CollisionMonitor(benchmark::State& state) {
     const Drive& d = medium_drive();
     const sim::RobotParams robot;
-    std::vector<PointCloud> worlds;
-    for (const sim::SimFrame& f : d.frames) {
-        worlds.push_back(perception::deskew_sweep({f.points_sensor, f.stamp_s, 0.1, f.T_world_sensor, f.T_world_sensor},
-                                                  Isometry3::Identity(), false));
-    }
+    const std::vector<PointCloud>& worlds = d.worlds;
     planning::CollisionMonitorParams p;
     p.footprint_length_m = robot.length_m;
     p.footprint_width_m = robot.width_m;

@@ -116,12 +116,18 @@ TEST(UnavoidableRisk, MatchesBruteForceOnRandomGrids) {
 
 // A 3 cm foot plate (a table's): the robot cannot roll over it, so the simulator counts a
 // collision, and the obstacle layer marks it from a sweep; nothing on the bare floor is marked.
-TEST(BodyModel, ALowPartTheRobotCanHitIsSeenByTheCostmap) {
+// A 6 x 6 m room, nothing in it.
+sim::Scene empty_room() {
     sim::Scene scene;
     scene.floor_min_m = {-4.0, -4.0};
     scene.floor_max_m = {4.0, 4.0};
     scene.walls = {{{-3.0, -3.0}, {3.0, -3.0}, 0.2, 3.0}, {{3.0, -3.0}, {3.0, 3.0}, 0.2, 3.0},
                    {{3.0, 3.0}, {-3.0, 3.0}, 0.2, 3.0}, {{-3.0, 3.0}, {-3.0, -3.0}, 0.2, 3.0}};
+    return scene;
+}
+
+TEST(BodyModel, ALowPartTheRobotCanHitIsSeenByTheCostmap) {
+    sim::Scene scene = empty_room();
     sim::SceneObject plate;
     plate.id = 1;
     plate.cls = ObjectClass::kTable;
@@ -205,11 +211,7 @@ TEST(BodyModel, LowMarksNeedTwoReturnsAndSurviveRaysPassingOverThem) {
 // People in the costmap: a walker crossing 1.5 m ahead is marked from the live sweep while it
 // stands there and cleared by the rays of a later sweep once it has walked on (issue 29).
 TEST(BodyModel, AWalkerIsMarkedWhileThereAndClearedWhenGone) {
-    sim::Scene scene;
-    scene.floor_min_m = {-4.0, -4.0};
-    scene.floor_max_m = {4.0, 4.0};
-    scene.walls = {{{-3.0, -3.0}, {3.0, -3.0}, 0.2, 3.0}, {{3.0, -3.0}, {3.0, 3.0}, 0.2, 3.0},
-                   {{3.0, 3.0}, {-3.0, 3.0}, 0.2, 3.0}, {{-3.0, 3.0}, {-3.0, -3.0}, 0.2, 3.0}};
+    sim::Scene scene = empty_room();
     scene.walkers = {{{{1.5, -2.0}, {1.5, 2.0}}, 1.0, 0.0}};  // at (1.5, 0) at t = 2 s, at (1.5, 2) at t = 4 s
     sim::World world(scene, {});
     const sim::RobotParams robot;
