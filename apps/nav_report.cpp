@@ -114,7 +114,7 @@ io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory) {
 
 io::Json run_timing_json(const eval::NavRunResult& r) {
     const auto [median, p99] = median_p99(r.cycle_ms);
-    io::Json j = {{"method", r.method}, {"cycle_ms_median", median}, {"cycle_ms_p99", p99}};
+    io::Json j = {{"method", r.method}, {"cycle_ms_median", median}, {"cycle_ms_p99", p99}, {"monitor_ms_max", r.monitor_ms_max}};
     if (!r.keyframe_timing.empty()) {
         std::vector<double> chain, accumulate, ground, detect, verify, track, deskew;
         for (const auto& t : r.keyframe_timing) {

@@ -121,7 +121,7 @@ struct NavRunResult {
     /// The collision monitor per control cycle (none, slowdown, approach, stop, recovery_backup,
     /// recovery_rotate, blocked), and the cycles it spent on each.
     std::vector<planning::MonitorAction> monitor_actions;
-    double monitor_ms_max = 0.0;
+    double monitor_ms_max = 0.0;  ///< the slowest collision monitor cycle (timing.json; included in cycle_ms)
     double min_clearance_m = 0.0;
     double shortest_m = 0.0;    ///< shortest collision-free route length start -> waypoint -> goal
     double spl = 0.0;           ///< success weighted by shortest / driven length
