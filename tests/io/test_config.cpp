@@ -64,6 +64,42 @@ TEST(Config, ShippedDefaultFileMatchesBuiltInDefaults) {
         EXPECT_EQ(ct.motion[c2].min_displacement_m, dt.motion[c2].min_displacement_m);
         EXPECT_EQ(ct.motion[c2].motion_window_s, dt.motion[c2].motion_window_s);
     }
+    EXPECT_EQ(c.system.navigator.astar.cost_weight, d.system.navigator.astar.cost_weight);
+    const auto& cm = c.system.navigator.monitor;  // the collision monitor's keys (the robot's fill the rest)
+    const auto& dm = d.system.navigator.monitor;
+    EXPECT_EQ(cm.enabled, dm.enabled);
+    EXPECT_EQ(cm.latency_s, dm.latency_s);
+    EXPECT_EQ(cm.min_points, dm.min_points);
+    EXPECT_EQ(cm.stop_padding_m, dm.stop_padding_m);
+    EXPECT_EQ(cm.slowdown_padding_m, dm.slowdown_padding_m);
+    EXPECT_EQ(cm.slowdown_time_s, dm.slowdown_time_s);
+    EXPECT_EQ(cm.slowdown_ratio, dm.slowdown_ratio);
+    EXPECT_EQ(cm.time_before_collision_s, dm.time_before_collision_s);
+    EXPECT_EQ(cm.simulation_time_step_s, dm.simulation_time_step_s);
+    EXPECT_EQ(cm.dynamic_speed_mps, dm.dynamic_speed_mps);
+    EXPECT_EQ(cm.dynamic_history, dm.dynamic_history);
+    EXPECT_EQ(cm.dynamic_min_height_m, dm.dynamic_min_height_m);
+    EXPECT_EQ(cm.min_scale, dm.min_scale);
+    EXPECT_EQ(cm.lowest_beam_deg, dm.lowest_beam_deg);
+    EXPECT_EQ(cm.blind_memory_s, dm.blind_memory_s);
+    EXPECT_EQ(cm.max_range_m, dm.max_range_m);
+    EXPECT_EQ(cm.recovery_after_s, dm.recovery_after_s);
+    EXPECT_EQ(cm.backup_speed_mps, dm.backup_speed_mps);
+    EXPECT_EQ(cm.backup_distance_m, dm.backup_distance_m);
+    EXPECT_EQ(cm.rotate_speed_radps, dm.rotate_speed_radps);
+    EXPECT_EQ(cm.rotate_angle_rad, dm.rotate_angle_rad);
+}
+
+TEST(Config, CollisionMonitorProblemsAreListedWithTheirSection) {
+    try {
+        parse_config("collision_monitor: {slowdown_ratio: 0, stop_paddin_m: 0.1}\n");
+        FAIL() << "accepted a bad collision_monitor section";
+    } catch (const FormatError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("collision_monitor"), std::string::npos) << what;
+        EXPECT_NE(what.find("slowdown_ratio"), std::string::npos) << what;
+        EXPECT_NE(what.find("stop_paddin_m"), std::string::npos) << what;  // the unknown key, with a suggestion
+    }
 }
 
 TEST(Config, TrackerIsConfigurable) {
