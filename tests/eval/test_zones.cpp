@@ -126,6 +126,17 @@ sim::Scene empty_room() {
     return scene;
 }
 
+// One sweep (world frame, from a sensor standing at T_world_sensor) into the obstacle layer.
+void update_from_sweep(costmap::ObstacleLayer& layer, const Costmap& geometry, const PointCloud& world_points,
+                       const Isometry3& T_world_sensor) {
+    Costmap master = geometry;
+    GridWindow window;
+    costmap::LayerInput in;
+    in.points_world = &world_points;
+    in.sensor_world_m = T_world_sensor.translation();
+    layer.update_bounds(master, in, window);
+}
+
 TEST(BodyModel, ALowPartTheRobotCanHitIsSeenByTheCostmap) {
     sim::Scene scene = empty_room();
     sim::SceneObject plate;
@@ -153,12 +164,7 @@ TEST(BodyModel, ALowPartTheRobotCanHitIsSeenByTheCostmap) {
     auto marked_on_plate = [&](const BodyHeights& body) {
         const Costmap geometry({-4.0, -4.0}, 0.05, 160, 160);
         costmap::ObstacleLayer layer(geometry, {.body = body});
-        Costmap master = geometry;
-        GridWindow window;
-        costmap::LayerInput in;
-        in.points_world = &world_points;
-        in.sensor_world_m = T_world_sensor.translation();
-        layer.update_bounds(master, in, window);
+        update_from_sweep(layer, geometry, world_points, T_world_sensor);
         int marked = 0;
         for (int y = 0; y < 160; ++y) {
             for (int x = 0; x < 160; ++x) {
@@ -220,13 +226,7 @@ TEST(BodyModel, AWalkerIsMarkedWhileThereAndClearedWhenGone) {
     costmap::ObstacleLayer layer(geometry, {.body = robot.body()});
     auto sweep_at = [&](double t, std::uint64_t k) {
         const PointCloud sweep = sim::simulate_sweep(world, {}, [&](double) { return T_world_sensor; }, t, 3, k);
-        const PointCloud world_points = perception::deskew_to_world({sweep, t, 0.1, T_world_sensor, T_world_sensor});
-        Costmap master = geometry;
-        GridWindow window;
-        costmap::LayerInput in;
-        in.points_world = &world_points;
-        in.sensor_world_m = T_world_sensor.translation();
-        layer.update_bounds(master, in, window);
+        update_from_sweep(layer, geometry, perception::deskew_to_world({sweep, t, 0.1, T_world_sensor, T_world_sensor}), T_world_sensor);
     };
     auto marked_near = [&](const Eigen::Vector2d& p) {
         int n = 0;
