@@ -74,13 +74,15 @@ tsan: deps
 	    TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$(CURDIR)/tests/tsan.supp" \
 	    build-tsan/bin/$$t --gtest_brief=1 --gtest_filter="$${run#*:}" || exit 1; done
 
-# The ROS 1 node (makeway_node) and its integration test against a real master (Debian's rosmaster):
-# a simulated bag played into the node at twice its rate.
+# The ROS 1 nodes (makeway_node, makeway_sim_node) and their integration tests against a real
+# master (Debian's rosmaster): a simulated bag played into the node at twice its rate; the node
+# driving the simulated robot to a goal, and its safety stops.
 ros:
 	@scripts/install-deps.sh --ros
 	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=$(TYPE) -DMAKEWAY_ROS_NODE=ON $(CMAKE_ARGS) > /dev/null
-	@cmake --build $(BUILD) -j $(JOBS) --target makeway makeway_node test_node
+	@cmake --build $(BUILD) -j $(JOBS) --target makeway makeway_node makeway_sim_node test_node test_node_drives
 	@$(BUILD)/bin/test_node --gtest_brief=1
+	@$(BUILD)/bin/test_node_drives --gtest_brief=1
 
 # libFuzzer targets (clang), one per parser: build-fuzz/bin/fuzz_*.
 fuzz:

@@ -26,7 +26,7 @@
 #include "io/progress.hpp"
 #include "io/staged_output.hpp"
 #include "io/tracking_io.hpp"
-#include "makeway/pipeline/mapping_system.hpp"
+#include "makeway/pipeline/online_system.hpp"
 #include "ros/bag_io.hpp"
 
 namespace makeway::apps {
@@ -47,15 +47,6 @@ struct Timings {
     }
 };
 
-Isometry3 extrinsics_from(const std::vector<double>& v) {
-    Isometry3 T = Isometry3::Identity();
-    T.linear() = (Eigen::AngleAxisd(v[5], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(v[4], Eigen::Vector3d::UnitY()) *
-                  Eigen::AngleAxisd(v[3], Eigen::Vector3d::UnitX()))
-                     .toRotationMatrix();
-    T.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
-    return T;
-}
-
 // Where the pictures look: what was driven and mapped, plus a margin, within the costmap.
 void view_bounds(const std::vector<Pose2>& trajectory, const std::vector<ObjectEstimate>& objects, const Costmap& map,
                  Eigen::Vector2d& lo, Eigen::Vector2d& hi) {
@@ -71,8 +62,12 @@ void view_bounds(const std::vector<Pose2>& trajectory, const std::vector<ObjectE
 
 int run_run(const RunOptions& o) {
     const io::Config cfg = o.config.empty() ? io::Config{} : io::load_config(o.config);
-    pipeline::SystemParams params = io::online_system_params(cfg);
-    if (!o.extrinsics.empty()) params.T_base_sensor = extrinsics_from(o.extrinsics);
+    std::optional<Isometry3> extrinsics;
+    if (!o.extrinsics.empty()) {
+        const std::vector<double>& e = o.extrinsics;
+        extrinsics = make_T_xyz_rpy({e[0], e[1], e[2]}, e[3], e[4], e[5]);
+    }
+    pipeline::SystemParams params = io::online_system_params(cfg, extrinsics ? &*extrinsics : nullptr);
     const bool external = !o.poses.empty();
     if (external) params.lidar_odometry = false;  // the given poses are the pose: no odometry runs
 
@@ -90,13 +85,21 @@ int run_run(const RunOptions& o) {
     std::optional<verification::CadLibrary> library;
     if (!o.cad.empty()) library = io::read_cad_folder(o.cad);
     const Pose2 start = !o.start.empty() ? Pose2{o.start[0], o.start[1], o.start[2]} : source->first_pose().value_or(Pose2{});
-    const Costmap static_map = !o.map.empty() ? io::read_map_server(o.map) : pipeline::free_area(start, o.costmap_size_m, o.resolution_m);
-    pipeline::MappingSystem system(params, start, static_map, !o.map.empty(), &detector, library ? &*library : nullptr);
     std::unique_ptr<shape::LearnedShapePrior> prior;
     if (!o.shape_model.empty()) {
         prior = std::make_unique<shape::LearnedShapePrior>(std::make_shared<const shape::ShapeModel>(load_shape_model(o.shape_model)));
-        system.set_shape_prior(prior.get());
     }
+    pipeline::OnlineSystemSetup setup;
+    setup.params = params;
+    setup.start = start;
+    if (!o.map.empty()) setup.map = io::read_map_server(o.map);
+    setup.map_kind = o.map.empty() ? pipeline::MapKind::kNone : pipeline::MapKind::kFurnished;
+    setup.free_area_m = o.costmap_size_m;
+    setup.free_area_resolution_m = o.resolution_m;
+    setup.detector = &detector;
+    setup.library = library ? &*library : nullptr;
+    setup.prior = prior.get();
+    pipeline::OnlineSystem system(setup);  // mapping: no route is given, the command stays zero
 
     io::StagedOutput staged(o.out);  // everything or nothing
     const fs::path out = staged.staging();
@@ -123,7 +126,7 @@ int run_run(const RunOptions& o) {
         }
         points += s->points.size();
         const double stamp = s->stamp_s;
-        const pipeline::MappingStep step = system.process({std::move(s->points), stamp, s->duration_s, s->pose_start, s->pose_end});
+        const pipeline::OnlineStep step = system.process({std::move(s->points), stamp, s->duration_s, s->pose_start, s->pose_end});
         ++sweeps;
         const pipeline::SweepResult& r = step.sweep;
         trajectory.push_back(r.pose);
@@ -131,7 +134,7 @@ int run_run(const RunOptions& o) {
         timings.add("per_sweep_ms", step.per_sweep_ms());
         timings.add("pose_ms", r.timing.deskew_ms);
         if (r.odometry) timings.add("odometry_ms", r.timing.odometry_ms);
-        timings.add("costmap_ms", step.costmap_ms);
+        timings.add("costmap_ms", step.control.nav.update_ms);
         const double end = stamp + s->duration_s;
         if (bag) {
             bag->write_odometry("/makeway/odometry", r.pose, 0.0, 0.0, end, "map", "base_link");

@@ -7,6 +7,7 @@
 
 #include "io/canvas.hpp"
 #include "io/interrupt.hpp"
+#include "io/nav_config.hpp"
 #include "makeway/common/statistics.hpp"
 
 namespace makeway::apps {
@@ -41,13 +42,8 @@ double metric_of(const io::Json& run, const std::string& key) { return run[key].
 std::pair<double, double> median_p99(const std::vector<double>& v) { return {median(v), percentile(v, 0.99)}; }
 
 eval::NavParams nav_params(const io::Config& config) {
-    eval::NavParams p;
-    p.lidar = config.lidar;
-    p.robot = config.robot;
-    p.odometry = config.odometry;
-    p.system = io::online_system_params(config);  // navigation sets each method's inflation radius
+    eval::NavParams p = io::nav_params(config);
     p.on_sweep = io::throw_if_interrupted;  // Ctrl-C stops a run within one sweep
-    p.seed = config.simulation.seed;
     return p;
 }
 

@@ -513,28 +513,11 @@ Config load_config(const std::filesystem::path& path) {
     }
 }
 
-pipeline::SystemParams online_system_params(const Config& config) {
+pipeline::SystemParams online_system_params(const Config& config, const Isometry3* T_base_sensor) {
     pipeline::SystemParams p = config.system;
-    pipeline::NavigatorParams& n = p.navigator;
-    n.affordance = config.affordance;
-    n.affordance_layer = true;
-    n.inflation.inscribed_radius_m = config.robot.inscribed_radius_m();
-    n.inflation.inflation_radius_m = config.robot.circumscribed_radius_m();
-    n.obstacle.body = config.robot.body();  // what the robot can hit is what the costmap marks
-    n.dwa.footprint_length_m = config.robot.length_m;
-    n.dwa.footprint_width_m = config.robot.width_m;
-    n.dwa.max_w_radps = config.robot.max_w_radps;
-    n.dwa.acc_v_mps2 = config.robot.max_acc_mps2;
-    n.dwa.acc_w_radps2 = config.robot.max_ang_acc_radps2;
-    n.monitor.footprint_length_m = config.robot.length_m;
-    n.monitor.footprint_width_m = config.robot.width_m;
-    n.monitor.body = config.robot.body();
-    n.monitor.max_v_mps = config.robot.max_v_mps;
-    n.monitor.max_w_radps = config.robot.max_w_radps;
-    n.monitor.max_acc_mps2 = config.robot.max_acc_mps2;
-    n.monitor.max_ang_acc_radps2 = config.robot.max_ang_acc_radps2;
-    n.monitor.sensor_height_m = config.robot.lidar_height_m;
-    p.T_base_sensor = config.robot.T_robot_sensor();
+    p.navigator.affordance = config.affordance;
+    p.navigator.affordance_layer = true;
+    pipeline::apply_robot(config.robot, p, T_base_sensor);
     return p;
 }
 

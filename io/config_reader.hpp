@@ -86,10 +86,11 @@ struct Config {
     labelling::LabelParams labelling;
 };
 
-/// The online system's parameters as the program runs it on a robot (`ours`): the configuration's
-/// sections, the affordance zones into the navigator, the robot's footprint and limits into DWA,
-/// inflation at the robot's circumscribed radius, the sensor's mount as extrinsics.
-pipeline::SystemParams online_system_params(const Config& config);
+/// The online system's parameters as the program runs it on a robot (`ours` in the benchmark,
+/// `makeway run`, makeway_node): the configuration's sections, the affordance zones into the
+/// navigator, and the robot description into every stage (pipeline::apply_robot). `T_base_sensor`:
+/// measured extrinsics (null: the robot section's mount).
+pipeline::SystemParams online_system_params(const Config& config, const Isometry3* T_base_sensor = nullptr);
 
 /// Throws FormatError listing every problem ("3 problems: a; b; c").
 Config parse_config(std::string_view yaml_text);

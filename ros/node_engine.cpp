@@ -5,6 +5,7 @@
 #include <deque>
 #include <mutex>
 #include <thread>
+#include <utility>
 
 #include "io/cad_folder.hpp"
 #include "io/config_reader.hpp"
@@ -13,7 +14,8 @@
 #include "io/map_server_io.hpp"
 #include "io/tracking_io.hpp"
 #include "makeway/perception/detector.hpp"
-#include "makeway/pipeline/mapping_system.hpp"
+#include "makeway/pipeline/online_system.hpp"
+#include "ros/node_engine_params.hpp"
 #include "ros/sweep_source.hpp"
 
 namespace makeway::rosio {
@@ -30,7 +32,34 @@ perception::Detector load_weights(const std::string& given) {
     }
 }
 
+// Why a goal cannot be driven to on this costmap (empty: it can).
+std::string goal_problem(const Eigen::Vector2d& goal, const Costmap& costmap) {
+    if (!goal.allFinite()) return "goal is not finite";
+    const std::optional<std::uint8_t> c = costmap.cost_at(goal);
+    if (!c) return "goal is outside the map";
+    if (*c >= cost::kInscribed && *c != cost::kUnknown) return "goal is inside an obstacle";
+    return {};
+}
+
 }  // namespace
+
+pipeline::SystemParams node_system_params(const NodeSettings& s) {
+    const io::Config config = s.config.empty() ? io::Config{} : io::load_config(s.config);
+    return io::online_system_params(config, s.T_base_sensor ? &*s.T_base_sensor : nullptr);
+}
+
+std::string to_json(const NavStatus& s) {
+    io::Json j = {{"state", s.state}, {"why", s.why}, {"distance_left_m", s.distance_left_m}};
+    j["goal"] = s.goal ? io::Json::array({s.goal->x(), s.goal->y()}) : io::Json(nullptr);
+    return io::dump_json(j);
+}
+
+GatedCommand gate_command(const VelocityCommand& last, std::optional<double> last_sweep_end_s, std::optional<double> last_odometry_s,
+                          double now_s, double sensor_timeout_s, double odometry_timeout_s) {
+    if (!last_sweep_end_s || now_s - *last_sweep_end_s > sensor_timeout_s) return {{}, "no sweep for " + std::to_string(sensor_timeout_s).substr(0, 4) + " s"};
+    if (!last_odometry_s || now_s - *last_odometry_s > odometry_timeout_s) return {{}, "no odometry for " + std::to_string(odometry_timeout_s).substr(0, 4) + " s"};
+    return {last, {}};
+}
 
 struct NodeEngine::Impl {
     NodeSettings settings;
@@ -40,19 +69,25 @@ struct NodeEngine::Impl {
     perception::Detector detector;
     std::optional<verification::CadLibrary> library;
     std::optional<Costmap> static_map;
-    std::unique_ptr<pipeline::MappingSystem> system;  // built at the first sweep (its start pose)
+    std::unique_ptr<pipeline::OnlineSystem> system;  // built at the first sweep (its start pose)
 
     mutable std::mutex mutex;
     std::condition_variable changed;
     std::deque<std::pair<CloudSweep, Clock::time_point>> queue;
     std::vector<StampedPose2> odometry;
     NodeStats stats;
+    // Navigation, shared with the callbacks' threads (under `mutex`).
+    std::optional<Eigen::Vector2d> pending_goal;  // set_goal(), applied at the next sweep
+    bool pending_cancel = false;
+    VelocityCommand last_command;
+    std::optional<double> last_sweep_end;
+    NavStatus status;  // the worker's; copied into each output
     bool busy = false, stopping = false;
     std::thread worker;
 
     Impl(const NodeSettings& s, Publish p)
         : settings(s), publish(std::move(p)), config(s.config.empty() ? io::Config{} : io::load_config(s.config)),
-          params(io::online_system_params(config)), detector(load_weights(s.model)) {
+          params(node_system_params(s)), detector(load_weights(s.model)) {
         if (!s.cad.empty()) library = io::read_cad_folder(s.cad);
         if (!s.map.empty()) static_map = io::read_map_server(s.map);
         worker = std::thread([this] { run(); });
@@ -84,7 +119,7 @@ struct NodeEngine::Impl {
             const std::optional<Pose2> end = start ? wheels_at(sweep.stamp_s + duration, lock) : std::nullopt;
             const double waited_ms = std::chrono::duration<double, std::milli>(Clock::now() - arrived).count();
             lock.unlock();
-            process(std::move(sweep), duration, start, end, waited_ms);
+            process(std::move(sweep), duration, start, end, waited_ms, arrived);
             lock.lock();
             busy = false;
             ++stats.processed;
@@ -93,21 +128,53 @@ struct NodeEngine::Impl {
     }
 
     void process(CloudSweep sweep, double duration, const std::optional<Pose2>& wheel_start, const std::optional<Pose2>& wheel_end,
-                 double waited_ms) {
+                 double waited_ms, Clock::time_point arrived) {
         if (!system) {
             const Pose2 start = settings.start ? *settings.start : wheel_start.value_or(Pose2{});
-            const Costmap map = static_map ? *static_map : pipeline::free_area(start, settings.costmap_size_m);
-            system = std::make_unique<pipeline::MappingSystem>(params, start, map, static_map.has_value(), &detector,
-                                                               library ? &*library : nullptr);
+            pipeline::OnlineSystemSetup setup;
+            setup.params = params;
+            setup.start = start;
+            setup.map = static_map;
+            setup.map_kind = static_map ? pipeline::MapKind::kFurnished : pipeline::MapKind::kNone;
+            setup.free_area_m = settings.costmap_size_m;
+            setup.detector = &detector;
+            setup.library = library ? &*library : nullptr;
+            system = std::make_unique<pipeline::OnlineSystem>(setup);
         }
         const double stamp = sweep.stamp_s;
-        const pipeline::MappingStep step = system->process({std::move(sweep.points), stamp, duration, wheel_start, wheel_end});
+        const pipeline::OnlineStep step = [&] {
+            std::optional<Eigen::Vector2d> goal;
+            bool cancel = false;
+            {
+                std::lock_guard<std::mutex> guard(mutex);
+                goal = std::exchange(pending_goal, std::nullopt);
+                cancel = std::exchange(pending_cancel, false);
+            }
+            if (cancel) {
+                system->cancel();
+                status = {"stopped", "cancelled", -1.0, std::nullopt};
+            }
+            if (goal) {  // checked against the costmap the robot has now
+                const std::string problem = goal_problem(*goal, system->costmap());
+                if (problem.empty()) {
+                    system->set_route({*goal});
+                    status = {"driving", "", -1.0, goal};
+                } else {
+                    system->cancel();
+                    status = {"stopped", problem, -1.0, goal};
+                }
+            }
+            return system->process({std::move(sweep.points), stamp, duration, wheel_start, wheel_end});
+        }();
         NodeOutput out;
         out.stamp_s = stamp + duration;
         out.pose = step.sweep.pose;
+        out.wheel_pose = wheel_end;
         out.T_world_sensor = step.sweep.T_world_sensor_end;
         out.keyframe = step.sweep.keyframe.has_value();
         out.objects = step.sweep.objects;
+        out.command = step.control.command;
+        update_status(step, out);
         out.costmap = &system->costmap();
         out.per_sweep_ms = step.per_sweep_ms();
         out.keyframe_ms = step.sweep.timing.keyframe_ms();
@@ -119,7 +186,43 @@ struct NodeEngine::Impl {
             std::lock_guard<std::mutex> guard(mutex);
             ++stats.keyframes;
         }
+        {
+            std::lock_guard<std::mutex> guard(mutex);
+            // A cancel that came in while this sweep was processed wins over its command.
+            last_command = pending_cancel ? VelocityCommand{} : out.command;
+            last_sweep_end = out.stamp_s;
+            if (pending_cancel) out.command = {};
+            const std::optional<double> odometry_s = odometry.empty() ? std::nullopt : std::optional<double>(odometry.back().stamp_s);
+            out.gated = gate_command(last_command, last_sweep_end, odometry_s, settings.clock ? settings.clock() : out.stamp_s,
+                                     settings.sensor_timeout_s, settings.odometry_timeout_s);
+            if (settings.send_command) settings.send_command(out.gated.command);  // the command first: the robot waits for it
+        }
+        out.latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - arrived).count();
         publish(out);
+    }
+
+    void update_status(const pipeline::OnlineStep& step, NodeOutput& out) {
+        const pipeline::Controller::Step& c = step.control;
+        const Eigen::Vector2d here(out.pose.x_m, out.pose.y_m);
+        if (c.navigating) {
+            out.plan = system->plan();
+            status.distance_left_m = system->controller().navigator().remaining_m(here);
+            if (c.nav.arrived) {
+                status = {"reached", "", 0.0, status.goal};
+                out.plan.clear();
+            } else if (c.nav.gave_up) {
+                status = {"stopped", "gave up: no plan or no progress for " + std::to_string(static_cast<int>(params.navigator.give_up_s)) + " s",
+                          status.distance_left_m, status.goal};
+                out.plan.clear();
+            } else if (c.guard.scale < params.navigator.monitor.min_scale && !c.guard.recovering) {
+                status.state = "blocked";
+                status.why = "collision monitor: " + std::string(planning::to_string(c.guard.action));
+            } else {
+                status.state = "driving";
+                status.why.clear();
+            }
+        }
+        out.status = status;
     }
 };
 
@@ -153,6 +256,36 @@ void NodeEngine::push_odometry(const StampedPose2& pose) {
     odo.push_back(pose);
     if (odo.size() > 20000) odo.erase(odo.begin(), odo.begin() + 10000);  // ~ minutes of history
     impl_->changed.notify_all();
+}
+
+void NodeEngine::set_goal(const Eigen::Vector2d& goal_m) {
+    std::lock_guard<std::mutex> lock(impl_->mutex);
+    impl_->pending_goal = goal_m;
+    impl_->pending_cancel = false;
+}
+
+void NodeEngine::cancel() {
+    std::lock_guard<std::mutex> lock(impl_->mutex);
+    impl_->pending_goal.reset();
+    impl_->pending_cancel = true;
+    impl_->last_command = {};
+    if (impl_->settings.send_command) impl_->settings.send_command({});
+}
+
+GatedCommand NodeEngine::command_at(double now_s) const {
+    std::lock_guard<std::mutex> lock(impl_->mutex);
+    const std::optional<double> odometry = impl_->odometry.empty() ? std::nullopt : std::optional<double>(impl_->odometry.back().stamp_s);
+    return gate_command(impl_->last_command, impl_->last_sweep_end, odometry, now_s, impl_->settings.sensor_timeout_s,
+                        impl_->settings.odometry_timeout_s);
+}
+
+GatedCommand NodeEngine::send_command_at(double now_s) {
+    std::lock_guard<std::mutex> lock(impl_->mutex);
+    const std::optional<double> odometry = impl_->odometry.empty() ? std::nullopt : std::optional<double>(impl_->odometry.back().stamp_s);
+    const GatedCommand gated = gate_command(impl_->last_command, impl_->last_sweep_end, odometry, now_s, impl_->settings.sensor_timeout_s,
+                                            impl_->settings.odometry_timeout_s);
+    if (impl_->settings.send_command) impl_->settings.send_command(gated.command);
+    return gated;
 }
 
 void NodeEngine::drain() {

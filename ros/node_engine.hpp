@@ -1,8 +1,12 @@
 #pragma once
-// The ROS node's engine: the online system (MappingSystem) on a worker thread behind a queue, so
-// that the sweep callback only converts and enqueues and a slow keyframe never drops a sweep. It
-// names no ROS type and is C++17-clean: the node's main (ros/makeway_node.cpp) is C++17 because
-// ROS 1's message headers are.
+// The ROS node's engine: the online system (pipeline::OnlineSystem, the same assembly as the
+// benchmark's `ours` and `makeway run`) on a worker thread behind a queue, so that the sweep
+// callback only converts and enqueues and a slow keyframe never drops a sweep. Goals come in from
+// any thread and are checked and applied at the next sweep; every sweep yields the guarded command
+// (navigator, then collision monitor), the plan and a status. command_at() is what the node sends
+// at its control rate: the last command while the sweeps and the odometry are fresh, else zero.
+// It names no ROS type and is C++17-clean: the node's main (ros/makeway_node.cpp) is C++17
+// because ROS 1's message headers are.
 #include <functional>
 #include <memory>
 #include <optional>
@@ -12,6 +16,7 @@
 #include "makeway/common/costmap.hpp"
 #include "makeway/common/object_estimate.hpp"
 #include "makeway/common/transforms.hpp"
+#include "makeway/common/velocity_command.hpp"
 #include "makeway/costmap/affordance.hpp"
 #include "ros/bag_io.hpp"
 
@@ -24,20 +29,52 @@ struct NodeSettings {
     std::string map;     ///< map_server YAML (empty: a free square around the start)
     double costmap_size_m = 40.0;
     std::optional<Pose2> start;     ///< the base at the first sweep (default: the first odometry pose, else 0 0 0)
+    std::optional<Isometry3> T_base_sensor;  ///< measured extrinsics (default: the configuration's robot)
+    double sensor_timeout_s = 0.3;    ///< no sweep ended this recently: zero velocity
+    double odometry_timeout_s = 0.3;  ///< no odometry this recent: zero velocity
+    std::function<double()> clock;    ///< the node's time [s] (ROS time: sim time under use_sim_time); empty: the sweep's end
+    /// Sends a command to the motors. Called under the engine's lock by every path that commands
+    /// (a sweep's output, send_command_at(), cancel()), so a cancel is never overtaken by a
+    /// command computed before it. Must not block or call the engine.
+    std::function<void(const VelocityCommand&)> send_command;
     double odometry_wait_s = 0.2;   ///< how long a sweep waits for odometry covering its end
     std::size_t max_queue = 600;    ///< sweeps waiting beyond this are dropped (and counted)
 };
+
+/// Where the navigation stands (published as JSON on ~status).
+struct NavStatus {
+    std::string state = "idle";  ///< idle, driving, reached, blocked, stopped
+    std::string why;             ///< for blocked and stopped (and a refused goal: "goal ...")
+    double distance_left_m = -1.0;  ///< along the plan (straight without one); -1: no goal
+    std::optional<Eigen::Vector2d> goal;
+};
+std::string to_json(const NavStatus& status);
+
+/// What the node sends at `now_s`: `last` while the newest sweep ended within sensor_timeout_s
+/// and the newest odometry is within odometry_timeout_s, else zero with the reason.
+struct GatedCommand {
+    VelocityCommand command;
+    std::string why;  ///< empty: passed
+};
+GatedCommand gate_command(const VelocityCommand& last, std::optional<double> last_sweep_end_s, std::optional<double> last_odometry_s,
+                          double now_s, double sensor_timeout_s, double odometry_timeout_s);
 
 /// What one sweep produced, carrying the stamp of the data it used (the sweep's end).
 struct NodeOutput {
     double stamp_s = 0.0;
     Pose2 pose;                          ///< the base, estimated
+    std::optional<Pose2> wheel_pose;     ///< the wheel odometry's pose of the base at the sweep's end (its odom frame)
     Isometry3 T_world_sensor = Isometry3::Identity();
     bool keyframe = false;
     std::vector<ObjectEstimate> objects;  ///< the object map
     const Costmap* costmap = nullptr;     ///< valid during the callback
     std::string object_map_json;          ///< keyframes: the object map as `makeway run` writes it
     double per_sweep_ms = 0.0, keyframe_ms = 0.0, queue_wait_ms = 0.0;
+    double latency_ms = 0.0;              ///< from the sweep's arrival (push_sweep) to this output
+    VelocityCommand command;              ///< the guarded command from this sweep (zero when idle)
+    GatedCommand gated;                   ///< what to send now: `command` through gate_command at settings.clock()
+    std::vector<Eigen::Vector2d> plan;    ///< the global plan, world frame (empty when idle)
+    NavStatus status;
 };
 
 struct NodeStats {
@@ -57,6 +94,15 @@ public:
     /// From the callbacks' threads; return at once.
     void push_sweep(CloudSweep sweep);
     void push_odometry(const StampedPose2& pose);
+    /// A goal (world frame), from any thread: checked at the next sweep (finite, inside the map,
+    /// not inside an obstacle); a refused goal leaves the robot still, the status says why.
+    void set_goal(const Eigen::Vector2d& goal_m);
+    /// Stops at once (sends zero; command_at() gives zero from now) and drops the goal at the next sweep.
+    void cancel();
+    /// What to send to the motors at `now_s` (gate_command on the last sweep's command).
+    GatedCommand command_at(double now_s) const;
+    /// command_at(now_s), sent (settings.send_command) under the same lock; the node's control rate.
+    GatedCommand send_command_at(double now_s);
     /// Blocks until every queued sweep is processed.
     void drain();
 

@@ -6,11 +6,7 @@
 #include <ros/ros.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
 #include <std_msgs/String.h>
-#include <sys/wait.h>
 
 #include <atomic>
 #include <chrono>
@@ -22,44 +18,16 @@
 #include <thread>
 
 #include "ros/msg_conversions.hpp"
-
-extern char** environ;
+#include "process_util.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-pid_t spawn(const std::vector<std::string>& args, const fs::path& log) {
-    std::vector<char*> argv;
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    pid_t pid = -1;
-    const int rc = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    return rc == 0 ? pid : -1;
-}
-
-void stop(pid_t pid, int sig) {
-    if (pid <= 0) return;
-    kill(pid, sig);
-    for (int i = 0; i < 100; ++i) {
-        int status = 0;
-        if (waitpid(pid, &status, WNOHANG) == pid) return;
-        std::this_thread::sleep_for(100ms);
-    }
-    kill(pid, SIGKILL);
-    waitpid(pid, nullptr, 0);
-}
-
-std::string read_text(const fs::path& p) {
-    std::ifstream in(p);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-}
+using makeway::testing::read_text;
+using makeway::testing::spawn;
+using makeway::testing::stop;
 
 TEST(MakewayNode, PlaysABagAtTwiceItsRateAndMapsTheRoom) {
     const fs::path dir = fs::temp_directory_path() / "makeway_test_node";

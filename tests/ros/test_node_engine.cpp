@@ -4,12 +4,17 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <mutex>
 
 #include "makeway/sim/route.hpp"
 #include "makeway/sim/scene_generator.hpp"
 #include "makeway/sim/sequence.hpp"
+#include "io/config_reader.hpp"
+#include "io/nav_config.hpp"
+#include "makeway/eval/navigation.hpp"
 #include "ros/node_engine.hpp"
+#include "ros/node_engine_params.hpp"
 
 namespace makeway::rosio {
 namespace {
@@ -103,6 +108,70 @@ TEST(NodeEngine, AFullQueueDropsTheOldestAndCountsIt) {
     EXPECT_EQ(stamps.size(), stats.processed);
     EXPECT_NEAR(stamps.back(), 100.0 + frames.back().stamp_s + 0.1, 1e-9);  // the newest always survives
     for (std::size_t i = 1; i < stamps.size(); ++i) EXPECT_GT(stamps[i], stamps[i - 1]);
+}
+
+TEST(NodeEngine, GateGivesZeroWhenTheSweepsOrTheOdometryStopAndSaysWhy) {
+    const VelocityCommand go{0.5, 0.2};
+    EXPECT_EQ(gate_command(go, 10.0, 10.05, 10.1, 0.3, 0.3).command.v_mps, 0.5);
+    EXPECT_TRUE(gate_command(go, 10.0, 10.05, 10.1, 0.3, 0.3).why.empty());
+    const GatedCommand no_sweep = gate_command(go, 10.0, 10.35, 10.31, 0.3, 0.3);
+    EXPECT_EQ(no_sweep.command.v_mps, 0.0);
+    EXPECT_EQ(no_sweep.command.w_radps, 0.0);
+    EXPECT_NE(no_sweep.why.find("no sweep"), std::string::npos);
+    const GatedCommand no_odometry = gate_command(go, 10.3, 10.0, 10.31, 0.3, 0.3);
+    EXPECT_EQ(no_odometry.command.v_mps, 0.0);
+    EXPECT_NE(no_odometry.why.find("no odometry"), std::string::npos);
+    EXPECT_EQ(gate_command(go, std::nullopt, 10.0, 10.0, 0.3, 0.3).command.v_mps, 0.0);  // nothing yet
+}
+
+// The benchmark's `ours`, `makeway run` and the node build the online system from one YAML with
+// one function (io::online_system_params): a robot and a monitor unlike the defaults reach every
+// stage the same way on all three paths.
+TEST(OnlineSystem, TheBenchmarkRunAndTheNodeBuildTheSameSystemFromOneYaml) {
+    const auto dir = std::filesystem::temp_directory_path() / "makeway_test_three_paths";
+    std::filesystem::create_directories(dir);
+    const auto yaml = dir / "robot.yaml";
+    {
+        std::ofstream out(yaml);
+        out << "robot: {length_m: 0.7, width_m: 0.5, body_height_m: 0.8, ground_clearance_m: 0.03, lidar_height_m: 0.7,\n"
+               "        max_v_mps: 0.5, max_w_radps: 1.5, max_acc_mps2: 0.8, max_ang_acc_radps2: 2.0}\n"
+               "collision_monitor: {stop_padding_m: 0.06, latency_s: 0.25}\n";
+    }
+    NodeSettings node;
+    node.config = yaml.string();
+    const pipeline::SystemParams from_node = node_system_params(node);
+    const io::Config config = io::load_config(yaml);
+    const pipeline::SystemParams from_run = io::online_system_params(config);  // cmd_run without --extrinsics
+    const eval::NavParams nav = io::nav_params(config);
+    const sim::Scene scene = sim::generate_scene({});
+    const pipeline::OnlineSystemSetup from_bench = eval::online_system_setup(scene, *eval::nav_method("ours", nav.robot), nav);
+
+    for (const pipeline::SystemParams* p : {&from_node, &from_run, &from_bench.params}) {
+        const pipeline::NavigatorParams& n = p->navigator;
+        EXPECT_NEAR(p->T_base_sensor.translation().z(), 0.7, 1e-12);
+        EXPECT_DOUBLE_EQ(n.dwa.footprint_length_m, 0.7);
+        EXPECT_DOUBLE_EQ(n.dwa.footprint_width_m, 0.5);
+        EXPECT_DOUBLE_EQ(n.dwa.max_v_mps, 0.5);  // DWA never plans faster than the robot goes
+        EXPECT_DOUBLE_EQ(n.dwa.max_w_radps, 1.5);
+        EXPECT_DOUBLE_EQ(n.dwa.acc_v_mps2, 0.8);
+        EXPECT_DOUBLE_EQ(n.obstacle.body.ground_clearance_m, 0.03);
+        EXPECT_DOUBLE_EQ(n.obstacle.body.top_m, 0.8);
+        EXPECT_DOUBLE_EQ(n.inflation.inscribed_radius_m, 0.25);
+        EXPECT_DOUBLE_EQ(n.inflation.inflation_radius_m, 0.5 * std::hypot(0.7, 0.5));
+        EXPECT_TRUE(n.affordance_layer);
+        EXPECT_DOUBLE_EQ(n.monitor.footprint_length_m, 0.7);
+        EXPECT_DOUBLE_EQ(n.monitor.body.top_m, 0.8);
+        EXPECT_DOUBLE_EQ(n.monitor.max_acc_mps2, 0.8);
+        EXPECT_DOUBLE_EQ(n.monitor.sensor_height_m, 0.7);  // the blind ring is the mounted sensor's
+        EXPECT_DOUBLE_EQ(n.monitor.stop_padding_m, 0.06);
+        EXPECT_DOUBLE_EQ(n.monitor.latency_s, 0.25);
+    }
+    // Measured extrinsics move the monitor's blind ring with the sensor, on the node and in run.
+    node.T_base_sensor = make_T_xyz_rpy({0.1, 0.0, 0.55}, 0.0, 0.0, 0.0);
+    const Isometry3 T = *node.T_base_sensor;
+    EXPECT_DOUBLE_EQ(node_system_params(node).navigator.monitor.sensor_height_m, 0.55);
+    EXPECT_DOUBLE_EQ(io::online_system_params(config, &T).navigator.monitor.sensor_height_m, 0.55);
+    EXPECT_TRUE(node_system_params(node).T_base_sensor.isApprox(T));
 }
 
 }  // namespace

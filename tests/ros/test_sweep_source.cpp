@@ -10,7 +10,7 @@
 #include "io/point_cloud_io.hpp"
 #include "io/pose_io.hpp"
 #include "makeway/perception/detector.hpp"
-#include "makeway/pipeline/mapping_system.hpp"
+#include "makeway/pipeline/online_system.hpp"
 #include "makeway/sim/route.hpp"
 #include "makeway/sim/scene_generator.hpp"
 #include "makeway/sim/sequence.hpp"
@@ -35,8 +35,19 @@ struct Outcome {
     std::size_t keyframes = 0;
 };
 
+// The online system as `makeway run` builds it without a map: mapping a free 40 m square.
+pipeline::OnlineSystemSetup mapping_setup(const pipeline::SystemParams& params, const Pose2& start, const perception::Detector& detector) {
+    pipeline::OnlineSystemSetup setup;
+    setup.params = params;
+    setup.start = start;
+    setup.map = Costmap({-20.0, -20.0}, 0.05, 800, 800);
+    setup.map_kind = pipeline::MapKind::kNone;
+    setup.detector = &detector;
+    return setup;
+}
+
 Outcome run_source(SweepSource& source, const pipeline::SystemParams& params, const Pose2& start, const perception::Detector& detector) {
-    pipeline::MappingSystem system(params, start, Costmap({-20.0, -20.0}, 0.05, 800, 800), false, &detector, nullptr);
+    pipeline::OnlineSystem system(mapping_setup(params, start, detector));
     Outcome out;
     while (auto s = source.next()) {
         const auto step = system.process({std::move(s->points), s->stamp_s, s->duration_s, s->pose_start, s->pose_end});
@@ -80,7 +91,7 @@ TEST(SweepSource, BagsAndFoldersGiveTheSimulatorLoopsObjectMap) {
 
     // The simulator's loop, recording as it goes.
     const fs::path dir = fresh_dir("drive");
-    pipeline::MappingSystem direct(params, drive.start_pose(), Costmap({-20.0, -20.0}, 0.05, 800, 800), false, &detector, nullptr);
+    pipeline::OnlineSystem direct(mapping_setup(params, drive.start_pose(), detector));
     Outcome expected;
     std::vector<io::StampedPose> wheels;
     {

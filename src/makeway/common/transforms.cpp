@@ -26,6 +26,15 @@ Pose2 interpolate(const Pose2& a, const Pose2& b, double s) {
     return {a.x_m + s * (b.x_m - a.x_m), a.y_m + s * (b.y_m - a.y_m), wrap_angle(a.yaw_rad + s * angle_diff(b.yaw_rad, a.yaw_rad))};
 }
 
+Isometry3 make_T_xyz_rpy(const Eigen::Vector3d& translation_m, double roll_rad, double pitch_rad, double yaw_rad) {
+    Isometry3 T = Isometry3::Identity();
+    T.linear() = (Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()) *
+                  Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitX()))
+                     .toRotationMatrix();
+    T.translation() = translation_m;
+    return T;
+}
+
 Isometry3 make_T_xyz_yaw(const Eigen::Vector3d& translation_m, double yaw_rad) {
     Isometry3 T = Isometry3::Identity();
     T.linear() = Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();

@@ -10,7 +10,7 @@
 #include "makeway/eval/odometry_bench.hpp"
 #include "makeway/eval/unavoidable_risk.hpp"
 #include "makeway/perception/accumulator.hpp"
-#include "makeway/pipeline/navigator.hpp"
+#include "makeway/pipeline/online_system.hpp"
 #include "makeway/sim/route.hpp"
 #include "makeway/sim/world.hpp"
 
@@ -48,16 +48,13 @@ struct SimSweep {
     double v_mps = 0.0, w_radps = 0.0;                   // truth, at the sweep's end
 };
 
-// What the robot's software makes of a sweep: where it believes it is, the sweep in its world
-// frame, and the objects it feeds the costmap.
-struct Belief {
+// What the robot's software makes of a sweep: where it believes it is, and the guarded command
+// (the navigator, then the collision monitor: pipeline::Controller, for every method).
+struct Thought {
     Pose2 pose;
-    double v_mps = 0.0, w_radps = 0.0;
-    PointCloud points_world;
-    Eigen::Vector3d sensor_world_m = Eigen::Vector3d::Zero();
-    std::vector<ObjectEstimate> objects;
+    pipeline::Controller::Step control;
 };
-using Perceive = std::function<Belief(const SimSweep&)>;
+using Think = std::function<Thought(const SimSweep&)>;
 
 // Scores one physics step against the truth.
 struct Scorer {
@@ -114,27 +111,18 @@ pipeline::NavigatorParams navigator_params(const NavMethod& method, const NavPar
     n.inflation.inflation_radius_m = method.inflation_radius_m;
     n.inflation.inscribed_radius_m *= method.inscribed_scale;
     n.affordance_layer = method.affordance;
-    n.dwa.max_v_mps = std::min(n.dwa.max_v_mps, params.robot.max_v_mps);
     return n;
 }
 
-// The monitor sees the robot the simulator drives: its footprint, body and braking limits.
-planning::CollisionMonitorParams monitor_params(const NavParams& params) {
-    planning::CollisionMonitorParams m = params.system.navigator.monitor;
-    m.footprint_length_m = params.robot.length_m;
-    m.footprint_width_m = params.robot.width_m;
-    m.body = params.robot.body();
-    m.max_v_mps = params.robot.max_v_mps;
-    m.max_w_radps = params.robot.max_w_radps;
-    m.max_acc_mps2 = params.robot.max_acc_mps2;
-    m.max_ang_acc_radps2 = params.robot.max_ang_acc_radps2;
-    m.sensor_height_m = params.robot.lidar_height_m;
-    return m;
+// The scene's legs: the waypoint, then the goal.
+std::vector<Eigen::Vector2d> route_of(const sim::Scene& scene) {
+    return {{scene.waypoint.x_m, scene.waypoint.y_m}, {scene.goal.x_m, scene.goal.y_m}};
 }
 
 // The simulator's loop: act on the last command while the LiDAR sweeps (the robot moves within
 // the sweep), score every physics step, then let the robot's software see the sweep and decide.
-NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavParams& params, const Perceive& perceive) {
+NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavParams& params, const pipeline::Controller& controller,
+                   const Think& think) {
     NavRunResult out;
     out.method = method.name;
     const std::vector<sim::ObjectModel> models = sim::models_of(scene);
@@ -149,10 +137,6 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
         out.unavoidable_risk_s = u.reachable ? u.risk_time_s : -1.0;
     }
     sim::World world(scene, models);
-    pipeline::Navigator navigator(params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m),
-                                  navigator_params(method, params));
-    navigator.set_route({{scene.waypoint.x_m, scene.waypoint.y_m}, {scene.goal.x_m, scene.goal.y_m}});
-    planning::CollisionMonitor monitor(monitor_params(params));
     sim::WheelOdometry odometry(scene.start, params.odometry, params.seed ^ 0x0D0ULL);
     Scorer scorer{scene, models, checker, params, out};
     sim::RobotState state;
@@ -180,32 +164,26 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
         // Sense: the sweep over that period, from the moving sensor.
         const sim::PoseAtTime T_world_sensor_at = sim::sensor_pose_along(std::move(poses), t, dt, T_robot_sensor);
         const PointCloud sweep = sim::simulate_sweep(world, params.lidar, T_world_sensor_at, t, params.seed, static_cast<std::uint64_t>(k));
-        const Belief belief = perceive({&sweep, t, period, odometry_start, odometry.pose(), T_world_sensor_at(t),
-                                        T_world_sensor_at(t + period), state.v_mps, state.w_radps});
-        out.estimated_trajectory.push_back(belief.pose);
-        // Think: costmap, plan, DWA on the robot's own belief.
-        const pipeline::NavigatorStep step = navigator.step(
-            {t + period, belief.pose, belief.v_mps, belief.w_radps, &belief.points_world, belief.sensor_world_m, belief.objects});
-        out.replans += step.replanned;
-        out.recoveries += step.started_recovery;
-        if (step.arrived) {
+        const Thought thought = think({&sweep, t, period, odometry_start, odometry.pose(), T_world_sensor_at(t),
+                                       T_world_sensor_at(t + period), state.v_mps, state.w_radps});
+        out.estimated_trajectory.push_back(thought.pose);
+        const pipeline::Controller::Step& step = thought.control;
+        out.replans += step.nav.replanned;
+        out.recoveries += step.nav.started_recovery;
+        if (step.nav.arrived) {
             out.time_s = t + period;
             break;
         }
-        if (step.gave_up) {
+        if (step.nav.gave_up) {
             out.time_s = t + period;
             out.gave_up = true;
             break;
         }
-        // Act: the collision monitor between the navigator and the motors, on the same sweep.
-        const auto m0 = std::chrono::steady_clock::now();
-        const planning::MonitorResult guarded = monitor.filter({t + period, belief.pose, &belief.points_world, step.command, belief.v_mps, belief.w_radps});
-        const double monitor_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - m0).count();
-        out.monitor_ms_max = std::max(out.monitor_ms_max, monitor_ms);
-        out.monitor_actions.push_back(guarded.action);
-        out.recoveries += guarded.started_recovery;
-        out.cycle_ms.push_back(step.update_ms + monitor_ms);
-        cmd = guarded.command;
+        out.monitor_ms_max = std::max(out.monitor_ms_max, step.monitor_ms);
+        out.monitor_actions.push_back(step.guard.action);
+        out.recoveries += step.guard.started_recovery;
+        out.cycle_ms.push_back(step.nav.update_ms + step.monitor_ms);
+        cmd = step.command;
     }
     out.trajectory.push_back(state.pose);
     const Pose2 believed = out.estimated_trajectory.empty() ? state.pose : out.estimated_trajectory.back();
@@ -214,6 +192,7 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
     out.pose_ate_m = trajectory_metrics(out.estimated_trajectory, {out.trajectory.begin() + 1, out.trajectory.end()}).ate_rmse_m;
     const double to_goal = std::hypot(state.pose.x_m - scene.goal.x_m, state.pose.y_m - scene.goal.y_m);
     out.stop_distance_m = to_goal;
+    const pipeline::Navigator& navigator = controller.navigator();
     out.reached_goal = navigator.arrived() && to_goal < params.arrival_radius_m;
     if (out.gave_up) {
         out.failure = "gave up (no plan or no progress for " + std::to_string(static_cast<int>(params.system.navigator.give_up_s)) + " s)";
@@ -234,22 +213,6 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
 
 }  // namespace
 
-bool robot_caused_contact(const Pose2& pose, double v, double w, const Eigen::Vector2d& contact_world,
-                          double length_m, double width_m, double threshold) {
-    return speed_toward_contact(pose, v, w, contact_world, length_m, width_m) > threshold;
-}
-
-double speed_toward_contact(const Pose2& pose, double v, double w, const Eigen::Vector2d& contact_world,
-                            double length_m, double width_m) {
-    const Eigen::Vector2d r = to_isometry(pose).inverse() * contact_world;  // robot frame
-    // The outward normal of the side nearest the contact (the point lies in or on the footprint).
-    const double to_front = 0.5 * length_m - std::abs(r.x()), to_side = 0.5 * width_m - std::abs(r.y());
-    const Eigen::Vector2d normal = to_front <= to_side ? Eigen::Vector2d(r.x() >= 0.0 ? 1.0 : -1.0, 0.0)
-                                                       : Eigen::Vector2d(0.0, r.y() >= 0.0 ? 1.0 : -1.0);
-    const Eigen::Vector2d body_velocity(v - w * r.y(), w * r.x());  // v x-hat + w z-hat x r
-    return body_velocity.dot(normal);
-}
-
 const std::vector<std::string>& nav_method_names() {
     static const std::vector<std::string> kNames{"con", "oppo", "gt-perc"};
     return kNames;
@@ -267,52 +230,54 @@ std::optional<NavMethod> nav_method(std::string_view name, const sim::RobotParam
 NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, ObjectSource& source,
                             const NavParams& params) {
     const Isometry3 T_sensor_robot = params.robot.T_robot_sensor().inverse();
-    return drive(scene, method, params, [&](const SimSweep& s) {
-        Belief b;
-        b.pose = project_to_plane(s.T_world_sensor_end * T_sensor_robot);
-        b.v_mps = s.v_mps;
-        b.w_radps = s.w_radps;
-        b.points_world = perception::deskew_to_world({*s.points_sensor, s.stamp_s, s.duration_s, s.T_world_sensor_start, s.T_world_sensor_end});
-        b.sensor_world_m = s.T_world_sensor_end.translation();
-        b.objects = source.objects({s.stamp_s + s.duration_s, s.T_world_sensor_end, s.points_sensor});
-        return b;
+    pipeline::Controller controller(params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m),
+                                    navigator_params(method, params));
+    controller.set_route(route_of(scene));
+    return drive(scene, method, params, controller, [&](const SimSweep& s) {
+        // The baselines are fed the truth: the pose, the velocity and (gt-perc) the objects.
+        Thought th;
+        th.pose = project_to_plane(s.T_world_sensor_end * T_sensor_robot);
+        const PointCloud points_world =
+            perception::deskew_to_world({*s.points_sensor, s.stamp_s, s.duration_s, s.T_world_sensor_start, s.T_world_sensor_end});
+        th.control = controller.step({s.stamp_s + s.duration_s, th.pose, s.v_mps, s.w_radps, &points_world, s.T_world_sensor_end.translation(),
+                                      source.objects({s.stamp_s + s.duration_s, s.T_world_sensor_end, s.points_sensor})});
+        return th;
     });
+}
+
+pipeline::OnlineSystemSetup online_system_setup(const sim::Scene& scene, const NavMethod& method, const NavParams& params) {
+    // What a robot has: its start pose, its sweeps and its wheel odometry, the prebuilt map of
+    // walls (objects stand in its free space). Nothing else passes.
+    pipeline::OnlineSystemSetup setup;
+    setup.params = params.system;
+    setup.params.navigator = navigator_params(method, params);
+    setup.start = scene.start;
+    setup.map = params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m);
+    setup.map_kind = pipeline::MapKind::kWalls;
+    return setup;
 }
 
 NavRunResult run_navigation_online(const sim::Scene& scene, const NavMethod& method,
                                    const perception::ObjectDetector& detector,
                                    const verification::CadLibrary* library, const NavParams& params,
                                    const verification::ShapePrior* prior) {
-    pipeline::SystemParams system = params.system;
-    system.T_base_sensor = params.robot.T_robot_sensor();
-    // What a robot has: its start pose, its sweeps and its wheel odometry. Nothing else passes.
-    pipeline::Pipeline online(system, scene.start, &detector, library);
-    online.set_shape_prior(prior);
-    // The prebuilt map of walls the navigator gets: objects stand in its free space.
-    const Costmap walls = params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m);
-    online.set_object_region([&walls](const Eigen::Vector2d& p) {
-        const auto c = walls.cost_at(p);
-        return c.has_value() && *c < cost::kLethal;
-    });
+    pipeline::OnlineSystemSetup setup = online_system_setup(scene, method, params);
+    setup.detector = &detector;
+    setup.library = library;
+    setup.prior = prior;
+    pipeline::OnlineSystem online(setup);
+    online.set_route(route_of(scene));
     std::vector<KeyframeObjects> keyframes;
     std::vector<pipeline::StageTiming> timing;
-    NavRunResult out = drive(scene, method, params, [&](const SimSweep& s) {
-        pipeline::SweepResult r = online.process_sweep({*s.points_sensor, s.stamp_s, s.duration_s, s.odometry_start, s.odometry_end});
+    NavRunResult out = drive(scene, method, params, online.controller(), [&](const SimSweep& s) {
+        const pipeline::OnlineStep step = online.process({*s.points_sensor, s.stamp_s, s.duration_s, s.odometry_start, s.odometry_end});
+        const pipeline::SweepResult& r = step.sweep;
         if (r.keyframe) {
             keyframes.push_back({r.keyframe->stamp_s, r.keyframe->T_world_keyframe, r.keyframe->detections.size(),
                                  r.keyframe->evidence.size(), r.objects});
             timing.push_back(r.timing);
         }
-        Belief b;
-        b.pose = r.pose;
-        // Velocity from the wheel odometry's increment over the sweep, as the robot measures it.
-        const Isometry2 delta = to_isometry(s.odometry_start).inverse() * to_isometry(s.odometry_end);
-        b.v_mps = delta.translation().x() / s.duration_s;
-        b.w_radps = std::atan2(delta.linear()(1, 0), delta.linear()(0, 0)) / s.duration_s;
-        b.sensor_world_m = r.T_world_sensor_end.translation();
-        b.points_world = std::move(r.points_world);
-        b.objects = std::move(r.objects);
-        return b;
+        return Thought{r.pose, step.control};
     });
     out.keyframes = std::move(keyframes);
     out.keyframe_timing = std::move(timing);

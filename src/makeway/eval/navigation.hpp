@@ -14,6 +14,7 @@
 #include "makeway/eval/map_sanity.hpp"
 #include "makeway/eval/object_source.hpp"
 #include "makeway/perception/object_detector.hpp"
+#include "makeway/pipeline/online_system.hpp"
 #include "makeway/pipeline/pipeline.hpp"
 #include "makeway/pipeline/system_params.hpp"
 #include "makeway/planning/collision_monitor.hpp"
@@ -87,17 +88,9 @@ struct ContactEvent {
     Eigen::Vector2d where_m = Eigen::Vector2d::Zero();
 };
 
-/// The body's speed toward a contact at `contact_world` [m/s]: the velocity of the body at the
-/// contact point (rigid body: v along the heading plus w x r) along the outward normal of the
-/// footprint side nearest the contact.
-double speed_toward_contact(const Pose2& pose, double v_mps, double w_radps, const Eigen::Vector2d& contact_world,
-                            double length_m, double width_m);
-
-/// Whether a contact at `contact_world` was the robot's doing: the velocity of the body at the
-/// contact point (rigid body: v along the heading plus w x r) has a component of more than
-/// `threshold_mps` along the outward normal of the footprint side nearest the contact.
-bool robot_caused_contact(const Pose2& pose, double v_mps, double w_radps, const Eigen::Vector2d& contact_world,
-                          double length_m, double width_m, double threshold_mps = 0.05);
+/// How contacts are judged (sim/robot.hpp: the simulator's judge, shared with the ROS sim node).
+using sim::robot_caused_contact;
+using sim::speed_toward_contact;
 
 struct NavRunResult {
     std::string method;
@@ -142,6 +135,10 @@ struct NavRunResult {
 /// A truth-fed method (con, oppo, gt-perc): the true pose and `source`'s objects.
 NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, ObjectSource& source,
                             const NavParams& params);
+/// The online system `ours` drives in `scene`, as run_navigation_online builds it (no detector,
+/// library or prior set): the method's navigator on NavParams' system, the scene's walls as the map.
+pipeline::OnlineSystemSetup online_system_setup(const sim::Scene& scene, const NavMethod& method, const NavParams& params);
+
 /// The full system (ours): the online pipeline with `detector` and the CAD `library` (may be null),
 /// and a learned shape prior for detections no CAD model fits (may be null).
 NavRunResult run_navigation_online(const sim::Scene& scene, const NavMethod& method,

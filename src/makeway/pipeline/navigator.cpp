@@ -28,12 +28,17 @@ void Navigator::set_route(std::vector<Eigen::Vector2d> legs_m) {
     legs_ = std::move(legs_m);
     leg_ = 0;
     plan_.clear();
+    started_ = false;  // a new route: its own progress and give-up clocks
+    recovery_until_ = -1.0;
 }
 
 NavigatorStep Navigator::step(const NavigatorInput& in) {
     const auto t0 = std::chrono::steady_clock::now();
     NavigatorStep out;
     const Eigen::Vector2d here(in.pose.x_m, in.pose.y_m);
+    // Costmap: every layer grows the update window, then writes inside it (also without a route:
+    // the map is kept while the robot waits for a goal).
+    costmap_.update(in.points_world, in.sensor_world_m, in.objects);
     // Legs: waypoints, then the goal, judged on the pose estimate.
     if (leg_ < legs_.size() && (here - legs_[leg_]).norm() < (leg_ + 1 == legs_.size() ? params_.goal_tolerance_m : params_.waypoint_tolerance_m)) {
         ++leg_;
@@ -42,11 +47,10 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
     }
     if (arrived()) {
         out.arrived = true;
+        out.update_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         return out;
     }
     check_progress(in, out);
-    // Costmap: every layer grows the update window, then writes inside it.
-    costmap_.update(in.points_world, in.sensor_world_m, in.objects);
     // Global plan when there is none, when it is due, or when something now blocks it.
     if (plan_.empty() || in.t_s - last_plan_t_ >= params_.replan_period_s || plan_blocked(here)) {
         // The plan ends inside the leg's tolerance (a goal in a zone is reached from its cheap side),

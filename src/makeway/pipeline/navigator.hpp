@@ -45,7 +45,8 @@ public:
     /// std::invalid_argument listing every problem of `params`.
     Navigator(const Costmap& static_map, const NavigatorParams& params);
 
-    /// The legs to drive (waypoints, then the goal).
+    /// The legs to drive (waypoints, then the goal); empty: none (step() keeps the costmap and
+    /// reports arrived). A new route restarts the progress and give-up clocks.
     void set_route(std::vector<Eigen::Vector2d> legs_m);
     NavigatorStep step(const NavigatorInput& input);
 
@@ -53,12 +54,14 @@ public:
     const std::vector<Eigen::Vector2d>& plan() const { return plan_; }
     std::size_t leg() const { return leg_; }
     bool arrived() const { return leg_ >= legs_.size(); }
+    /// The way left to the current leg's target from `robot_m`: along the plan from its point
+    /// nearest the robot, straight without a plan; 0 when arrived.
+    double remaining_m(const Eigen::Vector2d& robot_m) const;
 
 private:
     bool plan_blocked(const Eigen::Vector2d& robot_m) const;
     VelocityCommand follow_plan(const NavigatorInput& input, NavigatorStep& step) const;
     void check_progress(const NavigatorInput& input, NavigatorStep& step);
-    double remaining_m(const Eigen::Vector2d& robot_m) const;  ///< the way left to the leg's target
 
     NavigatorParams params_;
     ObjectCostmap costmap_;

@@ -1,5 +1,6 @@
 #include "makeway/pipeline/system_params.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "makeway/perception/accumulator.hpp"
@@ -18,6 +19,29 @@ void throw_if_problems(const std::vector<std::string>& problems) {
     std::string all;
     for (const std::string& p : problems) all += (all.empty() ? "" : "; ") + p;
     throw std::invalid_argument(all);
+}
+
+void apply_robot(const RobotDescription& robot, SystemParams& params, const Isometry3* T_base_sensor) {
+    params.T_base_sensor = T_base_sensor ? *T_base_sensor : robot.T_robot_sensor();
+    NavigatorParams& n = params.navigator;
+    n.inflation.inscribed_radius_m = robot.inscribed_radius_m();
+    n.inflation.inflation_radius_m = robot.circumscribed_radius_m();
+    n.obstacle.body = robot.body();  // what the robot can hit is what the costmap marks
+    n.dwa.footprint_length_m = robot.length_m;
+    n.dwa.footprint_width_m = robot.width_m;
+    n.dwa.max_v_mps = std::min(n.dwa.max_v_mps, robot.max_v_mps);
+    n.dwa.max_w_radps = robot.max_w_radps;
+    n.dwa.acc_v_mps2 = robot.max_acc_mps2;
+    n.dwa.acc_w_radps2 = robot.max_ang_acc_radps2;
+    planning::CollisionMonitorParams& m = n.monitor;
+    m.footprint_length_m = robot.length_m;
+    m.footprint_width_m = robot.width_m;
+    m.body = robot.body();
+    m.max_v_mps = robot.max_v_mps;
+    m.max_w_radps = robot.max_w_radps;
+    m.max_acc_mps2 = robot.max_acc_mps2;
+    m.max_ang_acc_radps2 = robot.max_ang_acc_radps2;
+    m.sensor_height_m = params.T_base_sensor.translation().z();  // the blind ring is the mounted sensor's
 }
 
 std::vector<std::string> KeyframeParams::validate() const {

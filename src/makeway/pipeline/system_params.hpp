@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "makeway/common/robot_description.hpp"
 #include "makeway/common/transforms.hpp"
 #include "makeway/costmap/affordance.hpp"
 #include "makeway/costmap/inflation_layer.hpp"
@@ -74,6 +75,13 @@ struct SystemParams {
     /// Every problem, prefixed by its section ("tracker.min_hits must be >= 1").
     std::vector<std::string> validate() const;
 };
+
+/// The robot into every stage that must know it, in one place: the costmap's inflation (inscribed
+/// and circumscribed radii) and what its obstacle layer marks (the body's heights), DWA's footprint
+/// and limits (its top speed at most the robot's), the collision monitor's footprint, body, limits
+/// and sensor height, and the extrinsics. `T_base_sensor`: measured extrinsics (null: the
+/// description's, lidar_height_m above the base's centre).
+void apply_robot(const RobotDescription& robot, SystemParams& params, const Isometry3* T_base_sensor = nullptr);
 
 /// Throws std::invalid_argument with every problem on one line ("a; b; c"); nothing when empty.
 void throw_if_problems(const std::vector<std::string>& problems);

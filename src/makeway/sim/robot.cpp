@@ -54,18 +54,20 @@ std::vector<Eigen::Vector2d> low_surface_points(const TriangleMesh& mesh, const 
 
 }  // namespace
 
-std::vector<std::string> RobotParams::validate() const {
-    std::vector<std::string> p;
-    if (!(length_m > 0.05 && length_m < 5.0)) p.push_back("length_m must be in (0.05, 5)");
-    if (!(width_m > 0.05 && width_m < 5.0)) p.push_back("width_m must be in (0.05, 5)");
-    if (!(lidar_height_m > 0.0 && lidar_height_m < 3.0)) p.push_back("lidar_height_m must be in (0, 3)");
-    if (!(body_height_m > 0.0 && body_height_m < 3.0)) p.push_back("body_height_m must be in (0, 3)");
-    if (!(ground_clearance_m >= 0.0 && ground_clearance_m < body_height_m)) p.push_back("ground_clearance_m must be in [0, body_height_m)");
-    if (!(max_v_mps > 0.0 && max_v_mps <= 5.0)) p.push_back("max_v_mps must be in (0, 5]");
-    if (!(max_w_radps > 0.0 && max_w_radps <= 10.0)) p.push_back("max_w_radps must be in (0, 10]");
-    if (!(max_acc_mps2 > 0.0 && max_acc_mps2 <= 20.0)) p.push_back("max_acc_mps2 must be in (0, 20]");
-    if (!(max_ang_acc_radps2 > 0.0 && max_ang_acc_radps2 <= 50.0)) p.push_back("max_ang_acc_radps2 must be in (0, 50]");
-    return p;
+bool robot_caused_contact(const Pose2& pose, double v, double w, const Eigen::Vector2d& contact_world,
+                          double length_m, double width_m, double threshold) {
+    return speed_toward_contact(pose, v, w, contact_world, length_m, width_m) > threshold;
+}
+
+double speed_toward_contact(const Pose2& pose, double v, double w, const Eigen::Vector2d& contact_world,
+                            double length_m, double width_m) {
+    const Eigen::Vector2d r = to_isometry(pose).inverse() * contact_world;  // robot frame
+    // The outward normal of the side nearest the contact (the point lies in or on the footprint).
+    const double to_front = 0.5 * length_m - std::abs(r.x()), to_side = 0.5 * width_m - std::abs(r.y());
+    const Eigen::Vector2d normal = to_front <= to_side ? Eigen::Vector2d(r.x() >= 0.0 ? 1.0 : -1.0, 0.0)
+                                                       : Eigen::Vector2d(0.0, r.y() >= 0.0 ? 1.0 : -1.0);
+    const Eigen::Vector2d body_velocity(v - w * r.y(), w * r.x());  // v x-hat + w z-hat x r
+    return body_velocity.dot(normal);
 }
 
 RobotState step_diff_drive(const RobotState& state, const VelocityCommand& command, double dt_s,

@@ -8,6 +8,7 @@
 
 #include "makeway/common/random.hpp"
 #include "makeway/common/robot_body.hpp"
+#include "makeway/common/robot_description.hpp"
 #include "makeway/common/transforms.hpp"
 #include "makeway/common/velocity_command.hpp"
 #include "makeway/sim/scene.hpp"
@@ -15,24 +16,8 @@
 
 namespace makeway::sim {
 
-struct RobotParams {
-    double length_m = 0.508;        ///< Jackal footprint along x
-    double width_m = 0.430;         ///< Jackal footprint along y
-    double body_height_m = 0.50;    ///< top of the robot with its sensor: collisions below this
-    double ground_clearance_m = 0.02;  ///< parts lower than this are rolled over (common/robot_body.hpp)
-    double lidar_height_m = 0.45;   ///< LiDAR optical centre above the floor (on a mount)
-    double max_v_mps = 0.75;        ///< top speed, as in the paper
-    double max_w_radps = 2.0;
-    double max_acc_mps2 = 1.0;
-    double max_ang_acc_radps2 = 3.0;
-
-    double inscribed_radius_m() const { return 0.5 * std::min(length_m, width_m); }
-    /// What the robot can hit, in height: shared with the costmap's obstacle layer.
-    BodyHeights body() const { return {ground_clearance_m, body_height_m}; }
-    double circumscribed_radius_m() const { return 0.5 * std::hypot(length_m, width_m); }
-    Isometry3 T_robot_sensor() const { return make_T_xyz_yaw({0.0, 0.0, lidar_height_m}, 0.0); }
-    std::vector<std::string> validate() const;
-};
+/// The robot the simulator drives is the robot the system is told it has (common/robot_description.hpp).
+using RobotParams = RobotDescription;
 
 struct RobotState {
     Pose2 pose;
@@ -44,6 +29,18 @@ struct RobotState {
 /// velocities move toward it within the acceleration limits, and the pose follows the exact arc.
 RobotState step_diff_drive(const RobotState& state, const VelocityCommand& command, double dt_s,
                            const RobotParams& params);
+
+/// The body's speed toward a contact at `contact_world` [m/s]: the velocity of the body at the
+/// contact point (rigid body: v along the heading plus w x r) along the outward normal of the
+/// footprint side nearest the contact.
+double speed_toward_contact(const Pose2& pose, double v_mps, double w_radps, const Eigen::Vector2d& contact_world,
+                            double length_m, double width_m);
+
+/// Whether a contact at `contact_world` was the robot's doing: the velocity of the body at the
+/// contact point (rigid body: v along the heading plus w x r) has a component of more than
+/// `threshold_mps` along the outward normal of the footprint side nearest the contact.
+bool robot_caused_contact(const Pose2& pose, double v_mps, double w_radps, const Eigen::Vector2d& contact_world,
+                          double length_m, double width_m, double threshold_mps = 0.05);
 
 /// Wheel odometry drift: noise on each increment, proportional to the motion.
 struct OdometryNoiseParams {

@@ -1,0 +1,89 @@
+#include "makeway/pipeline/online_system.hpp"
+
+#include <chrono>
+#include <cmath>
+
+namespace makeway::pipeline {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+Costmap map_of(const OnlineSystemSetup& s) {
+    return s.map ? *s.map : free_area(s.start, s.free_area_m, s.free_area_resolution_m);
+}
+
+// Velocity over `dt` from two poses of the base (an increment in the first pose's frame).
+std::pair<double, double> velocity_between(const Pose2& a, const Pose2& b, double dt) {
+    if (!(dt > 1e-6)) return {0.0, 0.0};
+    const Isometry2 delta = to_isometry(a).inverse() * to_isometry(b);
+    return {delta.translation().x() / dt, std::atan2(delta.linear()(1, 0), delta.linear()(0, 0)) / dt};
+}
+
+}  // namespace
+
+Costmap free_area(const Pose2& centre, double side_m, double resolution_m) {
+    const int cells = static_cast<int>(side_m / resolution_m);
+    return Costmap(Eigen::Vector2d(centre.x_m, centre.y_m) - Eigen::Vector2d::Constant(0.5 * side_m), resolution_m, cells, cells);
+}
+
+Controller::Controller(const Costmap& static_map, const NavigatorParams& params) : navigator_(static_map, params), monitor_(params.monitor) {}
+
+void Controller::set_route(std::vector<Eigen::Vector2d> legs_m) {
+    navigating_ = !legs_m.empty();
+    navigator_.set_route(std::move(legs_m));
+}
+
+Controller::Step Controller::step(const NavigatorInput& in) {
+    Step out;
+    out.navigating = navigating_;
+    out.nav = navigator_.step(in);
+    const VelocityCommand wanted = navigating_ && !out.nav.arrived && !out.nav.gave_up ? out.nav.command : VelocityCommand{};
+    if (out.nav.arrived || out.nav.gave_up) navigating_ = false;
+    const Clock::time_point t0 = Clock::now();
+    out.guard = monitor_.filter({in.t_s, in.pose, in.points_world, wanted, in.v_mps, in.w_radps});
+    out.monitor_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    // Idle (never driven, arrived, gave up, cancelled): zero, whatever the monitor was doing (a
+    // recovery it had started is not a goal's to finish).
+    out.command = out.navigating && navigating_ ? out.guard.command : VelocityCommand{};
+    return out;
+}
+
+OnlineSystem::OnlineSystem(const OnlineSystemSetup& setup)
+    : static_map_(map_of(setup)),
+      pipeline_(setup.params, setup.start, setup.detector, setup.library),
+      controller_(static_map_, setup.params.navigator) {
+    pipeline_.set_shape_prior(setup.prior);
+    if (setup.map && setup.map_kind == MapKind::kWalls) {
+        // A map of walls: objects stand in its free space.
+        pipeline_.set_object_region([this](const Eigen::Vector2d& p) {
+            const auto c = static_map_.cost_at(p);
+            return c.has_value() && *c < cost::kLethal;
+        });
+    } else if (setup.map && setup.map_kind == MapKind::kFurnished) {
+        // Within the map's known area. Not "in its free space" as with a map of walls alone: a
+        // SLAM map of a furnished room holds the furniture as occupied cells.
+        pipeline_.set_object_region([this](const Eigen::Vector2d& p) {
+            const auto c = static_map_.cost_at(p);
+            return c.has_value() && *c != cost::kUnknown;
+        });
+    }
+}
+
+OnlineStep OnlineSystem::process(const Sweep& sweep) {
+    OnlineStep out;
+    out.sweep = pipeline_.process_sweep(sweep);
+    objects_ = out.sweep.objects;
+    // The velocity as the robot measures it: the wheel odometry's increment over the sweep (else
+    // the pose estimate's since the last sweep).
+    if (sweep.odometry_start && sweep.odometry_end) {
+        std::tie(out.v_mps, out.w_radps) = velocity_between(*sweep.odometry_start, *sweep.odometry_end, sweep.duration_s);
+    } else if (last_pose_) {
+        std::tie(out.v_mps, out.w_radps) = velocity_between(*last_pose_, out.sweep.pose, sweep.duration_s);
+    }
+    last_pose_ = out.sweep.pose;
+    out.control = controller_.step({sweep.stamp_s + sweep.duration_s, out.sweep.pose, out.v_mps, out.w_radps, &out.sweep.points_world,
+                                    out.sweep.T_world_sensor_end.translation(), objects_});
+    return out;
+}
+
+}  // namespace makeway::pipeline
