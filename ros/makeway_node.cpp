@@ -140,7 +140,7 @@ int main(int argc, char** argv) {
 
     // Sweep arrival to /cmd_vel [ms], and the control timer's lateness.
     std::mutex stats_mutex;
-    std::vector<double> latencies;
+    std::vector<double> latencies, waits, works, keyframe_works;
     std::size_t cycles = 0, late_cycles = 0;
     settings.clock = [] { return ros::Time::now().toSec(); };
     settings.send_command = [&cmd_pub](const VelocityCommand& c) { cmd_pub.publish(twist_of(c)); };
@@ -154,6 +154,8 @@ int main(int argc, char** argv) {
             {
                 std::lock_guard<std::mutex> lock(stats_mutex);
                 latencies.push_back(out.latency_ms);
+                waits.push_back(out.queue_wait_ms);
+                (out.keyframe ? keyframe_works : works).push_back(out.latency_ms - out.queue_wait_ms);
             }
             odometry_pub.publish(rosio::to_odometry(out.pose, 0.0, 0.0, out.stamp_s, frame, base));
             // ROS's frame chain: the odometry owns odom -> base_link, so the map's correction is
@@ -236,10 +238,15 @@ int main(int argc, char** argv) {
     std::printf("makeway_node: %zu sweeps received, %zu processed, %zu dropped, %zu keyframes, queue at most %zu\n", s.received,
                 s.processed, s.dropped, s.keyframes, s.max_queue);
     if (!latencies.empty()) {
-        std::sort(latencies.begin(), latencies.end());
-        const auto at = [&](double q) { return latencies[static_cast<std::size_t>(q * static_cast<double>(latencies.size() - 1))]; };
-        std::printf("makeway_node: sweep to /cmd_vel: median %.1f ms, p99 %.1f ms, max %.1f ms; control cycles %zu, late (> 1.5 periods) %zu\n",
-                    at(0.5), at(0.99), latencies.back(), cycles, late_cycles);
+        const auto at = [](std::vector<double> sample, double q) {
+            if (sample.empty()) return 0.0;
+            std::sort(sample.begin(), sample.end());
+            return sample[static_cast<std::size_t>(q * static_cast<double>(sample.size() - 1))];
+        };
+        std::printf("makeway_node: sweep to /cmd_vel: median %.1f ms, p99 %.1f ms, max %.1f ms (queued %.1f ms median; "
+                    "processing %.1f ms median, keyframes %.1f ms median); control cycles %zu, late (> 1.5 periods) %zu\n",
+                    at(latencies, 0.5), at(latencies, 0.99), at(latencies, 1.0), at(waits, 0.5), at(works, 0.5), at(keyframe_works, 0.5), cycles,
+                    late_cycles);
     }
     std::fflush(stdout);
     return 0;

@@ -1,12 +1,16 @@
 #include "ros/sim_engine.hpp"
 
 #include <cmath>
+#include <filesystem>
+#include <set>
 #include <optional>
 
 #include "io/config_reader.hpp"
 #include "io/json_io.hpp"
+#include "io/mesh_io.hpp"
 #include "io/scene_io.hpp"
 #include "makeway/pipeline/keyframe.hpp"
+#include "makeway/costmap/affordance.hpp"
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/robot.hpp"
 #include "makeway/sim/scene_dynamics.hpp"
@@ -28,6 +32,7 @@ struct SimRobot::Impl {
     double t = 0.0;
     std::uint64_t sweeps = 0;
     double distance_m = 0.0;
+    double risk_time_s = 0.0;
     std::vector<Pose2> path;  // every sweep's end
     struct Contact {
         double t_s;
@@ -54,7 +59,11 @@ struct SimRobot::Impl {
         path.push_back(state.pose);
     }
 
-    void judge(double ts) {
+    void judge(double ts, double dt) {
+        const Eigen::Vector2d centre(state.pose.x_m, state.pose.y_m);
+        bool risky = false;
+        for (const ObjectEstimate& o : sim::object_estimates_at(scene, models, ts)) risky |= costmap::in_affordance_zone(o, config.affordance, centre);
+        if (risky) risk_time_s += dt;
         using Against = sim::CollisionChecker::Against;
         const Against kinds[3] = {Against::kStructure, Against::kFurniture, Against::kPeople};
         static const char* const kNames[3] = {"walls", "furniture", "people"};
@@ -104,7 +113,7 @@ SimTick SimRobot::tick() {
         m.odometry.update(before, m.state.pose);
         m.distance_m += std::hypot(m.state.pose.x_m - before.x_m, m.state.pose.y_m - before.y_m);
         poses.push_back(m.state.pose);
-        m.judge(ts + dt);
+        m.judge(ts + dt, dt);
         out.odometry.push_back({ts + dt, m.odometry.pose(), m.state.v_mps, m.state.w_radps});
     }
     const sim::PoseAtTime T_world_sensor_at = sim::sensor_pose_along(std::move(poses), m.t, dt, m.config.robot.T_robot_sensor());
@@ -129,12 +138,42 @@ int SimRobot::robot_caused_contacts() const {
     return n;
 }
 
-std::string SimRobot::report_json() const {
+void SimRobot::write_cad_folder(const std::string& folder) const {
+    namespace fs = std::filesystem;
+    const fs::path final_dir(folder), staging = fs::path(folder + ".partial");
+    fs::remove_all(staging);
+    fs::create_directories(staging);
+    std::set<std::string> written;
+    for (const sim::SceneObject& o : impl_->scene.objects) {
+        const std::string name = o.style.empty() ? fs::path(o.mesh_file).stem().string() + "_x" + std::to_string(o.scale)
+                                                 : o.style + "_" + std::to_string(o.model_seed);
+        if (!written.insert(name).second) continue;
+        io::write_mesh(staging / (std::string(to_string(o.cls)) + "_" + name + ".obj"), sim::model_of(o).mesh_object);
+    }
+    fs::remove_all(final_dir);
+    fs::rename(staging, final_dir);
+}
+
+std::vector<Eigen::Vector2d> SimRobot::route() const {
+    const sim::Scene& s = impl_->scene;
+    return {{s.waypoint.x_m, s.waypoint.y_m}, {s.goal.x_m, s.goal.y_m}};
+}
+
+bool SimRobot::collided() const {
+    for (const auto& c : impl_->contacts) {
+        if (c.kind != "people") return true;
+    }
+    return false;
+}
+
+std::string SimRobot::report_json(const std::string& extra) const {
     const Impl& m = *impl_;
-    io::Json j;
+    io::Json j = io::Json::parse(extra);
     j["scene"] = m.scene.name;
     j["time_s"] = m.t;
     j["distance_m"] = m.distance_m;
+    j["risk_time_s"] = m.risk_time_s;
+    j["collided"] = collided();
     const Pose2& p = m.state.pose;
     const double to_goal = std::hypot(p.x_m - m.scene.goal.x_m, p.y_m - m.scene.goal.y_m);
     j["distance_to_goal_m"] = to_goal;

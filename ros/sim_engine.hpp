@@ -55,9 +55,20 @@ public:
     double period_s() const;
     Pose2 start() const;
     Isometry3 T_base_sensor() const;
+    /// Writes the CAD models of the room's furniture (each distinct model of the scene once, as
+    /// `chair_NAME.obj` / `table_NAME.obj`: io/cad_folder.hpp's layout) into `folder`, which
+    /// appears whole (written beside it, then renamed). What a robot's user has: the room's CAD
+    /// models, not where they stand.
+    void write_cad_folder(const std::string& folder) const;
+    /// The scene's legs: its waypoint, then its goal (world frame).
+    std::vector<Eigen::Vector2d> route() const;
     /// The run so far as JSON: time, distance, the driven path, every contact (walls, furniture,
-    /// people; robot- or other-caused) and the distance left to the scene's goal.
-    std::string report_json() const;
+    /// people; robot- or other-caused), risk time (the robot's centre inside a true object's
+    /// affordance zone, as the benchmark scores it) and the distance left to the scene's goal.
+    /// `extra`: more JSON members to merge (the mission's outcome), as a JSON object text.
+    std::string report_json(const std::string& extra = "{}") const;
+    /// Whether the robot has touched walls or furniture (the benchmark's collision).
+    bool collided() const;
     int robot_caused_contacts() const;
 
 private:

@@ -4,16 +4,7 @@ namespace makeway::eval {
 
 std::vector<ObjectEstimate> ground_truth_objects(const sim::Scene& scene, const std::vector<sim::ObjectModel>& models,
                                                  double t_s) {
-    std::vector<ObjectEstimate> out;
-    for (const sim::ObjectState& s : sim::object_states_at(scene, models, t_s)) {
-        ObjectEstimate o;
-        o.id = s.id;
-        o.cls = s.cls;
-        o.box_world = s.box_world;
-        o.velocity_mps = s.velocity_mps;
-        out.push_back(o);
-    }
-    return out;
+    return sim::object_estimates_at(scene, models, t_s);
 }
 
 std::vector<ObjectEstimate> GroundTruthObjects::objects(const ObjectSourceInput& input) {

@@ -94,4 +94,17 @@ TriangleMesh make_person_mesh() {
     return m;
 }
 
+std::vector<ObjectEstimate> object_estimates_at(const Scene& scene, const std::vector<ObjectModel>& models, double t_s) {
+    std::vector<ObjectEstimate> out;
+    for (const ObjectState& s : object_states_at(scene, models, t_s)) {
+        ObjectEstimate o;
+        o.id = s.id;
+        o.cls = s.cls;
+        o.box_world = s.box_world;
+        o.velocity_mps = s.velocity_mps;
+        out.push_back(o);
+    }
+    return out;
+}
+
 }  // namespace makeway::sim
