@@ -19,8 +19,10 @@
 // (/velodyne_points), odom_topic (/odom), frame_id (map), base_frame (base_link), odom_frame (odom),
 // costmap_size (40 m), queue (600 sweeps), start ("x y yaw"; default: the first odometry pose), extrinsics
 // ("x y z roll pitch yaw": the sensor on the base; default: the configuration's robot),
-// control_rate (10 Hz), sensor_timeout (0.3 s), odom_timeout (0.3 s). Perception runs on the
-// engine's worker thread; the callbacks only convert and enqueue. C++17: ROS 1's message headers
+// control_rate (10 Hz), sensor_timeout (0.3 s), odom_timeout (0.3 s), async_perception (true: the
+// keyframe chain on its own thread, so a keyframe never delays a command; the costmap is
+// published on the sweeps that form keyframes, objects and object_map when perception ends). The
+// system runs on the engine's worker thread; the callbacks only convert and enqueue. C++17: ROS 1's message headers
 // do not compile as C++20.
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/Twist.h>
@@ -101,6 +103,7 @@ int main(int argc, char** argv) {
     settings.max_queue = static_cast<std::size_t>(std::max(1, param<int>(pnh, "queue", 600)));
     settings.sensor_timeout_s = param<double>(pnh, "sensor_timeout", 0.3);
     settings.odometry_timeout_s = param<double>(pnh, "odom_timeout", 0.3);
+    settings.async_perception = param<bool>(pnh, "async_perception", true);
     const double control_rate = param<double>(pnh, "control_rate", 10.0);
     const std::string cloud_topic = param<std::string>(pnh, "cloud_topic", "/velodyne_points");
     const std::string odom_topic = param<std::string>(pnh, "odom_topic", "/odom");
@@ -151,11 +154,22 @@ int main(int argc, char** argv) {
     try {
         engine = std::make_unique<rosio::NodeEngine>(settings, [&](const rosio::NodeOutput& out) {
             // The command went first (settings.send_command, under the engine's lock).
+            if (!out.object_map_json.empty()) {  // a finished keyframe (in line, or from the perception thread)
+                objects_pub.publish(rosio::to_markers(out.objects, zones, out.stamp_s, frame));
+                std_msgs::String text;
+                text.data = out.object_map_json;
+                map_pub.publish(text);
+            }
+            if (out.perception) {
+                std::lock_guard<std::mutex> lock(stats_mutex);
+                keyframe_works.push_back(out.keyframe_ms);  // off the control path
+                return;
+            }
             {
                 std::lock_guard<std::mutex> lock(stats_mutex);
                 latencies.push_back(out.latency_ms);
                 waits.push_back(out.queue_wait_ms);
-                (out.keyframe ? keyframe_works : works).push_back(out.latency_ms - out.queue_wait_ms);
+                (out.keyframe && !settings.async_perception ? keyframe_works : works).push_back(out.latency_ms - out.queue_wait_ms);
             }
             odometry_pub.publish(rosio::to_odometry(out.pose, 0.0, 0.0, out.stamp_s, frame, base));
             // ROS's frame chain: the odometry owns odom -> base_link, so the map's correction is
@@ -171,12 +185,7 @@ int main(int argc, char** argv) {
             std_msgs::String status;
             status.data = rosio::to_json(out.status);
             status_pub.publish(status);
-            if (!out.keyframe) return;
-            costmap_pub.publish(rosio::to_occupancy_grid(*out.costmap, out.stamp_s, frame));
-            objects_pub.publish(rosio::to_markers(out.objects, zones, out.stamp_s, frame));
-            std_msgs::String text;
-            text.data = out.object_map_json;
-            map_pub.publish(text);
+            if (out.keyframe) costmap_pub.publish(rosio::to_occupancy_grid(*out.costmap, out.stamp_s, frame));
         });
     } catch (const std::exception& e) {
         ROS_FATAL("makeway_node: %s", e.what());
@@ -232,8 +241,10 @@ int main(int argc, char** argv) {
     }
     control.stop();
     spinner.stop();
+    engine->drain();  // what is queued, perceived and published while ROS is up
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // roscpp sends from its own threads
     const rosio::NodeStats s = engine->stats();
-    engine.reset();  // finishes what is queued
+    engine.reset();
     ros::shutdown();
     std::printf("makeway_node: %zu sweeps received, %zu processed, %zu dropped, %zu keyframes, queue at most %zu\n", s.received,
                 s.processed, s.dropped, s.keyframes, s.max_queue);
@@ -244,8 +255,9 @@ int main(int argc, char** argv) {
             return sample[static_cast<std::size_t>(q * static_cast<double>(sample.size() - 1))];
         };
         std::printf("makeway_node: sweep to /cmd_vel: median %.1f ms, p99 %.1f ms, max %.1f ms (queued %.1f ms median; "
-                    "processing %.1f ms median, keyframes %.1f ms median); control cycles %zu, late (> 1.5 periods) %zu\n",
-                    at(latencies, 0.5), at(latencies, 0.99), at(latencies, 1.0), at(waits, 0.5), at(works, 0.5), at(keyframe_works, 0.5), cycles,
+                    "processing %.1f ms median; keyframe chain %.1f ms median, %s); control cycles %zu, late (> 1.5 periods) %zu\n",
+                    at(latencies, 0.5), at(latencies, 0.99), at(latencies, 1.0), at(waits, 0.5), at(works, 0.5), at(keyframe_works, 0.5),
+                    settings.async_perception ? "on its own thread" : "in line", cycles,
                     late_cycles);
     }
     std::fflush(stdout);

@@ -84,6 +84,10 @@ struct NodeEngine::Impl {
     NavStatus status;  // the worker's; copied into each output
     bool busy = false, stopping = false;
     std::thread worker;
+    // Async perception: keyframes waiting, and its thread.
+    std::deque<pipeline::PendingKeyframe> keyframes;
+    bool perceiving = false;
+    std::thread perceiver;
 
     Impl(const NodeSettings& s, Publish p)
         : settings(s), publish(std::move(p)), config(s.config.empty() ? io::Config{} : io::load_config(s.config)),
@@ -91,6 +95,7 @@ struct NodeEngine::Impl {
         if (!s.cad.empty()) library = io::read_cad_folder(s.cad);
         if (!s.map.empty()) static_map = io::read_map_server(s.map);
         worker = std::thread([this] { run(); });
+        if (settings.async_perception) perceiver = std::thread([this] { perceive_loop(); });
     }
 
     // The wheels at t: waits (up to odometry_wait_s) for odometry that covers t; nullopt without.
@@ -123,6 +128,34 @@ struct NodeEngine::Impl {
             lock.lock();
             busy = false;
             ++stats.processed;
+            changed.notify_all();
+        }
+    }
+
+    // The keyframe chain, one keyframe at a time, in order (the tracker needs every one).
+    void perceive_loop() {
+        std::unique_lock<std::mutex> lock(mutex);
+        while (true) {
+            changed.wait(lock, [&] { return (stopping && queue.empty() && !busy) || !keyframes.empty(); });
+            if (keyframes.empty()) return;  // stopping, the worker is done, nothing left
+            pipeline::PendingKeyframe k = std::move(keyframes.front());
+            keyframes.pop_front();
+            perceiving = true;
+            lock.unlock();
+            pipeline::StageTiming timing;
+            const pipeline::KeyframeResult kf = system->perceive(std::move(k), timing);
+            NodeOutput out;
+            out.perception = true;
+            out.stamp_s = kf.stamp_s;
+            out.objects = kf.tracking.objects_world;
+            out.keyframe_ms = timing.keyframe_ms();
+            io::Json frame = io::objects_to_json(0, kf.stamp_s, out.objects);
+            frame["T_world_sensor"] = io::pose_to_json(kf.T_world_keyframe);
+            out.object_map_json = io::dump_json(frame);
+            publish(out);
+            lock.lock();
+            perceiving = false;
+            ++stats.keyframes;
             changed.notify_all();
         }
     }
@@ -164,14 +197,23 @@ struct NodeEngine::Impl {
                     status = {"stopped", problem, -1.0, goal};
                 }
             }
-            return system->process({std::move(sweep.points), stamp, duration, wheel_start, wheel_end});
+            const pipeline::Sweep input{std::move(sweep.points), stamp, duration, wheel_start, wheel_end};
+            if (!settings.async_perception) return system->process(input);
+            std::optional<pipeline::PendingKeyframe> pending;
+            pipeline::OnlineStep s = system->drive(input, &pending);
+            if (pending) {
+                std::lock_guard<std::mutex> guard(mutex);
+                keyframes.push_back(std::move(*pending));
+                changed.notify_all();
+            }
+            return s;
         }();
         NodeOutput out;
         out.stamp_s = stamp + duration;
         out.pose = step.sweep.pose;
         out.wheel_pose = wheel_end;
         out.T_world_sensor = step.sweep.T_world_sensor_end;
-        out.keyframe = step.sweep.keyframe.has_value();
+        out.keyframe = step.sweep.keyframe_formed;
         out.objects = step.sweep.objects;
         out.command = step.control.command;
         update_status(step, out);
@@ -179,7 +221,7 @@ struct NodeEngine::Impl {
         out.per_sweep_ms = step.per_sweep_ms();
         out.keyframe_ms = step.sweep.timing.keyframe_ms();
         out.queue_wait_ms = waited_ms;
-        if (out.keyframe) {
+        if (step.sweep.keyframe) {  // perceived in line (not async)
             io::Json frame = io::objects_to_json(0, out.stamp_s, out.objects);
             frame["T_world_sensor"] = io::pose_to_json(step.sweep.keyframe->T_world_keyframe);
             out.object_map_json = io::dump_json(frame);
@@ -235,6 +277,11 @@ NodeEngine::~NodeEngine() {
     }
     impl_->changed.notify_all();
     impl_->worker.join();
+    {
+        std::lock_guard<std::mutex> lock(impl_->mutex);
+        impl_->changed.notify_all();  // the worker is done: the perceiver may finish
+    }
+    if (impl_->perceiver.joinable()) impl_->perceiver.join();
 }
 
 void NodeEngine::push_sweep(CloudSweep sweep) {
@@ -290,7 +337,7 @@ GatedCommand NodeEngine::send_command_at(double now_s) {
 
 void NodeEngine::drain() {
     std::unique_lock<std::mutex> lock(impl_->mutex);
-    impl_->changed.wait(lock, [&] { return impl_->queue.empty() && !impl_->busy; });
+    impl_->changed.wait(lock, [&] { return impl_->queue.empty() && !impl_->busy && impl_->keyframes.empty() && !impl_->perceiving; });
 }
 
 NodeStats NodeEngine::stats() const {

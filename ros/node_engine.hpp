@@ -32,6 +32,10 @@ struct NodeSettings {
     std::optional<Isometry3> T_base_sensor;  ///< measured extrinsics (default: the configuration's robot)
     double sensor_timeout_s = 0.3;    ///< no sweep ended this recently: zero velocity
     double odometry_timeout_s = 0.3;  ///< no odometry this recent: zero velocity
+    /// true: the keyframe chain (detection, verification, tracking) runs on its own thread and
+    /// each sweep's command waits only for the pose and the costmap (the object map it sees is
+    /// the last finished one); false: every sweep waits for its keyframe's perception.
+    bool async_perception = false;
     std::function<double()> clock;    ///< the node's time [s] (ROS time: sim time under use_sim_time); empty: the sweep's end
     /// Sends a command to the motors. Called under the engine's lock by every path that commands
     /// (a sweep's output, send_command_at(), cancel()), so a cancel is never overtaken by a
@@ -65,10 +69,11 @@ struct NodeOutput {
     Pose2 pose;                          ///< the base, estimated
     std::optional<Pose2> wheel_pose;     ///< the wheel odometry's pose of the base at the sweep's end (its odom frame)
     Isometry3 T_world_sensor = Isometry3::Identity();
-    bool keyframe = false;
+    bool keyframe = false;               ///< this sweep formed a keyframe (the costmap is published on these)
+    bool perception = false;             ///< async perception finished a keyframe: only objects and object_map_json are set
     std::vector<ObjectEstimate> objects;  ///< the object map
-    const Costmap* costmap = nullptr;     ///< valid during the callback
-    std::string object_map_json;          ///< keyframes: the object map as `makeway run` writes it
+    const Costmap* costmap = nullptr;     ///< valid during the callback (null on perception outputs)
+    std::string object_map_json;          ///< a finished keyframe: the object map as `makeway run` writes it (else empty)
     double per_sweep_ms = 0.0, keyframe_ms = 0.0, queue_wait_ms = 0.0;
     double latency_ms = 0.0;              ///< from the sweep's arrival (push_sweep) to this output
     VelocityCommand command;              ///< the guarded command from this sweep (zero when idle)
@@ -103,7 +108,7 @@ public:
     GatedCommand command_at(double now_s) const;
     /// command_at(now_s), sent (settings.send_command) under the same lock; the node's control rate.
     GatedCommand send_command_at(double now_s);
-    /// Blocks until every queued sweep is processed.
+    /// Blocks until every queued sweep is processed (and its keyframes perceived).
     void drain();
 
     NodeStats stats() const;

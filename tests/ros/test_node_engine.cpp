@@ -85,6 +85,45 @@ TEST(NodeEngine, EverySweepInOrderStampedWithItsEnd) {
     EXPECT_GT(objects, 0u);  // the committed detector maps something in a medium scene
 }
 
+// Async perception: every sweep's output comes without waiting for its keyframe; every keyframe
+// is still perceived, in order, and its object map published; drain() waits for both.
+TEST(NodeEngine, AsyncPerceptionPerceivesEveryKeyframeOffTheControlPath) {
+    const auto frames = drive(25);
+    NodeSettings s = settings();
+    s.async_perception = true;
+    std::mutex m;
+    std::vector<double> sweep_stamps, keyframe_stamps;
+    std::size_t formed = 0, objects = 0;
+    {
+        NodeEngine engine(s, [&](const NodeOutput& out) {
+            std::lock_guard<std::mutex> lock(m);
+            if (out.perception) {
+                keyframe_stamps.push_back(out.stamp_s);
+                objects = out.objects.size();
+                EXPECT_EQ(out.costmap, nullptr);
+                EXPECT_NE(out.object_map_json.find("\"objects\""), std::string::npos);
+                return;
+            }
+            sweep_stamps.push_back(out.stamp_s);
+            formed += out.keyframe;
+            EXPECT_NE(out.costmap, nullptr);
+            EXPECT_TRUE(out.object_map_json.empty());  // the sweep did not wait for perception
+        });
+        for (const auto& f : frames) {
+            engine.push_sweep(sweep_of(f));
+            engine.push_odometry({100.0 + f.stamp_s, f.odometry_pose});
+            engine.push_odometry({100.0 + f.stamp_s + 0.1, f.odometry_end_pose});
+        }
+        engine.drain();
+        EXPECT_EQ(engine.stats().keyframes, 5u);
+    }
+    EXPECT_EQ(sweep_stamps.size(), frames.size());
+    EXPECT_EQ(formed, 5u);
+    ASSERT_EQ(keyframe_stamps.size(), 5u);
+    for (std::size_t i = 1; i < keyframe_stamps.size(); ++i) EXPECT_GT(keyframe_stamps[i], keyframe_stamps[i - 1]);  // in order
+    EXPECT_GT(objects, 0u);
+}
+
 TEST(NodeEngine, AFullQueueDropsTheOldestAndCountsIt) {
     const auto frames = drive(12);
     NodeSettings s = settings();

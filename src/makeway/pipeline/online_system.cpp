@@ -72,7 +72,18 @@ OnlineSystem::OnlineSystem(const OnlineSystemSetup& setup)
 OnlineStep OnlineSystem::process(const Sweep& sweep) {
     OnlineStep out;
     out.sweep = pipeline_.process_sweep(sweep);
-    objects_ = out.sweep.objects;
+    control(sweep, out);
+    return out;
+}
+
+OnlineStep OnlineSystem::drive(const Sweep& sweep, std::optional<PendingKeyframe>* pending) {
+    OnlineStep out;
+    out.sweep = pipeline_.track(sweep, pending);
+    control(sweep, out);
+    return out;
+}
+
+void OnlineSystem::control(const Sweep& sweep, OnlineStep& out) {
     // The velocity as the robot measures it: the wheel odometry's increment over the sweep (else
     // the pose estimate's since the last sweep).
     if (sweep.odometry_start && sweep.odometry_end) {
@@ -82,8 +93,7 @@ OnlineStep OnlineSystem::process(const Sweep& sweep) {
     }
     last_pose_ = out.sweep.pose;
     out.control = controller_.step({sweep.stamp_s + sweep.duration_s, out.sweep.pose, out.v_mps, out.w_radps, &out.sweep.points_world,
-                                    out.sweep.T_world_sensor_end.translation(), objects_});
-    return out;
+                                    out.sweep.T_world_sensor_end.translation(), out.sweep.objects});
 }
 
 }  // namespace makeway::pipeline

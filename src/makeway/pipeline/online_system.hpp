@@ -84,12 +84,19 @@ public:
 
     /// One sweep, top to bottom: perception, the costmap, and (with a route) the guarded command.
     OnlineStep process(const Sweep& sweep);
+    /// The control path alone, for a robot that must act before perception ends (the ROS node):
+    /// the front end, then the costmap and the guarded command on the object map as it stands; a
+    /// keyframe the front end formed is left in `pending` for perceive(), which may run on another
+    /// thread (one call at a time) and updates the object map the next drive() uses.
+    OnlineStep drive(const Sweep& sweep, std::optional<PendingKeyframe>* pending);
+    KeyframeResult perceive(PendingKeyframe pending, StageTiming& timing) { return pipeline_.perceive(std::move(pending), timing); }
     void set_route(std::vector<Eigen::Vector2d> legs_m) { controller_.set_route(std::move(legs_m)); }
     void cancel() { controller_.cancel(); }
 
     const Costmap& costmap() const { return controller_.navigator().costmap(); }
     const Costmap& static_map() const { return static_map_; }
-    const std::vector<ObjectEstimate>& objects() const { return objects_; }
+    /// The object map now (a copy: perceive() may be updating it).
+    std::vector<ObjectEstimate> objects() const { return pipeline_.objects(); }
     const std::vector<Eigen::Vector2d>& plan() const { return controller_.navigator().plan(); }
     const Controller& controller() const { return controller_; }
     const Pipeline& pipeline() const { return pipeline_; }
@@ -99,8 +106,9 @@ private:
     Costmap static_map_;
     Pipeline pipeline_;
     Controller controller_;
-    std::vector<ObjectEstimate> objects_;
     std::optional<Pose2> last_pose_;
+
+    void control(const Sweep& sweep, OnlineStep& out);
 };
 
 }  // namespace makeway::pipeline

@@ -47,6 +47,19 @@ void Pipeline::set_shape_prior(const verification::ShapePrior* prior) {
 
 SweepResult Pipeline::process_sweep(const Sweep& sweep) {
     const Clock::time_point t0 = Clock::now();
+    std::optional<PendingKeyframe> pending;
+    SweepResult out = track(sweep, &pending);
+    // Keyframe: detect, verify, track.
+    if (pending) {
+        out.keyframe = perceive(std::move(*pending), out.timing);
+        out.objects = objects();
+    }
+    out.timing.total_ms = ms_since(t0);
+    return out;
+}
+
+SweepResult Pipeline::track(const Sweep& sweep, std::optional<PendingKeyframe>* pending) {
+    const Clock::time_point t0 = Clock::now();
     SweepResult out;
     // Front end: pose from the start pose and the wheel odometry, the sweep de-skewed, and every
     // `every` sweeps a keyframe (accumulated, ground plane, ground and ceiling removed). The
@@ -61,14 +74,23 @@ SweepResult Pipeline::process_sweep(const Sweep& sweep) {
     out.timing.deskew_ms = front.deskew_ms;
     out.timing.odometry_ms = front.odometry_ms;
     out.odometry = front.odometry;
-    // Keyframe: detect, verify, track.
-    if (front.keyframe) {
-        out.keyframe = process_keyframe(std::move(*front.keyframe), sweep.stamp_s, out.timing);
-        objects_ = out.keyframe->tracking.objects_world;
-    }
-    out.objects = objects_;
+    out.keyframe_formed = front.keyframe.has_value();
+    if (front.keyframe && pending) *pending = PendingKeyframe{std::move(*front.keyframe), sweep.stamp_s};
+    out.objects = objects();
     out.timing.total_ms = ms_since(t0);
     return out;
+}
+
+KeyframeResult Pipeline::perceive(PendingKeyframe pending, StageTiming& timing) {
+    KeyframeResult kf = process_keyframe(std::move(pending.front), pending.stamp_s, timing);
+    std::lock_guard<std::mutex> lock(objects_mutex_);
+    objects_ = kf.tracking.objects_world;
+    return kf;
+}
+
+std::vector<ObjectEstimate> Pipeline::objects() const {
+    std::lock_guard<std::mutex> lock(objects_mutex_);
+    return objects_;
 }
 
 KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s, StageTiming& timing) {

@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -65,8 +66,15 @@ struct SweepResult {
     PointCloud points_world;    ///< this sweep de-skewed into the world frame (the obstacle layer's input)
     std::optional<odometry::OdometryResult> odometry;  ///< the LiDAR odometry's report, when it runs
     std::optional<KeyframeResult> keyframe;
+    bool keyframe_formed = false;         ///< the front end formed a keyframe (perceived in `keyframe`, or handed on by track())
     std::vector<ObjectEstimate> objects;  ///< the object map after this sweep, world frame
     StageTiming timing;
+};
+
+/// A keyframe the front end formed, waiting for perception (Pipeline::perceive).
+struct PendingKeyframe {
+    FrontEndKeyframe front;
+    double stamp_s = 0.0;
 };
 
 class Pipeline {
@@ -80,6 +88,17 @@ public:
     /// The whole method for one sweep, top to bottom. Never throws on degenerate input (an empty
     /// sweep gives an empty keyframe and no detections).
     SweepResult process_sweep(const Sweep& sweep);
+
+    /// process_sweep() in two halves, for a robot that must not wait for perception before it
+    /// acts: track() is the front end (pose, de-skewing, keyframe assembly; the object map as it
+    /// stands), and hands a keyframe it formed to `pending`; perceive() is the keyframe chain
+    /// (detect, verify, track) and updates the object map. They share no state but the object
+    /// map (guarded), so perceive() may run on another thread than track(), one call at a time.
+    /// process_sweep(s) == track(s, &p) then perceive(p).
+    SweepResult track(const Sweep& sweep, std::optional<PendingKeyframe>* pending);
+    KeyframeResult perceive(PendingKeyframe pending, StageTiming& timing);
+    /// The object map now (a copy: perceive() may be updating it).
+    std::vector<ObjectEstimate> objects() const;
 
     /// Where objects can stand: the free space of the prebuilt map of walls (a robot has it).
     /// Objects outside it (beyond the walls, inside them) never enter the object map.
@@ -104,6 +123,7 @@ private:
     verification::CadLibrary no_library_;  ///< what verification sees with a prior and no CAD models
     FrontEnd front_end_;
     tracking::ObjectMap map_;
+    mutable std::mutex objects_mutex_;
     std::vector<ObjectEstimate> objects_;
     std::size_t keyframes_ = 0;
 };
