@@ -200,10 +200,13 @@ int main(int argc, char** argv) {
             } catch (const io::FormatError& e) {
                 ROS_ERROR_THROTTLE(5.0, "makeway_node: %s: %s (sweep skipped)", cloud_topic.c_str(), e.what());
             }
-        });
-    ros::Subscriber odometry = nh.subscribe<nav_msgs::Odometry>(odom_topic, 1000, [&](const nav_msgs::OdometryConstPtr& msg) {
-        engine->push_odometry({msg->header.stamp.toSec(), rosio::pose_from_odometry(*msg)});
-    });
+        },
+        ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
+    // TCP_NODELAY: small messages (odometry at 50-100 Hz) otherwise wait for Nagle's algorithm and
+    // the peer's delayed ACK, ~40 ms: a sweep then waits that long for the odometry of its end.
+    ros::Subscriber odometry = nh.subscribe<nav_msgs::Odometry>(
+        odom_topic, 1000, [&](const nav_msgs::OdometryConstPtr& msg) { engine->push_odometry({msg->header.stamp.toSec(), rosio::pose_from_odometry(*msg)}); },
+        ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
     ros::Subscriber goals = nh.subscribe<geometry_msgs::PoseStamped>("/move_base_simple/goal", 5, [&](const geometry_msgs::PoseStampedConstPtr& msg) {
         if (!msg->header.frame_id.empty() && msg->header.frame_id != frame) {
             ROS_WARN("makeway_node: goal in frame \"%s\" ignored: goals are in \"%s\"", msg->header.frame_id.c_str(), frame.c_str());

@@ -64,7 +64,6 @@ GatedCommand gate_command(const VelocityCommand& last, std::optional<double> las
 struct NodeEngine::Impl {
     NodeSettings settings;
     Publish publish;
-    io::Config config;
     pipeline::SystemParams params;
     perception::Detector detector;
     std::optional<verification::CadLibrary> library;
@@ -90,8 +89,7 @@ struct NodeEngine::Impl {
     std::thread perceiver;
 
     Impl(const NodeSettings& s, Publish p)
-        : settings(s), publish(std::move(p)), config(s.config.empty() ? io::Config{} : io::load_config(s.config)),
-          params(node_system_params(s)), detector(load_weights(s.model)) {
+        : settings(s), publish(std::move(p)), params(node_system_params(s)), detector(load_weights(s.model)) {
         if (!s.cad.empty()) library = io::read_cad_folder(s.cad);
         if (!s.map.empty()) static_map = io::read_map_server(s.map);
         worker = std::thread([this] { run(); });
@@ -99,9 +97,13 @@ struct NodeEngine::Impl {
     }
 
     // The wheels at t: waits (up to odometry_wait_s) for odometry that covers t; nullopt without.
+    // Odometry within kStampSlack_s of t covers it: stamps travel as integer nanoseconds and a
+    // sweep's end is its stamp plus its last point's float time, so the odometry message of the
+    // sweep's end can read a few ns early, and waiting for the next one costs a whole message period.
+    static constexpr double kStampSlack_s = 1e-3;
     std::optional<Pose2> wheels_at(double t, std::unique_lock<std::mutex>& lock) {
         const auto deadline = Clock::now() + std::chrono::duration<double>(settings.odometry_wait_s);
-        while (!odometry.empty() && odometry.back().stamp_s < t && !stopping && Clock::now() < deadline) {
+        while (!odometry.empty() && odometry.back().stamp_s < t - kStampSlack_s && !stopping && Clock::now() < deadline) {
             changed.wait_until(lock, deadline);
         }
         if (odometry.empty()) return std::nullopt;

@@ -93,15 +93,19 @@ int main(int argc, char** argv) {
     constexpr double kEpoch = 1.0;
     std::mutex mutex;
     double sim_now = kEpoch;
-    ros::Subscriber cmd = nh.subscribe<geometry_msgs::Twist>("/cmd_vel", 10, [&](const geometry_msgs::TwistConstPtr& msg) {
-        std::lock_guard<std::mutex> lock(mutex);
-        robot->command({msg->linear.x, msg->angular.z}, sim_now - kEpoch);
-    });
+    ros::Subscriber cmd = nh.subscribe<geometry_msgs::Twist>(
+        "/cmd_vel", 10,
+        [&](const geometry_msgs::TwistConstPtr& msg) {
+            std::lock_guard<std::mutex> lock(mutex);
+            robot->command({msg->linear.x, msg->angular.z}, sim_now - kEpoch);
+        },
+        ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());  // a command is small: no Nagle delay
     // The operator of ~mission: the scene's legs one by one, on the system's word that each is reached.
-    ros::Publisher goal_pub = nh.advertise<geometry_msgs::PoseStamped>("/move_base_simple/goal", 5, true);
+    ros::Publisher goal_pub;
     nlohmann::json last_status;
     ros::Subscriber status_sub;
     if (mission) {
+        goal_pub = nh.advertise<geometry_msgs::PoseStamped>("/move_base_simple/goal", 5, true);
         status_sub = nh.subscribe<std_msgs::String>(status_topic, 20, [&](const std_msgs::StringConstPtr& msg) {
             std::lock_guard<std::mutex> lock(mutex);
             try {
