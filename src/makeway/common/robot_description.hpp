@@ -29,11 +29,6 @@ struct RobotDescription {
     double circumscribed_radius_m() const { return 0.5 * std::hypot(length_m, width_m); }
     /// What the robot can hit, in height: shared with the costmap's obstacle layer.
     BodyHeights body() const { return {ground_clearance_m, body_height_m}; }
-    /// The footprint's corners in the base frame, counter-clockwise from the front left.
-    std::vector<Eigen::Vector2d> footprint() const {
-        const double x = 0.5 * length_m, y = 0.5 * width_m;
-        return {{x, y}, {-x, y}, {-x, -y}, {x, -y}};
-    }
     /// The sensor on the base (the extrinsics), when none are given: lidar_height_m above its centre.
     Isometry3 T_robot_sensor() const { return make_T_xyz_yaw({0.0, 0.0, lidar_height_m}, 0.0); }
     /// Every problem, one per entry ("length_m must be in (0.05, 5)").
