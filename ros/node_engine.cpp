@@ -134,6 +134,12 @@ struct NodeEngine::Impl {
         }
     }
 
+    // The last command through gate_command at now_s. Under `mutex`.
+    GatedCommand gated_at(double now_s) const {
+        const std::optional<double> odometry_s = odometry.empty() ? std::nullopt : std::optional<double>(odometry.back().stamp_s);
+        return gate_command(last_command, last_sweep_end, odometry_s, now_s, settings.sensor_timeout_s, settings.odometry_timeout_s);
+    }
+
     // The keyframe chain, one keyframe at a time, in order (the tracker needs every one).
     void perceive_loop() {
         std::unique_lock<std::mutex> lock(mutex);
@@ -236,9 +242,7 @@ struct NodeEngine::Impl {
             last_command = pending_cancel ? VelocityCommand{} : out.command;
             last_sweep_end = out.stamp_s;
             if (pending_cancel) out.command = {};
-            const std::optional<double> odometry_s = odometry.empty() ? std::nullopt : std::optional<double>(odometry.back().stamp_s);
-            out.gated = gate_command(last_command, last_sweep_end, odometry_s, settings.clock ? settings.clock() : out.stamp_s,
-                                     settings.sensor_timeout_s, settings.odometry_timeout_s);
+            out.gated = gated_at(settings.clock ? settings.clock() : out.stamp_s);
             if (settings.send_command) settings.send_command(out.gated.command);  // the command first: the robot waits for it
         }
         out.latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - arrived).count();
@@ -321,18 +325,9 @@ void NodeEngine::cancel() {
     if (impl_->settings.send_command) impl_->settings.send_command({});
 }
 
-GatedCommand NodeEngine::command_at(double now_s) const {
-    std::lock_guard<std::mutex> lock(impl_->mutex);
-    const std::optional<double> odometry = impl_->odometry.empty() ? std::nullopt : std::optional<double>(impl_->odometry.back().stamp_s);
-    return gate_command(impl_->last_command, impl_->last_sweep_end, odometry, now_s, impl_->settings.sensor_timeout_s,
-                        impl_->settings.odometry_timeout_s);
-}
-
 GatedCommand NodeEngine::send_command_at(double now_s) {
     std::lock_guard<std::mutex> lock(impl_->mutex);
-    const std::optional<double> odometry = impl_->odometry.empty() ? std::nullopt : std::optional<double>(impl_->odometry.back().stamp_s);
-    const GatedCommand gated = gate_command(impl_->last_command, impl_->last_sweep_end, odometry, now_s, impl_->settings.sensor_timeout_s,
-                                            impl_->settings.odometry_timeout_s);
+    const GatedCommand gated = impl_->gated_at(now_s);
     if (impl_->settings.send_command) impl_->settings.send_command(gated.command);
     return gated;
 }

@@ -3,7 +3,7 @@
 // benchmark's `ours` and `makeway run`) on a worker thread behind a queue, so that the sweep
 // callback only converts and enqueues and a slow keyframe never drops a sweep. Goals come in from
 // any thread and are checked and applied at the next sweep; every sweep yields the guarded command
-// (navigator, then collision monitor), the plan and a status. command_at() is what the node sends
+// (navigator, then collision monitor), the plan and a status. send_command_at() is what the node sends
 // at its control rate: the last command while the sweeps and the odometry are fresh, else zero.
 // It names no ROS type and is C++17-clean: the node's main (ros/makeway_node.cpp) is C++17
 // because ROS 1's message headers are.
@@ -102,11 +102,10 @@ public:
     /// A goal (world frame), from any thread: checked at the next sweep (finite, inside the map,
     /// not inside an obstacle); a refused goal leaves the robot still, the status says why.
     void set_goal(const Eigen::Vector2d& goal_m);
-    /// Stops at once (sends zero; command_at() gives zero from now) and drops the goal at the next sweep.
+    /// Stops at once (sends zero; send_command_at() gives zero from now) and drops the goal at the next sweep.
     void cancel();
-    /// What to send to the motors at `now_s` (gate_command on the last sweep's command).
-    GatedCommand command_at(double now_s) const;
-    /// command_at(now_s), sent (settings.send_command) under the same lock; the node's control rate.
+    /// What to send to the motors at `now_s` (gate_command on the last sweep's command), sent
+    /// (settings.send_command) under the engine's lock; the node's control rate.
     GatedCommand send_command_at(double now_s);
     /// Blocks until every queued sweep is processed (and its keyframes perceived).
     void drain();
