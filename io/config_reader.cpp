@@ -302,6 +302,10 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("goal_tolerance_m", n.goal_tolerance_m);
         s.read("plan_to_tolerance", n.plan_to_tolerance);
         s.read("give_up_s", n.give_up_s);
+        s.read("detour_ahead_m", n.detour_ahead_m);
+        s.read("detour_radius_m", n.detour_radius_m);
+        s.read("detour_memory_s", n.detour_memory_s);
+        s.read("max_detours", n.max_detours);
         s.finish();
         s.add_validation(n.astar.validate());
         s.add_validation(n.dwa.validate());
@@ -321,10 +325,14 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("simulation_time_step_s", m.simulation_time_step_s);
         s.read("dynamic_speed_mps", m.dynamic_speed_mps);
         s.read("dynamic_history", m.dynamic_history);
+        s.read("dynamic_cluster_m", m.dynamic_cluster_m);
+        s.read("dynamic_cluster_min_new", m.dynamic_cluster_min_new);
         s.read("dynamic_min_height_m", m.dynamic_min_height_m);
         s.read("min_scale", m.min_scale);
         s.read("lowest_beam_deg", m.lowest_beam_deg);
         s.read("blind_memory_s", m.blind_memory_s);
+        s.read("object_footprints", m.object_footprints);
+        s.read("object_moving_mps", m.object_moving_mps);
         s.read("max_range_m", m.max_range_m);
         s.read("recovery_after_s", m.recovery_after_s);
         s.read("backup_speed_mps", m.backup_speed_mps);

@@ -210,6 +210,7 @@ TEST(Navigator, ARobotCirclingWithoutProgressAlongItsPlanGivesUpEarly) {
     const Costmap map({-5.0, -5.0}, 0.05, 200, 200, cost::kFree);
     NavigatorParams params;
     params.affordance_layer = false;
+    params.max_detours = 0;  // the give-up clock alone (detours: the test below)
     Navigator circling(map, params);
     circling.set_route({{3.0, 0.0}});
     int gave_up_at = -1;
@@ -226,6 +227,47 @@ TEST(Navigator, ARobotCirclingWithoutProgressAlongItsPlanGivesUpEarly) {
         const NavigatorStep s = creeping.step({0.1 * k, {-3.0 + 0.008 * k, 0.0, 0.0}, 0.08, 0.0, nullptr, Eigen::Vector3d::Zero(), {}});
         ASSERT_FALSE(s.gave_up) << k;
         if (s.arrived) break;
+    }
+}
+
+// Stuck in front of a gap the plan leads through but the robot cannot pass (here: it is held
+// 0.6 m short of it, as a footprint that cannot turn through is): the stuck spot is avoided, A*
+// takes the other, longer opening, and the robot arrives. Without detours it gives up at the gap.
+TEST(Navigator, StuckAtAGapItGoesAroundThroughTheOtherOpening) {
+    Costmap map({-4.0, -3.0}, 0.05, 160, 120, cost::kFree);
+    for (int x = 0; x < 160; ++x) map.at(x, 0) = map.at(x, 119) = cost::kLethal;
+    for (int y = 0; y < 120; ++y) {
+        map.at(0, y) = map.at(159, y) = cost::kLethal;
+        const double wy = map.centre_of(0, y).y();
+        const bool narrow = std::abs(wy) < 0.5, wide = std::abs(wy - 2.4) < 0.5;  // openings at y = 0 and y = 2.4
+        if (!narrow && !wide) map.at(80, y) = map.at(81, y) = cost::kLethal;
+    }
+    for (const int detours : {0, 3}) {
+        NavigatorParams params;
+        params.affordance_layer = false;
+        params.max_detours = detours;
+        Navigator nav(map, params);
+        nav.set_route({{2.5, 0.0}});
+        Pose2 pose{-2.5, 0.0, 0.0};
+        double v = 0, w = 0;
+        bool arrived = false, gave_up = false, through_wide = false;
+        for (int k = 0; k < 1200 && !arrived && !gave_up; ++k) {
+            const NavigatorStep s = nav.step({0.1 * k, pose, v, w, nullptr, Eigen::Vector3d::Zero(), {}});
+            arrived = s.arrived, gave_up = s.gave_up;
+            v = s.command.v_mps, w = s.command.w_radps;
+            const Pose2 next{pose.x_m + 0.1 * v * std::cos(pose.yaw_rad), pose.y_m + 0.1 * v * std::sin(pose.yaw_rad),
+                             wrap_angle(pose.yaw_rad + 0.1 * w)};
+            const bool held = std::hypot(next.x_m, next.y_m) < 0.6 && std::hypot(next.x_m, next.y_m) < std::hypot(pose.x_m, pose.y_m);
+            pose = held ? Pose2{pose.x_m, pose.y_m, next.yaw_rad} : next;
+            through_wide |= std::abs(pose.x_m) < 0.1 && pose.y_m > 1.8;
+        }
+        if (detours == 0) {
+            EXPECT_TRUE(gave_up);
+            EXPECT_FALSE(through_wide);
+        } else {
+            EXPECT_TRUE(arrived) << pose.x_m << " " << pose.y_m;
+            EXPECT_TRUE(through_wide);
+        }
     }
 }
 

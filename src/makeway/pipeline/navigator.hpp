@@ -33,6 +33,7 @@ struct NavigatorStep {
     bool dwa_found = true;        ///< false: every velocity collided, turning on the spot
     bool recovering = false;      ///< backing up
     bool started_recovery = false;
+    bool detour = false;          ///< the recovery also marked the stuck spot for A* to go around
     bool reached_waypoint = false;
     bool arrived = false;         ///< the last leg's goal is reached (by the pose estimate)
     bool gave_up = false;         ///< no plan, or no progress despite recoveries, for give_up_s: the mission failed
@@ -60,6 +61,8 @@ public:
 
 private:
     bool plan_blocked(const Eigen::Vector2d& robot_m) const;
+    planning::PlanResult plan(const Eigen::Vector2d& from_m, double t_s);
+    Eigen::Vector2d along_plan(const Eigen::Vector2d& robot_m, double ahead_m) const;
     VelocityCommand follow_plan(const NavigatorInput& input, NavigatorStep& step) const;
     void check_progress(const NavigatorInput& input, NavigatorStep& step);
 
@@ -75,6 +78,12 @@ private:
     double moved_t_ = 0.0;      ///< when the robot last made progress along its plan (recoveries do not reset it)
     double planned_t_ = 0.0;    ///< when A* last found a plan
     bool started_ = false;
+    struct Avoided {
+        Eigen::Vector2d at_m;
+        double until_s;
+    };
+    std::vector<Avoided> avoided_;  ///< where the robot got stuck: A* goes around them while they last
+    int detours_ = 0;               ///< on this leg
 };
 
 }  // namespace makeway::pipeline

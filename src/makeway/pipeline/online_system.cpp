@@ -26,7 +26,8 @@ Costmap free_area(const Pose2& centre, double side_m, double resolution_m) {
     return Costmap(Eigen::Vector2d(centre.x_m, centre.y_m) - Eigen::Vector2d::Constant(0.5 * side_m), resolution_m, cells, cells);
 }
 
-Controller::Controller(const Costmap& static_map, const NavigatorParams& params) : navigator_(static_map, params), monitor_(params.monitor) {}
+Controller::Controller(const Costmap& static_map, const NavigatorParams& params)
+    : navigator_(static_map, params), monitor_(params.monitor), min_existence_(params.affordance.min_existence) {}
 
 void Controller::set_route(std::vector<Eigen::Vector2d> legs_m) {
     navigating_ = !legs_m.empty();
@@ -40,7 +41,22 @@ Controller::Step Controller::step(const NavigatorInput& in) {
     const VelocityCommand wanted = navigating_ && !out.nav.arrived && !out.nav.gave_up ? out.nav.command : VelocityCommand{};
     if (out.nav.arrived || out.nav.gave_up) navigating_ = false;
     const Clock::time_point t0 = Clock::now();
-    out.guard = monitor_.filter({in.t_s, in.pose, in.points_world, wanted, in.v_mps, in.w_radps});
+    // A chair someone moves can come up beside the robot where the sensor sees its seat but not
+    // its base, and the monitor's memory has it where it was: while a chair has moved in the last
+    // blind_memory_s its footprint stands in for the base (a box also covers the backrest above
+    // the body, so a still chair is left to the sweep and the memory). Chairs only: tables are
+    // open below their top.
+    const planning::CollisionMonitorParams& mp = monitor_.params();
+    std::vector<Polygon2> chairs;
+    for (const ObjectEstimate& o : in.objects) {
+        if (o.cls != ObjectClass::kChair || o.existence < min_existence_) continue;
+        if (o.velocity_mps.norm() > mp.object_moving_mps) moved_at_[o.id] = in.t_s;
+        const auto moved = moved_at_.find(o.id);
+        if (moved == moved_at_.end() || in.t_s - moved->second > mp.blind_memory_s) continue;
+        const auto c = o.box_world.bev_corners();
+        chairs.emplace_back(c.begin(), c.end());
+    }
+    out.guard = monitor_.filter({in.t_s, in.pose, in.points_world, wanted, in.v_mps, in.w_radps, &chairs});
     out.monitor_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     // Idle (never driven, arrived, gave up, cancelled): zero, whatever the monitor was doing (a
     // recovery it had started is not a goal's to finish).

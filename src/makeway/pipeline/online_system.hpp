@@ -10,6 +10,7 @@
 // Without a route the command is zero and the monitor still sees every sweep (its memory of what
 // the sensor can no longer see, and which returns are new, stay current for the next goal).
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "makeway/common/costmap.hpp"
@@ -45,6 +46,8 @@ public:
 private:
     Navigator navigator_;
     planning::CollisionMonitor monitor_;
+    double min_existence_;  ///< objects this likely lend the monitor their footprints ...
+    std::unordered_map<std::uint32_t, double> moved_at_;  ///< ... when they moved lately: object id -> when last seen moving
     bool navigating_ = false;
 };
 

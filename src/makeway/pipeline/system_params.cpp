@@ -83,6 +83,10 @@ std::vector<std::string> NavigatorParams::validate_policy() const {
     positive(goal_tolerance_m, "goal_tolerance_m", 10);
     positive(give_up_s, "give_up_s", 3600);
     if (!(plan_to_tolerance >= 0.0 && plan_to_tolerance < 1.0)) p.push_back("plan_to_tolerance must be in [0, 1)");
+    if (!(detour_ahead_m >= 0.0 && detour_ahead_m <= 10.0)) p.push_back("detour_ahead_m must be in [0, 10]");
+    if (!(detour_radius_m >= 0.0 && detour_radius_m <= 5.0)) p.push_back("detour_radius_m must be in [0, 5] (0: no detours)");
+    if (!(detour_memory_s >= 0.0 && detour_memory_s <= 3600.0)) p.push_back("detour_memory_s must be in [0, 3600]");
+    if (max_detours < 0 || max_detours > 100) p.push_back("max_detours must be in [0, 100] (0: no detours)");
     return p;
 }
 

@@ -54,6 +54,15 @@ struct NavigatorParams {
     double waypoint_tolerance_m = 0.5;    ///< a waypoint counts as reached this close
     double goal_tolerance_m = 0.3;        ///< the goal counts as reached this close (own pose estimate)
     double give_up_s = 20.0;              ///< no plan found, or no progress despite recoveries, this long: the mission fails
+    /// Stuck means the plan leads where the robot cannot go (a gap its footprint does not turn
+    /// through, a person standing in it): the plan's point detour_ahead_m ahead is avoided by A*
+    /// (a disc of detour_radius_m, lethal) for detour_memory_s, at most max_detours times per leg;
+    /// with no other way, A* plans through it again. The give-up clock runs on: a detour must
+    /// bring the robot closer than ever within give_up_s.
+    double detour_ahead_m = 0.6;
+    double detour_radius_m = 0.35;
+    double detour_memory_s = 30.0;
+    int max_detours = 3;
     double plan_to_tolerance = 0.6;       ///< A* ends anywhere within this share of the leg's tolerance (0: at the point)
     std::vector<std::string> validate() const;         ///< everything, layers and planners included
     std::vector<std::string> validate_policy() const;  ///< the policy constants alone

@@ -61,9 +61,12 @@ std::vector<std::string> CollisionMonitorParams::validate() const {
     if (!(dynamic_speed_mps >= 0.0 && dynamic_speed_mps <= 5.0)) p.push_back("dynamic_speed_mps must be in [0, 5]");
     if (!(dynamic_min_height_m >= 0.0 && dynamic_min_height_m <= 3.0)) p.push_back("dynamic_min_height_m must be in [0, 3]");
     if (dynamic_history < 1 || dynamic_history > 100) p.push_back("dynamic_history must be in [1, 100]");
+    if (!(dynamic_cluster_m >= 0.0 && dynamic_cluster_m <= 2.0)) p.push_back("dynamic_cluster_m must be in [0, 2] (0: only new returns move)");
+    if (dynamic_cluster_min_new < 1 || dynamic_cluster_min_new > 1000) p.push_back("dynamic_cluster_min_new must be in [1, 1000]");
     if (!(sensor_height_m >= 0.0 && sensor_height_m <= 5.0)) p.push_back("sensor_height_m must be in [0, 5]");
     if (!(lowest_beam_deg >= -90.0 && lowest_beam_deg <= 90.0)) p.push_back("lowest_beam_deg must be in [-90, 90]");
     if (!(blind_memory_s >= 0.0 && blind_memory_s <= 60.0)) p.push_back("blind_memory_s must be in [0, 60]");
+    if (!(object_moving_mps >= 0.0 && object_moving_mps <= 10.0)) p.push_back("object_moving_mps must be in [0, 10]");
     if (!(max_range_m > 0.0 && max_range_m <= 50.0)) p.push_back("max_range_m must be in (0, 50]");
     if (!(recovery_after_s > 0.0)) p.push_back("recovery_after_s must be > 0");
     if (!(backup_speed_mps > 0.0 && backup_distance_m >= 0.0)) p.push_back("backup_speed_mps must be > 0, backup_distance_m >= 0");
@@ -205,6 +208,14 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
         };
         const double r2 = params_.max_range_m * params_.max_range_m;
         const double tan_down = std::tan(-params_.lowest_beam_deg * kPi / 180.0);
+        struct Candidate {
+            std::size_t index;  ///< into pts
+            Eigen::Vector2d q;  ///< world
+            double keep_m;      ///< remembered while closer than this to the sensor
+            bool high;          ///< high enough to be a mover
+            bool known;         ///< a return was near it in the last dynamic_history sweeps
+        };
+        std::vector<Candidate> candidates;
         for (const Eigen::Vector3f& p : in.points_world->xyz) {
             if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()) || !params_.body.can_hit(p.z())) continue;
             const Eigen::Vector2d q(p.x(), p.y());
@@ -225,14 +236,75 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             }
             // Near the floor, noise: the lowest rings graze it ~0.9 m out, and a return 2 cm up
             // there is new in every sweep. People are seen higher up.
-            dynamic.push_back(known || p.z() < params_.dynamic_min_height_m ? 0 : 1);
-            const double blind = tan_down > 0.0 ? (params_.sensor_height_m - p.z()) / tan_down : 0.0;
-            const double keep = std::min(blind, std::sqrt(d2)) - kThinCell_m;  // closer than where it was seen, and blind there
-            if (keep > 0.0 && known) memory_.push_back({q, in.t_s, keep});  // a walker's new returns leave no trail
+            const bool high = p.z() >= params_.dynamic_min_height_m;
+            dynamic.push_back(known || !high ? 0 : 1);
+            candidates.push_back({pts.size() - 1, q, std::min((tan_down > 0.0 ? (params_.sensor_height_m - p.z()) / tan_down : 0.0),
+                                                             std::sqrt(d2)) - kThinCell_m, high, known});
+        }
+        // A mover stays a mover: returns near one that was new in this sweep or the last
+        // dynamic_history sweeps move too (a walker turning back walks into the cells it just
+        // left, which are not new).
+        std::vector<std::int64_t> movers;
+        auto coarse = [&](const Eigen::Vector2d& q) {
+            return std::pair<std::int64_t, std::int64_t>(static_cast<std::int64_t>(std::floor(q.x() / params_.dynamic_cluster_m)),
+                                                         static_cast<std::int64_t>(std::floor(q.y() / params_.dynamic_cluster_m)));
+        };
+        if (params_.dynamic_cluster_m > 0.0) {
+            // A mover's cell holds dynamic_cluster_min_new new returns: a walker's leading edge
+            // does, the sliver of wall the robot's own motion brings out of a shadow does not.
+            std::vector<std::int64_t> seeds;
+            for (const Candidate& c : candidates) {
+                if (dynamic[c.index]) seeds.push_back(key_of(coarse(c.q).first, coarse(c.q).second));
+            }
+            std::sort(seeds.begin(), seeds.end());
+            for (std::size_t i = 0; i < seeds.size();) {
+                std::size_t j = i;
+                while (j < seeds.size() && seeds[j] == seeds[i]) ++j;
+                if (static_cast<int>(j - i) >= params_.dynamic_cluster_min_new) movers.push_back(seeds[i]);
+                i = j;
+            }
+            for (const Candidate& c : candidates) {
+                if (dynamic[c.index] || !c.high) continue;
+                const auto [cx, cy] = coarse(c.q);
+                bool near = false;
+                for (std::int64_t dx = -1; dx <= 1 && !near; ++dx) {
+                    for (std::int64_t dy = -1; dy <= 1 && !near; ++dy) {
+                        const std::int64_t k = key_of(cx + dx, cy + dy);
+                        near = std::binary_search(movers.begin(), movers.end(), k);
+                        for (const std::vector<std::int64_t>& earlier : previous_movers_) near = near || std::binary_search(earlier.begin(), earlier.end(), k);
+                    }
+                }
+                dynamic[c.index] = near ? 1 : 0;
+            }
+        }
+        // Remembered while the sensor, closer than where it was seen, is blind there; new returns
+        // (a walker's, the floor noise at the lowest rings' reach) and a mover's leave no trail.
+        for (const Candidate& c : candidates) {
+            if (c.keep_m > 0.0 && c.known && !dynamic[c.index]) memory_.push_back({c.q, in.t_s, c.keep_m});
         }
         std::sort(cells.begin(), cells.end());
         previous_cells_.push_back(std::move(cells));
+        previous_movers_.push_back(std::move(movers));
         while (static_cast<int>(previous_cells_.size()) > params_.dynamic_history) previous_cells_.pop_front();
+        while (static_cast<int>(previous_movers_.size()) > params_.dynamic_history) previous_movers_.pop_front();
+    }
+
+    // Object footprints where the sensor cannot see the floor: their outlines, sampled.
+    if (params_.object_footprints && in.footprints_world != nullptr) {
+        const double tan_down = std::tan(-params_.lowest_beam_deg * kPi / 180.0);
+        const double blind = tan_down > 0.0 ? (params_.sensor_height_m - params_.body.ground_clearance_m) / tan_down : 0.0;
+        for (const Polygon2& poly : *in.footprints_world) {
+            for (std::size_t i = 0; i < poly.size(); ++i) {
+                const Eigen::Vector2d a = poly[i], b = poly[(i + 1) % poly.size()];
+                const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / kThinCell_m)));
+                for (int k = 0; k < n; ++k) {
+                    const Eigen::Vector2d q = a + (b - a) * (static_cast<double>(k) / n);
+                    if ((q - here).norm() >= blind) continue;
+                    pts.push_back(T_base_world * q);
+                    dynamic.push_back(0);
+                }
+            }
+        }
     }
 
     const VelocityCommand current{in.v_mps, in.w_radps};

@@ -13,6 +13,10 @@
 // is remembered (up to blind_memory_s) while it lies closer to the sensor than both that radius
 // and where it was seen from; once the sensor could see its place again, only the new sweep counts.
 // New returns (below) are not remembered: a walker that has moved on leaves no trail.
+// Memory cannot follow what moves inside that blind ring (a chair a person pulls toward a turning
+// robot: its seat is seen, its base is not): with object_footprints, the footprints the caller
+// hands in (the Controller: chairs of the object map that moved lately) stand in for returns
+// there, their outlines sampled where the sensor cannot see the floor (nav2's polygon source).
 //
 // Each zone follows the robot's own motion model (the simulator's and DWA's): from the current
 // velocity, each axis moves toward its target within the acceleration limits. With a_v, a_w the
@@ -37,6 +41,10 @@
 // for every second until the robot would be there (latency included). So the robot stops for a
 // walker who could step into its way before it has braked, and waits while the walker is near
 // its path; a walker standing still is an obstacle like any other (its returns are not new).
+// With dynamic_cluster_m, a mover stays a mover for dynamic_history sweeps: returns within about
+// that of a cell with dynamic_cluster_min_new new returns move too (a walker who turns back walks
+// into the cells it just left, which are not new). Off by default: chairs people push become
+// movers too, and the robot waits for them (README).
 //
 // Recovery: when the monitor has held the robot (stop, or approach below min_scale) for
 // recovery_after_s, it backs up (straight, backup_distance_m at backup_speed_mps) if the sweep
@@ -53,6 +61,7 @@
 #include <Eigen/Core>
 
 #include "makeway/common/point_cloud.hpp"
+#include "makeway/common/polygon2d.hpp"
 #include "makeway/common/robot_body.hpp"
 #include "makeway/common/transforms.hpp"
 #include "makeway/common/velocity_command.hpp"
@@ -78,11 +87,15 @@ struct CollisionMonitorParams {
     double simulation_time_step_s = 0.05;  ///< the zones' time step along the predicted motion [s]
     double dynamic_speed_mps = 1.0;     ///< new returns may move this fast (a walking person); 0: all static
     int dynamic_history = 5;            ///< sweeps a cell is remembered as seen (new: seen in none of them)
+    double dynamic_cluster_m = 0.0;     ///< returns within about this of a mover (this sweep or the last dynamic_history) move too; 0: off ...
+    int dynamic_cluster_min_new = 5;    ///< ... a mover: a cell of that size with this many new returns
     double dynamic_min_height_m = 0.1;  ///< lower returns are never new (floor noise at the lowest rings' reach)
     double min_scale = 0.05;            ///< an approach scale below this holds the robot (counts as a stop)
     double sensor_height_m = 0.45;      ///< the LiDAR above the floor (on the base's centre) ...
     double lowest_beam_deg = -25.0;     ///< ... and its lowest beam: what it cannot see near it is remembered ...
     double blind_memory_s = 10.0;       ///< ... at most this long (a robot held in front of a chair leg keeps it)
+    bool object_footprints = true;      ///< inside the blind ring, MonitorInput::footprints_world count as returns ...
+    double object_moving_mps = 0.05;    ///< ... (the Controller's: chairs that moved faster than this in the last blind_memory_s)
     double max_range_m = 4.0;           ///< returns farther than this from the base are not looked at
     double recovery_after_s = 3.0;      ///< held this long: start a recovery
     double backup_speed_mps = 0.15;
@@ -103,6 +116,9 @@ struct MonitorInput {
     const PointCloud* points_world = nullptr;  ///< the latest de-skewed sweep; null: only the memory
     VelocityCommand command;                   ///< what the navigator asks for
     double v_mps = 0.0, w_radps = 0.0;         ///< the base's velocity now (wheel odometry)
+    /// Objects solid below the body's top (null or empty: none): where the sensor cannot see the
+    /// floor, their outlines count as returns (with object_footprints).
+    const std::vector<Polygon2>* footprints_world = nullptr;
 };
 
 struct MonitorResult {
@@ -155,6 +171,7 @@ private:
     CollisionMonitorParams params_;
     std::vector<Remembered> memory_;
     std::deque<std::vector<std::int64_t>> previous_cells_;  ///< the last sweeps' thinned cells (each sorted), for new returns
+    std::deque<std::vector<std::int64_t>> previous_movers_; ///< the last sweeps' coarse cells of new returns (each sorted)
     double held_since_ = -1.0;     ///< when the current hold began (-1: not held)
     double recovery_until_ = -1.0;
     VelocityCommand recovery_command_;
