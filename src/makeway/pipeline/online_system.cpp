@@ -47,6 +47,7 @@ Controller::Step Controller::step(const NavigatorInput& in) {
     // the body, so a still chair is left to the sweep and the memory). Chairs only: tables are
     // open below their top.
     const planning::CollisionMonitorParams& mp = monitor_.params();
+    std::erase_if(moved_at_, [&](const auto& kv) { return in.t_s - kv.second > mp.blind_memory_s; });  // a long run's ids do not pile up
     std::vector<Polygon2> chairs;
     for (const ObjectEstimate& o : in.objects) {
         if (o.cls != ObjectClass::kChair || o.existence < min_existence_) continue;
