@@ -114,21 +114,23 @@ planning::PlanResult Navigator::plan(const Eigen::Vector2d& here, double t_s) {
     return planning::plan_astar(costmap_.master(), here, legs_[leg_], params_.astar, radius);
 }
 
-Eigen::Vector2d Navigator::along_plan(const Eigen::Vector2d& robot, double ahead_m) const {
-    std::size_t i = 0;
-    for (std::size_t k = 1; k < plan_.size(); ++k) {
-        if ((plan_[k] - robot).squaredNorm() < (plan_[i] - robot).squaredNorm()) i = k;
+std::size_t Navigator::nearest_plan_index(const Eigen::Vector2d& robot) const {
+    std::size_t nearest = 0;
+    for (std::size_t i = 1; i < plan_.size(); ++i) {
+        if ((plan_[i] - robot).squaredNorm() < (plan_[nearest] - robot).squaredNorm()) nearest = i;
     }
+    return nearest;
+}
+
+Eigen::Vector2d Navigator::along_plan(const Eigen::Vector2d& robot, double ahead_m) const {
+    std::size_t i = nearest_plan_index(robot);
     for (double travelled = 0.0; i + 1 < plan_.size() && travelled < ahead_m; ++i) travelled += (plan_[i + 1] - plan_[i]).norm();
     return plan_[i];
 }
 
 bool Navigator::plan_blocked(const Eigen::Vector2d& robot) const {
     const Costmap& m = costmap_.master();
-    std::size_t nearest = 0;
-    for (std::size_t i = 1; i < plan_.size(); ++i) {
-        if ((plan_[i] - robot).squaredNorm() < (plan_[nearest] - robot).squaredNorm()) nearest = i;
-    }
+    const std::size_t nearest = nearest_plan_index(robot);
     double travelled = 0.0;
     for (std::size_t i = nearest; i < plan_.size() && travelled < params_.blocked_lookahead_m; ++i) {
         if (i > nearest) travelled += (plan_[i] - plan_[i - 1]).norm();
@@ -152,10 +154,7 @@ VelocityCommand Navigator::follow_plan(const NavigatorInput& in, NavigatorStep& 
 double Navigator::remaining_m(const Eigen::Vector2d& robot) const {
     // Along the plan from its point nearest the robot; straight to the target without a plan.
     if (plan_.empty()) return leg_ < legs_.size() ? (legs_[leg_] - robot).norm() : 0.0;
-    std::size_t nearest = 0;
-    for (std::size_t i = 1; i < plan_.size(); ++i) {
-        if ((plan_[i] - robot).squaredNorm() < (plan_[nearest] - robot).squaredNorm()) nearest = i;
-    }
+    const std::size_t nearest = nearest_plan_index(robot);
     double left = (plan_[nearest] - robot).norm();
     for (std::size_t i = nearest + 1; i < plan_.size(); ++i) left += (plan_[i] - plan_[i - 1]).norm();
     return left;

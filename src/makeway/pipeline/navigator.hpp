@@ -62,6 +62,7 @@ public:
 private:
     bool plan_blocked(const Eigen::Vector2d& robot_m) const;
     planning::PlanResult plan(const Eigen::Vector2d& from_m, double t_s);
+    std::size_t nearest_plan_index(const Eigen::Vector2d& robot_m) const;  ///< 0 for an empty plan
     Eigen::Vector2d along_plan(const Eigen::Vector2d& robot_m, double ahead_m) const;
     VelocityCommand follow_plan(const NavigatorInput& input, NavigatorStep& step) const;
     void check_progress(const NavigatorInput& input, NavigatorStep& step);

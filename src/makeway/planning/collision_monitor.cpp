@@ -74,7 +74,8 @@ std::vector<std::string> CollisionMonitorParams::validate() const {
     return p;
 }
 
-CollisionMonitor::CollisionMonitor(const CollisionMonitorParams& params) : params_(params) {
+CollisionMonitor::CollisionMonitor(const CollisionMonitorParams& params)
+    : params_(params), tan_down_(std::tan(-params.lowest_beam_deg * kPi / 180.0)) {
     std::string all;
     for (const std::string& s : params_.validate()) all += (all.empty() ? "" : "; ") + s;
     if (!all.empty()) throw std::invalid_argument("collision monitor: " + all);
@@ -187,6 +188,10 @@ bool CollisionMonitor::recovery_free(const VelocityCommand& c, const VelocityCom
     return first_contact({current, c, duration_s + params_.latency_s, true}, params_.stop_padding_m, pts, dynamic) < 0.0;
 }
 
+double CollisionMonitor::blind_radius_m(double z_m) const {
+    return tan_down_ > 0.0 ? (params_.sensor_height_m - z_m) / tan_down_ : 0.0;
+}
+
 MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     // Forget what the sensor could see again (the new sweep shows it if it is still there), and
     // what is older than blind_memory_s.
@@ -207,7 +212,6 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             return static_cast<std::int64_t>((static_cast<std::uint64_t>(ix) << 32) ^ (static_cast<std::uint64_t>(iy) & 0xffffffffULL));
         };
         const double r2 = params_.max_range_m * params_.max_range_m;
-        const double tan_down = std::tan(-params_.lowest_beam_deg * kPi / 180.0);
         struct Candidate {
             std::size_t index;  ///< into pts
             Eigen::Vector2d q;  ///< world
@@ -238,8 +242,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             // there is new in every sweep. People are seen higher up.
             const bool high = p.z() >= params_.dynamic_min_height_m;
             dynamic.push_back(known || !high ? 0 : 1);
-            candidates.push_back({pts.size() - 1, q, std::min((tan_down > 0.0 ? (params_.sensor_height_m - p.z()) / tan_down : 0.0),
-                                                             std::sqrt(d2)) - kThinCell_m, high, known});
+            candidates.push_back({pts.size() - 1, q, std::min(blind_radius_m(p.z()), std::sqrt(d2)) - kThinCell_m, high, known});
         }
         // A mover stays a mover: returns near one that was new in this sweep or the last
         // dynamic_history sweeps move too (a walker turning back walks into the cells it just
@@ -291,8 +294,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
 
     // Object footprints where the sensor cannot see the floor: their outlines, sampled.
     if (params_.object_footprints && in.footprints_world != nullptr) {
-        const double tan_down = std::tan(-params_.lowest_beam_deg * kPi / 180.0);
-        const double blind = tan_down > 0.0 ? (params_.sensor_height_m - params_.body.ground_clearance_m) / tan_down : 0.0;
+        const double blind = blind_radius_m(params_.body.ground_clearance_m);
         for (const Polygon2& poly : *in.footprints_world) {
             for (std::size_t i = 0; i < poly.size(); ++i) {
                 const Eigen::Vector2d a = poly[i], b = poly[(i + 1) % poly.size()];

@@ -165,10 +165,13 @@ private:
     /// dynamic_speed_mps (latency_s + t).
     double first_contact(const Motion& m, double padding, const std::vector<Eigen::Vector2d>& pts,
                          const std::vector<char>& dynamic = {}) const;
+    /// How far from the sensor a part z_m above the floor drops out of its lowest beam.
+    double blind_radius_m(double z_m) const;
     bool recovery_free(const VelocityCommand& c, const VelocityCommand& current, double duration_s,
                        const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic) const;
 
     CollisionMonitorParams params_;
+    double tan_down_;  ///< tan of the lowest beam's angle below the horizon
     std::vector<Remembered> memory_;
     std::deque<std::vector<std::int64_t>> previous_cells_;  ///< the last sweeps' thinned cells (each sorted), for new returns
     std::deque<std::vector<std::int64_t>> previous_movers_; ///< the last sweeps' coarse cells of new returns (each sorted)
