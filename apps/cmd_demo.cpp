@@ -11,7 +11,7 @@
 #include "apps/nav_report.hpp"
 #include "apps/nav_run.hpp"
 #include "apps/recording.hpp"
-#include "io/config_reader.hpp"
+#include "io/sim_config.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
 #include "io/json_io.hpp"
@@ -37,7 +37,7 @@ bool same_cloud(const PointCloud& a, const PointCloud& b, bool xyzi_only) {
 }  // namespace
 
 int run_demo(const DemoOptions& options) {
-    const io::Config cfg = options.config.empty() ? io::Config{} : io::load_config(options.config);
+    const io::SimConfig cfg = io::load_sim_config(options.config);
     // Everything is written to a staging folder and moved into place at the end: all or nothing.
     io::StagedOutput staged(options.out_dir);
     const std::filesystem::path out = staged.staging();

@@ -103,7 +103,7 @@ void write_point_labels(const fs::path& path, const std::vector<std::uint32_t>& 
 }  // namespace
 
 int run_label(const LabelOptions& o) {
-    const io::Config cfg = o.config.empty() ? io::Config{} : io::load_config(o.config);
+    const io::Config cfg = io::load_config(o.config);
     labelling::LabelParams params = cfg.labelling;
     params.system = io::online_system_params(cfg);
     if (!o.poses_name.empty()) params.system.lidar_odometry = false;  // the given poses are the pose

@@ -29,7 +29,7 @@
 namespace makeway::apps {
 
 int run_navigate(const NavigateOptions& options) {
-    const io::Config cfg = options.config.empty() ? io::Config{} : io::load_config(options.config);
+    const io::SimConfig cfg = io::load_sim_config(options.config);
     const sim::Scene scene = io::read_scene(options.scene, {.allow_outside_paths = options.allow_outside_paths});
     eval::NavParams params = nav_params(cfg);
     params.seed = options.seed;
@@ -102,7 +102,7 @@ std::optional<std::pair<int, int>> parse_shard(const std::string& text) {
 }
 
 int run_bench_nav(const BenchNavOptions& options) {
-    const io::Config cfg = options.config.empty() ? io::Config{} : io::load_config(options.config);
+    const io::SimConfig cfg = io::load_sim_config(options.config);
     const auto shard = parse_shard(options.shard.empty() ? "0/1" : options.shard);
     if (!shard) throw std::invalid_argument("--shard " + options.shard + ": expected K/N with 0 <= K < N");
     const bool partial = !options.shard.empty();

@@ -6,7 +6,7 @@
 #include <iostream>
 
 #include "apps/commands.hpp"
-#include "io/config_reader.hpp"
+#include "io/sim_config.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
 #include "io/json_io.hpp"
@@ -21,7 +21,7 @@ namespace makeway::apps {
 namespace fs = std::filesystem;
 
 int run_odometry(const OdometryOptions& o) {
-    const io::Config cfg = o.config.empty() ? io::Config{} : io::load_config(o.config);
+    const io::Config cfg = io::load_config(o.config);
     const std::vector<fs::path> files = io::sweep_files(o.clouds);
     std::vector<io::StampedPose> wheels;
     if (!o.odometry.empty()) {
@@ -62,7 +62,7 @@ int run_odometry(const OdometryOptions& o) {
 }
 
 int run_bench_odometry(const BenchOdometryOptions& o) {
-    const io::Config cfg = o.config.empty() ? io::Config{} : io::load_config(o.config);
+    const io::SimConfig cfg = io::load_sim_config(o.config);
     sim::SequenceParams seq;
     seq.lidar = cfg.lidar;
     seq.robot = cfg.robot;

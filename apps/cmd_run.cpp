@@ -61,7 +61,7 @@ void view_bounds(const std::vector<Pose2>& trajectory, const std::vector<ObjectE
 }  // namespace
 
 int run_run(const RunOptions& o) {
-    const io::Config cfg = o.config.empty() ? io::Config{} : io::load_config(o.config);
+    const io::Config cfg = io::load_config(o.config);
     std::optional<Isometry3> extrinsics;
     if (!o.extrinsics.empty()) {
         const std::vector<double>& e = o.extrinsics;

@@ -6,7 +6,7 @@
 
 #include "apps/commands.hpp"
 #include "apps/recording.hpp"
-#include "io/config_reader.hpp"
+#include "io/sim_config.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
 #include "io/scene_io.hpp"
@@ -39,7 +39,7 @@ std::vector<Eigen::Vector2d> read_route(const std::string& path) {
 }  // namespace
 
 int run_simulate(const SimulateOptions& options) {
-    const io::Config cfg = options.config.empty() ? io::Config{} : io::load_config(options.config);
+    const io::SimConfig cfg = io::load_sim_config(options.config);
     const sim::Scene scene = io::read_scene(options.scene, {.allow_outside_paths = options.allow_outside_paths});
     sim::SequenceParams params;
     params.lidar = cfg.lidar;

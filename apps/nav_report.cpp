@@ -41,7 +41,7 @@ double metric_of(const io::Json& run, const std::string& key) { return run[key].
 
 std::pair<double, double> median_p99(const std::vector<double>& v) { return {median(v), percentile(v, 0.99)}; }
 
-eval::NavParams nav_params(const io::Config& config) {
+eval::NavParams nav_params(const io::SimConfig& config) {
     eval::NavParams p = io::nav_params(config);
     p.on_sweep = io::throw_if_interrupted;  // Ctrl-C stops a run within one sweep
     return p;

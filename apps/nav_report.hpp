@@ -7,14 +7,14 @@
 #include <string>
 #include <vector>
 
-#include "io/config_reader.hpp"
+#include "io/sim_config.hpp"
 #include "io/json_io.hpp"
 #include "makeway/eval/navigation.hpp"
 
 namespace makeway::apps {
 
 /// Navigation parameters from a configuration (lidar, robot and affordance sections).
-eval::NavParams nav_params(const io::Config& config);
+eval::NavParams nav_params(const io::SimConfig& config);
 
 /// A run's deterministic fields (results.json; with_trajectory adds the true and believed paths).
 io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory);

@@ -1,15 +1,15 @@
-// libFuzzer target: parse_config must either parse or throw FormatError; never crash, hang or leak.
+// libFuzzer target: parse_sim_config (every section) must either parse or throw FormatError; never crash, hang or leak.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
 
 #include "io/error.hpp"
-#include "io/config_reader.hpp"
+#include "io/sim_config.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string_view bytes(reinterpret_cast<const char*>(data), size);
     try {
-        makeway::io::parse_config(bytes);
+        makeway::io::parse_sim_config(bytes);
     } catch (const makeway::io::FormatError&) {
     }
     return 0;

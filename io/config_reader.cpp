@@ -384,7 +384,9 @@ void read_labelling(const YAML::Node& node, labelling::LabelParams& l, std::vect
 
 }  // namespace
 
-Config parse_config(std::string_view yaml_text) {
+namespace {
+
+YAML::Node parse_yaml_root(std::string_view yaml_text) {
     YAML::Node root;
     try {
         root = YAML::Load(std::string(yaml_text));
@@ -392,65 +394,30 @@ Config parse_config(std::string_view yaml_text) {
         throw FormatError("YAML syntax error at line " + std::to_string(e.mark.line + 1) + ": " +
                           e.msg);
     }
-    std::vector<std::string> problems;
     if (root && !root.IsNull() && !root.IsMap()) {
         throw FormatError("the top level must be a mapping of section names");
     }
-    Config cfg;
-    const std::vector<std::string> sections{"scene",      "lidar",        "robot",    "odometry", "simulation",
-                                            "affordance", "lidar_odometry", "perception", "verification", "tracking", "costmap", "planning",
-                                            "collision_monitor",
-                                            "labelling"};
-    if (root.IsMap()) {
-        for (const auto& kv : root) {
-            const std::string name = kv.first.as<std::string>("");
-            if (std::find(sections.begin(), sections.end(), name) == sections.end()) {
-                problems.push_back(name + ": unknown section");
-            }
+    return root;
+}
+
+void report_unknown_sections(const YAML::Node& root, std::vector<std::string>& problems) {
+    std::vector<std::string> sections{"robot",        "affordance", "lidar_odometry",   "perception", "verification",
+                                      "tracking",     "costmap",    "planning",         "collision_monitor",
+                                      "labelling"};
+    sections.insert(sections.end(), kSimulatorSections.begin(), kSimulatorSections.end());
+    if (!root.IsMap()) return;
+    for (const auto& kv : root) {
+        const std::string name = kv.first.as<std::string>("");
+        if (std::find(sections.begin(), sections.end(), name) == sections.end()) {
+            problems.push_back(name + ": unknown section");
         }
     }
-    const YAML::Node& const_root = root;
-    {
-        YamlSection s(const_root["scene"], "scene", problems);
-        std::string density(sim::to_string(cfg.scene.density));
-        std::string layout = cfg.scene.layout == sim::Layout::kStudySpace ? "study_space" : "random";
-        s.read("seed", cfg.scene.seed);
-        s.read("density", density);
-        s.read("layout", layout);
-        s.read("people", cfg.scene.people);
-        s.finish();
-        if (const auto d = sim::parse_density(density)) {
-            cfg.scene.density = *d;
-        } else {
-            s.problem("density must be sparse, medium or dense (got '" + density + "')");
-        }
-        if (const auto l = sim::parse_layout(layout)) {
-            cfg.scene.layout = *l;
-        } else {
-            s.problem("layout must be random or study_space (got '" + layout + "')");
-        }
-    }
-    {
-        YamlSection s(const_root["lidar"], "lidar", problems);
-        sim::LidarParams& l = cfg.lidar;
-        s.read("azimuth_step_deg", l.azimuth_step_deg);
-        s.read("rate_hz", l.rate_hz);
-        s.read("min_range_m", l.min_range_m);
-        s.read("max_range_m", l.max_range_m);
-        s.read("range_noise_m", l.range_noise_m);
-        s.read("dropout", l.dropout);
-        s.read("intensity_falloff_m", l.intensity_falloff_m);
-        s.read("intensity_speckle", l.intensity_speckle);
-        s.read("intensity_noise", l.intensity_noise);
-        s.read("time_slices", l.time_slices);
-        s.read("num_threads", l.num_threads);
-        s.read("use_packets", l.use_packets);
-        s.finish();
-        s.add_validation(l.validate());
-    }
+}
+
+void read_config_sections(const YAML::Node& const_root, Config& cfg, std::vector<std::string>& problems) {
     {
         YamlSection s(const_root["robot"], "robot", problems);
-        sim::RobotParams& r = cfg.robot;
+        RobotDescription& r = cfg.robot;
         s.read("length_m", r.length_m);
         s.read("width_m", r.width_m);
         s.read("body_height_m", r.body_height_m);
@@ -462,23 +429,6 @@ Config parse_config(std::string_view yaml_text) {
         s.read("max_ang_acc_radps2", r.max_ang_acc_radps2);
         s.finish();
         s.add_validation(r.validate());
-    }
-    {
-        YamlSection s(const_root["odometry"], "odometry", problems);
-        s.read("translation_noise_per_m", cfg.odometry.translation_noise_per_m);
-        s.read("heading_noise_per_rad", cfg.odometry.heading_noise_per_rad);
-        s.read("heading_noise_per_m", cfg.odometry.heading_noise_per_m);
-        s.finish();
-        s.add_validation(cfg.odometry.validate());
-    }
-    {
-        YamlSection s(const_root["simulation"], "simulation", problems);
-        s.read("frames", cfg.simulation.frames);
-        s.read("seed", cfg.simulation.seed);
-        s.finish();
-        if (cfg.simulation.frames < 1 || cfg.simulation.frames > 1000000) {
-            s.add_validation({"frames must be in [1, 1000000] (got " + std::to_string(cfg.simulation.frames) + ")"});
-        }
     }
     {
         YamlSection s(const_root["affordance"], "affordance", problems);
@@ -507,18 +457,42 @@ Config parse_config(std::string_view yaml_text) {
     read_system(const_root, cfg.system, problems);
     read_labelling(const_root["labelling"], cfg.labelling, problems);
     cfg.system.navigator.affordance = cfg.affordance;
-    cfg.scene.robot = cfg.robot;
-    if (!problems.empty()) throw FormatError(join_problems(problems));
-    return cfg;
 }
 
-Config load_config(const std::filesystem::path& path) {
+}  // namespace
+
+namespace detail {
+
+void parse_into(std::string_view yaml_text, Config& config, const MoreSections& more) {
+    const YAML::Node root = parse_yaml_root(yaml_text);
+    std::vector<std::string> problems;
+    report_unknown_sections(root, problems);
+    read_config_sections(root, config, problems);
+    if (more) more(root, problems);
+    if (!problems.empty()) throw FormatError(join_problems(problems));
+}
+
+void load_into(const std::filesystem::path& path, Config& config, const MoreSections& more) {
     const std::string text = read_file(path, /*allow_empty=*/true);
     try {
-        return parse_config(text);
+        parse_into(text, config, more);
     } catch (const FormatError& e) {
         throw FileError(path.string(), e.what());
     }
+}
+
+}  // namespace detail
+
+Config parse_config(std::string_view yaml_text) {
+    Config config;
+    detail::parse_into(yaml_text, config, {});
+    return config;
+}
+
+Config load_config(const std::filesystem::path& path) {
+    Config config;
+    if (!path.empty()) detail::load_into(path, config, {});
+    return config;
 }
 
 pipeline::SystemParams online_system_params(const Config& config, const Isometry3* T_base_sensor) {

@@ -3,6 +3,7 @@
 // at once: unknown keys (with a suggestion), wrong types, and each section's validate() messages.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -12,9 +13,7 @@
 #include "makeway/costmap/affordance.hpp"
 #include "makeway/labelling/labeller.hpp"
 #include "makeway/pipeline/system_params.hpp"
-#include "makeway/sim/lidar.hpp"
-#include "makeway/sim/robot.hpp"
-#include "makeway/sim/scene_generator.hpp"
+#include "makeway/common/robot_description.hpp"
 
 namespace YAML {
 class Node;
@@ -62,29 +61,26 @@ private:
     bool allow_infinity_ = false;
 };
 
-/// The `simulation` section: how long and with which seed `makeway demo` records.
-struct SimulationConfig {
-    int frames = 50;         ///< sweeps recorded by the demo (10 per second)
-    std::uint64_t seed = 0;  ///< sensor noise and odometry drift
-};
-
 /// "a" for one problem, "3 problems: a; b; c" for several: one line, every problem.
 std::string join_problems(const std::vector<std::string>& problems);
 
-/// Every section of a makeway configuration file (config/default.yaml documents each key).
+/// The sections of a makeway configuration file that configure the robot's software (and the robot
+/// it drives); config/default.yaml documents each key. The simulator's sections (scene, lidar,
+/// odometry, simulation) are read by io/sim_config.hpp: this reader accepts and skips them, so one
+/// file configures the benchmark and the robot alike, and the program on the robot never links the
+/// simulator.
 struct Config {
-    sim::SceneGenParams scene{.layout = sim::Layout::kStudySpace};  ///< the paper's real-world room
-    sim::LidarParams lidar;
-    sim::RobotParams robot;
-    sim::OdometryNoiseParams odometry;
-    SimulationConfig simulation;
+    RobotDescription robot;                ///< footprint, heights, limits, sensor mount
     costmap::AffordanceParams affordance;  ///< zone shapes and cost profiles per class
-    /// The online system: sections perception, verification, tracking, costmap, planning
-    /// (system.navigator.affordance is filled from `affordance` by the commands).
+    /// The online system: sections lidar_odometry, perception, verification, tracking, costmap,
+    /// planning, collision_monitor (system.navigator.affordance is filled from `affordance`).
     pipeline::SystemParams system;
     /// The automatic annotation (`makeway label`); its front end is `system`'s.
     labelling::LabelParams labelling;
 };
+
+/// Top-level sections that belong to the simulator (io/sim_config.hpp).
+inline const std::vector<std::string> kSimulatorSections{"scene", "lidar", "odometry", "simulation"};
 
 /// The online system's parameters as the program runs it on a robot (`ours` in the benchmark,
 /// `makeway run`, makeway_node): the configuration's sections, the affordance zones into the
@@ -95,6 +91,17 @@ pipeline::SystemParams online_system_params(const Config& config, const Isometry
 /// Throws FormatError listing every problem ("3 problems: a; b; c").
 Config parse_config(std::string_view yaml_text);
 /// Throws FileError("PATH: ...") on a missing file or any problem in it.
+/// An empty path (no --config given) gives the built-in defaults.
 Config load_config(const std::filesystem::path& path);
+
+namespace detail {
+/// Reads the sections a derived configuration adds (io/sim_config.cpp), appending their problems.
+using MoreSections = std::function<void(const YAML::Node& root, std::vector<std::string>& problems)>;
+/// Config's sections of `yaml_text` into `config`, then `more`'s; throws FormatError listing every
+/// problem of every section, or on a syntax error or a top level that is no mapping.
+void parse_into(std::string_view yaml_text, Config& config, const MoreSections& more);
+/// parse_into on the file's text; throws FileError("PATH: ...") on a missing file or any problem.
+void load_into(const std::filesystem::path& path, Config& config, const MoreSections& more);
+}  // namespace detail
 
 }  // namespace makeway::io

@@ -2,7 +2,7 @@
 
 namespace makeway::io {
 
-eval::NavParams nav_params(const Config& config) {
+eval::NavParams nav_params(const SimConfig& config) {
     eval::NavParams p;
     p.lidar = config.lidar;
     p.robot = config.robot;

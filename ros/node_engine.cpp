@@ -44,7 +44,7 @@ std::string goal_problem(const Eigen::Vector2d& goal, const Costmap& costmap) {
 }  // namespace
 
 pipeline::SystemParams node_system_params(const NodeSettings& s) {
-    const io::Config config = s.config.empty() ? io::Config{} : io::load_config(s.config);
+    const io::Config config = io::load_config(s.config);
     return io::online_system_params(config, s.T_base_sensor ? &*s.T_base_sensor : nullptr);
 }
 

@@ -5,7 +5,7 @@
 #include <set>
 #include <optional>
 
-#include "io/config_reader.hpp"
+#include "io/sim_config.hpp"
 #include "io/json_io.hpp"
 #include "io/mesh_io.hpp"
 #include "io/scene_io.hpp"
@@ -19,7 +19,7 @@
 namespace makeway::rosio {
 
 struct SimRobot::Impl {
-    io::Config config;
+    io::SimConfig config;
     sim::Scene scene;
     std::vector<sim::ObjectModel> models;
     sim::World world;
@@ -46,7 +46,7 @@ struct SimRobot::Impl {
     static constexpr int kPhysicsSteps = 10;
     static constexpr double kRobotCausedMps = 0.05;  // as the benchmark judges (eval::NavParams::robot_caused_speed_mps)
 
-    Impl(const SimRobotSettings& s, io::Config c, sim::Scene sc)
+    Impl(const SimRobotSettings& s, io::SimConfig c, sim::Scene sc)
         : config(std::move(c)),
           scene(std::move(sc)),
           models(sim::models_of(scene)),
@@ -81,12 +81,12 @@ struct SimRobot::Impl {
 
 namespace {
 
-io::Config config_of(const SimRobotSettings& s) { return s.config.empty() ? io::Config{} : io::load_config(s.config); }
+io::SimConfig config_of(const SimRobotSettings& s) { return io::load_sim_config(s.config); }
 
 }  // namespace
 
 SimRobot::SimRobot(const SimRobotSettings& s) {
-    io::Config config = config_of(s);
+    io::SimConfig config = config_of(s);
     sim::Scene scene = io::read_scene(s.scene);
     impl_ = std::make_unique<Impl>(s, std::move(config), std::move(scene));
 }

@@ -4,7 +4,7 @@
 
 #include <fstream>
 
-#include "io/config_reader.hpp"
+#include "io/sim_config.hpp"
 #include "io/error.hpp"
 #include "io_test_util.hpp"
 
@@ -13,7 +13,7 @@ namespace {
 
 std::string problem_of(const std::string& yaml) {
     try {
-        parse_config(yaml);
+        parse_sim_config(yaml);
     } catch (const FormatError& e) {
         return e.what();
     }
@@ -21,8 +21,8 @@ std::string problem_of(const std::string& yaml) {
 }
 
 TEST(Config, ShippedDefaultFileMatchesBuiltInDefaults) {
-    const Config c = load_config(std::string(MAKEWAY_SOURCE_DIR) + "/config/default.yaml");
-    const Config d;
+    const SimConfig c = load_sim_config(std::string(MAKEWAY_SOURCE_DIR) + "/config/default.yaml");
+    const SimConfig d;
     EXPECT_EQ(c.scene.seed, d.scene.seed);
     EXPECT_EQ(c.scene.density, d.scene.density);
     EXPECT_EQ(c.scene.layout, d.scene.layout);
@@ -92,7 +92,7 @@ TEST(Config, ShippedDefaultFileMatchesBuiltInDefaults) {
 
 TEST(Config, CollisionMonitorProblemsAreListedWithTheirSection) {
     try {
-        parse_config("collision_monitor: {slowdown_ratio: 0, stop_paddin_m: 0.1}\n");
+        parse_sim_config("collision_monitor: {slowdown_ratio: 0, stop_paddin_m: 0.1}\n");
         FAIL() << "accepted a bad collision_monitor section";
     } catch (const FormatError& e) {
         const std::string what = e.what();
@@ -103,7 +103,7 @@ TEST(Config, CollisionMonitorProblemsAreListedWithTheirSection) {
 }
 
 TEST(Config, TrackerIsConfigurable) {
-    const Config c = parse_config("tracking: {classes: [chair], min_score: 0.3, score_transform: sigmoid, sensor_range_m: 25,\n"
+    const SimConfig c = parse_sim_config("tracking: {classes: [chair], min_score: 0.3, score_transform: sigmoid, sensor_range_m: 25,\n"
                                   "  out_of_range: drop, max_unobserved_s: .inf, chair_velocity_decay_s: .inf, table_max_speed_mps: 0.5}\n");
     const auto& t = c.system.tracker;
     EXPECT_TRUE(t.tracked_classes[0]);
@@ -116,7 +116,7 @@ TEST(Config, TrackerIsConfigurable) {
     EXPECT_TRUE(std::isinf(t.motion[0].velocity_decay_s));
     EXPECT_EQ(t.motion[1].max_speed_mps, 0.5);
     try {
-        parse_config("tracking: {classes: [sofa], score_transform: softmax, out_of_range: sideways, sensor_range_m: .inf}\n");
+        parse_sim_config("tracking: {classes: [sofa], score_transform: softmax, out_of_range: sideways, sensor_range_m: .inf}\n");
         ADD_FAILURE();
     } catch (const FormatError& e) {
         const std::string what = e.what();
@@ -128,7 +128,7 @@ TEST(Config, TrackerIsConfigurable) {
 }
 
 TEST(Config, AffordanceZonesArePerClassParameters) {
-    const Config c = parse_config("affordance:\n  chair:\n    forward_back_m: 0.9\n  table:\n    sides_m: 1.0\n");
+    const SimConfig c = parse_sim_config("affordance:\n  chair:\n    forward_back_m: 0.9\n  table:\n    sides_m: 1.0\n");
     EXPECT_EQ(c.affordance.chair.forward_back_m, 0.9);
     EXPECT_EQ(c.affordance.table.sides_m, 1.0);
     EXPECT_EQ(problem_of("affordance:\n  chair:\n    peak_cost: 300\n"),
@@ -137,12 +137,12 @@ TEST(Config, AffordanceZonesArePerClassParameters) {
 }
 
 TEST(Config, PartialFileKeepsDefaults) {
-    const Config c = parse_config("scene:\n  density: dense\nsimulation:\n  frames: 5\n");
+    const SimConfig c = parse_sim_config("scene:\n  density: dense\nsimulation:\n  frames: 5\n");
     EXPECT_EQ(c.scene.density, sim::Density::kDense);
     EXPECT_EQ(c.simulation.frames, 5);
     EXPECT_EQ(c.scene.layout, sim::Layout::kStudySpace);
-    EXPECT_EQ(c.lidar.rate_hz, Config{}.lidar.rate_hz);
-    EXPECT_EQ(parse_config("").simulation.frames, Config{}.simulation.frames);
+    EXPECT_EQ(c.lidar.rate_hz, SimConfig{}.lidar.rate_hz);
+    EXPECT_EQ(parse_sim_config("").simulation.frames, SimConfig{}.simulation.frames);
 }
 
 TEST(Config, UnknownKeyGetsASuggestion) {
@@ -180,12 +180,30 @@ TEST(Config, SyntaxErrorsAndFiles) {
     const auto dir = testing_util::fresh_dir("cfg");
     std::ofstream(dir / "c.yaml") << "simulation:\n  frames: -2\n";
     try {
-        load_config(dir / "c.yaml");
+        load_sim_config(dir / "c.yaml");
         FAIL();
     } catch (const FileError& e) {
         EXPECT_EQ(std::string(e.what()).rfind((dir / "c.yaml").string() + ": simulation.frames", 0), 0u) << e.what();
     }
-    EXPECT_THROW(load_config(dir / "missing.yaml"), FileError);
+    EXPECT_THROW(load_sim_config(dir / "missing.yaml"), FileError);
+}
+
+// The robot's program reads the same file without the simulator: the simulator's sections are
+// skipped (a typo in them is the simulator's business), everything else is read and checked alike.
+TEST(Config, TheRobotsReaderSkipsTheSimulatorsSections) {
+    const std::string yaml = "scene:\n  density: crowded\nlidar:\n  rate_hs: 3\nrobot:\n  max_v_mps: 0.5\n";
+    const Config robot_side = parse_config(yaml);
+    EXPECT_EQ(robot_side.robot.max_v_mps, 0.5);
+    EXPECT_NE(problem_of(yaml).find("2 problems"), std::string::npos) << problem_of(yaml);
+    const SimConfig both = parse_sim_config("robot:\n  max_v_mps: 0.5\n");
+    EXPECT_EQ(both.robot.max_v_mps, 0.5);
+    EXPECT_EQ(both.scene.robot.max_v_mps, 0.5);  // the simulated robot is the described one
+    try {
+        parse_config("robot:\n  max_v_mps: x\ncolour: 1\n");
+        FAIL();
+    } catch (const FormatError& e) {
+        EXPECT_EQ(std::string(e.what()), "2 problems: colour: unknown section; robot.max_v_mps: must be a number");
+    }
 }
 
 }  // namespace

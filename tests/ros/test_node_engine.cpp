@@ -179,9 +179,9 @@ TEST(OnlineSystem, TheBenchmarkRunAndTheNodeBuildTheSameSystemFromOneYaml) {
     NodeSettings node;
     node.config = yaml.string();
     const pipeline::SystemParams from_node = node_system_params(node);
-    const io::Config config = io::load_config(yaml);
+    const io::Config config = io::load_config(yaml);  // what `makeway run` reads (no simulator)
     const pipeline::SystemParams from_run = io::online_system_params(config);  // cmd_run without --extrinsics
-    const eval::NavParams nav = io::nav_params(config);
+    const eval::NavParams nav = io::nav_params(io::load_sim_config(yaml));  // the benchmark's reader
     const sim::Scene scene = sim::generate_scene({});
     const pipeline::OnlineSystemSetup from_bench = eval::online_system_setup(scene, *eval::nav_method("ours", nav.robot), nav);
 
