@@ -21,7 +21,9 @@
 // ("x y z roll pitch yaw": the sensor on the base; default: the configuration's robot),
 // control_rate (10 Hz), sensor_timeout (0.3 s), odom_timeout (0.3 s), async_perception (true: the
 // keyframe chain on its own thread, so a keyframe never delays a command; the costmap is
-// published on the sweeps that form keyframes, objects and object_map when perception ends). The
+// published on the sweeps that form keyframes, objects and object_map when perception ends),
+// perception_nice (10: that thread yields the cores to the control path), perception_threads
+// (0: every core but one). The
 // system runs on the engine's worker thread; the callbacks only convert and enqueue. C++17: ROS 1's message headers
 // do not compile as C++20.
 #include <geometry_msgs/PoseStamped.h>
@@ -104,6 +106,8 @@ int main(int argc, char** argv) {
     settings.sensor_timeout_s = param<double>(pnh, "sensor_timeout", 0.3);
     settings.odometry_timeout_s = param<double>(pnh, "odom_timeout", 0.3);
     settings.async_perception = param<bool>(pnh, "async_perception", true);
+    settings.perception_nice = param<int>(pnh, "perception_nice", 10);
+    settings.perception_threads = param<int>(pnh, "perception_threads", 0);
     const double control_rate = param<double>(pnh, "control_rate", 10.0);
     const std::string cloud_topic = param<std::string>(pnh, "cloud_topic", "/velodyne_points");
     const std::string odom_topic = param<std::string>(pnh, "odom_topic", "/odom");
@@ -143,7 +147,7 @@ int main(int argc, char** argv) {
 
     // Sweep arrival to /cmd_vel [ms], and the control timer's lateness.
     std::mutex stats_mutex;
-    std::vector<double> latencies, waits, works, keyframe_works;
+    std::vector<double> latencies, waits, works, keyframe_works, front_ends, navigations;
     std::size_t cycles = 0, late_cycles = 0;
     settings.clock = [] { return ros::Time::now().toSec(); };
     settings.send_command = [&cmd_pub](const VelocityCommand& c) { cmd_pub.publish(twist_of(c)); };
@@ -170,6 +174,8 @@ int main(int argc, char** argv) {
                 latencies.push_back(out.latency_ms);
                 waits.push_back(out.queue_wait_ms);
                 (out.keyframe && !settings.async_perception ? keyframe_works : works).push_back(out.latency_ms - out.queue_wait_ms);
+                front_ends.push_back(out.front_end_ms);
+                navigations.push_back(out.navigation_ms);
             }
             odometry_pub.publish(rosio::to_odometry(out.pose, 0.0, 0.0, out.stamp_s, frame, base));
             // ROS's frame chain: the odometry owns odom -> base_link, so the map's correction is
@@ -257,9 +263,11 @@ int main(int argc, char** argv) {
             std::sort(sample.begin(), sample.end());
             return sample[static_cast<std::size_t>(q * static_cast<double>(sample.size() - 1))];
         };
-        std::printf("makeway_node: sweep to /cmd_vel: median %.1f ms, p99 %.1f ms, max %.1f ms (queued %.1f ms median; "
-                    "processing %.1f ms median; keyframe chain %.1f ms median, %s); control cycles %zu, late (> 1.5 periods) %zu\n",
-                    at(latencies, 0.5), at(latencies, 0.99), at(latencies, 1.0), at(waits, 0.5), at(works, 0.5), at(keyframe_works, 0.5),
+        std::printf("makeway_node: sweep to /cmd_vel: median %.1f ms, p99 %.1f ms, max %.1f ms (queued %.1f ms median, p99 %.1f; "
+                    "processing %.1f ms median, p99 %.1f: front end %.1f / %.1f, navigation %.1f / %.1f; keyframe chain %.1f ms median, %s); "
+                    "control cycles %zu, late (> 1.5 periods) %zu\n",
+                    at(latencies, 0.5), at(latencies, 0.99), at(latencies, 1.0), at(waits, 0.5), at(waits, 0.99), at(works, 0.5), at(works, 0.99),
+                    at(front_ends, 0.5), at(front_ends, 0.99), at(navigations, 0.5), at(navigations, 0.99), at(keyframe_works, 0.5),
                     settings.async_perception ? "on its own thread" : "in line", cycles,
                     late_cycles);
     }

@@ -1,11 +1,19 @@
 #include "ros/node_engine.hpp"
 
+#include <cerrno>
 #include <chrono>
+#include <cstdio>
+#include <cstring>
 #include <condition_variable>
 #include <deque>
 #include <mutex>
 #include <thread>
 #include <utility>
+
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <tbb/task_arena.h>
+#include <unistd.h>
 
 #include "io/cad_folder.hpp"
 #include "io/config_reader.hpp"
@@ -92,6 +100,7 @@ struct NodeEngine::Impl {
         : settings(s), publish(std::move(p)), params(node_system_params(s)), detector(load_weights(s.model)) {
         if (!s.cad.empty()) library = io::read_cad_folder(s.cad);
         if (!s.map.empty()) static_map = io::read_map_server(s.map);
+        if (settings.async_perception) perception::set_inference_threads(perception_threads());
         worker = std::thread([this] { run(); });
         if (settings.async_perception) perceiver = std::thread([this] { perceive_loop(); });
     }
@@ -141,7 +150,22 @@ struct NodeEngine::Impl {
     }
 
     // The keyframe chain, one keyframe at a time, in order (the tracker needs every one).
+    int perception_threads() const {
+        if (settings.perception_threads > 0) return settings.perception_threads;
+        return std::max(1, static_cast<int>(std::thread::hardware_concurrency()) - 1);
+    }
+
     void perceive_loop() {
+        // Below the control path: when the cores are short, the keyframe waits, the command does not.
+        // Linux gives each thread its own nice value (PRIO_PROCESS with a thread id).
+        if (settings.perception_nice != 0) {
+            errno = 0;
+            if (setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), settings.perception_nice) != 0) {
+                std::fprintf(stderr, "makeway_node: perception keeps the control path's priority (setpriority: %s)\n", std::strerror(errno));
+            }
+        }
+        // Its verification's parallel loops stay on its own threads (TBB's workers would not be niced).
+        tbb::task_arena arena(perception_threads());
         std::unique_lock<std::mutex> lock(mutex);
         while (true) {
             changed.wait(lock, [&] { return (stopping && queue.empty() && !busy) || !keyframes.empty(); });
@@ -151,7 +175,8 @@ struct NodeEngine::Impl {
             perceiving = true;
             lock.unlock();
             pipeline::StageTiming timing;
-            const pipeline::KeyframeResult kf = system->perceive(std::move(k), timing);
+            pipeline::KeyframeResult kf;
+            arena.execute([&] { kf = system->perceive(std::move(k), timing); });
             NodeOutput out;
             out.perception = true;
             out.stamp_s = kf.stamp_s;
@@ -227,6 +252,8 @@ struct NodeEngine::Impl {
         update_status(step, out);
         out.costmap = &system->costmap();
         out.per_sweep_ms = step.per_sweep_ms();
+        out.front_end_ms = step.sweep.timing.deskew_ms;
+        out.navigation_ms = step.control.nav.update_ms + step.control.monitor_ms;
         out.keyframe_ms = step.sweep.timing.keyframe_ms();
         out.queue_wait_ms = waited_ms;
         if (step.sweep.keyframe) {  // perceived in line (not async)

@@ -36,6 +36,12 @@ struct NodeSettings {
     /// each sweep's command waits only for the pose and the costmap (the object map it sees is
     /// the last finished one); false: every sweep waits for its keyframe's perception.
     bool async_perception = false;
+    /// With async perception, the keyframe chain's share of the computer: its thread's nice value
+    /// (0: the control path's priority; higher: it yields the cores to the control path, which on
+    /// a small computer is what keeps a sweep's command within its latency) and how many threads
+    /// its verification and network may use (0: every core but one, at least one).
+    int perception_nice = 10;
+    int perception_threads = 0;
     std::function<double()> clock;    ///< the node's time [s] (ROS time: sim time under use_sim_time); empty: the sweep's end
     /// Sends a command to the motors. Called under the engine's lock by every path that commands
     /// (a sweep's output, send_command_at(), cancel()), so a cancel is never overtaken by a
@@ -75,6 +81,8 @@ struct NodeOutput {
     const Costmap* costmap = nullptr;     ///< valid during the callback (null on perception outputs)
     std::string object_map_json;          ///< a finished keyframe: the object map as `makeway run` writes it (else empty)
     double per_sweep_ms = 0.0, keyframe_ms = 0.0, queue_wait_ms = 0.0;
+    double front_end_ms = 0.0;   ///< the sweep's pose and de-skewing (LiDAR odometry)
+    double navigation_ms = 0.0;  ///< costmap update, planning, DWA and the collision monitor
     double latency_ms = 0.0;              ///< from the sweep's arrival (push_sweep) to this output
     VelocityCommand command;              ///< the guarded command from this sweep (zero when idle)
     GatedCommand gated;                   ///< what to send now: `command` through gate_command at settings.clock()

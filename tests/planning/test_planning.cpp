@@ -202,5 +202,29 @@ TEST(Dwa, FootprintRefusesWhatTheInscribedCircleAcceptsAndPassesWhatTheCircumscr
     for (const Pose2& q : r.best_rollout) EXPECT_FALSE(footprint_collides(gap, q, p));
 }
 
+// The lethal-cell count only skips sampling where it proves the answer: on scattered obstacles,
+// near the map's edges and outside the checker's window, every answer equals footprint_collides.
+TEST(Dwa, FootprintCheckerAnswersAsTheSampledFootprint) {
+    Rng rng = make_rng(7);
+    DwaParams p;
+    p.footprint_padding_m = 0.04;
+    Costmap m({-1.0, 2.0}, 0.05, 80, 60);
+    for (int k = 0; k < 25; ++k) {  // single cells and short walls
+        const int x = static_cast<int>(uniform(rng, 0.0, 80.0)), y = static_cast<int>(uniform(rng, 0.0, 60.0));
+        const int len = uniform(rng, 0.0, 1.0) < 0.3 ? 6 : 1;
+        for (int i = 0; i < len && x + i < m.width; ++i) m.at(x + i, y) = cost::kLethal;
+    }
+    const FootprintChecker checker(m, p, {10, 5, 70, 50});
+    int free = 0, hit = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        const Pose2 pose{uniform(rng, -1.3, 3.3), uniform(rng, 1.7, 5.3), uniform(rng, -kPi, kPi)};
+        const bool expected = footprint_collides(m, pose, p);
+        ASSERT_EQ(checker.collides(pose), expected) << "trial " << trial << " at " << pose.x_m << " " << pose.y_m << " " << pose.yaw_rad;
+        (expected ? hit : free) += 1;
+    }
+    EXPECT_GT(free, 1000);  // both answers are exercised
+    EXPECT_GT(hit, 1000);
+}
+
 }  // namespace
 }  // namespace makeway::planning

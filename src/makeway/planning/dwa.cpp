@@ -90,11 +90,46 @@ bool footprint_collides(const Costmap& map, const Pose2& pose, const DwaParams& 
     return collides(map, pose, footprint_samples(params, 0.5 * map.resolution_m));
 }
 
+FootprintChecker::FootprintChecker(const Costmap& map, const DwaParams& p, const GridWindow& window)
+    : map_(map),
+      samples_(footprint_samples(p, 0.5 * map.resolution_m)),
+      half_length_m_(0.5 * p.footprint_length_m + p.footprint_padding_m),
+      half_width_m_(0.5 * p.footprint_width_m + p.footprint_padding_m),
+      window_(window.clipped(map.width, map.height)) {
+    if (window_.empty()) return;
+    const int w = window_.x1 - window_.x0, h = window_.y1 - window_.y0;
+    lethal_sum_.assign(static_cast<std::size_t>(w + 1) * (h + 1), 0);
+    for (int j = 0; j < h; ++j) {
+        int row = 0;
+        for (int i = 0; i < w; ++i) {
+            row += map.at(window_.x0 + i, window_.y0 + j) == cost::kLethal;
+            lethal_sum_[static_cast<std::size_t>(j + 1) * (w + 1) + (i + 1)] = lethal_sum_[static_cast<std::size_t>(j) * (w + 1) + (i + 1)] + row;
+        }
+    }
+}
+
+bool FootprintChecker::collides(const Pose2& pose) const {
+    if (!window_.empty()) {
+        // Every sample lies in the footprint's bounding box, so every sample's cell lies in the box's
+        // cell range (a micrometre wider, for the rounding of the rotated samples).
+        const double c = std::abs(std::cos(pose.yaw_rad)), s = std::abs(std::sin(pose.yaw_rad));
+        const double hx = c * half_length_m_ + s * half_width_m_ + 1e-6, hy = s * half_length_m_ + c * half_width_m_ + 1e-6;
+        const Eigen::Vector2i lo = map_.cell_of({pose.x_m - hx, pose.y_m - hy});
+        const Eigen::Vector2i hi = map_.cell_of({pose.x_m + hx, pose.y_m + hy});
+        if (lo.x() >= window_.x0 && lo.y() >= window_.y0 && hi.x() < window_.x1 && hi.y() < window_.y1) {
+            const int w = window_.x1 - window_.x0;
+            const auto at = [&](int i, int j) { return lethal_sum_[static_cast<std::size_t>(j - window_.y0) * (w + 1) + (i - window_.x0)]; };
+            const int lethal = at(hi.x() + 1, hi.y() + 1) - at(lo.x(), hi.y() + 1) - at(hi.x() + 1, lo.y()) + at(lo.x(), lo.y());
+            if (lethal == 0) return false;
+        }
+    }
+    return makeway::planning::collides(map_, pose, samples_);
+}
+
 DwaResult dwa_step(const Costmap& map, const DwaState& st, const std::vector<Eigen::Vector2d>& path,
                    const DwaParams& p) {
     DwaResult result;
     if (path.empty()) return result;
-    const auto samples = footprint_samples(p, 0.5 * map.resolution_m);
     int envelope = 0;
     const Eigen::Vector2d goal = carrot(map, path, {st.pose.x_m, st.pose.y_m}, p.lookahead_m, envelope);
     // Where the robot stands is inside the envelope too: it may always leave the way it came.
@@ -104,6 +139,13 @@ DwaResult dwa_step(const Costmap& map, const DwaState& st, const std::vector<Eig
     const double w_lo = std::max(-p.max_w_radps, st.w_radps - p.acc_w_radps2 * p.control_dt_s);
     const double w_hi = std::min(p.max_w_radps, st.w_radps + p.acc_w_radps2 * p.control_dt_s);
     const int steps = static_cast<int>(std::lround(p.horizon_s / p.rollout_dt_s));
+    // Every rollout stays within the fastest sample's reach of the robot, its footprint within that
+    // plus the footprint's half diagonal.
+    const double reach_m = std::max(std::abs(v_lo), std::abs(v_hi)) * steps * p.rollout_dt_s +
+                           std::hypot(0.5 * p.footprint_length_m + p.footprint_padding_m, 0.5 * p.footprint_width_m + p.footprint_padding_m);
+    const Eigen::Vector2i centre = map.cell_of({st.pose.x_m, st.pose.y_m});
+    const int reach = static_cast<int>(std::ceil(reach_m / map.resolution_m)) + 2;
+    const FootprintChecker checker(map, p, {centre.x() - reach, centre.y() - reach, centre.x() + reach + 1, centre.y() + reach + 1});
 
     struct Candidate {
         double v, w, path, heading, clearance, speed, excess;
@@ -121,7 +163,7 @@ DwaResult dwa_step(const Costmap& map, const DwaState& st, const std::vector<Eig
             double cost_sum = 0.0;
             for (int k = 0; k < steps && !hit; ++k) {
                 pose = advance(pose, v, w, p.rollout_dt_s);
-                hit = collides(map, pose, samples);
+                hit = checker.collides(pose);
                 const int centre_cost = soft_cost(map, {pose.x_m, pose.y_m});
                 cost_sum += centre_cost;
                 c.excess += std::max(0, centre_cost - envelope);
