@@ -11,6 +11,7 @@
 #include "io/scene_io.hpp"
 #include "makeway/pipeline/keyframe.hpp"
 #include "makeway/costmap/affordance.hpp"
+#include "makeway/sim/contact_judge.hpp"
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/robot.hpp"
 #include "makeway/sim/scene_dynamics.hpp"
@@ -24,6 +25,7 @@ struct SimRobot::Impl {
     std::vector<sim::ObjectModel> models;
     sim::World world;
     sim::CollisionChecker checker;
+    sim::ContactJudge contact_judge;  // as the benchmark judges
     sim::WheelOdometry odometry;
     sim::RobotState state;
     SimRobotSettings settings;
@@ -34,17 +36,8 @@ struct SimRobot::Impl {
     double distance_m = 0.0;
     double risk_time_s = 0.0;
     std::vector<Pose2> path;  // every sweep's end
-    struct Contact {
-        double t_s;
-        std::string kind;
-        bool robot_caused;
-        double toward_mps;
-        Eigen::Vector2d where;
-    };
-    std::vector<Contact> contacts;
-    bool touching[3] = {false, false, false};
+    std::vector<sim::ContactEvent> contacts;
     static constexpr int kPhysicsSteps = 10;
-    static constexpr double kRobotCausedMps = 0.05;  // as the benchmark judges (eval::NavParams::robot_caused_speed_mps)
 
     Impl(const SimRobotSettings& s, io::SimConfig c, sim::Scene sc)
         : config(std::move(c)),
@@ -52,6 +45,7 @@ struct SimRobot::Impl {
           models(sim::models_of(scene)),
           world(scene, models),
           checker(scene, models, config.robot),
+          contact_judge(checker, config.robot),
           odometry(scene.start, config.odometry, s.seed ^ 0x0D0ULL),
           settings(s) {
         state.pose = scene.start;
@@ -64,29 +58,12 @@ struct SimRobot::Impl {
         bool risky = false;
         for (const ObjectEstimate& o : sim::object_estimates_at(scene, models, ts)) risky |= costmap::in_affordance_zone(o, config.affordance, centre);
         if (risky) risk_time_s += dt;
-        using Against = sim::CollisionChecker::Against;
-        const Against kinds[3] = {Against::kStructure, Against::kFurniture, Against::kPeople};
-        static const char* const kNames[3] = {"walls", "furniture", "people"};
-        for (int i = 0; i < 3; ++i) {
-            const std::optional<Eigen::Vector2d> c = checker.contact_point(state.pose, ts, kinds[i]);
-            if (c && !touching[i]) {
-                const double toward = sim::speed_toward_contact(state.pose, state.v_mps, state.w_radps, *c, config.robot.length_m,
-                                                                 config.robot.width_m);
-                contacts.push_back({ts, kNames[i], toward > kRobotCausedMps, toward, *c});
-            }
-            touching[i] = c.has_value();
-        }
+        for (sim::ContactEvent& e : contact_judge.step(state, ts)) contacts.push_back(std::move(e));
     }
 };
 
-namespace {
-
-io::SimConfig config_of(const SimRobotSettings& s) { return io::load_sim_config(s.config); }
-
-}  // namespace
-
 SimRobot::SimRobot(const SimRobotSettings& s) {
-    io::SimConfig config = config_of(s);
+    io::SimConfig config = io::load_sim_config(s.config);
     sim::Scene scene = io::read_scene(s.scene);
     impl_ = std::make_unique<Impl>(s, std::move(config), std::move(scene));
 }
@@ -184,7 +161,7 @@ std::string SimRobot::report_json(const std::string& extra) const {
     for (const auto& c : m.contacts) {
         counts[c.kind][c.robot_caused ? "robot_caused" : "other_caused"] = counts[c.kind][c.robot_caused ? "robot_caused" : "other_caused"].get<int>() + 1;
         events.push_back({{"t_s", c.t_s}, {"kind", c.kind}, {"robot_caused", c.robot_caused}, {"toward_mps", c.toward_mps},
-                          {"where_m", {c.where.x(), c.where.y()}}});
+                          {"where_m", {c.where_m.x(), c.where_m.y()}}});
     }
     j["contacts"] = counts;
     j["robot_caused_contacts"] = robot_caused_contacts();

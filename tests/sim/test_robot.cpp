@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "makeway/common/angles.hpp"
+#include "makeway/sim/contact_judge.hpp"
 #include "makeway/sim/robot.hpp"
 #include "makeway/sim/route.hpp"
 #include "sim_test_util.hpp"
@@ -81,6 +82,48 @@ TEST(Route, AStarOnAHandDrawnGrid) {
     g.blocked[4 * 10 + 5] = 1;
     EXPECT_FALSE(find_route(g, {0.5, 0.5}, {9.5, 0.5}).has_value());
     EXPECT_FALSE(find_route(g, {5.5, 0.5}, {9.5, 0.5}).has_value());  // start blocked
+}
+
+// The one judge of the benchmark and the ROS sim node, on contacts built by hand: the robot
+// driving into a wall (its doing, counted once while it touches, again after it backed off), and
+// a walker walking into the robot standing still (another's doing).
+TEST(ContactJudge, CountsEachContactOnceByKindAndCause) {
+    Scene room = testing_util::box_room(2.0);  // inner faces at +-2 m
+    room.walkers.push_back({{{-1.8, -1.0}, {1.8, -1.0}}, 0.8, 0.0});
+    const RobotParams robot;
+    const std::vector<ObjectModel> models;
+    const CollisionChecker checker(room, models, robot);
+    ContactJudge judge(checker, robot);
+    std::vector<ContactEvent> events;
+    RobotState s;
+    s.pose = {1.0, 1.0, 0.0};
+    s.v_mps = 0.5;
+    double t = 100.0;  // the walker is elsewhere (it passes y = -1 only)
+    for (int k = 0; k < 100; ++k, t += 0.02) {  // drives on into the wall, 2 cm a step
+        s.pose.x_m = 1.0 + 0.01 * k;
+        for (ContactEvent& e : judge.step(s, t)) events.push_back(e);
+    }
+    ASSERT_EQ(events.size(), 1u);
+    EXPECT_EQ(events[0].kind, "walls");
+    EXPECT_TRUE(events[0].robot_caused);
+    EXPECT_NEAR(events[0].toward_mps, 0.5, 1e-9);
+    EXPECT_NEAR(s.pose.x_m, 1.99, 1e-9);
+    EXPECT_NEAR(events[0].where_m.x(), 2.0, 0.05);
+    s.pose.x_m = 1.0;  // backed off ...
+    EXPECT_TRUE(judge.step(s, t).empty());
+    s.pose.x_m = 1.9;  // ... and into it again
+    ASSERT_EQ(judge.step(s, t).size(), 1u);
+    // Standing still on the walker's line: the walker walks into it.
+    ContactJudge still(checker, robot);
+    RobotState stopped;
+    stopped.pose = {0.0, -1.0, kPi / 2};
+    std::vector<ContactEvent> people;
+    for (double tw = 0.0; tw < 4.5; tw += 0.02) {
+        for (ContactEvent& e : still.step(stopped, tw)) people.push_back(e);
+    }
+    ASSERT_EQ(people.size(), 1u);
+    EXPECT_EQ(people[0].kind, "people");
+    EXPECT_FALSE(people[0].robot_caused);
 }
 
 }  // namespace

@@ -63,8 +63,8 @@ struct Scorer {
     const sim::CollisionChecker& checker;
     const NavParams& params;
     NavRunResult& out;
+    sim::ContactJudge judge;
     bool in_collision = false, touching_person = false;
-    bool touching[3] = {false, false, false};  // walls, furniture, people
     std::vector<bool> near_chair;
 
     void step(const sim::RobotState& state, double ts, double dt) {
@@ -77,19 +77,10 @@ struct Scorer {
         out.person_contacts += person && !touching_person;
         touching_person = person;
         // Each contact, when it starts, is the robot's or another's doing.
-        const Against kinds[3] = {Against::kStructure, Against::kFurniture, Against::kPeople};
-        ContactCounts* counts[3] = {&out.wall_contacts, &out.furniture_contacts, &out.people_contacts};
-        for (int i = 0; i < 3; ++i) {
-            const bool any = i == 2 ? person : colliding;
-            const std::optional<Eigen::Vector2d> c = any ? checker.contact_point(pose, ts, kinds[i]) : std::nullopt;
-            if (c && !touching[i]) {
-                const double toward = speed_toward_contact(pose, state.v_mps, state.w_radps, *c, params.robot.length_m, params.robot.width_m);
-                const bool robot = toward > params.robot_caused_speed_mps;
-                ++(robot ? counts[i]->robot_caused : counts[i]->other_caused);
-                static const char* const kKinds[3] = {"walls", "furniture", "people"};
-                out.contact_events.push_back({ts, kKinds[i], robot, toward, *c});
-            }
-            touching[i] = c.has_value();
+        for (ContactEvent& e : judge.step(state, ts)) {
+            ContactCounts& counts = e.kind == "walls" ? out.wall_contacts : e.kind == "furniture" ? out.furniture_contacts : out.people_contacts;
+            ++(e.robot_caused ? counts.robot_caused : counts.other_caused);
+            out.contact_events.push_back(std::move(e));
         }
         const Eigen::Vector2d c(pose.x_m, pose.y_m);
         const auto truth = ground_truth_objects(scene, models, ts);
@@ -138,7 +129,7 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
     }
     sim::World world(scene, models);
     sim::WheelOdometry odometry(scene.start, params.odometry, params.seed ^ 0x0D0ULL);
-    Scorer scorer{scene, models, checker, params, out};
+    Scorer scorer{scene, models, checker, params, out, sim::ContactJudge(checker, params.robot, params.robot_caused_speed_mps)};
     sim::RobotState state;
     state.pose = scene.start;
     VelocityCommand cmd;

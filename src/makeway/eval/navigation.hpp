@@ -19,6 +19,7 @@
 #include "makeway/pipeline/system_params.hpp"
 #include "makeway/planning/collision_monitor.hpp"
 #include "makeway/sim/lidar.hpp"
+#include "makeway/sim/contact_judge.hpp"
 #include "makeway/sim/robot.hpp"
 #include "makeway/verification/cad_library.hpp"
 #include "makeway/verification/shape_prior.hpp"
@@ -72,23 +73,9 @@ struct KeyframeObjects {
     std::vector<ObjectEstimate> objects;
 };
 
-/// Contacts with one kind of thing, split by who caused them (counted when they start).
-struct ContactCounts {
-    int robot_caused = 0;  ///< the robot was moving toward what it touched (> robot_caused_speed_mps)
-    int other_caused = 0;  ///< a walker or a pushed chair came into a stopped or receding robot
-    int total() const { return robot_caused + other_caused; }
-};
-
-/// One contact, when it started.
-struct ContactEvent {
-    double t_s = 0.0;
-    std::string kind;           ///< walls, furniture or people
-    bool robot_caused = false;
-    double toward_mps = 0.0;    ///< the body's speed toward what it touched
-    Eigen::Vector2d where_m = Eigen::Vector2d::Zero();
-};
-
-/// How contacts are judged (sim/robot.hpp: the simulator's judge, shared with the ROS sim node).
+/// How contacts are judged: sim/contact_judge.hpp, shared with the ROS sim node.
+using sim::ContactCounts;
+using sim::ContactEvent;
 using sim::robot_caused_contact;
 using sim::speed_toward_contact;
 
