@@ -331,7 +331,6 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("min_scale", m.min_scale);
         s.read("lowest_beam_deg", m.lowest_beam_deg);
         s.read("blind_memory_s", m.blind_memory_s);
-        s.read("memory_solid_share", m.memory_solid_share);
         s.read("object_footprints", m.object_footprints);
         s.read("object_moving_mps", m.object_moving_mps);
         s.read("max_range_m", m.max_range_m);

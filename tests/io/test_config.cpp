@@ -82,7 +82,6 @@ TEST(Config, ShippedDefaultFileMatchesBuiltInDefaults) {
     EXPECT_EQ(cm.min_scale, dm.min_scale);
     EXPECT_EQ(cm.lowest_beam_deg, dm.lowest_beam_deg);
     EXPECT_EQ(cm.blind_memory_s, dm.blind_memory_s);
-    EXPECT_EQ(cm.memory_solid_share, dm.memory_solid_share);
     EXPECT_EQ(cm.max_range_m, dm.max_range_m);
     EXPECT_EQ(cm.recovery_after_s, dm.recovery_after_s);
     EXPECT_EQ(cm.backup_speed_mps, dm.backup_speed_mps);

@@ -14,9 +14,6 @@ namespace {
 // Returns of one sweep are thinned to one per cell of this size: the zones' paddings are several
 // cells, so nothing the robot could touch is lost, and the memory stays a few thousand points.
 constexpr double kThinCell_m = 0.03;
-// Returns are remembered from this far beyond where the sensor stops seeing them: more than a
-// cycle's travel at top speed (0.075 m), with room for a late sweep.
-constexpr double kMemoryBand_m = 0.3;
 
 // The pose after following (v, w) for u seconds from the origin (exact arc).
 Pose2 along_arc(double v, double w, double u) {
@@ -69,7 +66,6 @@ std::vector<std::string> CollisionMonitorParams::validate() const {
     if (!(sensor_height_m >= 0.0 && sensor_height_m <= 5.0)) p.push_back("sensor_height_m must be in [0, 5]");
     if (!(lowest_beam_deg >= -90.0 && lowest_beam_deg <= 90.0)) p.push_back("lowest_beam_deg must be in [-90, 90]");
     if (!(blind_memory_s >= 0.0 && blind_memory_s <= 60.0)) p.push_back("blind_memory_s must be in [0, 60]");
-    if (!(memory_solid_share >= 0.0 && memory_solid_share <= 1.0)) p.push_back("memory_solid_share must be in [0, 1]");
     if (!(object_moving_mps >= 0.0 && object_moving_mps <= 10.0)) p.push_back("object_moving_mps must be in [0, 10]");
     if (!(max_range_m > 0.0 && max_range_m <= 50.0)) p.push_back("max_range_m must be in (0, 50]");
     if (!(recovery_after_s > 0.0)) p.push_back("recovery_after_s must be > 0");
@@ -200,13 +196,12 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     // Forget what the sensor could see again (the new sweep shows it if it is still there), and
     // what is older than blind_memory_s.
     const Eigen::Vector2d here(in.pose.x_m, in.pose.y_m);
-    std::erase_if(memory_, [&](const auto& cell) {
-        const Remembered& m = cell.second;
+    std::erase_if(memory_, [&](const Remembered& m) {
         return m.t_s < in.t_s - params_.blind_memory_s - 1e-9 || (m.p_world - here).norm() >= m.blind_m;
     });
     const Isometry2 T_base_world = to_isometry(in.pose).inverse();
     std::vector<Eigen::Vector2d> pts;
-    for (const auto& [cell, m] : memory_) pts.push_back(T_base_world * m.p_world);
+    for (const Remembered& m : memory_) pts.push_back(T_base_world * m.p_world);
     std::vector<char> dynamic(pts.size(), 0);  // remembered returns are where they were
     // The new sweep: the returns the body can hit, thinned; each remembered while the sensor,
     // closing in, could no longer see it.
@@ -219,31 +214,10 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
         const double r2 = params_.max_range_m * params_.max_range_m;
         struct Candidate {
             std::size_t index;  ///< into pts
-            std::int64_t cell;  ///< the thinning cell
             Eigen::Vector2d q;  ///< world
             double keep_m;      ///< remembered while closer than this to the sensor
             bool high;          ///< high enough to be a mover
             bool known;         ///< a return was near it in the last dynamic_history sweeps
-        };
-        // Near the floor, a cell is solid when enough of its returns (min_points, and that share)
-        // lie above the clearance: the floor's range noise lifts a few of them past it where the
-        // lowest rings graze the floor, a 3 cm table foot lifts most. Only solid low cells are
-        // remembered: a robot that kept the floor's noise in its blind ring would stop for nothing.
-        // Returns farther than kMemoryBand_m beyond their visibility radius are not remembered
-        // (seen again next sweep, they are remembered then), so the count stops there too.
-        std::unordered_map<std::int64_t, std::pair<int, int>> low;  // cell -> (returns, above the clearance)
-        const double low_r = blind_radius_m(0.0) + kMemoryBand_m + kThinCell_m;
-        for (const Eigen::Vector3f& p : in.points_world->xyz) {
-            if (!(p.z() < params_.dynamic_min_height_m) || !std::isfinite(p.x()) || !std::isfinite(p.y())) continue;
-            const Eigen::Vector2d q(p.x(), p.y());
-            if ((q - here).squaredNorm() > low_r * low_r) continue;
-            auto& c = low[key_of(static_cast<std::int64_t>(std::floor(q.x() / kThinCell_m)), static_cast<std::int64_t>(std::floor(q.y() / kThinCell_m)))];
-            ++c.first;
-            c.second += params_.body.can_hit(p.z());
-        }
-        const auto solid = [&](std::int64_t cell) {
-            const auto it = low.find(cell);
-            return it == low.end() || (it->second.second >= params_.min_points && it->second.second >= params_.memory_solid_share * it->second.first);
         };
         std::vector<Candidate> candidates;
         for (const Eigen::Vector3f& p : in.points_world->xyz) {
@@ -268,7 +242,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             // there is new in every sweep. People are seen higher up.
             const bool high = p.z() >= params_.dynamic_min_height_m;
             dynamic.push_back(known || !high ? 0 : 1);
-            candidates.push_back({pts.size() - 1, key_of(ix, iy), q, std::min(blind_radius_m(p.z()), std::sqrt(d2)), high, known});
+            candidates.push_back({pts.size() - 1, q, std::min(blind_radius_m(p.z()), std::sqrt(d2)) - kThinCell_m, high, known});
         }
         // A mover stays a mover: returns near one that was new in this sweep or the last
         // dynamic_history sweeps move too (a walker turning back walks into the cells it just
@@ -309,8 +283,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
         // Remembered while the sensor, closer than where it was seen, is blind there; new returns
         // (a walker's, the floor noise at the lowest rings' reach) and a mover's leave no trail.
         for (const Candidate& c : candidates) {
-            if (c.keep_m <= 0.0 || !c.known || dynamic[c.index] || (c.q - here).norm() > c.keep_m + kMemoryBand_m) continue;
-            if (c.high || solid(c.cell)) memory_[c.cell] = {c.q, in.t_s, c.keep_m};
+            if (c.keep_m > 0.0 && c.known && !dynamic[c.index]) memory_.push_back({c.q, in.t_s, c.keep_m});
         }
         std::sort(cells.begin(), cells.end());
         previous_cells_.push_back(std::move(cells));

@@ -53,7 +53,6 @@
 #include <cstdint>
 #include <deque>
 #include <optional>
-#include <unordered_map>
 #include <utility>
 #include <string>
 #include <string_view>
@@ -94,8 +93,7 @@ struct CollisionMonitorParams {
     double min_scale = 0.05;            ///< an approach scale below this holds the robot (counts as a stop)
     double sensor_height_m = 0.45;      ///< the LiDAR above the floor (on the base's centre) ...
     double lowest_beam_deg = -25.0;     ///< ... and its lowest beam: what it cannot see near it is remembered ...
-    double blind_memory_s = 30.0;       ///< ... at most this long (a robot held in front of a table foot keeps it; README) ...
-    double memory_solid_share = 0.5;    ///< ... below dynamic_min_height_m, only cells with this share of their returns above the clearance (not the floor's noise)
+    double blind_memory_s = 10.0;       ///< ... at most this long (a robot held in front of a chair leg keeps it)
     bool object_footprints = true;      ///< inside the blind ring, MonitorInput::footprints_world count as returns ...
     double object_moving_mps = 0.05;    ///< ... (the Controller's: chairs that moved faster than this in the last blind_memory_s)
     double max_range_m = 4.0;           ///< returns farther than this from the base are not looked at
@@ -174,10 +172,7 @@ private:
 
     CollisionMonitorParams params_;
     double tan_down_;  ///< tan of the lowest beam's angle below the horizon
-    /// One entry per thinning cell, the latest sighting: a robot standing still does not pile up
-    /// copies of what it keeps seeing, and a return counts as remembered from the first cycle the
-    /// sensor cannot see it (however slowly the robot closes in).
-    std::unordered_map<std::int64_t, Remembered> memory_;
+    std::vector<Remembered> memory_;
     std::deque<std::vector<std::int64_t>> previous_cells_;  ///< the last sweeps' thinned cells (each sorted), for new returns
     std::deque<std::vector<std::int64_t>> previous_movers_; ///< the last sweeps' coarse cells of new returns (each sorted)
     double held_since_ = -1.0;     ///< when the current hold began (-1: not held)
