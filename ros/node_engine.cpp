@@ -149,12 +149,12 @@ struct NodeEngine::Impl {
         return gate_command(last_command, last_sweep_end, odometry_s, now_s, settings.sensor_timeout_s, settings.odometry_timeout_s);
     }
 
-    // The keyframe chain, one keyframe at a time, in order (the tracker needs every one).
     int perception_threads() const {
         if (settings.perception_threads > 0) return settings.perception_threads;
         return std::max(1, static_cast<int>(std::thread::hardware_concurrency()) - 1);
     }
 
+    // The keyframe chain, one keyframe at a time, in order (the tracker needs every one).
     void perceive_loop() {
         // Below the control path: when the cores are short, the keyframe waits, the command does not.
         // Linux gives each thread its own nice value (PRIO_PROCESS with a thread id).
@@ -164,7 +164,8 @@ struct NodeEngine::Impl {
                 std::fprintf(stderr, "makeway_node: perception keeps the control path's priority (setpriority: %s)\n", std::strerror(errno));
             }
         }
-        // Its verification's parallel loops stay on its own threads (TBB's workers would not be niced).
+        // Its verification's parallel loops use at most perception_threads() threads (with one, only
+        // this niced thread; TBB's workers that join a larger arena keep the default priority).
         tbb::task_arena arena(perception_threads());
         std::unique_lock<std::mutex> lock(mutex);
         while (true) {
