@@ -77,7 +77,7 @@ struct Scorer {
         out.person_contacts += person && !touching_person;
         touching_person = person;
         // Each contact, when it starts, is the robot's or another's doing.
-        for (ContactEvent& e : judge.step(state, ts)) {
+        for (ContactEvent& e : judge.step(state, ts, colliding || person)) {
             ContactCounts& counts = e.kind == "walls" ? out.wall_contacts : e.kind == "furniture" ? out.furniture_contacts : out.people_contacts;
             ++(e.robot_caused ? counts.robot_caused : counts.other_caused);
             out.contact_events.push_back(std::move(e));

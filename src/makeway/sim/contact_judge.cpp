@@ -6,9 +6,13 @@ ContactJudge::ContactJudge(const CollisionChecker& checker, const RobotParams& r
     : checker_(checker), length_m_(robot.length_m), width_m_(robot.width_m), robot_caused_mps_(robot_caused_mps) {}
 
 std::vector<ContactEvent> ContactJudge::step(const RobotState& state, double t_s) {
+    return step(state, t_s, checker_.collides(state.pose, t_s, CollisionChecker::Against::kEverything));
+}
+
+std::vector<ContactEvent> ContactJudge::step(const RobotState& state, double t_s, bool touching_anything) {
     using Against = CollisionChecker::Against;
     std::vector<ContactEvent> started;
-    if (!checker_.collides(state.pose, t_s, Against::kEverything)) {  // the common case: one check
+    if (!touching_anything) {  // the common case: no contact point looked for
         for (bool& t : touching_) t = false;
         return started;
     }

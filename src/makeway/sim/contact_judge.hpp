@@ -35,6 +35,9 @@ public:
     ContactJudge(const CollisionChecker& checker, const RobotParams& robot, double robot_caused_mps = 0.05);
     /// The robot at t_s: the contacts that start now (one per kind at most; usually none).
     std::vector<ContactEvent> step(const RobotState& state, double t_s);
+    /// The same, for a caller that already checked whether the footprint touches anything at t_s
+    /// (the benchmark's scorer counts collisions and person contacts apart): no check repeated.
+    std::vector<ContactEvent> step(const RobotState& state, double t_s, bool touching_anything);
 
 private:
     const CollisionChecker& checker_;
