@@ -96,14 +96,21 @@ io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory) {
     }
     if (with_trajectory) {
         io::Json traj = io::Json::array();
-        for (const Pose2& p : r.trajectory) traj.push_back({p.x_m, p.y_m, p.yaw_rad});
+        // Poses to 10 um and 10 urad (full doubles made run.json twice as large for nothing).
+        const auto micro = [](double x) { return std::round(x * 1e5) / 1e5; };
+        for (const Pose2& p : r.trajectory) traj.push_back({micro(p.x_m), micro(p.y_m), micro(p.yaw_rad)});
         j["trajectory_xyyaw"] = traj;
         io::Json believed = io::Json::array();
-        for (const Pose2& p : r.estimated_trajectory) believed.push_back({p.x_m, p.y_m, p.yaw_rad});
+        for (const Pose2& p : r.estimated_trajectory) believed.push_back({micro(p.x_m), micro(p.y_m), micro(p.yaw_rad)});
         j["estimated_trajectory_xyyaw"] = believed;
         io::Json reasons = io::Json::array();  // the collision monitor's action per control cycle
         for (const planning::MonitorAction a : r.monitor_actions) reasons.push_back(std::string(planning::to_string(a)));
         j["stop_reason"] = reasons;
+        j["nav_state"] = r.nav_states;  // the navigator's own state per control cycle
+        io::Json commands = io::Json::array();  // [v m/s, w rad/s] sent to the motors per control cycle, to 1 mm/s and 1 mrad/s
+        const auto milli = [](double x) { return std::round(x * 1e3) / 1e3; };
+        for (const VelocityCommand& c : r.commands) commands.push_back({milli(c.v_mps), milli(c.w_radps)});
+        j["command_vw"] = commands;
     }
     return j;
 }

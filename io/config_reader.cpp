@@ -298,6 +298,9 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("stuck_timeout_s", n.stuck_timeout_s);
         s.read("backup_speed_mps", n.backup_speed_mps);
         s.read("backup_duration_s", n.backup_duration_s);
+        s.read("standstill_timeout_s", n.standstill_timeout_s);
+        s.read("standstill_v_mps", n.standstill_v_mps);
+        s.read("standstill_w_radps", n.standstill_w_radps);
         s.read("waypoint_tolerance_m", n.waypoint_tolerance_m);
         s.read("goal_tolerance_m", n.goal_tolerance_m);
         s.read("plan_to_tolerance", n.plan_to_tolerance);

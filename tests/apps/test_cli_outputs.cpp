@@ -128,7 +128,7 @@ TEST_F(CliOutputs, InterruptedNavigationWritesNothing) {
 
 TEST_F(CliOutputs, FullDiskLeavesNoHalfOutput) {
     // A file-size limit makes every larger write fail as a full disk would (EFBIG instead of ENOSPC).
-    // At most 85 KiB per file (bash counts KiB): gt-perc's run.json (57 KiB) and the costmap (71 KiB)
+    // At most 85 KiB per file (bash counts KiB): gt-perc's run.json (60 KiB) and the costmap (71 KiB)
     // are written, the picture (89 KiB) is not; a 1.4 MB cloud is not.
     const auto limited = [&](const std::string& args) {
         return testing_util::run_shell("bash -c \"ulimit -f 85; trap '' XFSZ; exec " + std::string(MAKEWAY_BIN) + " " + args + "\"", dir_);

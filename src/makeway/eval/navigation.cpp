@@ -172,6 +172,8 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
         }
         out.monitor_ms_max = std::max(out.monitor_ms_max, step.monitor_ms);
         out.monitor_actions.push_back(step.guard.action);
+        out.nav_states.emplace_back(pipeline::to_string_state(step.nav));
+        out.commands.push_back(step.command);
         out.recoveries += step.guard.started_recovery;
         out.cycle_ms.push_back(step.nav.update_ms + step.monitor_ms);
         cmd = step.command;

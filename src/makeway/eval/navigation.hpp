@@ -101,6 +101,8 @@ struct NavRunResult {
     /// The collision monitor per control cycle (none, slowdown, approach, stop, recovery_backup,
     /// recovery_rotate, blocked), and the cycles it spent on each.
     std::vector<planning::MonitorAction> monitor_actions;
+    std::vector<std::string> nav_states;       ///< the navigator per control cycle (pipeline::to_string_state)
+    std::vector<VelocityCommand> commands;     ///< the command sent to the motors per control cycle (after the monitor)
     double monitor_ms_max = 0.0;  ///< the slowest collision monitor cycle (timing.json; included in cycle_ms)
     double min_clearance_m = 0.0;
     double shortest_m = 0.0;    ///< shortest collision-free route length start -> waypoint -> goal

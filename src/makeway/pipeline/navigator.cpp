@@ -26,6 +26,15 @@ NavigatorParams with_monitor_padding(NavigatorParams p) {
 
 }  // namespace
 
+const char* to_string_state(const NavigatorStep& s) {
+    if (s.arrived) return "arrived";
+    if (s.gave_up) return "gave_up";
+    if (s.recovering) return "backing_up";
+    if (!s.dwa_found) return "turning";
+    if (!s.has_plan) return "no_plan";
+    return "following";
+}
+
 Navigator::Navigator(const Costmap& static_map, const NavigatorParams& params)
     : params_(with_monitor_padding(params)), costmap_(static_map, params_) {}
 
@@ -37,6 +46,8 @@ void Navigator::set_route(std::vector<Eigen::Vector2d> legs_m) {
     recovery_until_ = -1.0;
     avoided_.clear();
     detours_ = 0;
+    detour_pending_ = false;
+    standstill_since_ = -1.0;
 }
 
 NavigatorStep Navigator::step(const NavigatorInput& in) {
@@ -60,10 +71,21 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
     check_progress(in, out);
     // Global plan when there is none, when it is due, or when something now blocks it.
     if (plan_.empty() || in.t_s - last_plan_t_ >= params_.replan_period_s || plan_blocked(here)) {
-        const planning::PlanResult p = plan(here, in.t_s);
+        bool around = false;
+        const planning::PlanResult p = plan(here, in.t_s, around);
         if (p.status == planning::PlanStatus::kOk) {
             plan_ = p.path_m;
             planned_t_ = in.t_s;
+            if (detour_pending_ && around) {
+                // The first plan around the leg's first stuck spot is longer than the way that
+                // failed: it gets give_up_s of its own, progress measured along it. Only the
+                // first: a robot circling from detour to detour (con in the demo's study space,
+                // 72.7 s with every detour restarting the clock) still gives up, at most
+                // 2 x give_up_s after it last came closer.
+                best_remaining_m_ = remaining_m(here);
+                moved_t_ = in.t_s;
+            }
+            detour_pending_ = false;
         }
         out.plan_status = p.status;
         last_plan_t_ = in.t_s;
@@ -77,16 +99,32 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
     }
     // Local control: back up while recovering, else DWA along the plan.
     out.recovering = in.t_s < recovery_until_;
+    out.has_plan = !plan_.empty();
     if (out.recovering) {
         out.command = {-params_.backup_speed_mps, 0.0};
     } else if (!plan_.empty()) {
         out.command = follow_plan(in, out);
+        // DWA's best velocity a standstill: every way forward along the plan collides within the
+        // horizon (a gap entered at an angle its footprint does not turn in). Waiting for
+        // stuck_timeout_s would only wait; after standstill_timeout_s it is stuck now.
+        const bool still = out.dwa_found && std::abs(out.command.v_mps) < params_.standstill_v_mps &&
+                           std::abs(out.command.w_radps) < params_.standstill_w_radps;
+        if (!still) {
+            standstill_since_ = -1.0;
+        } else if (standstill_since_ < 0.0) {
+            standstill_since_ = in.t_s;
+        } else if (in.t_s - standstill_since_ >= params_.standstill_timeout_s) {
+            standstill_since_ = -1.0;
+            start_recovery(in, out);
+            out.recovering = true;
+            out.command = {-params_.backup_speed_mps, 0.0};
+        }
     }
     out.update_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return out;
 }
 
-planning::PlanResult Navigator::plan(const Eigen::Vector2d& here, double t_s) {
+planning::PlanResult Navigator::plan(const Eigen::Vector2d& here, double t_s, bool& around) {
     // The plan ends inside the leg's tolerance (a goal in a zone is reached from its cheap side),
     // short enough of the tolerance that the robot still crosses it on its pose estimate.
     const double tolerance = leg_ + 1 == legs_.size() ? params_.goal_tolerance_m : params_.waypoint_tolerance_m;
@@ -108,7 +146,10 @@ planning::PlanResult Navigator::plan(const Eigen::Vector2d& here, double t_s) {
             }
         }
         planning::PlanResult p = planning::plan_astar(map, here, legs_[leg_], params_.astar, radius);
-        if (p.status == planning::PlanStatus::kOk) return p;
+        if (p.status == planning::PlanStatus::kOk) {
+            around = true;
+            return p;
+        }
         // No other way: through the stuck spot again.
     }
     return planning::plan_astar(costmap_.master(), here, legs_[leg_], params_.astar, radius);
@@ -176,19 +217,23 @@ void Navigator::check_progress(const NavigatorInput& in, NavigatorStep& out) {
         best_remaining_m_ = left;
         progress_t_ = in.t_s;
     } else if (in.t_s - progress_t_ > params_.stuck_timeout_s && in.t_s >= recovery_until_) {
-        recovery_until_ = in.t_s + params_.backup_duration_s;
-        progress_t_ = in.t_s + params_.backup_duration_s;
-        if (!plan_.empty() && detours_ < params_.max_detours && params_.detour_radius_m > 0.0) {
-            // The plan leads where the robot cannot go: the next plan goes around that spot.
-            // Progress is still the way left getting shorter than ever on this leg, so a detour
-            // must pay off within give_up_s (a robot circling from detour to detour gives up).
-            avoided_.push_back({along_plan(here, params_.detour_ahead_m), in.t_s + params_.detour_memory_s});
-            ++detours_;
-            out.detour = true;
-        }
-        plan_.clear();
-        out.started_recovery = true;
+        start_recovery(in, out);
     }
+}
+
+void Navigator::start_recovery(const NavigatorInput& in, NavigatorStep& out) {
+    const Eigen::Vector2d here(in.pose.x_m, in.pose.y_m);
+    recovery_until_ = in.t_s + params_.backup_duration_s;
+    progress_t_ = in.t_s + params_.backup_duration_s;
+    if (!plan_.empty() && detours_ < params_.max_detours && params_.detour_radius_m > 0.0) {
+        // The plan leads where the robot cannot go: the next plan goes around that spot.
+        avoided_.push_back({along_plan(here, params_.detour_ahead_m), in.t_s + params_.detour_memory_s});
+        ++detours_;
+        out.detour = true;
+        detour_pending_ = detours_ == 1;  // the first detour of the leg only (below)
+    }
+    plan_.clear();
+    out.started_recovery = true;
 }
 
 }  // namespace makeway::pipeline

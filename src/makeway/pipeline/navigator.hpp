@@ -30,6 +30,7 @@ struct NavigatorStep {
     VelocityCommand command;
     bool replanned = false;
     planning::PlanStatus plan_status = planning::PlanStatus::kOk;  ///< of the last A* call
+    bool has_plan = false;        ///< a plan to follow this cycle
     bool dwa_found = true;        ///< false: every velocity collided, turning on the spot
     bool recovering = false;      ///< backing up
     bool started_recovery = false;
@@ -39,6 +40,11 @@ struct NavigatorStep {
     bool gave_up = false;         ///< no plan, or no progress despite recoveries, for give_up_s: the mission failed
     double update_ms = 0.0;       ///< costmap update + planning + DWA
 };
+
+/// What the navigator did this cycle, in one word (run.json's nav_state): arrived, gave_up,
+/// backing_up (a stuck recovery), no_plan (A* found none yet, standing), turning (DWA found no
+/// safe velocity, turning on the spot toward the plan), following (DWA along the plan).
+const char* to_string_state(const NavigatorStep& step);
 
 class Navigator {
 public:
@@ -61,11 +67,13 @@ public:
 
 private:
     bool plan_blocked(const Eigen::Vector2d& robot_m) const;
-    planning::PlanResult plan(const Eigen::Vector2d& from_m, double t_s);
+    /// A* to the leg's target; `around`: the plan goes around the stuck spots (not through them).
+    planning::PlanResult plan(const Eigen::Vector2d& from_m, double t_s, bool& around);
     std::size_t nearest_plan_index(const Eigen::Vector2d& robot_m) const;  ///< 0 for an empty plan
     Eigen::Vector2d along_plan(const Eigen::Vector2d& robot_m, double ahead_m) const;
     VelocityCommand follow_plan(const NavigatorInput& input, NavigatorStep& step) const;
     void check_progress(const NavigatorInput& input, NavigatorStep& step);
+    void start_recovery(const NavigatorInput& input, NavigatorStep& step);  ///< back up, then replan (around the spot ahead)
 
     NavigatorParams params_;
     ObjectCostmap costmap_;
@@ -85,6 +93,8 @@ private:
     };
     std::vector<Avoided> avoided_;  ///< where the robot got stuck: A* goes around them while they last
     int detours_ = 0;               ///< on this leg
+    double standstill_since_ = -1.0;  ///< DWA's best velocity has been a standstill since (-1: it is not)
+    bool detour_pending_ = false;   ///< the leg's first detour was decided; its first plan restarts the progress clock
 };
 
 }  // namespace makeway::pipeline

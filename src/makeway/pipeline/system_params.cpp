@@ -79,6 +79,9 @@ std::vector<std::string> NavigatorParams::validate_policy() const {
     positive(stuck_timeout_s, "stuck_timeout_s", 600);
     positive(backup_speed_mps, "backup_speed_mps", 5);
     positive(backup_duration_s, "backup_duration_s", 60);
+    positive(standstill_timeout_s, "standstill_timeout_s", 600);
+    positive(standstill_v_mps, "standstill_v_mps", 1);
+    positive(standstill_w_radps, "standstill_w_radps", 1);
     positive(waypoint_tolerance_m, "waypoint_tolerance_m", 10);
     positive(goal_tolerance_m, "goal_tolerance_m", 10);
     positive(give_up_s, "give_up_s", 3600);

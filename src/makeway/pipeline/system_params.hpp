@@ -51,14 +51,18 @@ struct NavigatorParams {
     double stuck_timeout_s = 6.0;         ///< ... for this long means stuck: back up and replan
     double backup_speed_mps = 0.15;
     double backup_duration_s = 1.0;
+    double standstill_timeout_s = 2.0;    ///< DWA's best velocity a standstill this long: stuck now (back up and replan)
+    double standstill_v_mps = 0.01;       ///< standstill: slower than this ...
+    double standstill_w_radps = 0.05;     ///< ... turning slower than this
     double waypoint_tolerance_m = 0.5;    ///< a waypoint counts as reached this close
     double goal_tolerance_m = 0.3;        ///< the goal counts as reached this close (own pose estimate)
     double give_up_s = 20.0;              ///< no plan found, or no progress despite recoveries, this long: the mission fails
     /// Stuck means the plan leads where the robot cannot go (a gap its footprint does not turn
     /// through, a person standing in it): the plan's point detour_ahead_m ahead is avoided by A*
     /// (a disc of detour_radius_m, lethal) for detour_memory_s, at most max_detours times per leg;
-    /// with no other way, A* plans through it again. The give-up clock runs on: a detour must
-    /// bring the robot closer than ever within give_up_s.
+    /// with no other way, A* plans through it again. The first plan around the leg's first
+    /// stuck spot restarts the give-up clock, progress measured along it (it is longer than the
+    /// way that failed); later detours and a plan through the spot again do not.
     double detour_ahead_m = 0.6;
     double detour_radius_m = 0.35;
     double detour_memory_s = 30.0;
