@@ -215,6 +215,9 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("max_size_mismatch", v.max_size_mismatch);
         s.read("max_models", v.max_models);
         s.read("refined_candidates", v.refined_candidates);
+        s.read("reseed_tolerance_m", v.reseed_tolerance_m);
+        s.read("reseed_radius_m", v.reseed_radius_m);
+        s.read("reseed_max_age_s", v.reseed_max_age_s);
         s.read("min_yaw_margin", v.min_yaw_margin);
         s.read("e_min_m", v.e_min_m);
         s.read("e_max_m", v.e_max_m);

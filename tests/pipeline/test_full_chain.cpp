@@ -48,18 +48,27 @@ TEST(FullChain, FindsTheFurnitureWhereItStands) {
     std::vector<ObjectEstimate> objects;
     std::vector<sim::ObjectState> truth;
     std::vector<Eigen::Vector2d> path;
-    std::size_t detections = 0;
+    std::size_t detections = 0, accepted = 0, from_seed = 0;
     for (int f = 0; f < 120 && !drive.reached_goal(); ++f) {
         const sim::SimFrame frame = drive.next();
         const SweepResult r = pipeline.process_sweep({frame.points_sensor, frame.stamp_s, 0.1, frame.odometry_pose, frame.odometry_end_pose});
         if (r.keyframe) {
             detections += r.keyframe->detections.size();
+            for (const verification::VerifiedDetection& v : r.keyframe->verified) {
+                accepted += v.accepted;
+                from_seed += v.from_seed;
+            }
             path.emplace_back(frame.true_pose.x_m, frame.true_pose.y_m);
         }
         objects = r.objects;
         truth = frame.objects;
     }
     ASSERT_GT(detections, 10u);
+    // Objects the map has verified are re-verified from their last fit with one ICP (most of the
+    // accepted detections after the first keyframes); the map's precision and recall below hold.
+    EXPECT_GE(static_cast<double>(from_seed), 0.3 * static_cast<double>(accepted)) << from_seed << " of " << accepted << " from seeds";
+    RecordProperty("accepted", static_cast<int>(accepted));
+    RecordProperty("from_seed", static_cast<int>(from_seed));
     // Precision: every object in the map is a real one of its class, where it stands.
     int correct = 0;
     for (const ObjectEstimate& o : objects) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <unordered_set>
 
@@ -112,8 +113,10 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
     if (shapes_) shapes_->begin_keyframe(kf.T_world_keyframe);
     if (params_.verification && (have_cad || shapes_)) {
         const PreparedKeyframe& prepared = kf.prepared;
+        // Objects the map verified lately: one ICP from their last fit (the full search when it fails).
+        const auto seeds = have_cad ? seeds_for(kf.detections, kf.T_world_keyframe, stamp_s) : std::vector<std::optional<verification::VerifySeed>>{};
         kf.verified = verification::verify_detections(prepared.cloud_sensor, kf.detections, have_cad ? *library_ : no_library_, params_.verify,
-                                                      [&](double x, double y) { return prepared.floor_z_at(x, y); }, shapes_.get());
+                                                      [&](double x, double y) { return prepared.floor_z_at(x, y); }, shapes_.get(), seeds);
         kf.evidence = verification::accepted_detections(kf.verified);
     }
     timing.verify_ms = ms_since(t);
@@ -126,6 +129,7 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
         floor = Eigen::Vector4d(n.x(), n.y(), n.z(), kf.prepared.ground.offset - n.dot(kf.T_world_keyframe.translation()));
     }
     kf.tracking = map_.update(kf.evidence, kf.T_world_keyframe, stamp_s, nullptr, floor ? &*floor : nullptr);
+    if (have_cad) remember_fits(kf);
     timing.track_ms = ms_since(t);
     // Learned shapes: each object verified against one gains this view, and its shape is completed
     // from all of its views; the next keyframe verifies it against that shape.
@@ -137,6 +141,52 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
         timing.shape_ms = ms_since(t);
     }
     return kf;
+}
+
+std::vector<std::optional<verification::VerifySeed>> Pipeline::seeds_for(const std::vector<Detection>& detections,
+                                                                          const Isometry3& T_world_keyframe, double stamp_s) const {
+    std::vector<std::optional<verification::VerifySeed>> seeds(detections.size());
+    const verification::VerifyParams& p = params_.verify;
+    if (fits_.empty() || p.reseed_tolerance_m <= 0.0) return seeds;
+    const Isometry3 T_keyframe_world = T_world_keyframe.inverse();
+    for (std::size_t i = 0; i < detections.size(); ++i) {
+        const Detection& d = detections[i];
+        const Eigen::Vector3d centre_world = T_world_keyframe * d.box_sensor.centre_m;
+        double nearest = p.reseed_radius_m;
+        for (const auto& [id, fit] : fits_) {
+            if (fit.model->cls != d.cls || stamp_s - fit.stamp_s > p.reseed_max_age_s) continue;
+            const Eigen::Vector3d fit_centre = fit.T_world_object * fit.model->box_object.centre_m;
+            const double gap = (fit_centre - centre_world).head<2>().norm();
+            if (gap > nearest) continue;
+            nearest = gap;
+            // The fit in this keyframe's sensor frame, as the 4-DoF pose ICP optimises (the sensor
+            // stands level on the robot: its yaw about the sensor's z).
+            const Isometry3 T = T_keyframe_world * fit.T_world_object;
+            verification::VerifySeed seed{fit.model, {}, fit.residual_m};
+            seed.pose.t_m = T.translation();
+            seed.pose.yaw_rad = std::atan2(T.linear()(1, 0), T.linear()(0, 0));
+            seeds[i] = seed;
+        }
+    }
+    return seeds;
+}
+
+void Pipeline::remember_fits(const KeyframeResult& kf) {
+    // track_of_detection is per accepted detection (the tracker's evidence), in order.
+    std::size_t k = 0;
+    for (const verification::VerifiedDetection& v : kf.verified) {
+        if (!v.accepted) continue;
+        const std::size_t evidence = k++;
+        if (evidence >= kf.tracking.track_of_detection.size() || kf.tracking.track_of_detection[evidence] < 0) continue;
+        const verification::CadModel* model = nullptr;
+        for (const verification::CadModel& m : library_->models()) {
+            if (m.name == v.model) model = &m;
+        }
+        if (!model) continue;  // a completed shape: its mesh is this keyframe's
+        fits_[static_cast<std::uint32_t>(kf.tracking.track_of_detection[evidence])] =
+            TrackFit{model, kf.T_world_keyframe * v.T_sensor_object, v.residual_m, kf.stamp_s};
+    }
+    std::erase_if(fits_, [&](const auto& entry) { return !map_.tracks().count(entry.first); });
 }
 
 }  // namespace makeway::pipeline

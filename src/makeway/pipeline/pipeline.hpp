@@ -18,6 +18,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "makeway/common/detection.hpp"
@@ -115,6 +116,17 @@ public:
 
 private:
     KeyframeResult process_keyframe(FrontEndKeyframe front, double stamp_s, StageTiming& timing);
+    /// Per detection, the fit of the tracked object it shows (VerifyParams::reseed_*), if any.
+    std::vector<std::optional<verification::VerifySeed>> seeds_for(const std::vector<Detection>& detections,
+                                                                    const Isometry3& T_world_keyframe, double stamp_s) const;
+    /// Keeps the fits of this keyframe's accepted detections under their tracks; forgets dead tracks'.
+    void remember_fits(const KeyframeResult& kf);
+
+    struct TrackFit {  ///< a tracked object's last CAD fit
+        const verification::CadModel* model = nullptr;
+        Isometry3 T_world_object = Isometry3::Identity();
+        double residual_m = 0.0, stamp_s = 0.0;
+    };
 
     SystemParams params_;
     const perception::ObjectDetector* detector_;
@@ -123,6 +135,7 @@ private:
     verification::CadLibrary no_library_;  ///< what verification sees with a prior and no CAD models
     FrontEnd front_end_;
     tracking::ObjectMap map_;
+    std::unordered_map<std::uint32_t, TrackFit> fits_;  ///< by track id
     mutable std::mutex objects_mutex_;
     std::vector<ObjectEstimate> objects_;
     std::size_t keyframes_ = 0;

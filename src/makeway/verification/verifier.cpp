@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "makeway/common/angles.hpp"
 
@@ -20,6 +21,9 @@ std::vector<std::string> VerifyParams::validate() const {
     if (max_models < 1) p.push_back("max_models must be at least 1");
     if (!(min_yaw_margin >= 0.0)) p.push_back("min_yaw_margin must be >= 0");
     if (num_threads < 1 || num_threads > 256) p.push_back("num_threads must be in [1, 256]");
+    if (!(reseed_tolerance_m >= 0.0 && reseed_tolerance_m < 1.0)) p.push_back("reseed_tolerance_m must be in [0, 1) (0: never reseeded)");
+    if (!(reseed_radius_m >= 0.0 && reseed_radius_m <= 5.0)) p.push_back("reseed_radius_m must be in [0, 5]");
+    if (!(reseed_max_age_s >= 0.0 && reseed_max_age_s <= 3600.0)) p.push_back("reseed_max_age_s must be in [0, 3600]");
     return p;
 }
 
@@ -152,10 +156,39 @@ VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det,
     return out;
 }
 
+// One ICP from an earlier fit of the same object: most objects stand where they stood, and their
+// model and yaw are known; the full search (every model, four yaw candidates, four refined) is
+// for objects seen anew or turned since. The seed's own residual bounds the answer, so a chair
+// turned half round, whose old yaw still fits it loosely, goes to the full search.
+std::optional<VerifiedDetection> verify_from_seed(const PointCloud& cloud, const Detection& det, const VerifySeed& seed,
+                                                  const VerifyParams& params) {
+    std::vector<Eigen::Vector3d> segment = segment_points(cloud, det.box_sensor, params.box_margin_m);
+    if (segment.size() < params.min_points) return std::nullopt;
+    const IcpResult fit = align(segment, *seed.model, seed.pose, params.icp, 1);  // a seed is within the 4 cm level's reach
+    if (!(fit.residual_m <= std::min(params.e_max_m, seed.residual_m + params.reseed_tolerance_m))) return std::nullopt;
+    VerifiedDetection out;
+    out.detection = det;
+    out.segment_points = segment.size();
+    out.model = seed.model->name;
+    out.residual_m = fit.residual_m;
+    out.iterations = fit.iterations;
+    out.converged = fit.converged;
+    out.T_sensor_object = fit.pose.matrix();
+    out.box_sensor = seed.model->box_object.transformed(out.T_sensor_object);
+    out.yaw_margin = std::numeric_limits<double>::infinity();  // no rival tried
+    out.accepted = true;
+    out.from_seed = true;
+    out.p_exist = existence_probability(fit.residual_m, params.e_min_m, params.e_max_m);
+    return out;
+}
+
 }  // namespace
 
 VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det, const CadLibrary& library, const VerifyParams& params,
-                                   std::optional<double> floor_z_m, const ShapePrior* prior) {
+                                   std::optional<double> floor_z_m, const ShapePrior* prior, const VerifySeed* seed) {
+    if (seed && seed->model && params.reseed_tolerance_m > 0.0 && params.min_yaw_margin <= 0.0) {
+        if (auto seeded = verify_from_seed(cloud, det, *seed, params)) return std::move(*seeded);
+    }
     VerifiedDetection cad = verify_with_cad(cloud, det, library, params, floor_z_m);
     if (cad.accepted || !prior || cad.segment_points < params.min_points) return cad;
     // No CAD model fits: the prior's model of this object, verified the same way from its pose.
@@ -184,12 +217,16 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
 
 std::vector<VerifiedDetection> verify_detections(const PointCloud& cloud, const std::vector<Detection>& detections, const CadLibrary& library,
                                                  const VerifyParams& params, const std::function<std::optional<double>(double, double)>& floor_z_at,
-                                                 const ShapePrior* prior) {
+                                                 const ShapePrior* prior, const std::vector<std::optional<VerifySeed>>& seeds) {
+    if (!seeds.empty() && seeds.size() != detections.size()) {
+        throw std::invalid_argument("verify_detections: " + std::to_string(seeds.size()) + " seeds for " + std::to_string(detections.size()) + " detections");
+    }
     std::vector<VerifiedDetection> out(detections.size());
     auto verify_one = [&](std::size_t i) {
         const Detection& d = detections[i];
         const std::optional<double> floor_z = floor_z_at ? floor_z_at(d.box_sensor.centre_m.x(), d.box_sensor.centre_m.y()) : std::nullopt;
-        out[i] = verify_detection(cloud, d, library, params, floor_z, prior);
+        const VerifySeed* seed = seeds.empty() || !seeds[i] ? nullptr : &*seeds[i];
+        out[i] = verify_detection(cloud, d, library, params, floor_z, prior, seed);
     };
     if (params.num_threads <= 1 || detections.size() < 2) {
         for (std::size_t i = 0; i < detections.size(); ++i) verify_one(i);

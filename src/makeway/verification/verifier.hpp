@@ -33,6 +33,12 @@ struct VerifyParams {
     /// e_max for a learned shape prior's completed mesh (coarser than a CAD model: its own bound).
     double shape_e_max_m = 0.035;
     std::size_t min_points = 15;     ///< fewer segment points: rejected without fitting
+    /// A detection of an object verified before (the object map's track) is re-verified from that
+    /// fit with one ICP, accepted when its residual ends within this of the fit's (and within
+    /// e_max); else, or with 0, verified from scratch (every model, every yaw candidate).
+    double reseed_tolerance_m = 0.005;
+    double reseed_radius_m = 0.3;    ///< the detection's centre this close to the fit's (world frame) ...
+    double reseed_max_age_s = 5.0;   ///< ... and the fit at most this old
     /// verify_detections: 1 serial; > 1 that many TBB threads over detections (each is independent).
     int num_threads = 2;
     std::vector<std::string> validate() const;
@@ -53,9 +59,17 @@ struct VerifiedDetection {
     double p_exist = 0.0;
     std::string model;
     std::size_t segment_points = 0;
+    bool from_seed = false;              ///< accepted by one ICP from an earlier fit (VerifySeed)
     /// Accepted against a shape prior's mesh (model == kCompletedShapeModel): that estimate, whose
     /// mesh T_sensor_object above places (its own T_sensor_object is the prior's, before ICP).
     std::optional<ShapePrior::Estimate> shape;
+};
+
+/// A fit found before for the object a detection shows: where to re-verify it from.
+struct VerifySeed {
+    const CadModel* model = nullptr;
+    Pose4 pose;               ///< that fit's T_sensor_object, moved into this keyframe's sensor frame
+    double residual_m = 0.0;  ///< that fit's residual
 };
 
 /// The segment: points of the cloud inside the detection box grown by margin.
@@ -69,16 +83,19 @@ double existence_probability(double residual_m, double e_min_m, double e_max_m);
 /// With a shape prior, a detection no CAD model fits is verified against the prior's model of it
 /// instead (a library of that one completed mesh, from the prior's pose): accepted when that fit's
 /// residual is, with the model named "completed shape".
+/// With a seed, one ICP from it first (accepted as above), the full search only when that fails
+/// (params.reseed_tolerance_m > 0; never with min_yaw_margin > 0, which needs the rivals).
 VerifiedDetection verify_detection(const PointCloud& cloud_sensor, const Detection& detection, const CadLibrary& library,
                                    const VerifyParams& params, std::optional<double> floor_z_m = std::nullopt,
-                                   const ShapePrior* prior = nullptr);
+                                   const ShapePrior* prior = nullptr, const VerifySeed* seed = nullptr);
 
 /// verify_detection() of every detection, in order; `floor_z_at(x_m, y_m)` gives the floor height
-/// under a detection (none: the box bottom).
+/// under a detection (none: the box bottom); `seeds`: empty, or one per detection.
 std::vector<VerifiedDetection> verify_detections(const PointCloud& cloud_sensor, const std::vector<Detection>& detections,
                                                  const CadLibrary& library, const VerifyParams& params,
                                                  const std::function<std::optional<double>(double, double)>& floor_z_at = {},
-                                                 const ShapePrior* prior = nullptr);
+                                                 const ShapePrior* prior = nullptr,
+                                                 const std::vector<std::optional<VerifySeed>>& seeds = {});
 
 /// Which score an accepted detection carries on.
 enum class ScoreFrom {
