@@ -43,6 +43,7 @@ TEST(FullChain, FindsTheFurnitureWhereItStands) {
 
     SystemParams params;
     params.T_base_sensor = robot.T_robot_sensor();
+    params.verify.reseed_tolerance_m = 0.005;  // re-verification from the map's fits (off by default)
     const verification::CadLibrary cad = eval::scene_cad_library(scene);
     Pipeline pipeline(params, drive.start_pose(), &detector, &cad);
     std::vector<ObjectEstimate> objects;

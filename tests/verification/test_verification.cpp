@@ -195,7 +195,8 @@ TEST(Verification, RejectsBoxesOnWallsAndEmptySegments) {
 // A tracked object re-verified from its last fit: a seed a few cm and degrees off the truth (as
 // the map keeps it between keyframes) is accepted from one ICP, at the full search's pose; a seed
 // from before the chair was turned half round is refused (its old yaw fits far worse than the fit
-// it came from) and the full search finds the true yaw; with reseed_tolerance_m 0 seeds are unused.
+// it came from) and the full search finds the true yaw; with reseed_tolerance_m 0 (the default)
+// seeds are unused.
 TEST(Verification, ASeedFromTheLastFitReverifiesWithOneIcpUnlessTheObjectTurned) {
     const ChairScan scan = scan_chair(sim::FurnitureStyle::kFourLegChair, 4, 0.6, 2);
     const CadLibrary lib = library_with(sim::FurnitureStyle::kFourLegChair, 4);
@@ -210,7 +211,9 @@ TEST(Verification, ASeedFromTheLastFitReverifiesWithOneIcpUnlessTheObjectTurned)
     VerifySeed near{&lib.models().front(), scan.truth, full.residual_m};
     near.pose.t_m += Eigen::Vector3d(0.03, -0.02, 0.0);
     near.pose.yaw_rad += deg_to_rad(3.0);
-    const VerifiedDetection seeded = verify_detection(scan.cloud_sensor, det, lib, {}, -0.45, nullptr, &near);
+    VerifyParams seeding;
+    seeding.reseed_tolerance_m = 0.005;
+    const VerifiedDetection seeded = verify_detection(scan.cloud_sensor, det, lib, seeding, -0.45, nullptr, &near);
     ASSERT_TRUE(seeded.accepted) << seeded.reason;
     EXPECT_TRUE(seeded.from_seed);
     EXPECT_LT(yaw_error_deg(seeded), 3.0);
@@ -218,13 +221,11 @@ TEST(Verification, ASeedFromTheLastFitReverifiesWithOneIcpUnlessTheObjectTurned)
     EXPECT_NEAR(seeded.residual_m, full.residual_m, 0.003);
     VerifySeed turned = near;
     turned.pose.yaw_rad = wrap_angle(turned.pose.yaw_rad + kPi);
-    const VerifiedDetection searched = verify_detection(scan.cloud_sensor, det, lib, {}, -0.45, nullptr, &turned);
+    const VerifiedDetection searched = verify_detection(scan.cloud_sensor, det, lib, seeding, -0.45, nullptr, &turned);
     ASSERT_TRUE(searched.accepted) << searched.reason;
     EXPECT_FALSE(searched.from_seed);
     EXPECT_LT(yaw_error_deg(searched), 3.0);
-    VerifyParams never;
-    never.reseed_tolerance_m = 0.0;
-    EXPECT_FALSE(verify_detection(scan.cloud_sensor, det, lib, never, -0.45, nullptr, &near).from_seed);
+    EXPECT_FALSE(verify_detection(scan.cloud_sensor, det, lib, {}, -0.45, nullptr, &near).from_seed);  // off by default
 }
 
 TEST(Verification, SerialAndParallelVerificationAgree) {
