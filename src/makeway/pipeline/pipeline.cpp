@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <optional>
 #include <unordered_set>
 
@@ -129,7 +128,7 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
         floor = Eigen::Vector4d(n.x(), n.y(), n.z(), kf.prepared.ground.offset - n.dot(kf.T_world_keyframe.translation()));
     }
     kf.tracking = map_.update(kf.evidence, kf.T_world_keyframe, stamp_s, nullptr, floor ? &*floor : nullptr);
-    if (have_cad) remember_fits(kf);
+    if (have_cad && params_.verify.reseed_tolerance_m > 0.0) remember_fits(kf);  // only re-verification reads them
     timing.track_ms = ms_since(t);
     // Learned shapes: each object verified against one gains this view, and its shape is completed
     // from all of its views; the next keyframe verifies it against that shape.
@@ -153,20 +152,18 @@ std::vector<std::optional<verification::VerifySeed>> Pipeline::seeds_for(const s
         const Detection& d = detections[i];
         const Eigen::Vector3d centre_world = T_world_keyframe * d.box_sensor.centre_m;
         double nearest = p.reseed_radius_m;
+        const TrackFit* best = nullptr;
         for (const auto& [id, fit] : fits_) {
             if (fit.model->cls != d.cls || stamp_s - fit.stamp_s > p.reseed_max_age_s) continue;
             const Eigen::Vector3d fit_centre = fit.T_world_object * fit.model->box_object.centre_m;
             const double gap = (fit_centre - centre_world).head<2>().norm();
-            if (gap > nearest) continue;
-            nearest = gap;
-            // The fit in this keyframe's sensor frame, as the 4-DoF pose ICP optimises (the sensor
-            // stands level on the robot: its yaw about the sensor's z).
-            const Isometry3 T = T_keyframe_world * fit.T_world_object;
-            verification::VerifySeed seed{fit.model, {}, fit.residual_m};
-            seed.pose.t_m = T.translation();
-            seed.pose.yaw_rad = std::atan2(T.linear()(1, 0), T.linear()(0, 0));
-            seeds[i] = seed;
+            if (gap <= nearest) nearest = gap, best = &fit;
         }
+        if (!best) continue;
+        // The fit in this keyframe's sensor frame, as the 4-DoF pose ICP optimises (the sensor
+        // stands level on the robot: its yaw about the sensor's z).
+        const Isometry3 T = T_keyframe_world * best->T_world_object;
+        seeds[i] = verification::VerifySeed{best->model, {T.translation(), yaw_of(T)}, best->residual_m};
     }
     return seeds;
 }

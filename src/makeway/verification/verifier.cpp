@@ -49,6 +49,16 @@ double existence_probability(double e, double e_min, double e_max) {
 
 namespace {
 
+// The model and its fit: the pose, the model's box there, the residual acceptance is judged on.
+void take_fit(VerifiedDetection& out, const CadModel& model, const IcpResult& fit) {
+    out.model = model.name;
+    out.residual_m = fit.residual_m;
+    out.iterations = fit.iterations;
+    out.converged = fit.converged;
+    out.T_sensor_object = fit.pose.matrix();
+    out.box_sensor = model.box_object.transformed(out.T_sensor_object);
+}
+
 VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det, const CadLibrary& library, const VerifyParams& params,
                                   std::optional<double> floor_z_m) {
     VerifiedDetection out;
@@ -136,15 +146,9 @@ VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det,
     }
     out.yaw_margin = rival_e / std::max(best_e, 1e-9) - 1.0;
     // Only the winner is refined at the finest level; acceptance uses its trimmed residual.
-    IcpResult fit = align(levelled, *best_model, best_pose, params.icp, rank_level + 1 < levels ? rank_level + 1 : rank_level);
-    out.model = best_model->name;
-    out.residual_m = fit.residual_m;
-    out.iterations = fit.iterations;
-    out.converged = fit.converged;
-    out.T_sensor_object = fit.pose.matrix();
-    out.box_sensor = best_model->box_object.transformed(out.T_sensor_object);
-    if (fit.residual_m > params.e_max_m) {
-        out.reason = "residual " + std::to_string(fit.residual_m) + " m above e_max";
+    take_fit(out, *best_model, align(levelled, *best_model, best_pose, params.icp, rank_level + 1 < levels ? rank_level + 1 : rank_level));
+    if (out.residual_m > params.e_max_m) {
+        out.reason = "residual " + std::to_string(out.residual_m) + " m above e_max";
         return out;
     }
     if (out.yaw_margin < params.min_yaw_margin) {
@@ -152,7 +156,7 @@ VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det,
         return out;
     }
     out.accepted = true;
-    out.p_exist = existence_probability(fit.residual_m, params.e_min_m, params.e_max_m);
+    out.p_exist = existence_probability(out.residual_m, params.e_min_m, params.e_max_m);
     return out;
 }
 
@@ -169,12 +173,7 @@ std::optional<VerifiedDetection> verify_from_seed(const PointCloud& cloud, const
     VerifiedDetection out;
     out.detection = det;
     out.segment_points = segment.size();
-    out.model = seed.model->name;
-    out.residual_m = fit.residual_m;
-    out.iterations = fit.iterations;
-    out.converged = fit.converged;
-    out.T_sensor_object = fit.pose.matrix();
-    out.box_sensor = seed.model->box_object.transformed(out.T_sensor_object);
+    take_fit(out, *seed.model, fit);
     out.yaw_margin = std::numeric_limits<double>::infinity();  // no rival tried
     out.accepted = true;
     out.from_seed = true;
