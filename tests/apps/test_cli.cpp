@@ -368,7 +368,7 @@ TEST(Cli, ShardedBenchNavMergesToTheSameBytes) {
     // order: results.json must be byte for byte the same; a missing or repeated shard is refused.
     const auto dir = testing_util::fresh_dir("bench_merge");
     std::ofstream(dir / "fast.yaml") << "lidar:\n  azimuth_step_deg: 1.0\n";
-    const std::string common = "bench nav --scenes 3 --methods oppo,gt-perc --time-limit 25 --threads 1 --config " + (dir / "fast.yaml").string();
+    const std::string common = "bench nav --scenes 3 --methods oppo,gt-perc --time-limit 12 --threads 1 --config " + (dir / "fast.yaml").string();
     ASSERT_EQ(run_makeway(common + " --out " + (dir / "whole").string(), dir).exit_code, 0);
     for (int k = 0; k < 2; ++k) {
         const CliRun r = run_makeway(common + " --shard " + std::to_string(k) + "/2 --out " + (dir / ("s" + std::to_string(k))).string(), dir);
