@@ -83,6 +83,27 @@ void BM_PerSweep(benchmark::State& state) {
 }
 BENCHMARK(BM_PerSweep)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The costmap's update alone (issue 31's target for it: the per-sweep total at most 8 ms median):
+// obstacle marking and clearing from the de-skewed sweep, affordance zones of the scene's furniture
+// (argument 1) or none, inflation; one benchmark iteration is one sweep of the 50-sweep drive.
+void BM_CostmapUpdate(benchmark::State& state) {
+    const Drive& d = medium_drive();
+    const sim::RobotParams robot;
+    pipeline::NavigatorParams params;
+    params.affordance_layer = state.range(0) != 0;
+    params.inflation.inscribed_radius_m = robot.inscribed_radius_m();
+    params.inflation.inflation_radius_m = robot.circumscribed_radius_m();
+    pipeline::ObjectCostmap costmap(d.free_map, params);
+    std::size_t k = 0;
+    for (auto _ : state) {
+        const sim::SimFrame& f = d.frames[k % d.frames.size()];
+        costmap.update(&d.worlds[k % d.worlds.size()], f.T_world_sensor.translation(), d.objects);
+        benchmark::DoNotOptimize(costmap.master().cost.data());
+        ++k;
+    }
+}
+BENCHMARK(BM_CostmapUpdate)->Arg(0)->Arg(1)->ArgName("affordance")->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // The control cycle of bench nav's methods (issue 18's target: at most 10 ms median on one core):
 // Navigator::step = costmap update (obstacles, affordance zones, inflation) + A* when due + DWA
 // inside the plan's envelope, on the same drive's de-skewed sweeps and true poses, toward the

@@ -8,6 +8,7 @@
 #include "makeway/costmap/inflation_layer.hpp"
 #include "makeway/costmap/layered_costmap.hpp"
 #include "makeway/costmap/obstacle_layer.hpp"
+#include "makeway/costmap/ray_walk.hpp"
 #include "makeway/costmap/static_layer.hpp"
 
 namespace makeway::costmap {
@@ -129,6 +130,118 @@ TEST(ObstacleLayer, MarksReturnsAndClearsAlongRays) {
     lc.update(in);
     EXPECT_EQ(*lc.master().cost_at({3.0, 2.5}), cost::kFree);
     EXPECT_EQ(*lc.master().cost_at({4.5, 2.5}), cost::kLethal);
+}
+
+// The reference: Zingl's error-term Bresenham loop (the obstacle layer's walk before issue 31).
+std::vector<Eigen::Vector2i> bresenham(int x, int y, int ex, int ey) {
+    std::vector<Eigen::Vector2i> out;
+    const int dx = std::abs(ex - x), dy = -std::abs(ey - y), sx = x < ex ? 1 : -1, sy = y < ey ? 1 : -1;
+    int err = dx + dy;
+    while (x != ex || y != ey) {
+        out.emplace_back(x, y);
+        const int e2 = 2 * err;
+        if (e2 >= dy) err += dy, x += sx;
+        if (e2 <= dx) err += dx, y += sy;
+    }
+    return out;
+}
+
+// The closed-form walk visits Bresenham's cells in Bresenham's order, and where blocks are empty it
+// skips exactly their cells: 20,000 random rays (all octants, negative coordinates, zero length,
+// ties) over random block maps.
+TEST(RayWalk, VisitsBresenhamsCellsAndSkipsOnlyEmptyBlocks) {
+    Rng rng = make_rng(7);
+    for (int k = 0; k < 20000; ++k) {
+        const int x0 = static_cast<int>(uniform_int(rng, -40, 40)), y0 = static_cast<int>(uniform_int(rng, -40, 40));
+        const int x1 = static_cast<int>(uniform_int(rng, -40, 40)), y1 = static_cast<int>(uniform_int(rng, -40, 40));
+        const int block = static_cast<int>(uniform_int(rng, 1, 9));
+        const double p_empty = k % 3 == 0 ? 0.0 : uniform(rng, 0.0, 1.0);
+        const std::uint64_t salt = rng();
+        auto empty = [&](int bx, int by) {  // a fixed random block map for this ray
+            return p_empty > 0.0 && counter_uniform(salt, static_cast<std::uint64_t>((bx + 1000) * 4096 + (by + 1000))) < p_empty;
+        };
+        std::vector<Eigen::Vector2i> expected;
+        for (const Eigen::Vector2i& c : bresenham(x0, y0, x1, y1)) {
+            if (!empty(floor_div(c.x(), block), floor_div(c.y(), block))) expected.push_back(c);
+        }
+        std::vector<Eigen::Vector2i> got;
+        walk_ray(x0, y0, x1, y1, block, empty, [&](int x, int y) { got.emplace_back(x, y); });
+        ASSERT_EQ(got, expected) << "(" << x0 << "," << y0 << ") -> (" << x1 << "," << y1 << ") block " << block;
+    }
+}
+
+// A layer that asks for the whole map every update: with it the master is recomposed everywhere,
+// the reference the windowed updates must equal.
+class WholeMapLayer : public Layer {
+public:
+    std::string name() const override { return "whole_map"; }
+    void update_bounds(const Costmap& master, const LayerInput&, GridWindow& window) override {
+        window.expand({0, 0, master.width, master.height});
+    }
+    void update_costs(Costmap&, const GridWindow&) override {}
+};
+
+// The windows are only where something changed (issue 31: obstacle cells that flipped, zones that
+// appeared, moved or vanished, then inflation around them): a moving walker, a furniture leg that
+// comes and goes, range noise on walls, objects moved, dropped below min_existence and added, on a
+// robot that drives; every update the master equals a full recomposition, cell for cell.
+TEST(LayeredCostmap, ChangedWindowsEqualAFullRecomposition) {
+    Costmap walls = grid(240);  // 12 m; the room is 8 m across
+    for (int i = 0; i < 160; ++i) walls.at(i, 0) = walls.at(0, i) = walls.at(i, 159) = cost::kLethal;
+    for (int i = 40; i < 90; ++i) walls.at(120, i) = cost::kLethal;
+    auto make = [&](bool reference) {
+        auto lc = std::make_unique<LayeredCostmap>(grid(240));
+        lc->add_layer(std::make_unique<StaticLayer>(walls));
+        lc->add_layer(std::make_unique<ObstacleLayer>(grid(240), ObstacleLayerParams{}));
+        lc->add_layer(std::make_unique<AffordanceLayer>(AffordanceParams{}));
+        if (reference) lc->add_layer(std::make_unique<WholeMapLayer>());
+        lc->add_layer(std::make_unique<InflationLayer>(InflationParams{0.25, 0.45, 3.0}));
+        return lc;
+    };
+    const auto windowed = make(false), reference = make(true);
+    Rng rng = make_rng(31);
+    std::vector<ObjectEstimate> objects = {object(ObjectClass::kChair, {2.0, 5.0}, 0.5, 0.5, 0.3),
+                                           object(ObjectClass::kTable, {5.0, 2.0}, 1.2, 0.8, 1.0),
+                                           object(ObjectClass::kChair, {6.0, 6.0}, 0.5, 0.5, -2.0)};
+    std::size_t cells_changed = 0, updates_with_small_windows = 0;
+    for (int k = 0; k < 60; ++k) {
+        PointCloud pts;
+        // From update 45 on the robot stands and its sweeps repeat but for one leg that comes and
+        // goes: the only change is that leg's cell, marked then cleared by the ray behind it.
+        const bool quiet = k >= 45;
+        const int at = std::min(k, 45);
+        const Eigen::Vector2d robot(1.0 + 0.08 * at, 1.5 + 0.05 * at);
+        for (int a = 0; a < 720; ++a) {  // a room of walls 8 m across, seen with range noise
+            const double t = 2.0 * M_PI * a / 720.0;
+            const Eigen::Vector2d dir(std::cos(t), std::sin(t));
+            double r = 20.0;
+            for (int axis = 0; axis < 2; ++axis) {
+                if (dir[axis] > 1e-9) r = std::min(r, (7.9 - robot[axis]) / dir[axis]);
+                if (dir[axis] < -1e-9) r = std::min(r, (0.05 - robot[axis]) / dir[axis]);
+            }
+            if (!quiet) r += normal(rng, 0.0, 0.01);
+            for (double z : {0.02, 0.3, 0.9}) pts.xyz.emplace_back(static_cast<float>(robot.x() + r * dir.x()), static_cast<float>(robot.y() + r * dir.y()), static_cast<float>(z));
+        }
+        const Eigen::Vector2d walker(3.0 + 0.05 * k, 4.0);
+        for (int a = 0; a < 24 && !quiet; ++a) pts.xyz.emplace_back(static_cast<float>(walker.x() + 0.2 * std::cos(a * 0.26)), static_cast<float>(walker.y() + 0.2 * std::sin(a * 0.26)), 0.8f);
+        if (k % 4 < 2) pts.xyz.emplace_back(4.0f, 5.5f, 0.3f);  // a leg seen every other pair of sweeps
+        if (k % 5 == 2) objects[0].box_world.centre_m.x() += 0.1;           // a chair pulled out
+        if (k % 9 == 5) objects[1].existence = objects[1].existence > 0.5 ? 0.2 : 0.9;  // below min_existence and back
+        if (k == 32) objects.pop_back();                                   // gone
+        if (k == 41) objects.push_back(object(ObjectClass::kChair, {3.0, 2.5}, 0.5, 0.5, 1.0));  // new
+        LayerInput in;
+        in.points_world = k % 3 == 2 ? nullptr : &pts;  // every third update the objects alone
+        in.sensor_world_m = {robot.x(), robot.y(), 0.45};
+        in.objects = objects;
+        const Costmap before = windowed->master();
+        const UpdateResult w = windowed->update(in);
+        reference->update(in);
+        ASSERT_EQ(windowed->master().cost, reference->master().cost) << "update " << k;
+        for (std::size_t i = 0; i < before.cost.size(); ++i) cells_changed += before.cost[i] != windowed->master().cost[i];
+        if (k > 0 && (w.window.x1 - w.window.x0) * (w.window.y1 - w.window.y0) < 240 * 240 / 2) ++updates_with_small_windows;
+    }
+    EXPECT_GT(cells_changed, 500u);               // the comparison is not of two idle maps
+    EXPECT_GT(updates_with_small_windows, 30u);  // and the windows are smaller than the map
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 #pragma once
 // The object affordance layer: each object's class-specific zone (affordance.hpp), aligned with its
-// pose. Zones of objects that moved or vanished are cleared because the update window always covers
-// the previous zones as well as the new ones.
+// pose. The update window covers the zones that changed (an object that appeared, vanished, moved or
+// changed class or size: its old zone and its new one), so zones left behind are cleared and zones
+// that stand are not rewritten every sweep.
 #include "makeway/costmap/affordance.hpp"
 #include "makeway/costmap/layer.hpp"
 
@@ -16,8 +17,7 @@ public:
 
 private:
     AffordanceParams params_;
-    std::vector<ObjectEstimate> objects_;
-    GridWindow previous_;
+    std::vector<ObjectEstimate> objects_;  ///< the kept objects (existence >= min_existence) of the last update
 };
 
 }  // namespace makeway::costmap

@@ -1,5 +1,7 @@
 #include "makeway/costmap/obstacle_layer.hpp"
 
+#include "makeway/costmap/ray_walk.hpp"
+
 #include <cmath>
 #include <cstdlib>
 
@@ -23,15 +25,11 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
     if (!input.points_world) return;
     const Eigen::Vector2i s = grid_.cell_of(input.sensor_world_m.head<2>());
     // Unique endpoint cells: one ray per cell is enough to clear and mark (the cell's lowest
-    // return, which clears the most). The per-cell marks are kept between updates (zeroed cell by
-    // cell at the end) instead of a grid-sized allocation per sweep.
-    std::vector<std::uint8_t>& endpoint = endpoint_;
-    endpoint.resize(grid_.cost.size(), 0);
-    low_.resize(grid_.cost.size(), 0);
-    floor_.resize(grid_.cost.size(), 0);
-    low_top_.resize(grid_.cost.size(), 0.0f);
+    // return, which clears the most). The per-cell scratch is kept between updates (zeroed cell by
+    // cell at the end) instead of a grid-sized allocation per sweep, one struct per cell so that a
+    // return costs one cache line.
+    scratch_.resize(grid_.cost.size());
     top_.resize(grid_.cost.size(), 0.0f);
-    end_z_.resize(grid_.cost.size(), 0.0f);
     std::vector<int>& cells = cells_;
     cells.clear();
     const double mark2 = params_.mark_range_m * params_.mark_range_m;
@@ -44,67 +42,74 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
         const Eigen::Vector2i c = grid_.cell_of(p.head<2>().cast<double>());
         if (!grid_.inside(c.x(), c.y())) continue;
         const int idx = c.y() * grid_.width + c.x();
-        if (endpoint[idx] == 0) {
+        Scratch& e = scratch_[idx];
+        if (e.endpoint == 0) {
             cells.push_back(idx);
-            end_z_[idx] = p.z();
-            endpoint[idx] = 1;
+            e.end_z = p.z();
+            e.endpoint = 1;
         }
-        end_z_[idx] = std::min(end_z_[idx], p.z());
+        e.end_z = std::min(e.end_z, p.z());
         if (!params_.body.can_hit(p.z()) || d2 > mark2) {
-            if (p.z() < params_.low_band_top_m && floor_[idx] < 65535) ++floor_[idx];
+            if (p.z() < params_.low_band_top_m && e.floor < 65535) ++e.floor;
             continue;
         }
         if (p.z() >= params_.low_band_top_m) {
-            top_[idx] = endpoint[idx] == 2 ? std::max(top_[idx], p.z()) : p.z();
-            endpoint[idx] = 2;
-        } else if (d2 <= low2 && low_[idx] < 65535) {
-            ++low_[idx];
-            low_top_[idx] = low_[idx] == 1 ? p.z() : std::max(low_top_[idx], p.z());
+            top_[idx] = e.endpoint == 2 ? std::max(top_[idx], p.z()) : p.z();
+            e.endpoint = 2;
+        } else if (d2 <= low2 && e.low < 65535) {
+            ++e.low;
+            e.low_top = e.low == 1 ? p.z() : std::max(e.low_top, p.z());
         }
     }
     // Low returns mark a cell when enough of them, and a large enough share of the cell's returns
     // below the low band's top, stand above the clearance (floor noise lifts a few, not a share).
     for (int idx : cells) {
-        if (endpoint[idx] != 2 && low_[idx] >= params_.low_min_returns &&
-            low_[idx] >= params_.low_min_share * (low_[idx] + floor_[idx])) {
-            endpoint[idx] = 2;
-            top_[idx] = low_top_[idx];
+        Scratch& e = scratch_[idx];
+        if (e.endpoint != 2 && e.low >= params_.low_min_returns && e.low >= params_.low_min_share * (e.low + e.floor)) {
+            e.endpoint = 2;
+            top_[idx] = e.low_top;
         }
     }
-    GridWindow touched{s.x(), s.y(), s.x() + 1, s.y() + 1};
+    // The window is where a cell's cost changed, not everywhere a ray went: on a standing robot, or
+    // along walls seen sweep after sweep, most rays change nothing, and the layers below (inflation
+    // above all) then work on a few cells instead of the sensor's whole range.
+    GridWindow changed;
     const double sensor_z = input.sensor_world_m.z();
-    // Clear along each ray (Bresenham), stopping before the endpoint cell; a low mark only where
-    // the ray passes no higher than its top (plus a noise margin).
+    const int bw = (grid_.width + kBlock - 1) / kBlock, bh = (grid_.height + kBlock - 1) / kBlock;
+    block_marks_.resize(static_cast<std::size_t>(bw) * bh, 0);
+    auto block_of = [&](int x, int y) -> std::uint16_t& { return block_marks_[(y / kBlock) * bw + x / kBlock]; };
+    auto empty_block = [&](int bx, int by) { return bx < 0 || by < 0 || bx >= bw || by >= bh || block_marks_[by * bw + bx] == 0; };
+    // Clear along each ray (ray_walk.hpp: Bresenham, stopping before the endpoint cell, crossing
+    // blocks without marks in one step); a low mark only where the ray passes no higher than its
+    // top (plus a noise margin).
     for (int idx : cells) {
         const int ex = idx % grid_.width, ey = idx / grid_.width;
-        touched.expand({ex, ey, ex + 1, ey + 1});
-        const double length = std::hypot(ex - s.x(), ey - s.y());
-        int x = s.x(), y = s.y();
-        const int dx = std::abs(ex - x), dy = -std::abs(ey - y), sx = x < ex ? 1 : -1, sy = y < ey ? 1 : -1;
-        int err = dx + dy;
-        while (x != ex || y != ey) {
-            if (grid_.inside(x, y)) {
-                const int i = y * grid_.width + x;
-                if (endpoint[i] != 2 && grid_.cost[i] != cost::kFree) {
-                    bool clears = top_[i] >= params_.low_band_top_m;  // tall marks: any ray (sparse rings rarely see their top)
-                    if (!clears) {
-                        const double f = length > 0.0 ? std::hypot(x - s.x(), y - s.y()) / length : 0.0;
-                        clears = sensor_z + f * (end_z_[idx] - sensor_z) <= top_[i] + kClearMargin_m;
-                    }
-                    if (clears) grid_.cost[i] = cost::kFree;
-                }
+        const double length = std::sqrt(static_cast<double>((ex - s.x()) * (ex - s.x()) + (ey - s.y()) * (ey - s.y())));
+        walk_ray(s.x(), s.y(), ex, ey, kBlock, empty_block, [&](int x, int y) {
+            if (!grid_.inside(x, y)) return;
+            const int i = y * grid_.width + x;
+            if (grid_.cost[i] == cost::kFree || scratch_[i].endpoint == 2) return;
+            bool clears = top_[i] >= params_.low_band_top_m;  // tall marks: any ray (sparse rings rarely see their top)
+            if (!clears) {
+                const double f = length > 0.0 ? std::sqrt(static_cast<double>((x - s.x()) * (x - s.x()) + (y - s.y()) * (y - s.y()))) / length : 0.0;
+                clears = sensor_z + f * (scratch_[idx].end_z - sensor_z) <= top_[i] + kClearMargin_m;
             }
-            const int e2 = 2 * err;
-            if (e2 >= dy) err += dy, x += sx;
-            if (e2 <= dx) err += dx, y += sy;
-        }
+            if (clears) {
+                grid_.cost[i] = cost::kFree;
+                --block_of(x, y);
+                changed.expand({x, y, x + 1, y + 1});
+            }
+        });
     }
     for (int idx : cells) {
-        if (endpoint[idx] == 2) grid_.cost[idx] = cost::kLethal;
-        endpoint[idx] = 0;
-        low_[idx] = floor_[idx] = 0;
+        if (scratch_[idx].endpoint == 2 && grid_.cost[idx] != cost::kLethal) {
+            if (grid_.cost[idx] == cost::kFree) ++block_of(idx % grid_.width, idx / grid_.width);
+            grid_.cost[idx] = cost::kLethal;
+            changed.expand({idx % grid_.width, idx / grid_.width, idx % grid_.width + 1, idx / grid_.width + 1});
+        }
+        scratch_[idx] = Scratch{};
     }
-    window.expand(touched.clipped(grid_.width, grid_.height));
+    window.expand(changed.clipped(grid_.width, grid_.height));
 }
 
 void ObstacleLayer::update_costs(Costmap& master, const GridWindow& window) {

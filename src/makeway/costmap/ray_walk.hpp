@@ -1,0 +1,59 @@
+#pragma once
+// The cells a ray crosses on a grid, as the obstacle layer clears them: the 8-connected Bresenham
+// line from `from` to `to`, `to` excluded. In closed form the cell at step t along the major axis
+// has the minor coordinate round-half-up(t * minor / major) (the midpoint rule; Zingl's error-term
+// loop visits the very same cells), so the walk can jump: where the caller says a block of cells
+// holds nothing to visit, it goes straight to the first cell of the line outside that block. Most
+// of a sweep's rays cross free space near the sensor, which is then crossed a block at a time.
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+
+namespace makeway::costmap {
+
+inline int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+/// Calls visit(x, y) for every cell of the line from (x0, y0) to (x1, y1), the end excluded, in
+/// order, except in blocks (block x block cells, aligned on multiples of `block`) for which
+/// empty_block(bx, by) is true: those are crossed without a call.
+template <class EmptyBlock, class Visit>
+void walk_ray(int x0, int y0, int x1, int y1, int block, EmptyBlock&& empty_block, Visit&& visit) {
+    const int dx = std::abs(x1 - x0), dy = std::abs(y1 - y0);
+    const bool x_major = dx >= dy;
+    const int major = x_major ? dx : dy, minor = x_major ? dy : dx;
+    const int p0 = x_major ? x0 : y0,
+              q0 = x_major ? y0 : x0;  // starts along the major and minor axes
+    const int sp = (x_major ? x1 >= x0 : y1 >= y0) ? 1 : -1,
+              sq = (x_major ? y1 >= y0 : x1 >= x0) ? 1 : -1;
+    // m(t) = floor(n / (2 major)) with n = 2 minor t + major, kept as quotient and remainder so a
+    // step costs no division; a jump recomputes them once.
+    const int two_major = 2 * major, two_minor = 2 * minor;
+    int t = 0, m = 0, r = major;
+    while (t < major) {
+        const int p = p0 + sp * t, q = q0 + sq * m;
+        const int x = x_major ? p : q, y = x_major ? q : p;
+        if (!empty_block(floor_div(x, block), floor_div(y, block))) {
+            visit(x, y);
+            ++t;
+            r += two_minor;
+            if (r >= two_major) r -= two_major, ++m;
+            continue;
+        }
+        // The first step whose cell leaves the block: along the major axis, or along the minor
+        // one (the smallest t whose minor coordinate has moved `need` cells).
+        // In int: a ray is at most a grid's diagonal, 2 * major * need stays far below 2^31.
+        const int bp = floor_div(p, block), bq = floor_div(q, block);
+        const int t_major = sp > 0 ? (bp + 1) * block - p0 : p0 - (bp * block - 1);
+        int t_minor = two_major;
+        if (minor > 0) {
+            const int need = sq > 0 ? (bq + 1) * block - q0 : q0 - (bq * block - 1);
+            t_minor = (two_major * need - two_major / 2 + two_minor - 1) / two_minor;
+        }
+        t = std::max(t + 1, std::min(t_major, t_minor));
+        const int n = two_minor * t + two_major / 2;
+        m = n / two_major;
+        r = n % two_major;
+    }
+}
+
+}  // namespace makeway::costmap
