@@ -69,6 +69,35 @@ TEST(Inflation, DistanceTransformMatchesBruteForce) {
     }
 }
 
+// The layer reads its costs from a table by squared distance (issue 31): at every cell the same
+// cost as nav2's formula at the brute-force distance, for radii that end on a cell (0.55 m at
+// 5 cm: 11 cells) and between cells, and at two resolutions.
+TEST(Inflation, TabledCostsEqualTheFormulaAtEveryCell) {
+    Rng rng = make_rng(5);
+    for (const double resolution : {0.05, 0.1}) {
+        for (const InflationParams p : {InflationParams{}, InflationParams{0.2, 0.73, 2.0}, InflationParams{0.3, 0.3, 5.0}}) {
+            Costmap walls({0, 0}, resolution, 60, 60);
+            std::vector<Eigen::Vector2i> lethal;
+            for (int i = 0; i < 8; ++i) {
+                lethal.emplace_back(static_cast<int>(uniform_int(rng, 0, 59)), static_cast<int>(uniform_int(rng, 0, 59)));
+                walls.at(lethal.back().x(), lethal.back().y()) = cost::kLethal;
+            }
+            LayeredCostmap lc(Costmap({0, 0}, resolution, 60, 60));
+            lc.add_layer(std::make_unique<StaticLayer>(walls));
+            lc.add_layer(std::make_unique<InflationLayer>(p));
+            lc.update({});
+            for (int y = 0; y < 60; ++y) {
+                for (int x = 0; x < 60; ++x) {
+                    int best = 1 << 30;
+                    for (const auto& c : lethal) best = std::min(best, (c.x() - x) * (c.x() - x) + (c.y() - y) * (c.y() - y));
+                    ASSERT_EQ(lc.master().at(x, y), inflation_cost(std::sqrt(static_cast<double>(best)) * resolution, p))
+                        << x << " " << y << " resolution " << resolution << " radius " << p.inflation_radius_m;
+                }
+            }
+        }
+    }
+}
+
 TEST(Affordance, ChairZoneIsAnEllipseAlongTheChairAxis) {
     const AffordanceParams p;
     for (double yaw : {0.0, 0.7, kPi / 2}) {

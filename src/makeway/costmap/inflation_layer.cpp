@@ -96,11 +96,25 @@ void InflationLayer::update_costs(Costmap& master, const GridWindow& window) {
     const int r = static_cast<int>(std::ceil(params_.inflation_radius_m / master.resolution_m));
     const GridWindow source = window.grown(r).clipped(master.width, master.height);
     const std::vector<double> d2 = squared_distance_to_lethal(master, source, window);
+    // Squared distances on the grid are whole numbers of cells^2: the cost of each one is tabled
+    // once per resolution, out to the first beyond the inflation radius that is free (all farther
+    // ones are: the distance only grows), so there is no sqrt and exp per cell.
+    if (table_resolution_m_ != master.resolution_m) {
+        table_resolution_m_ = master.resolution_m;
+        const double reach2 = std::pow(params_.inflation_radius_m / master.resolution_m, 2);
+        cost_of_d2_.clear();
+        for (std::size_t k = 0;; ++k) {
+            const std::uint8_t c = inflation_cost(std::sqrt(static_cast<double>(k)) * master.resolution_m, params_);
+            if (c == cost::kFree && static_cast<double>(k) > reach2) break;
+            cost_of_d2_.push_back(c);
+        }
+    }
+    const double free_from = static_cast<double>(cost_of_d2_.size());
     const int ww = window.x1 - window.x0;
     for (int y = window.y0; y < window.y1; ++y) {
         for (int x = window.x0; x < window.x1; ++x) {
-            const double d = std::sqrt(d2[static_cast<std::size_t>(y - window.y0) * ww + (x - window.x0)]) * master.resolution_m;
-            const std::uint8_t c = inflation_cost(d, params_);
+            const double k = d2[static_cast<std::size_t>(y - window.y0) * ww + (x - window.x0)];
+            const std::uint8_t c = k < free_from ? cost_of_d2_[static_cast<std::size_t>(k)] : cost::kFree;
             std::uint8_t& m = master.at(x, y);
             if (c > m || (m == cost::kUnknown && c != cost::kFree)) m = c;
         }

@@ -25,6 +25,8 @@ public:
 
 private:
     InflationParams params_;
+    double table_resolution_m_ = 0.0;        ///< the resolution cost_of_d2_ was made for
+    std::vector<std::uint8_t> cost_of_d2_;  ///< inflation_cost at sqrt(k) cells, out to the first free k past the radius
 };
 
 /// Exact squared Euclidean distance [cells^2] from every cell of `window` to the nearest cell with
