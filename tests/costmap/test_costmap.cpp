@@ -177,12 +177,13 @@ std::vector<Eigen::Vector2i> bresenham(int x, int y, int ex, int ey) {
 
 // The closed-form walk visits Bresenham's cells in Bresenham's order, and where blocks are empty it
 // skips exactly their cells: 20,000 random rays (all octants, negative coordinates, zero length,
-// ties) over random block maps.
+// ties) over random block maps, and 20 rays up to 113,000 cells long.
 TEST(RayWalk, VisitsBresenhamsCellsAndSkipsOnlyEmptyBlocks) {
     Rng rng = make_rng(7);
-    for (int k = 0; k < 20000; ++k) {
-        const int x0 = static_cast<int>(uniform_int(rng, -40, 40)), y0 = static_cast<int>(uniform_int(rng, -40, 40));
-        const int x1 = static_cast<int>(uniform_int(rng, -40, 40)), y1 = static_cast<int>(uniform_int(rng, -40, 40));
+    for (int k = 0; k < 20020; ++k) {
+        const int span = k < 20000 ? 40 : 40000;  // the last 20: long enough that a jump needs 64-bit arithmetic
+        const int x0 = static_cast<int>(uniform_int(rng, -span, span)), y0 = static_cast<int>(uniform_int(rng, -span, span));
+        const int x1 = static_cast<int>(uniform_int(rng, -span, span)), y1 = static_cast<int>(uniform_int(rng, -span, span));
         const int block = static_cast<int>(uniform_int(rng, 1, 9));
         const double p_empty = k % 3 == 0 ? 0.0 : uniform(rng, 0.0, 1.0);
         const std::uint64_t salt = rng();

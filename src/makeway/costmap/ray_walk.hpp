@@ -1,6 +1,6 @@
 #pragma once
 // The cells a ray crosses on a grid, as the obstacle layer clears them: the 8-connected Bresenham
-// line from `from` to `to`, `to` excluded. In closed form the cell at step t along the major axis
+// line from its start cell to its end cell, the end excluded. In closed form the cell at step t along the major axis
 // has the minor coordinate round-half-up(t * minor / major) (the midpoint rule; Zingl's error-term
 // loop visits the very same cells), so the walk can jump: where the caller says a block of cells
 // holds nothing to visit, it goes straight to the first cell of the line outside that block. Most
@@ -41,18 +41,18 @@ void walk_ray(int x0, int y0, int x1, int y1, int block, EmptyBlock&& empty_bloc
         }
         // The first step whose cell leaves the block: along the major axis, or along the minor
         // one (the smallest t whose minor coordinate has moved `need` cells).
-        // In int: a ray is at most a grid's diagonal, 2 * major * need stays far below 2^31.
-        const int bp = floor_div(p, block), bq = floor_div(q, block);
-        const int t_major = sp > 0 ? (bp + 1) * block - p0 : p0 - (bp * block - 1);
-        int t_minor = two_major;
+        // In 64 bits: 2 major need overflows int for rays longer than about 32,000 cells.
+        const std::int64_t bp = floor_div(p, block), bq = floor_div(q, block);
+        const std::int64_t t_major = sp > 0 ? (bp + 1) * block - p0 : p0 - (bp * block - 1);
+        std::int64_t t_minor = major;
         if (minor > 0) {
-            const int need = sq > 0 ? (bq + 1) * block - q0 : q0 - (bq * block - 1);
-            t_minor = (two_major * need - two_major / 2 + two_minor - 1) / two_minor;
+            const std::int64_t need = sq > 0 ? (bq + 1) * block - q0 : q0 - (bq * block - 1);
+            t_minor = (std::int64_t{two_major} * need - major + two_minor - 1) / two_minor;
         }
-        t = std::max(t + 1, std::min(t_major, t_minor));
-        const int n = two_minor * t + two_major / 2;
-        m = n / two_major;
-        r = n % two_major;
+        t = static_cast<int>(std::max<std::int64_t>(t + 1, std::min(t_major, t_minor)));
+        const std::int64_t n = std::int64_t{two_minor} * t + major;
+        m = static_cast<int>(n / two_major);
+        r = static_cast<int>(n % two_major);
     }
 }
 
