@@ -58,6 +58,15 @@ const Drive& medium_drive() {
     return drive;
 }
 
+// The navigator's defaults with the robot's inflation radii, affordance zones on or off.
+pipeline::NavigatorParams navigator_params(const sim::RobotParams& robot, bool affordance) {
+    pipeline::NavigatorParams p;
+    p.affordance_layer = affordance;
+    p.inflation.inscribed_radius_m = robot.inscribed_radius_m();
+    p.inflation.inflation_radius_m = robot.circumscribed_radius_m();
+    return p;
+}
+
 void BM_PerSweep(benchmark::State& state) {
     const tbb::global_control one_core(tbb::global_control::max_allowed_parallelism, 1);
     const Drive& d = medium_drive();
@@ -66,10 +75,7 @@ void BM_PerSweep(benchmark::State& state) {
     for (auto _ : state) {
         state.PauseTiming();
         odometry::LidarOdometry odo({}, robot.T_robot_sensor(), d.start);
-        pipeline::NavigatorParams nav;
-        nav.inflation.inscribed_radius_m = robot.inscribed_radius_m();
-        nav.inflation.inflation_radius_m = robot.circumscribed_radius_m();
-        pipeline::ObjectCostmap costmap(d.free_map, nav);
+        pipeline::ObjectCostmap costmap(d.free_map, navigator_params(robot, true));
         state.ResumeTiming();
         for (const sim::SimFrame& f : d.frames) {
             const auto r = odo.register_sweep(f.points_sensor, f.stamp_s, 0.1, f.odometry_pose, f.odometry_end_pose);
@@ -89,10 +95,7 @@ BENCHMARK(BM_PerSweep)->Unit(benchmark::kMillisecond)->UseRealTime();
 void BM_CostmapUpdate(benchmark::State& state) {
     const Drive& d = medium_drive();
     const sim::RobotParams robot;
-    pipeline::NavigatorParams params;
-    params.affordance_layer = state.range(0) != 0;
-    params.inflation.inscribed_radius_m = robot.inscribed_radius_m();
-    params.inflation.inflation_radius_m = robot.circumscribed_radius_m();
+    const pipeline::NavigatorParams params = navigator_params(robot, state.range(0) != 0);
     pipeline::ObjectCostmap costmap(d.free_map, params);
     std::size_t k = 0;
     for (auto _ : state) {
@@ -113,10 +116,7 @@ void BM_ControlCycle(benchmark::State& state) {
     const Drive& d = medium_drive();
     const sim::RobotParams robot;
     const std::vector<PointCloud>& worlds = d.worlds;
-    pipeline::NavigatorParams params;
-    params.affordance_layer = state.range(0) != 0;
-    params.inflation.inscribed_radius_m = robot.inscribed_radius_m();
-    params.inflation.inflation_radius_m = robot.circumscribed_radius_m();
+    const pipeline::NavigatorParams params = navigator_params(robot, state.range(0) != 0);
     pipeline::Navigator nav(d.free_map, params);
     nav.set_route({d.goal});
     std::size_t k = 0;

@@ -103,9 +103,10 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
     }
     for (int idx : cells) {
         if (scratch_[idx].endpoint == 2 && grid_.cost[idx] != cost::kLethal) {
-            if (grid_.cost[idx] == cost::kFree) ++block_of(idx % grid_.width, idx / grid_.width);
+            const int x = idx % grid_.width, y = idx / grid_.width;
+            if (grid_.cost[idx] == cost::kFree) ++block_of(x, y);
             grid_.cost[idx] = cost::kLethal;
-            changed.expand({idx % grid_.width, idx / grid_.width, idx % grid_.width + 1, idx / grid_.width + 1});
+            changed.expand({x, y, x + 1, y + 1});
         }
         scratch_[idx] = Scratch{};
     }
