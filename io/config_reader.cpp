@@ -331,6 +331,8 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("simulation_time_step_s", m.simulation_time_step_s);
         s.read("dynamic_speed_mps", m.dynamic_speed_mps);
         s.read("dynamic_history", m.dynamic_history);
+        s.read("dynamic_min_seen", m.dynamic_min_seen);
+        s.read("low_edge_support", m.low_edge_support);
         s.read("dynamic_cluster_m", m.dynamic_cluster_m);
         s.read("dynamic_cluster_min_new", m.dynamic_cluster_min_new);
         s.read("dynamic_min_height_m", m.dynamic_min_height_m);

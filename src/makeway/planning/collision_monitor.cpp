@@ -61,6 +61,8 @@ std::vector<std::string> CollisionMonitorParams::validate() const {
     if (!(dynamic_speed_mps >= 0.0 && dynamic_speed_mps <= 5.0)) p.push_back("dynamic_speed_mps must be in [0, 5]");
     if (!(dynamic_min_height_m >= 0.0 && dynamic_min_height_m <= 3.0)) p.push_back("dynamic_min_height_m must be in [0, 3]");
     if (dynamic_history < 1 || dynamic_history > 100) p.push_back("dynamic_history must be in [1, 100]");
+    if (dynamic_min_seen < 1 || dynamic_min_seen > dynamic_history) p.push_back("dynamic_min_seen must be in [1, dynamic_history]");
+    if (low_edge_support < 0 || low_edge_support > 24) p.push_back("low_edge_support must be in [0, 24] (0: off)");
     if (!(dynamic_cluster_m >= 0.0 && dynamic_cluster_m <= 2.0)) p.push_back("dynamic_cluster_m must be in [0, 2] (0: only new returns move)");
     if (dynamic_cluster_min_new < 1 || dynamic_cluster_min_new > 1000) p.push_back("dynamic_cluster_min_new must be in [1, 1000]");
     if (!(sensor_height_m >= 0.0 && sensor_height_m <= 5.0)) p.push_back("sensor_height_m must be in [0, 5]");
@@ -217,7 +219,8 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             Eigen::Vector2d q;  ///< world
             double keep_m;      ///< remembered while closer than this to the sensor
             bool high;          ///< high enough to be a mover
-            bool known;         ///< a return was near it in the last dynamic_history sweeps
+            bool seen_before;   ///< a return was near it in the last dynamic_history sweeps (not one sweep's noise)
+            bool clustered = false;  ///< near a mover (dynamic_cluster_m)
         };
         std::vector<Candidate> candidates;
         for (const Eigen::Vector3f& p : in.points_world->xyz) {
@@ -230,19 +233,25 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             if (!seen.insert(key_of(ix, iy)).second) continue;
             cells.push_back(key_of(ix, iy));
             pts.push_back(T_base_world * q);
-            // New: no return in this cell or next to it in the last dynamic_history sweeps (none before the first).
-            bool known = previous_cells_.empty();
+            // New: a return in this cell or next to it in fewer than dynamic_min_seen of the last
+            // dynamic_history sweeps (none new before the first). A surface stays where it is
+            // sweep after sweep; a walker who turns back crosses each cell it left once.
+            const int need = std::min<int>(params_.dynamic_min_seen, static_cast<int>(previous_cells_.size()));
+            int seen_in = 0;
             for (const std::vector<std::int64_t>& earlier : previous_cells_) {
-                for (std::int64_t dx = -1; dx <= 1 && !known; ++dx) {
-                    for (std::int64_t dy = -1; dy <= 1 && !known; ++dy) known = std::binary_search(earlier.begin(), earlier.end(), key_of(ix + dx, iy + dy));
+                bool here_then = false;
+                for (std::int64_t dx = -1; dx <= 1 && !here_then; ++dx) {
+                    for (std::int64_t dy = -1; dy <= 1 && !here_then; ++dy) here_then = std::binary_search(earlier.begin(), earlier.end(), key_of(ix + dx, iy + dy));
                 }
-                if (known) break;
+                if (here_then && ++seen_in >= need) break;
             }
+            const bool known = seen_in >= need;
+            const bool seen_before = seen_in > 0 || previous_cells_.empty();  // not one sweep's noise
             // Near the floor, noise: the lowest rings graze it ~0.9 m out, and a return 2 cm up
             // there is new in every sweep. People are seen higher up.
             const bool high = p.z() >= params_.dynamic_min_height_m;
             dynamic.push_back(known || !high ? 0 : 1);
-            candidates.push_back({pts.size() - 1, q, std::min(blind_radius_m(p.z()), std::sqrt(d2)) - kThinCell_m, high, known});
+            candidates.push_back({pts.size() - 1, q, std::min(blind_radius_m(p.z()), std::sqrt(d2)) - kThinCell_m, high, seen_before});
         }
         // A mover stays a mover: returns near one that was new in this sweep or the last
         // dynamic_history sweeps move too (a walker turning back walks into the cells it just
@@ -266,7 +275,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
                 if (static_cast<int>(j - i) >= params_.dynamic_cluster_min_new) movers.push_back(seeds[i]);
                 i = j;
             }
-            for (const Candidate& c : candidates) {
+            for (Candidate& c : candidates) {
                 if (dynamic[c.index] || !c.high) continue;
                 const auto [cx, cy] = coarse(c.q);
                 bool near = false;
@@ -278,12 +287,31 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
                     }
                 }
                 dynamic[c.index] = near ? 1 : 0;
+                c.clustered = near;
             }
         }
-        // Remembered while the sensor, closer than where it was seen, is blind there; new returns
-        // (a walker's, the floor noise at the lowest rings' reach) and a mover's leave no trail.
+        // Remembered while the sensor, closer than where it was seen, is blind there; returns not
+        // seen before (a walker's leading edge, the floor noise at the lowest rings' reach) and a
+        // clustered mover's leave no trail. A return seen in one earlier sweep only is new for the
+        // zones (dynamic_min_seen) but remembered: what flickers near the robot (a chair's thin
+        // parts) must not drop out of the memory it needs in the blind ring.
+        // A low edge (a round table's foot, 3 cm high) is in the lowest ring's reach for about one
+        // sweep as the robot drives at it: seen once, but as an arc of returns, where the floor's
+        // noise gives lone ones.
+        auto supported = [&](const Candidate& c) {
+            if (params_.low_edge_support <= 0 || c.high) return false;
+            const auto ix = static_cast<std::int64_t>(std::floor(c.q.x() / kThinCell_m));
+            const auto iy = static_cast<std::int64_t>(std::floor(c.q.y() / kThinCell_m));
+            int n = 0;
+            for (std::int64_t dx = -2; dx <= 2; ++dx) {
+                for (std::int64_t dy = -2; dy <= 2; ++dy) {
+                    if ((dx != 0 || dy != 0) && seen.count(key_of(ix + dx, iy + dy)) && ++n >= params_.low_edge_support) return true;
+                }
+            }
+            return false;
+        };
         for (const Candidate& c : candidates) {
-            if (c.keep_m > 0.0 && c.known && !dynamic[c.index]) memory_.push_back({c.q, in.t_s, c.keep_m});
+            if (c.keep_m > 0.0 && (c.seen_before || supported(c)) && !c.clustered) memory_.push_back({c.q, in.t_s, c.keep_m});
         }
         std::sort(cells.begin(), cells.end());
         previous_cells_.push_back(std::move(cells));

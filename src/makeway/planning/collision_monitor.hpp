@@ -35,10 +35,14 @@
 // A return counts only where the motion brings the footprint closer to it than it is now, so a
 // robot standing next to a wall may always drive or turn away from it.
 //
-// People: a return in a cell (or next to one) that held no return in the last dynamic_history
-// sweeps, and at least dynamic_min_height_m up, is new, maybe moving (a surface coming out of
-// another's shadow is new for one sweep; near the floor the lowest rings' noise is new every sweep); for the stop zone and the approach check its padding grows by dynamic_speed_mps
-// for every second until the robot would be there (latency included). So the robot stops for a
+// People: a return in a cell (or next to one) that held returns in fewer than dynamic_min_seen
+// of the last dynamic_history sweeps, and at least dynamic_min_height_m up, is new, maybe moving
+// (a surface coming out of another's shadow is new for one sweep; near the floor the lowest
+// rings' noise is new every sweep). A surface that stays is seen sweep after sweep; a walker who
+// turns back toward the robot walks over the cells it left, each seen in one earlier sweep, so
+// with dynamic_min_seen 2 it stays new. For the stop zone and the approach check a new return's
+// padding grows by dynamic_speed_mps for every second until the robot would be there (latency
+// included). So the robot stops for a
 // walker who could step into its way before it has braked, and waits while the walker is near
 // its path; a walker standing still is an obstacle like any other (its returns are not new).
 // With dynamic_cluster_m, a mover stays a mover for dynamic_history sweeps: returns within about
@@ -86,7 +90,8 @@ struct CollisionMonitorParams {
     double time_before_collision_s = 0.8;  ///< approach: contact kept at least this far ahead [s]; 0: off
     double simulation_time_step_s = 0.05;  ///< the zones' time step along the predicted motion [s]
     double dynamic_speed_mps = 1.0;     ///< new returns may move this fast (a walking person); 0: all static
-    int dynamic_history = 5;            ///< sweeps a cell is remembered as seen (new: seen in none of them)
+    int dynamic_history = 5;            ///< sweeps a cell is remembered as seen ...
+    int dynamic_min_seen = 2;           ///< ... new: seen in fewer than this many of them (2: a walker turning back is new)
     double dynamic_cluster_m = 0.0;     ///< returns within about this of a mover (this sweep or the last dynamic_history) move too; 0: off ...
     int dynamic_cluster_min_new = 5;    ///< ... a mover: a cell of that size with this many new returns
     double dynamic_min_height_m = 0.1;  ///< lower returns are never new (floor noise at the lowest rings' reach)
@@ -94,6 +99,7 @@ struct CollisionMonitorParams {
     double sensor_height_m = 0.45;      ///< the LiDAR above the floor (on the base's centre) ...
     double lowest_beam_deg = -25.0;     ///< ... and its lowest beam: what it cannot see near it is remembered ...
     double blind_memory_s = 10.0;       ///< ... at most this long (a robot held in front of a chair leg keeps it)
+    int low_edge_support = 4;           ///< a return below dynamic_min_height_m seen in one sweep only is remembered with this many returns around it (5 x 5 cells); 0: never
     bool object_footprints = true;      ///< inside the blind ring, MonitorInput::footprints_world count as returns ...
     double object_moving_mps = 0.05;    ///< ... (the Controller's: chairs that moved faster than this in the last blind_memory_s)
     double max_range_m = 4.0;           ///< returns farther than this from the base are not looked at
