@@ -91,7 +91,7 @@ struct CollisionMonitorParams {
     double simulation_time_step_s = 0.05;  ///< the zones' time step along the predicted motion [s]
     double dynamic_speed_mps = 1.0;     ///< new returns may move this fast (a walking person); 0: all static
     int dynamic_history = 5;            ///< sweeps a cell is remembered as seen ...
-    int dynamic_min_seen = 2;           ///< ... new: seen in fewer than this many of them (2: a walker turning back is new)
+    int dynamic_min_seen = 1;           ///< ... new: seen in fewer than this many of them (2: a walker turning back is new; README)
     double dynamic_cluster_m = 0.0;     ///< returns within about this of a mover (this sweep or the last dynamic_history) move too; 0: off ...
     int dynamic_cluster_min_new = 5;    ///< ... a mover: a cell of that size with this many new returns
     double dynamic_min_height_m = 0.1;  ///< lower returns are never new (floor noise at the lowest rings' reach)
@@ -99,7 +99,7 @@ struct CollisionMonitorParams {
     double sensor_height_m = 0.45;      ///< the LiDAR above the floor (on the base's centre) ...
     double lowest_beam_deg = -25.0;     ///< ... and its lowest beam: what it cannot see near it is remembered ...
     double blind_memory_s = 10.0;       ///< ... at most this long (a robot held in front of a chair leg keeps it)
-    int low_edge_support = 4;           ///< a return below dynamic_min_height_m seen in one sweep only is remembered with this many returns around it (5 x 5 cells); 0: never
+    int low_edge_support = 0;           ///< a return below dynamic_min_height_m seen in one sweep only is remembered with this many returns around it (5 x 5 cells); 0: never
     bool object_footprints = true;      ///< inside the blind ring, MonitorInput::footprints_world count as returns ...
     double object_moving_mps = 0.05;    ///< ... (the Controller's: chairs that moved faster than this in the last blind_memory_s)
     double max_range_m = 4.0;           ///< returns farther than this from the base are not looked at
