@@ -229,7 +229,7 @@ TEST(CollisionMonitor, AWalkerTurningBackIsStillAMover) {
                 once_known, clustered, twice_known);
     EXPECT_LE(clustered, 2);    // measured: 2 (a walker cutting back across the robot's bow at 0.12 m/s)
     EXPECT_GE(once_known, 6);   // measured: 6 (new returns alone)
-    EXPECT_LE(twice_known, 2);  // measured: 2 (the default: dynamic_min_seen 2)
+    EXPECT_LE(twice_known, 2);  // measured: 2 (dynamic_min_seen 2: off by default, README)
 }
 
 TEST(CollisionMonitor, ALowFootSeenInOneSweepIsRemembered) {

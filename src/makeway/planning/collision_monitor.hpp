@@ -40,11 +40,14 @@
 // (a surface coming out of another's shadow is new for one sweep; near the floor the lowest
 // rings' noise is new every sweep). A surface that stays is seen sweep after sweep; a walker who
 // turns back toward the robot walks over the cells it left, each seen in one earlier sweep, so
-// with dynamic_min_seen 2 it stays new. For the stop zone and the approach check a new return's
-// padding grows by dynamic_speed_mps for every second until the robot would be there (latency
-// included). So the robot stops for a
+// with dynamic_min_seen 2 it stays new (off by default: pulled chairs become movers too, README).
+// For the stop zone and the approach check a new return's padding grows by dynamic_speed_mps for
+// every second until the robot would be there (latency included). So the robot stops for a
 // walker who could step into its way before it has braked, and waits while the walker is near
 // its path; a walker standing still is an obstacle like any other (its returns are not new).
+// Returns seen in one sweep only are not remembered (the floor's noise); with low_edge_support a
+// low one is, when it is an arc of returns (a table's foot, in the lowest ring's reach about one
+// sweep).
 // With dynamic_cluster_m, a mover stays a mover for dynamic_history sweeps: returns within about
 // that of a cell with dynamic_cluster_min_new new returns move too (a walker who turns back walks
 // into the cells it just left, which are not new). Off by default: chairs people push become
