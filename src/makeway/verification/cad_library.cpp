@@ -63,7 +63,10 @@ std::vector<std::string> CadLibraryParams::validate() const {
     for (double m : lookup_margin_m) {
         if (!(m >= 0.0 && m <= 1.0)) p.push_back("lookup margins must be in [0, 1] m");
     }
-    if (!(lookup_cell_fraction >= 0.1 && lookup_cell_fraction <= 2.0)) p.push_back("lookup_cell_fraction must be in [0.1, 2]");
+    if (lookup_cell_fraction.size() < lookup_margin_m.size()) p.push_back("lookup_cell_fraction needs an entry per lookup margin");
+    for (double f : lookup_cell_fraction) {
+        if (!(f >= 0.1 && f <= 2.0)) p.push_back("lookup_cell_fraction entries must be in [0.1, 2]");
+    }
     return p;
 }
 
@@ -115,8 +118,8 @@ void CadLibrary::add(const std::string& name, ObjectClass cls, const TriangleMes
             level.normals_object.push_back(nrm[i]);
         }
         level.index = std::make_shared<ModelLevel::Index>(level.points_object);
-        if (l < params_.lookup_margin_m.size()) {
-            level.grid = std::make_shared<ClosestPointGrid>(level.points_object, params_.lookup_cell_fraction * voxel,
+        if (l < params_.lookup_margin_m.size() && l < params_.lookup_cell_fraction.size()) {  // validate() says when not
+            level.grid = std::make_shared<ClosestPointGrid>(level.points_object, params_.lookup_cell_fraction[l] * voxel,
                                                             params_.lookup_margin_m[l]);
         }
         model.levels.push_back(std::move(level));

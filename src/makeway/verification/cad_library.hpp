@@ -42,11 +42,15 @@ struct CadModel {
 struct CadLibraryParams {
     std::vector<double> voxel_sizes_m{0.08, 0.04, 0.02};  ///< one level each, coarse to fine
     double sample_spacing_m = 0.01;                         ///< surface sampling before thinning
-    /// Closest-point lookup grids for the coarsest levels, one entry per level, reaching this far
-    /// around the model [m] (the ICP's correspondence distances); queries beyond, and levels
-    /// without an entry, use the exact k-d tree.
-    std::vector<double> lookup_margin_m{0.30, 0.15};
-    double lookup_cell_fraction = 0.5;                      ///< grid cell size / level voxel size
+    /// Closest-point lookup grids, one entry per level (coarse to fine), reaching this far around
+    /// the model [m] (the ICP's correspondence distances); queries beyond, and levels without an
+    /// entry, use the exact k-d tree. The finest level has one too: every accepted fit is refined
+    /// and judged there, and its k-d tree was the largest single cost of verification (issue 31).
+    std::vector<double> lookup_margin_m{0.30, 0.15, 0.08};
+    /// Grid cell size / level voxel size, one per lookup grid. The finest level's cells are as
+    /// large as its voxels: half of that would quadruple a table's memory (8x the cells) for no
+    /// measurable change in the fits.
+    std::vector<double> lookup_cell_fraction{0.5, 0.5, 1.0};
     /// A quarter turn is a symmetry when the finest level's points, turned, lie within this RMS
     /// distance of the model [m].
     double symmetry_rms_m = 0.015;
