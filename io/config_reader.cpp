@@ -226,6 +226,7 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("shape_max_views", sys.shapes.max_views);
         s.read("shape_view_margin_m", sys.shapes.view_margin_m);
         s.read("min_points", v.min_points);
+        s.read("num_threads", v.num_threads);
         s.finish();
         s.add_validation(v.validate());
         s.add_validation(sys.shapes.validate());

@@ -41,7 +41,7 @@ struct VerifyParams {
     double reseed_tolerance_m = 0.0;
     double reseed_radius_m = 0.3;    ///< the detection's centre this close to the fit's (world frame) ...
     double reseed_max_age_s = 5.0;   ///< ... and the fit at most this old
-    /// verify_detections: 1 serial; > 1 that many TBB threads over detections (each is independent).
+    /// verify_detections: 1 serial; > 1 that many threads over detections (each is independent).
     int num_threads = 2;
     std::vector<std::string> validate() const;
 };
