@@ -7,6 +7,7 @@
 #include <limits>
 #include <mutex>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 
 #include "makeway/common/angles.hpp"
@@ -234,9 +235,9 @@ std::vector<VerifiedDetection> verify_detections(const PointCloud& cloud, const 
     }
     // Detections are independent and each writes its own slot: the result does not depend on the
     // schedule. Helper threads live for this call only and take the next detection as they finish
-    // one. Not a TBB arena: its idle workers kept spinning in sched_yield after the work was done
-    // (a quarter of all CPU samples of a study-space run), taking the core the control loop or
-    // another benchmark run needed; a thread's start costs ~0.1 ms against 40+ ms of work.
+    // one. Not a TBB arena: with two benchmark runs sharing two cores its waiting workers cost
+    // 29 s of system CPU over 25 runs against 12 s here, and the keyframe chain 62 ms median
+    // against 48 (README); a thread's start costs ~0.1 ms against 40+ ms of work.
     std::atomic<std::size_t> next{0};
     std::exception_ptr failure;
     std::mutex failure_mutex;
@@ -251,7 +252,11 @@ std::vector<VerifiedDetection> verify_detections(const PointCloud& cloud, const 
     };
     std::vector<std::thread> helpers;
     const std::size_t n_helpers = std::min<std::size_t>(static_cast<std::size_t>(params.num_threads), detections.size()) - 1;
-    for (std::size_t h = 0; h < n_helpers; ++h) helpers.emplace_back(work);
+    try {
+        for (std::size_t h = 0; h < n_helpers; ++h) helpers.emplace_back(work);
+    } catch (const std::system_error&) {
+        // No more threads to be had: those started and this one share the work.
+    }
     work();
     for (std::thread& t : helpers) t.join();
     if (failure) std::rethrow_exception(failure);
