@@ -89,6 +89,30 @@ void BM_PerSweep(benchmark::State& state) {
 }
 BENCHMARK(BM_PerSweep)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The LiDAR odometry alone (the larger half of a sweep): de-skewing with the wheels' motion,
+// registration against the local voxel map, the map's update; one benchmark iteration is the
+// 50-sweep drive. Counters: Gauss-Newton iterations and source points per sweep.
+void BM_Odometry(benchmark::State& state) {
+    const Drive& d = medium_drive();
+    const sim::RobotParams robot;
+    double iterations = 0.0, source = 0.0, sweeps = 0.0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        odometry::LidarOdometry odo({}, robot.T_robot_sensor(), d.start);
+        state.ResumeTiming();
+        for (const sim::SimFrame& f : d.frames) {
+            const auto r = odo.register_sweep(f.points_sensor, f.stamp_s, 0.1, f.odometry_pose, f.odometry_end_pose);
+            iterations += r.iterations;
+            source += static_cast<double>(r.source_points);
+            sweeps += 1.0;
+        }
+    }
+    state.counters["ms_per_sweep"] = benchmark::Counter(sweeps, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    state.counters["iterations"] = iterations / std::max(sweeps, 1.0);
+    state.counters["source_points"] = source / std::max(sweeps, 1.0);
+}
+BENCHMARK(BM_Odometry)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // The costmap's update alone (issue 31's target for it: the per-sweep total at most 8 ms median):
 // obstacle marking and clearing from the de-skewed sweep, affordance zones of the scene's furniture
 // (argument 1) or none, inflation; one benchmark iteration is one sweep of the 50-sweep drive.

@@ -53,6 +53,7 @@ public:
 
 private:
     struct Voxel {
+        Eigen::Vector3d first = Eigen::Vector3d::Zero();  ///< its first point, inline: keep_within reads it for every voxel
         std::vector<Eigen::Vector3d> points;
         VoxelShape shape = VoxelShape::kUnknown;
         Eigen::Vector3d axis = Eigen::Vector3d::Zero();
