@@ -38,23 +38,11 @@ std::vector<fs::path> kitti_sequences(const std::string& path) {
     return io::frame_files(path, "txt");
 }
 
-// KITTI's objects are traffic seen from a moving car, in the camera frame of each frame (no
-// ego-motion): parked cars move in it, nothing stands on a known floor, objects leave for good.
-tracking::TrackerParams kitti_preset() {
-    tracking::TrackerParams p;
-    p.sensor_range_m = 80.0;
-    p.out_of_range = tracking::OutOfRange::kDrop;
-    p.motion.fill({std::numeric_limits<double>::infinity(), 60.0, false, 0.0, 1.0});
-    p.max_floor_gap_m = std::numeric_limits<double>::infinity();
-    p.max_misses = 3;
-    return p;
-}
-
 std::string_view name_of(tracking::ScoreTransform t) { return t == tracking::ScoreTransform::kSigmoid ? "sigmoid" : "none"; }
 
-// The tracker's settings: the configuration (or the format's preset), then the command line.
-tracking::TrackerParams tracker_params(const TrackOptions& o) {
-    tracking::TrackerParams p = o.format == "kitti" ? kitti_preset() : tracking::TrackerParams{};
+// The tracker's settings: the configuration (or the format's preset for `type`), then the command line.
+tracking::TrackerParams tracker_params(const TrackOptions& o, const std::string& type = "car") {
+    tracking::TrackerParams p = o.format == "kitti" ? tracking::traffic_preset(type) : tracking::TrackerParams{};
     if (!o.config.empty()) p = io::load_config(o.config).system.tracker;
     // KITTI types are chosen by --classes; each type's map tracks its own boxes (as index 0, whose
     // motion prior applies), whatever chair/table selection the configuration makes.
@@ -108,7 +96,8 @@ struct TrackRun {
 // One sequence, one object map per class (as AB3DMOT): every frame, also those without
 // detections; each output box carries its last detection's 2D box, truncation and occlusion.
 std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInput& in, const std::vector<std::string>& types,
-                                                          const tracking::TrackerParams& params, const TrackOptions& o, TrackRun& run) {
+                                                          const std::map<std::string, tracking::TrackerParams>& params_of,
+                                                          const TrackOptions& o, TrackRun& run) {
     int last = -1;
     for (const auto& r : in.records) last = std::max(last, r.frame);
     std::set<int> updated;  // frames at which a map was updated (empty stretches with no objects are skipped)
@@ -121,8 +110,11 @@ std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInp
             if (to_lower(in.records[i].type) == to_lower(type)) frames[in.records[i].frame].push_back(i);
         }
         if (frames.empty()) continue;
+        const tracking::TrackerParams& params = params_of.at(type);
         tracking::ObjectMap map(params);
         std::unordered_map<std::uint32_t, std::size_t> last_record;  // map id -> its last detection
+        std::unordered_map<std::uint32_t, std::vector<io::KittiTrackingRecord>> pending;  // unconfirmed tracks' boxes
+        std::unordered_map<std::uint32_t, std::pair<double, int>> score_sums;            // detections' scores per track
         for (int f = 0; f <= last; ++f) {
             const auto it = frames.find(f);
             if (it == frames.end() && map.tracks().empty()) {  // nothing to predict or judge: skip to the next detections
@@ -148,17 +140,52 @@ std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInp
             for (std::size_t k = 0; k < idx.size(); ++k) {
                 if (r.track_of_detection[k] >= 0) last_record[static_cast<std::uint32_t>(r.track_of_detection[k])] = idx[k];
             }
-            for (const ObjectEstimate& obj : r.objects_world) {
-                const Eigen::Vector3d& c = obj.box_world.centre_m;
+            // Output: boxes updated by a detection this frame (and, with --coasting, the predicted
+            // boxes of confirmed tracks without one); a track's boxes from before it was confirmed
+            // wait in `pending` and go out when it is (--no-backfill: they are dropped).
+            std::unordered_map<std::uint32_t, std::size_t> detection_of;  // map id -> record index matched now
+            for (std::size_t k = 0; k < idx.size(); ++k) {
+                if (r.track_of_detection[k] >= 0) detection_of[static_cast<std::uint32_t>(r.track_of_detection[k])] = idx[k];
+            }
+            std::vector<std::uint32_t> ids;
+            for (const auto& [id, t] : map.tracks()) ids.push_back(id);
+            std::sort(ids.begin(), ids.end());
+            for (std::uint32_t id : ids) {
+                const tracking::Track& t = map.tracks().at(id);
+                const auto det = detection_of.find(id);
+                const bool detected = det != detection_of.end();
+                const bool confirmed = t.confirmed(params.min_hits);
+                if (!detected && !(confirmed && o.coasting)) continue;
+                const Eigen::Vector3d& c = t.filter.box().centre_m;
                 if (o.fov_deg > 0.0 && (c.x() <= 0.0 || std::abs(std::atan2(c.y(), c.x())) > half_fov)) continue;
-                const auto [id_it, fresh] = out_id.try_emplace({type, obj.id}, static_cast<int>(out_id.size()));
-                if (fresh) ++run.tracks_per_class[type];
-                io::KittiTrackingRecord rec = io::to_kitti(obj.box_world, type, f, id_it->second, obj.existence);
-                if (const auto lr = last_record.find(obj.id); lr != last_record.end()) {
-                    const io::KittiTrackingRecord& d = in.records[lr->second];
-                    rec.bbox_px = d.bbox_px, rec.truncated = d.truncated, rec.occluded = d.occluded;
+                const std::size_t rec_index = detected ? det->second : last_record.at(id);
+                const io::KittiTrackingRecord& d = in.records[rec_index];
+                double score = t.existence();
+                if (o.output_score != "existence") {
+                    auto& [sum, n] = score_sums[id];
+                    if (detected) sum += d.score.value_or(1.0), ++n;
+                    score = o.output_score == "detection" ? d.score.value_or(1.0) : sum / std::max(n, 1);
                 }
+                io::KittiTrackingRecord rec = io::to_kitti(t.filter.box(), type, f, -1, score);
+                rec.bbox_px = d.bbox_px, rec.truncated = d.truncated, rec.occluded = d.occluded;
+                if (!confirmed) {
+                    if (o.backfill) pending[id].push_back(rec);
+                    continue;
+                }
+                const auto [id_it, fresh] = out_id.try_emplace({type, id}, static_cast<int>(out_id.size()));
+                if (fresh) ++run.tracks_per_class[type];
+                if (const auto p = pending.find(id); p != pending.end()) {
+                    for (io::KittiTrackingRecord& early : p->second) {
+                        early.track_id = id_it->second;
+                        out.push_back(early);
+                    }
+                    pending.erase(p);
+                }
+                rec.track_id = id_it->second;
                 out.push_back(rec);
+            }
+            for (auto pit = pending.begin(); pit != pending.end();) {  // tracks removed before confirmation
+                pit = map.tracks().count(pit->first) ? std::next(pit) : pending.erase(pit);
             }
         }
     }
@@ -185,22 +212,37 @@ std::vector<std::string> kitti_types(const std::vector<KittiSequenceInput>& inpu
     return out;
 }
 
-void write_summary(const fs::path& file, const TrackOptions& o, const tracking::TrackerParams& p, const TrackRun& run, std::size_t sequences) {
+io::Json settings_json(const tracking::TrackerParams& p) {
+    return {{"sensor_range_m", p.sensor_range_m}, {"min_score", p.min_score}, {"score_transform", name_of(p.score_transform)},
+            {"out_of_range", p.out_of_range == tracking::OutOfRange::kDrop ? "drop" : "freeze"}, {"min_hits", p.min_hits},
+            {"max_misses", p.max_misses}, {"min_giou", p.min_giou}, {"min_existence", p.min_existence}, {"merge_iou", p.merge_iou},
+            {"accel_sigma_mps2", p.kalman.accel_sigma_mps2}, {"position_sigma_mps", p.kalman.position_sigma_mps},
+            {"initial_velocity_sigma_mps", p.kalman.initial_velocity_sigma_mps},
+            {"meas_position_sigma_m", p.kalman.meas_position_sigma_m}};
+}
+
+// `per_type` (kitti): each type's settings; else `p` for all.
+void write_summary(const fs::path& file, const TrackOptions& o, const tracking::TrackerParams& p, const TrackRun& run, std::size_t sequences,
+                   const std::map<std::string, tracking::TrackerParams>* per_type = nullptr) {
     const double fps = run.update_s > 0.0 ? static_cast<double>(run.frames) / run.update_s : 0.0;
     io::Json j{{"format", o.format}, {"sequences", sequences}, {"frames", run.frames}, {"tracker_seconds", run.update_s},
-               {"frames_per_second", fps}, {"tracks_per_class", run.tracks_per_class},
-               {"tracker", {{"sensor_range_m", p.sensor_range_m}, {"min_score", p.min_score},
-                            {"score_transform", name_of(p.score_transform)},
-                            {"out_of_range", p.out_of_range == tracking::OutOfRange::kDrop ? "drop" : "freeze"},
-                            {"min_hits", p.min_hits}, {"max_misses", p.max_misses}, {"min_giou", p.min_giou}}}};
-    if (o.format == "kitti") j["rate_hz"] = o.rate_hz, j["fov_deg"] = o.fov_deg;
+               {"frames_per_second", fps}, {"tracks_per_class", run.tracks_per_class}, {"tracker", settings_json(p)}};
+    if (per_type) {
+        io::Json t = io::Json::object();
+        for (const auto& [type, params] : *per_type) t[type] = settings_json(params);
+        j["tracker"] = t;
+    }
+    if (o.format == "kitti") {
+        j["rate_hz"] = o.rate_hz, j["fov_deg"] = o.fov_deg;
+        j["output_score"] = o.output_score, j["coasting"] = o.coasting, j["backfill"] = o.backfill;
+    }
     io::write_json(file, j);
     std::cout << std::fixed << std::setprecision(1) << "tracked " << run.frames << " frames in " << std::setprecision(3) << run.update_s
               << " s of tracker updates: " << std::setprecision(0) << fps << " frames per second (one core)\n";
 }
 
 int run_track_kitti(const TrackOptions& o) {
-    tracking::TrackerParams params = tracker_params(o);
+    const tracking::TrackerParams checked = tracker_params(o);  // the configuration and options checked before any file is read
     std::vector<KittiSequenceInput> inputs;
     std::vector<std::pair<std::string, double>> scores;
     for (const auto& f : kitti_sequences(o.detections)) {
@@ -209,14 +251,20 @@ int run_track_kitti(const TrackOptions& o) {
             if (r.score && !r.is_dont_care()) scores.emplace_back(f.string(), *r.score);
         }
     }
-    params.score_transform = resolve_score_transform(o, params.score_transform, scores);
     const std::vector<std::string> types = kitti_types(inputs, o);
+    const tracking::ScoreTransform transform = resolve_score_transform(o, checked.score_transform, scores);
+    std::map<std::string, tracking::TrackerParams> params_of;  // the preset per type (or the configuration)
+    for (const std::string& type : types) {
+        tracking::TrackerParams p = tracker_params(o, type);
+        p.score_transform = transform;
+        params_of.emplace(type, p);
+    }
     // Every input is read and tracked before anything is written: bad input leaves no output.
     TrackRun run;
     std::vector<std::vector<io::KittiTrackingRecord>> tracks;
     io::ProgressBar bar("track", inputs.size());
     for (const auto& in : inputs) {
-        tracks.push_back(track_kitti_sequence(in, types, params, o, run));
+        tracks.push_back(track_kitti_sequence(in, types, params_of, o, run));
         bar.update(tracks.size());
     }
     bar.finish();
@@ -224,7 +272,7 @@ int run_track_kitti(const TrackOptions& o) {
     for (std::size_t k = 0; k < inputs.size(); ++k) {
         io::write_kitti_tracking(staged.staging() / inputs[k].file.filename(), tracks[k]);  // empty: an empty file
     }
-    write_summary(staged.staging() / "summary.json", o, params, run, inputs.size());
+    write_summary(staged.staging() / "summary.json", o, checked, run, inputs.size(), &params_of);
     staged.commit();
     std::cout << "classes:";
     for (const auto& t : types) std::cout << " " << t << " (" << run.tracks_per_class[t] << " tracks)";

@@ -154,6 +154,9 @@ struct TrackOptions {
     std::string score_transform = "auto";  ///< auto, none or sigmoid
     std::string out_of_range;    ///< freeze or drop; empty: the configuration's
     double fov_deg = 0.0;        ///< > 0: KITTI output only within this horizontal field of view
+    std::string output_score = "detection";  ///< kitti: detection, existence or track-mean
+    bool coasting = false;       ///< kitti: also boxes of confirmed tracks not detected in the frame
+    bool backfill = true;        ///< kitti: a confirmed track's output starts at its first detection
     std::string out;
 };
 int run_track(const TrackOptions& options);

@@ -161,7 +161,7 @@ void add_track(CLI::App& app, TrackOptions& o, EvalTrackingOptions& e) {
     sub->add_option("--format", o.format, "makeway or kitti")->check(CLI::IsMember({"makeway", "kitti"}))->capture_default_str();
     sub->add_option("--poses", o.poses, "TUM file of T_world_sensor, one per frame (makeway format)");
     sub->add_option("--config", o.config, "YAML configuration: its tracking section (default: built-in; for kitti a "
-                                          "traffic preset: 80 m range, drop out of range, constant velocity)");
+                                          "traffic preset per type: 80 m range, drop out of range, constant velocity, README \"Tracking on KITTI\")");
     sub->add_option("--rate", o.rate_hz, "Frame rate of KITTI sequences [Hz]")->check(CLI::Range(0.1, 1000.0))->capture_default_str();
     sub->add_option("--range", o.range_m, "Sensor range [m]: farther objects are neither matched nor judged")->check(CLI::Range(0.1, 10000.0));
     sub->add_option("--classes", o.classes, "Classes to track, comma separated (kitti: any type names, default every "
@@ -177,6 +177,15 @@ void add_track(CLI::App& app, TrackOptions& o, EvalTrackingOptions& e) {
     sub->add_option("--fov-deg", o.fov_deg, "kitti: write only objects within this horizontal field of view of the "
                                             "sensor's x axis (KITTI's camera: 81.4)")
         ->check(CLI::Range(0.0, 360.0));
+    sub->add_option("--output-score", o.output_score, "kitti: the score written per box: detection (the matched "
+                                                      "detection's, as given), existence (the track's fused "
+                                                      "existence) or track-mean (the mean of its detections' so far)")
+        ->check(CLI::IsMember({"detection", "existence", "track-mean"}))
+        ->capture_default_str();
+    sub->add_flag("--coasting", o.coasting, "kitti: also write confirmed tracks in frames without a detection "
+                                            "(their predicted boxes); off: only boxes updated by a detection");
+    sub->add_flag("!--no-backfill", o.backfill, "kitti: a track's output starts at the frame that confirms it (default: "
+                                               "at its first detection, the frames that led to it written too, as AB3DMOT)");
     sub->add_option("--out", o.out, "Output folder: per-frame JSON objects, or one KITTI file per sequence; and "
                                     "summary.json (frames per second, settings)")
         ->required();

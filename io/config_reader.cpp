@@ -262,6 +262,15 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
             s.read(displacement.c_str(), m.min_displacement_m);
             s.read(window.c_str(), m.motion_window_s);
         }
+        s.read("accel_sigma_mps2", t.kalman.accel_sigma_mps2);
+        s.read("position_sigma_mps", t.kalman.position_sigma_mps);
+        s.read("yaw_rate_sigma_radps", t.kalman.yaw_rate_sigma_radps);
+        s.read("size_sigma_mps", t.kalman.size_sigma_mps);
+        s.read("meas_position_sigma_m", t.kalman.meas_position_sigma_m);
+        s.read("meas_yaw_sigma_rad", t.kalman.meas_yaw_sigma_rad);
+        s.read("meas_size_sigma_m", t.kalman.meas_size_sigma_m);
+        s.read("initial_velocity_sigma_mps", t.kalman.initial_velocity_sigma_mps);
+        s.read("heading_votes_to_turn", t.kalman.heading_votes_to_turn);
         s.read("min_giou", t.min_giou);
         s.read("sensor_range_m", t.sensor_range_m);
         s.read("association_gate_m", t.association_gate_m);

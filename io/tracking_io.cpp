@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cctype>
 #include <cmath>
 
 #include "io/error.hpp"
@@ -33,6 +34,40 @@ void append(std::string& out, double v) {
     out.append(buf, r.ptr);
 }
 
+// AB3DMOT's detection files (its data/KITTI/detection/): comma-separated
+//   frame, type (1 Pedestrian, 2 Car, 3 Cyclist), x1, y1, x2, y2, score, h, w, l, x, y, z, rotation_y, alpha
+// with the score a raw logit. Read into the same records as KITTI's own text.
+KittiTrackingRecord parse_ab3dmot_line(std::string_view line, const std::string& where) {
+    std::vector<std::string_view> f;
+    for (std::size_t start = 0;;) {
+        const std::size_t comma = line.find(',', start);
+        std::string_view w = line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+        while (!w.empty() && std::isspace(static_cast<unsigned char>(w.front()))) w.remove_prefix(1);
+        while (!w.empty() && std::isspace(static_cast<unsigned char>(w.back()))) w.remove_suffix(1);
+        f.push_back(w);
+        if (comma == std::string_view::npos) break;
+        start = comma + 1;
+    }
+    if (f.size() != 15) throw FormatError(where + "expected 15 comma-separated fields (AB3DMOT detections), found " + std::to_string(f.size()));
+    KittiTrackingRecord r;
+    r.frame = integer(f[0], where);
+    if (r.frame < 0) throw FormatError(where + "negative frame");
+    const int type = integer(f[1], where);
+    static constexpr const char* kTypes[] = {"Pedestrian", "Car", "Cyclist"};
+    if (type < 1 || type > 3) throw FormatError(where + "type " + std::to_string(type) + " is not 1 (Pedestrian), 2 (Car) or 3 (Cyclist)");
+    r.type = kTypes[type - 1];
+    std::array<double, 13> v{};
+    for (std::size_t i = 0; i < 13; ++i) v[i] = number(f[2 + i], where);
+    r.bbox_px = {v[0], v[1], v[2], v[3]};
+    r.score = v[4];
+    r.h_m = v[5], r.w_m = v[6], r.l_m = v[7];
+    r.location_cam_m = {v[8], v[9], v[10]};
+    r.rotation_y_rad = v[11];
+    r.alpha = v[12];
+    if (!(r.h_m > 0 && r.w_m > 0 && r.l_m > 0)) throw FormatError(where + "box dimensions must be > 0");
+    return r;
+}
+
 }  // namespace
 
 std::vector<KittiTrackingRecord> parse_kitti_tracking(std::string_view text) {
@@ -43,6 +78,10 @@ std::vector<KittiTrackingRecord> parse_kitti_tracking(std::string_view text) {
         const auto w = split_words(*line);
         if (w.empty() || w[0].front() == '#') continue;
         const std::string where = "line " + std::to_string(line_no) + ": ";
+        if (line->find(',') != std::string_view::npos) {
+            out.push_back(parse_ab3dmot_line(*line, where));
+            continue;
+        }
         // frame [id] type + 14 numbers [+ score]; a track id is there when the second word is a number.
         const bool has_id = w.size() >= 2 && (std::isdigit(static_cast<unsigned char>(w[1].front())) || w[1].front() == '-');
         const std::size_t base = has_id ? 2 : 1;  // index of the type

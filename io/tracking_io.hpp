@@ -34,6 +34,8 @@ struct KittiTrackingRecord {
     bool is_dont_care() const;   ///< a DontCare region (2D box only): ignored by evaluations
 };
 
+/// KITTI tracking text (labels, or results with a score), or AB3DMOT's comma-separated detection
+/// files (frame, type 1-3, 2D box, score, h w l, x y z, rotation_y, alpha), line by line.
 std::vector<KittiTrackingRecord> parse_kitti_tracking(std::string_view text);
 /// Throws FileError "PATH: line N: problem". An empty file is a sequence without objects.
 std::vector<KittiTrackingRecord> read_kitti_tracking(const std::filesystem::path& path);

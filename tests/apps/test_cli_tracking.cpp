@@ -78,9 +78,19 @@ TEST(Cli, TrackAndEvalTrackingInBothFormats) {
                         " --out " + (dir / "mk.json").string(), dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const io::Json mk = io::read_json(dir / "mk.json");
-    // Frame 0 missed again: two chairs of 40 boxes, one table of 20.
-    EXPECT_NEAR(mk["classes"]["chair"]["all_boxes"]["mota"].get<double>(), 1.0 - 2.0 / 40.0, 1e-9);
-    EXPECT_NEAR(mk["classes"]["table"]["all_boxes"]["mota"].get<double>(), 1.0 - 1.0 / 20.0, 1e-9);
+    // KITTI output starts at a confirmed track's first detection (as AB3DMOT's): frame 0 is there.
+    EXPECT_NEAR(mk["classes"]["chair"]["all_boxes"]["mota"].get<double>(), 1.0, 1e-9);
+    EXPECT_NEAR(mk["classes"]["table"]["all_boxes"]["mota"].get<double>(), 1.0, 1e-9);
+    // --no-backfill: from the frame that confirms it; frame 0 missed: two chairs of 40 boxes, one table of 20.
+    r = run_makeway("track --format kitti --no-backfill --detections " + (dir / "kitti_dets").string() + " --out " +
+                        (dir / "kitti_nb").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = run_makeway("eval-tracking --format kitti --gt " + (dir / "kitti_gt").string() + " --tracks " + (dir / "kitti_nb").string() +
+                        " --out " + (dir / "mk_nb.json").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const io::Json mk_nb = io::read_json(dir / "mk_nb.json");
+    EXPECT_NEAR(mk_nb["classes"]["chair"]["all_boxes"]["mota"].get<double>(), 1.0 - 2.0 / 40.0, 1e-9);
+    EXPECT_NEAR(mk_nb["classes"]["table"]["all_boxes"]["mota"].get<double>(), 1.0 - 1.0 / 20.0, 1e-9);
 
     // Bad input: one line naming the file, exit 2, nothing written.
     std::filesystem::copy(dir / "dets", dir / "dets_bad");
@@ -144,24 +154,39 @@ TEST(Cli, TrackAndEvaluateKittiAsPublishedDataArrive) {
     EXPECT_TRUE(std::filesystem::exists(dir / "tracks" / "0001.txt"));
     EXPECT_TRUE(io::read_kitti_tracking(dir / "tracks" / "0001.txt").empty());
     std::set<std::string> types;
-    int far_last_frame = -1;
+    std::set<double> scores;
+    // Car 2's first and last frame out: boxes only where a detection updated them (no coasting).
+    const auto far_frames = [](const std::vector<io::KittiTrackingRecord>& records) {
+        int first = 1000, last = -1;
+        for (const auto& t : records) {
+            if (t.location_cam_m.x() < -5.0 && t.location_cam_m.x() > -7.0) first = std::min(first, t.frame), last = std::max(last, t.frame);
+        }
+        return std::pair{first, last};
+    };
     for (const auto& t : tracks) {
         types.insert(t.type);
         EXPECT_GE(t.bbox_px[0], 0.0);  // the 2D box of its detection, not -1
-        EXPECT_GT(*t.score, 0.0);
-        EXPECT_LE(*t.score, 1.0);
+        scores.insert(*t.score);        // the matched detection's, as given (--output-score detection)
         EXPECT_LT(t.location_cam_m.z(), 80.0);
-        if (t.location_cam_m.x() < -5.0 && t.location_cam_m.x() > -7.0) far_last_frame = std::max(far_last_frame, t.frame);
     }
     EXPECT_EQ(types, (std::set<std::string>{"Car", "Cyclist"}));
-    EXPECT_GE(far_last_frame, 9);
-    // Gone within max_misses (3) unexplained misses of its last detection at frame 9 (the van
-    // hides it for a frame on the way, which is not held against it).
-    EXPECT_LE(far_last_frame, 13);
+    EXPECT_EQ(scores, (std::set<double>{4.2, 2.5, 1.1, -0.5, 0.8}));
+    EXPECT_EQ(far_frames(tracks), (std::pair{0, 9}));
+    // --coasting: confirmed tracks also in frames without a detection, gone within max_misses (3)
+    // unexplained misses of the last detection at frame 9 (the van hides it for a frame on the way,
+    // which is not held against it); --output-score existence: the fused existence, in [0, 1].
+    r = run_makeway("track --format kitti --coasting --output-score existence --detections " + (dir / "dets").string() + " --out " +
+                        (dir / "coast").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto coasting = io::read_kitti_tracking(dir / "coast" / "0000.txt");
+    EXPECT_GE(far_frames(coasting).second, 10);
+    EXPECT_LE(far_frames(coasting).second, 13);
+    for (const auto& t : coasting) EXPECT_TRUE(*t.score > 0.0 && *t.score <= 1.0) << *t.score;
     const io::Json summary = io::read_json(dir / "tracks" / "summary.json");
     EXPECT_EQ(summary["frames"].get<int>(), 30);
     EXPECT_GT(summary["frames_per_second"].get<double>(), 0.0);
-    EXPECT_EQ(summary["tracker"]["score_transform"].get<std::string>(), "sigmoid");
+    EXPECT_EQ(summary["tracker"]["Car"]["score_transform"].get<std::string>(), "sigmoid");  // the settings per type
+    EXPECT_EQ(summary["tracker"]["Cyclist"]["min_hits"].get<int>(), 3);
     EXPECT_NE(r.out.find("frames per second"), std::string::npos);
 
     // --classes and --range select what is tracked.
@@ -179,7 +204,7 @@ TEST(Cli, TrackAndEvaluateKittiAsPublishedDataArrive) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const io::Json m = io::read_json(dir / "m.json");
     const io::Json& car = m["classes"]["car"]["all_boxes"];
-    EXPECT_EQ(car["fp"].get<int>(), 4) << car.dump();  // car 2's track coasting for frames 10-13, nothing else
+    EXPECT_EQ(car["fp"].get<int>(), 0) << car.dump();  // the van's and the DontCare area's tracks ignored
     EXPECT_EQ(car["id_switches"].get<int>(), 0);
     EXPECT_GT(car["ignored_tracker"].get<int>(), 0);
     EXPECT_GT(car["ignored_tp"].get<int>(), 0);  // the van

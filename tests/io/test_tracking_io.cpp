@@ -68,6 +68,36 @@ TEST(KittiTracking, MalformedLinesNameTheFileAndLine) {
     EXPECT_FALSE(class_of_kitti_type("Car").has_value());
 }
 
+// AB3DMOT's detection files (how PointRCNN's published detections arrive): comma-separated, the
+// type as a number, the score a raw logit before h w l.
+TEST(KittiTracking, ReadsAb3dmotDetectionFiles) {
+    const auto dir = testing_util::fresh_dir("kitti_ab3dmot");
+    std::ofstream(dir / "0000.txt") << "0,2,296.7,161.8,455.2,292.5,9.4146,2.00,1.82,4.43,-4.55,1.71,13.41,-2.11,-1.79\n"
+                                       "3,1,10,20,30,60,-0.25,1.7,0.6,0.8,1.0,1.6,8.0,0.1,0.0\n";
+    const auto d = read_kitti_tracking(dir / "0000.txt");
+    ASSERT_EQ(d.size(), 2u);
+    EXPECT_EQ(d[0].type, "Car");
+    EXPECT_EQ(d[0].track_id, -1);
+    EXPECT_DOUBLE_EQ(*d[0].score, 9.4146);
+    EXPECT_DOUBLE_EQ(d[0].l_m, 4.43);
+    EXPECT_DOUBLE_EQ(d[0].location_cam_m.z(), 13.41);
+    EXPECT_DOUBLE_EQ(d[0].rotation_y_rad, -2.11);
+    EXPECT_DOUBLE_EQ(d[0].alpha, -1.79);
+    EXPECT_DOUBLE_EQ(d[0].bbox_px[3], 292.5);
+    EXPECT_EQ(d[1].frame, 3);
+    EXPECT_EQ(d[1].type, "Pedestrian");
+    EXPECT_DOUBLE_EQ(*d[1].score, -0.25);
+    std::ofstream(dir / "bad.txt") << "0,4,1,2,3,4,0.5,1,1,1,0,0,5,0,0\n0,2,1,2\n";
+    try {
+        read_kitti_tracking(dir / "bad.txt");
+        ADD_FAILURE();
+    } catch (const FileError& e) {
+        EXPECT_NE(std::string(e.what()).find("bad.txt: line 1: type 4 is not 1 (Pedestrian), 2 (Car) or 3 (Cyclist)"), std::string::npos) << e.what();
+    }
+    std::ofstream(dir / "short.txt") << "0,2,1,2\n";
+    EXPECT_THROW(read_kitti_tracking(dir / "short.txt"), FileError);
+}
+
 TEST(DetectionFrames, RoundTripAndRejectBadFields) {
     const auto dir = testing_util::fresh_dir("det_frames");
     DetectionFrame f;

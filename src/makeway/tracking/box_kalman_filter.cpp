@@ -17,6 +17,7 @@ std::vector<std::string> KalmanParams::validate() const {
             break;
         }
     }
+    if (!(position_sigma_mps >= 0.0 && position_sigma_mps < 100.0)) p.push_back("Kalman position_sigma_mps must be in [0, 100)");
     if (heading_votes_to_turn < 1) p.push_back("heading_votes_to_turn must be >= 1");
     return p;
 }
@@ -44,6 +45,8 @@ void BoxKalmanFilter::predict(double dt) {
         P_(7 + a, a) += qa * dt2 * dt / 2;
         P_(7 + a, 7 + a) += qa * dt2;
     }
+    const double qp = params_.position_sigma_mps * params_.position_sigma_mps * dt;  // position random walk
+    for (int a = 0; a < 3; ++a) P_(a, a) += qp;
     P_(3, 3) += params_.yaw_rate_sigma_radps * params_.yaw_rate_sigma_radps * dt2;
     for (int a = 4; a < 7; ++a) P_(a, a) += params_.size_sigma_mps * params_.size_sigma_mps * dt2;
 }

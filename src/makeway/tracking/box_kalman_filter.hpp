@@ -18,14 +18,20 @@
 
 namespace makeway::tracking {
 
+/// The motion model's noise. The defaults are furniture's (still most of the time, pushed at a
+/// walk, boxes from a few centimetres of noise); traffic presets are in `track`'s KITTI mode.
 struct KalmanParams {
     double accel_sigma_mps2 = 0.5;     ///< white-noise acceleration (x, y, z)
+    /// Position random walk [m/sqrt(s)]: variance sigma^2 dt added per prediction. 0 for furniture;
+    /// traffic boxes jump between frames (a detector's box on a car 20 m out) by more than any
+    /// acceleration explains, and a filter that cannot follow them lags.
+    double position_sigma_mps = 0.0;
     double yaw_rate_sigma_radps = 0.5; ///< yaw random walk
     double size_sigma_mps = 0.02;      ///< size random walk [m/s]
     double meas_position_sigma_m = 0.05;
     double meas_yaw_sigma_rad = 0.1;
     double meas_size_sigma_m = 0.05;
-    double initial_velocity_sigma_mps = 0.2;
+    double initial_velocity_sigma_mps = 0.2;  ///< a new track's velocity: 0 +- this (traffic: unknown, metres per frame)
     int heading_votes_to_turn = 3;     ///< net votes for another quarter turn that turn the track
     std::vector<std::string> validate() const;
 };

@@ -1,7 +1,9 @@
 #include "makeway/tracking/object_map.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 
@@ -330,6 +332,35 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
     }
     out.objects_world = objects();
     return out;
+}
+
+TrackerParams traffic_preset(std::string_view type) {
+    // A velocity unknown at birth (30 m/s) and 5 m/s^2 of acceleration, so that a box follows a
+    // car's 1 m per frame after two detections (the furniture filter's 0.2 m/s and 0.5 m/s^2 left
+    // boxes 0.25 m behind in the median); no removal by existence (low-scoring tracks make the far
+    // end of the recall curve) and no merging (pedestrians walk in pairs).
+    TrackerParams p;
+    p.sensor_range_m = 80.0;
+    p.out_of_range = OutOfRange::kDrop;
+    p.motion.fill({std::numeric_limits<double>::infinity(), 60.0, false, 0.0, 1.0});
+    p.max_floor_gap_m = std::numeric_limits<double>::infinity();
+    p.kalman.initial_velocity_sigma_mps = 30.0;
+    p.kalman.accel_sigma_mps2 = 5.0;
+    p.min_existence = 0.0;
+    p.merge_iou = 1.0;
+    p.min_giou = -0.1;
+    p.min_hits = 2;
+    p.max_misses = 3;
+    std::string t(type);
+    std::transform(t.begin(), t.end(), t.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    if (t == "pedestrian" || t == "cyclist") {
+        // Small boxes overlap little from frame to frame (GIoU -0.4), are missed more often (one
+        // more frame of coasting), and their false positives are isolated boxes (three hits).
+        p.min_giou = -0.4;
+        p.min_hits = 3;
+        p.max_misses = 4;
+    }
+    return p;
 }
 
 std::vector<ObjectEstimate> ObjectMap::objects() const {

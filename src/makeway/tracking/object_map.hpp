@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
@@ -94,6 +95,12 @@ struct TrackerParams {
     double motion_gate_sigma = 3.0;
     std::vector<std::string> validate() const;
 };
+
+/// Settings for traffic seen from a moving car without ego-motion (KITTI's camera frame): parked
+/// cars move at the car's speed, nothing stands on a known floor, objects leave for good. Per KITTI
+/// type ("Car", "Pedestrian", "Cyclist", any case; others get Car's), chosen on the KITTI tracking
+/// training sequences with PointRCNN's detections (README, "Tracking on KITTI").
+TrackerParams traffic_preset(std::string_view type);
 
 /// One tracked object.
 struct Track {
