@@ -19,12 +19,12 @@
 namespace makeway::tracking {
 
 /// The motion model's noise. The defaults are furniture's (still most of the time, pushed at a
-/// walk, boxes from a few centimetres of noise); traffic presets are in `track`'s KITTI mode.
+/// walk, boxes from a few centimetres of noise); traffic's are in `traffic_preset` (object_map.hpp).
 struct KalmanParams {
     double accel_sigma_mps2 = 0.5;     ///< white-noise acceleration (x, y, z)
-    /// Position random walk [m/sqrt(s)]: variance sigma^2 dt added per prediction. 0 for furniture;
-    /// traffic boxes jump between frames (a detector's box on a car 20 m out) by more than any
-    /// acceleration explains, and a filter that cannot follow them lags.
+    /// Position random walk [m/sqrt(s)]: variance sigma^2 dt added per prediction, for boxes that
+    /// jump between frames by more than any acceleration explains. 0 by default and in the traffic
+    /// presets (1 m/sqrt(s) scored no better on KITTI's training sequences: README).
     double position_sigma_mps = 0.0;
     double yaw_rate_sigma_radps = 0.5; ///< yaw random walk
     double size_sigma_mps = 0.02;      ///< size random walk [m/s]
