@@ -394,6 +394,7 @@ int run_eval_tracking_kitti(const EvalTrackingOptions& o) {
         p.cls = c;
         p.min_iou_3d = o.min_iou;
         p.fov_deg = o.fov_deg;
+        p.devkit_rounding = o.devkit_rounding;
         const eval::KittiEvalResult r = eval::evaluate_kitti(gt, tracks, p);
         const eval::KittiClear& b = r.best;
         std::cout << std::fixed << std::setprecision(4) << "| " << c << " | " << r.samota << " | " << r.amota << " | " << r.amotp << " | "
@@ -406,10 +407,11 @@ int run_eval_tracking_kitti(const EvalTrackingOptions& o) {
                            {"tracker_boxes", r.tracker_boxes}};
     }
     std::cout << "MOTA..FN at the score threshold of best MOTA; 3D IoU >= " << o.min_iou
-              << (o.fov_deg > 0 ? ", field of view " + std::to_string(o.fov_deg).substr(0, 5) + " deg" : std::string()) << "\n";
+              << (o.fov_deg > 0 ? ", field of view " + std::to_string(o.fov_deg).substr(0, 5) + " deg" : std::string())
+              << (o.devkit_rounding ? "; AB3DMOT's evaluate.py's re-averaged scores (--devkit-rounding)" : "") << "\n";
     if (!o.out.empty()) {
         j["protocol"] = {{"min_iou_3d", o.min_iou}, {"fov_deg", o.fov_deg}, {"recall_steps", 40}, {"max_truncation", 0},
-                         {"max_occlusion", 2}, {"min_height_px", 25}};
+                         {"max_occlusion", 2}, {"min_height_px", 25}, {"devkit_rounding", o.devkit_rounding}};
         io::write_json(o.out, j);
     }
     return 0;

@@ -168,6 +168,7 @@ struct EvalTrackingOptions {
     std::vector<std::string> classes;  ///< kitti: classes evaluated (default: those in the tracks)
     double min_iou = 0.25;             ///< kitti: 3D IoU of a match
     double fov_deg = 0.0;              ///< kitti: > 0 scores only this horizontal field of view
+    bool devkit_rounding = false;      ///< kitti: AB3DMOT's script's re-averaged scores, to the bit
     std::string out;             ///< optional JSON
 };
 int run_eval_tracking(const EvalTrackingOptions& options);

@@ -199,6 +199,9 @@ void add_track(CLI::App& app, TrackOptions& o, EvalTrackingOptions& e) {
     ev->add_option("--iou", e.min_iou, "kitti: 3D IoU a match needs")->check(CLI::Range(0.01, 1.0))->capture_default_str();
     ev->add_option("--fov-deg", e.fov_deg, "kitti: score only boxes within this horizontal field of view (0: all)")
         ->check(CLI::Range(0.0, 360.0));
+    ev->add_flag("--devkit-rounding", e.devkit_rounding, "kitti: AB3DMOT's evaluate.py's score handling, to the bit: it averages "
+                                                        "each track's already averaged scores again at every threshold (a "
+                                                        "track can drop out an ulp under its own score); off: one mean per track");
     ev->add_option("--out", e.out, "Also write the metrics as JSON");
 }
 

@@ -210,6 +210,14 @@ TEST(Cli, TrackAndEvaluateKittiAsPublishedDataArrive) {
     EXPECT_GT(car["ignored_tp"].get<int>(), 0);  // the van
     EXPECT_GT(m["classes"]["car"]["samota"].get<double>(), 0.8);
     EXPECT_TRUE(m["classes"].contains("cyclist"));
+    // The official script's score handling: said in the output and the JSON.
+    r = run_makeway("eval-tracking --format kitti --devkit-rounding --gt " + (dir / "gt").string() + " --tracks " +
+                        (dir / "tracks").string() + " --out " + (dir / "md.json").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("--devkit-rounding"), std::string::npos) << r.out;
+    const io::Json md = io::read_json(dir / "md.json");
+    EXPECT_TRUE(md["protocol"]["devkit_rounding"].get<bool>());
+    EXPECT_EQ(md["classes"]["car"]["all_boxes"]["tp"].get<int>(), car["tp"].get<int>());  // the first pass keeps every box
 }
 
 }  // namespace

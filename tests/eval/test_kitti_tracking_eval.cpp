@@ -122,6 +122,45 @@ TEST(KittiEval, TheFieldOfViewDropsBoxesBehindTheCamera) {
     EXPECT_DOUBLE_EQ(m.mota, 1.0);
 }
 
+// AB3DMOT's evaluate.py writes each track's mean score over its boxes and, at every later
+// threshold, averages those means again. One car over 7 frames, one track scored 0.85 in each:
+// its mean is 0.8499999999999999 (seven 0.85 summed in order, over 7), and the mean of seven of
+// those is one ulp lower. Every threshold of the sweep is that first mean, so the script drops the
+// track at each of them (sAMOTA 0); the clean arithmetic keeps it.
+TEST(KittiEval, DevkitRoundingDropsATrackWhoseReaveragedScoreFallsUnderItsOwnMean) {
+    KittiSequence gt, tr;
+    for (int k = 0; k < 7; ++k) {
+        gt.push_back({car(1, 10, 0)});
+        tr.push_back({car(9, 10, 0, {100, 100, 200, 200}, 0.85)});
+    }
+    double first = 0.0, again = 0.0;
+    for (int k = 0; k < 7; ++k) first += 0.85;
+    first /= 7;
+    for (int k = 0; k < 7; ++k) again += first;
+    again /= 7;
+    ASSERT_LT(again, first);  // the premise: the floating point the script does
+    KittiEvalParams clean, devkit;
+    devkit.devkit_rounding = true;
+    const KittiEvalResult c = evaluate_kitti({gt}, {tr}, clean), d = evaluate_kitti({gt}, {tr}, devkit);
+    ASSERT_FALSE(c.curve.empty());
+    ASSERT_EQ(c.curve.size(), d.curve.size());
+    for (std::size_t i = 0; i < c.curve.size(); ++i) {
+        EXPECT_EQ(c.curve[i].threshold, first);
+        EXPECT_EQ(d.curve[i].threshold, first);
+        EXPECT_EQ(c.curve[i].tp, 7u);
+        EXPECT_EQ(d.curve[i].tp, 0u);  // dropped: its score is now `again` < threshold
+        EXPECT_EQ(d.curve[i].fn, 7u);
+    }
+    // Seven boxes reach 6 of the 40 recall steps past zero, each at sMOTA 1 when kept, 0 when not.
+    EXPECT_EQ(c.curve.size(), 6u);
+    EXPECT_NEAR(c.samota, 6.0 / 40.0, 1e-12);
+    EXPECT_NEAR(d.samota, 0.0, 1e-12);
+    EXPECT_EQ(d.all.tp, 7u);  // the first pass (no threshold) keeps everything in both
+    // A score that survives re-averaging (0.5: sums and divisions exact) scores the same both ways.
+    for (auto& f : tr) f[0].score = 0.5;
+    EXPECT_DOUBLE_EQ(evaluate_kitti({gt}, {tr}, devkit).samota, evaluate_kitti({gt}, {tr}, clean).samota);
+}
+
 TEST(KittiEval, EmptySequencesAreValid) {
     const KittiEvalResult r = evaluate_kitti({KittiSequence{}}, {KittiSequence{}}, {});
     EXPECT_EQ(r.all.gt, 0u);

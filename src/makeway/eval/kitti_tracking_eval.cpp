@@ -33,11 +33,14 @@ struct Loaded {
 
 // The class, its neighbour and (ground truth) the DontCare regions; the field of view applied;
 // tracker boxes below the threshold (on their track's mean score) dropped, scores set to the mean.
-Loaded load(const std::vector<KittiSequence>& seqs, const KittiEvalParams& p, bool tracker, double threshold) {
+// With `track_scores`, a tracker box's score is its track's entry there instead of the mean.
+Loaded load(const std::vector<KittiSequence>& seqs, const KittiEvalParams& p, bool tracker, double threshold,
+            const std::vector<std::unordered_map<int, double>>* track_scores = nullptr) {
     const std::string neighbour = p.ignore_neighbours ? neighbour_of(p.cls) : std::string();
     const double half_fov = deg_to_rad(p.fov_deg) / 2;
     Loaded out;
-    for (const KittiSequence& seq : seqs) {
+    for (std::size_t si = 0; si < seqs.size(); ++si) {
+        const KittiSequence& seq = seqs[si];
         std::unordered_map<int, std::pair<double, int>> score_sum;  // track id -> (sum, count)
         for (const KittiFrame& f : seq) {
             for (const KittiBox& b : f) {
@@ -60,7 +63,7 @@ Loaded load(const std::vector<KittiSequence>& seqs, const KittiEvalParams& p, bo
                 }
                 if (tracker) {
                     const auto& s = score_sum[b.track_id];
-                    b.score = s.first / s.second;
+                    b.score = track_scores ? track_scores->at(si).at(b.track_id) : s.first / s.second;
                     if (b.score < threshold) continue;
                 }
                 boxes[k].push_back(b);
@@ -123,6 +126,45 @@ void score_trajectories(const std::vector<std::map<int, Trajectory>>& seqs, Kitt
     }
 }
 
+// AB3DMOT's evaluate.py, per sequence: each track's boxes of the class (and its neighbour) in frame
+// order, their scores summed one after the other and divided by their count (Python's sum / len).
+struct DevkitScores {
+    std::vector<std::unordered_map<int, double>> score;     // the current score per track
+    std::vector<std::unordered_map<int, std::size_t>> count;  // its boxes
+};
+
+DevkitScores devkit_means(const std::vector<KittiSequence>& seqs, const KittiEvalParams& p) {
+    const std::string neighbour = p.ignore_neighbours ? neighbour_of(p.cls) : std::string();
+    DevkitScores d;
+    for (const KittiSequence& seq : seqs) {
+        std::unordered_map<int, double> sum;
+        std::unordered_map<int, std::size_t> n;
+        for (const KittiFrame& f : seq) {
+            for (const KittiBox& b : f) {
+                if (b.track_id < 0 || (b.type != p.cls && (neighbour.empty() || b.type != neighbour))) continue;
+                sum[b.track_id] += b.score;
+                ++n[b.track_id];
+            }
+        }
+        for (auto& [id, s] : sum) s /= static_cast<double>(n[id]);
+        d.score.push_back(std::move(sum));
+        d.count.push_back(std::move(n));
+    }
+    return d;
+}
+
+// The script's next pass: every box already carries its track's score, which is averaged again.
+void devkit_reaverage(DevkitScores& d) {
+    for (std::size_t s = 0; s < d.score.size(); ++s) {
+        for (auto& [id, v] : d.score[s]) {
+            const std::size_t n = d.count[s].at(id);
+            double sum = 0.0;
+            for (std::size_t i = 0; i < n; ++i) sum += v;
+            v = sum / static_cast<double>(n);
+        }
+    }
+}
+
 }  // namespace
 
 std::vector<std::pair<double, double>> kitti_thresholds(std::vector<double> scores, std::size_t num_gt, int recall_steps) {
@@ -144,9 +186,10 @@ std::vector<std::pair<double, double>> kitti_thresholds(std::vector<double> scor
 }
 
 KittiClear evaluate_kitti_at(const std::vector<KittiSequence>& gt_in, const std::vector<KittiSequence>& tr_in,
-                             const KittiEvalParams& p, double threshold, double recall_target, std::vector<double>* tp_scores) {
+                             const KittiEvalParams& p, double threshold, double recall_target, std::vector<double>* tp_scores,
+                             const std::vector<std::unordered_map<int, double>>* track_scores) {
     const Loaded gt = load(gt_in, p, false, -std::numeric_limits<double>::infinity());
-    const Loaded tr = load(tr_in, p, true, threshold);
+    const Loaded tr = load(tr_in, p, true, threshold, track_scores);
     const std::string neighbour = p.ignore_neighbours ? neighbour_of(p.cls) : std::string();
     KittiClear m;
     m.threshold = threshold;
@@ -240,18 +283,27 @@ KittiClear evaluate_kitti_at(const std::vector<KittiSequence>& gt_in, const std:
 KittiEvalResult evaluate_kitti(const std::vector<KittiSequence>& gt, const std::vector<KittiSequence>& tracks, const KittiEvalParams& p) {
     KittiEvalResult r;
     std::vector<double> scores;
-    r.all = evaluate_kitti_at(gt, tracks, p, -std::numeric_limits<double>::infinity(), 1.0, &scores);
+    DevkitScores devkit;
+    if (p.devkit_rounding) devkit = devkit_means(tracks, p);
+    const auto* track_scores = p.devkit_rounding ? &devkit.score : nullptr;
+    r.all = evaluate_kitti_at(gt, tracks, p, -std::numeric_limits<double>::infinity(), 1.0, &scores, track_scores);
     r.best = r.all;
     for (const auto& seq : gt) for (const auto& f : seq) r.gt_boxes += static_cast<std::size_t>(std::count_if(f.begin(), f.end(), [&](const KittiBox& b) { return b.type == p.cls; }));
     for (const auto& seq : tracks) for (const auto& f : seq) r.tracker_boxes += static_cast<std::size_t>(std::count_if(f.begin(), f.end(), [&](const KittiBox& b) { return b.type == p.cls; }));
     double best_mota = 0.0;  // as the devkit: the all-boxes result unless a threshold beats MOTA 0
+    double best_threshold = -std::numeric_limits<double>::infinity();
     for (const auto& [threshold, recall] : kitti_thresholds(scores, r.all.tp + r.all.fn, p.recall_steps)) {
-        const KittiClear m = evaluate_kitti_at(gt, tracks, p, threshold, recall);
+        if (p.devkit_rounding) devkit_reaverage(devkit);
+        const KittiClear m = evaluate_kitti_at(gt, tracks, p, threshold, recall, nullptr, track_scores);
         r.curve.push_back(m);
         r.samota += m.smota;
         r.amota += m.mota;
         r.amotp += m.motp;
-        if (m.mota > best_mota) best_mota = m.mota, r.best = m;
+        if (m.mota > best_mota) best_mota = m.mota, r.best = m, best_threshold = threshold;
+    }
+    if (p.devkit_rounding) {  // the script's best row: one more pass at the best threshold (recall 1)
+        devkit_reaverage(devkit);
+        r.best = evaluate_kitti_at(gt, tracks, p, best_threshold, 1.0, nullptr, track_scores);
     }
     r.samota /= p.recall_steps;
     r.amota /= p.recall_steps;

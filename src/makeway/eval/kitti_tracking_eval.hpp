@@ -13,6 +13,7 @@
 // horizontal angle around the sensor's x axis, not an image-plane test.
 #include <array>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "makeway/common/oriented_box.hpp"
@@ -41,6 +42,12 @@ struct KittiEvalParams {
     bool use_dont_care = true;      ///< unmatched tracker boxes mostly inside a DontCare box are ignored
     double fov_deg = 0.0;           ///< > 0: only boxes whose centre lies within +-fov/2 of the sensor's x axis
     int recall_steps = 40;          ///< sAMOTA / AMOTA / AMOTP average over this many recall steps
+    /// Reproduce the score handling of AB3DMOT's evaluate.py to the last bit: it overwrites every box's score with its
+    /// track's mean and, at each later threshold, averages those means again (sum of n equal values
+    /// over n, in floating point), so a track whose re-averaged score lands an ulp under a threshold
+    /// equal to its own first mean is dropped there; its best-MOTA row is one more such pass. Off:
+    /// each threshold compares the track's one mean (the clean arithmetic).
+    bool devkit_rounding = false;
 };
 
 /// CLEAR MOT at one score threshold, with the devkit's counting: tp includes ignored true
@@ -67,9 +74,11 @@ struct KittiEvalResult {
 std::vector<std::pair<double, double>> kitti_thresholds(std::vector<double> tp_scores, std::size_t num_gt, int recall_steps);
 
 /// `gt` and `tracks` hold the same sequences in the same order (frames may differ in count).
+/// `track_scores` (per sequence, track id -> score): the tracks' scores to use instead of their means.
 KittiClear evaluate_kitti_at(const std::vector<KittiSequence>& gt, const std::vector<KittiSequence>& tracks,
                              const KittiEvalParams& params, double threshold, double recall_target = 1.0,
-                             std::vector<double>* tp_scores = nullptr);
+                             std::vector<double>* tp_scores = nullptr,
+                             const std::vector<std::unordered_map<int, double>>* track_scores = nullptr);
 KittiEvalResult evaluate_kitti(const std::vector<KittiSequence>& gt, const std::vector<KittiSequence>& tracks,
                                const KittiEvalParams& params);
 
