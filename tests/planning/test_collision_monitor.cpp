@@ -232,6 +232,33 @@ TEST(CollisionMonitor, AWalkerTurningBackIsStillAMover) {
     EXPECT_LE(twice_known, 2);  // measured: 2 (dynamic_min_seen 2: off by default, README)
 }
 
+// A walker beside the robot's right side, 10 cm from it, while the robot creeps forward: the side
+// slides along the walker's returns without closing in (the zones pass it), but a walker who steps
+// sideways meets a moving body. With a personal space the robot holds.
+TEST(CollisionMonitor, PersonalSpaceHoldsTheRobotBesideAWalker) {
+    std::vector<Eigen::Vector2d> walker;
+    for (double x = -0.1; x <= 0.1 + 1e-9; x += 0.02) walker.emplace_back(x, -0.215 - 0.10);
+    const std::vector<char> is_new(walker.size(), 1);
+    const VelocityCommand creep{0.2, 0.0};
+    for (const double space : {0.0, 0.15, 0.05}) {
+        CollisionMonitorParams p = jackal();
+        p.dynamic_personal_space_m = space;
+        const MonitorResult r = CollisionMonitor(p).check(creep, creep, walker, is_new);
+        if (space > 0.10) {
+            EXPECT_EQ(r.action, MonitorAction::kStop) << space;
+            EXPECT_EQ(r.command.v_mps, 0.0);
+        } else {
+            EXPECT_NE(r.action, MonitorAction::kStop) << space;  // off, or the walker outside it
+        }
+    }
+    // The same returns standing still (not new) are an obstacle like any other: no hold.
+    CollisionMonitorParams p = jackal();
+    p.dynamic_personal_space_m = 0.15;
+    EXPECT_NE(CollisionMonitor(p).check(creep, creep, walker, std::vector<char>(walker.size(), 0)).action, MonitorAction::kStop);
+    p.dynamic_personal_space_m = -0.1;
+    EXPECT_FALSE(p.validate().empty());
+}
+
 TEST(CollisionMonitor, ALowFootSeenInOneSweepIsRemembered) {
     // A round table's foot (radius 0.28 m, 3 cm high) around a pedestal at x = 1.2 m: the lowest
     // beam (-25 deg from 0.45 m) reaches its top only 0.90-0.965 m from the sensor, so a robot

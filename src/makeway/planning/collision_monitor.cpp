@@ -68,6 +68,7 @@ std::vector<std::string> CollisionMonitorParams::validate() const {
     if (!(sensor_height_m >= 0.0 && sensor_height_m <= 5.0)) p.push_back("sensor_height_m must be in [0, 5]");
     if (!(lowest_beam_deg >= -90.0 && lowest_beam_deg <= 90.0)) p.push_back("lowest_beam_deg must be in [-90, 90]");
     if (!(blind_memory_s >= 0.0 && blind_memory_s <= 60.0)) p.push_back("blind_memory_s must be in [0, 60]");
+    if (!(dynamic_personal_space_m >= 0.0 && dynamic_personal_space_m <= 2.0)) p.push_back("dynamic_personal_space_m must be in [0, 2]");
     if (!(object_moving_mps >= 0.0 && object_moving_mps <= 10.0)) p.push_back("object_moving_mps must be in [0, 10]");
     if (!(max_range_m > 0.0 && max_range_m <= 50.0)) p.push_back("max_range_m must be in (0, 50]");
     if (!(recovery_after_s > 0.0)) p.push_back("recovery_after_s must be > 0");
@@ -161,6 +162,19 @@ MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const Velocity
     // allowed (there is nothing better to do than brake).
     const bool still = cmd.v_mps == 0.0 && cmd.w_radps == 0.0;
     if (still) return r;
+    // Personal space: a mover (a new return: a walker, a chair being pulled) this close to the
+    // body holds it, whichever way the command goes. Next to a body, any motion of the robot's
+    // surface toward it is a contact the robot caused when the walker steps in (rotating on the
+    // spot sweeps a corner; creeping forward closes a gap the walker is about to fill).
+    if (params_.dynamic_personal_space_m > 0.0) {
+        const double hx = 0.5 * params_.footprint_length_m, hy = 0.5 * params_.footprint_width_m;
+        const double r2 = params_.dynamic_personal_space_m * params_.dynamic_personal_space_m;
+        for (std::size_t i = 0; i < dynamic.size() && i < pts.size(); ++i) {
+            if (!dynamic[i]) continue;
+            const double dx = std::max(std::abs(pts[i].x()) - hx, 0.0), dy = std::max(std::abs(pts[i].y()) - hy, 0.0);
+            if (dx * dx + dy * dy < r2) return hold(MonitorAction::kStop);
+        }
+    }
     if (first_contact({current, cmd, params_.latency_s, true}, params_.stop_padding_m, pts, dynamic) >= 0.0) {
         return hold(MonitorAction::kStop);
     }

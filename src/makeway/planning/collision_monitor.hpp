@@ -45,6 +45,10 @@
 // every second until the robot would be there (latency included). So the robot stops for a
 // walker who could step into its way before it has braked, and waits while the walker is near
 // its path; a walker standing still is an obstacle like any other (its returns are not new).
+// With dynamic_personal_space_m, a new return that close to the footprint holds the robot whatever
+// the command (a robot creeping or turning beside a walker meets the walker's next step). Off by
+// default until measured on 200 scenes: on the first 25 (no robot-caused contact without it) 0.3 m
+// cost `ours` 2 successes and 0.5 m added 2 robot-caused contacts (README).
 // Returns seen in one sweep only are not remembered (the floor's noise); with low_edge_support a
 // low one is, when it is an arc of returns (a table's foot, in the lowest ring's reach about one
 // sweep). Off by default: on 200 scenes oppo won 2 runs with it and ours lost 2 (README).
@@ -98,6 +102,7 @@ struct CollisionMonitorParams {
     double dynamic_cluster_m = 0.0;     ///< returns within about this of a mover (this sweep or the last dynamic_history) move too; 0: off ...
     int dynamic_cluster_min_new = 5;    ///< ... a mover: a cell of that size with this many new returns
     double dynamic_min_height_m = 0.1;  ///< lower returns are never new (floor noise at the lowest rings' reach)
+    double dynamic_personal_space_m = 0.0;  ///< a new return this close to the footprint holds the robot (any command); 0: off (README)
     double min_scale = 0.05;            ///< an approach scale below this holds the robot (counts as a stop)
     double sensor_height_m = 0.45;      ///< the LiDAR above the floor (on the base's centre) ...
     double lowest_beam_deg = -25.0;     ///< ... and its lowest beam: what it cannot see near it is remembered ...
