@@ -42,11 +42,11 @@ struct KittiEvalParams {
     bool use_dont_care = true;      ///< unmatched tracker boxes mostly inside a DontCare box are ignored
     double fov_deg = 0.0;           ///< > 0: only boxes whose centre lies within +-fov/2 of the sensor's x axis
     int recall_steps = 40;          ///< sAMOTA / AMOTA / AMOTP average over this many recall steps
-    /// Reproduce the score handling of AB3DMOT's evaluate.py to the last bit: it overwrites every box's score with its
-    /// track's mean and, at each later threshold, averages those means again (sum of n equal values
-    /// over n, in floating point), so a track whose re-averaged score lands an ulp under a threshold
-    /// equal to its own first mean is dropped there; its best-MOTA row is one more such pass. Off:
-    /// each threshold compares the track's one mean (the clean arithmetic).
+    /// Reproduce the score handling of AB3DMOT's evaluate.py to the last bit: it overwrites every
+    /// box's score with its track's mean and, at each later threshold, averages those means again
+    /// (sum of n equal values over n, in floating point), so a track whose re-averaged score lands
+    /// an ulp under a threshold equal to its own first mean is dropped there; its best-MOTA row is
+    /// one more such pass. Off: each threshold compares the track's one mean (clean arithmetic).
     bool devkit_rounding = false;
 };
 
