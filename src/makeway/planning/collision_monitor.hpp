@@ -48,8 +48,7 @@
 // With dynamic_personal_space_m, a new return that close to the footprint holds the robot whatever
 // the command (a robot creeping or turning beside a walker meets the walker's next step). Off by
 // default: on 200 scenes 0.3 m took robot-caused person contacts from 8 to 5 over the four
-// methods, but cost `ours` 6 successes and added 6 collisions, chairs pulled into a held robot
-// (README).
+// methods, but cost `ours` 6 successes and added 6 collisions (README).
 // Returns seen in one sweep only are not remembered (the floor's noise); with low_edge_support a
 // low one is, when it is an arc of returns (a table's foot, in the lowest ring's reach about one
 // sweep). Off by default: on 200 scenes oppo won 2 runs with it and ours lost 2 (README).
