@@ -137,15 +137,14 @@ std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInp
             const tracking::TrackerFrameResult r = map.update(dets, Isometry3::Identity(), f / o.rate_hz);
             run.update_s += std::chrono::duration<double>(Clock::now() - t0).count();
             updated.insert(f);
-            for (std::size_t k = 0; k < idx.size(); ++k) {
-                if (r.track_of_detection[k] >= 0) last_record[static_cast<std::uint32_t>(r.track_of_detection[k])] = idx[k];
-            }
             // Output: boxes updated by a detection this frame (and, with --coasting, the predicted
             // boxes of confirmed tracks without one); a track's boxes from before it was confirmed
             // wait in `pending` and go out when it is (--no-backfill: they are dropped).
             std::unordered_map<std::uint32_t, std::size_t> detection_of;  // map id -> record index matched now
             for (std::size_t k = 0; k < idx.size(); ++k) {
-                if (r.track_of_detection[k] >= 0) detection_of[static_cast<std::uint32_t>(r.track_of_detection[k])] = idx[k];
+                if (r.track_of_detection[k] < 0) continue;
+                const auto id = static_cast<std::uint32_t>(r.track_of_detection[k]);
+                detection_of[id] = last_record[id] = idx[k];
             }
             std::vector<std::uint32_t> ids;
             for (const auto& [id, t] : map.tracks()) ids.push_back(id);
@@ -255,7 +254,8 @@ int run_track_kitti(const TrackOptions& o) {
     const tracking::ScoreTransform transform = resolve_score_transform(o, checked.score_transform, scores);
     std::map<std::string, tracking::TrackerParams> params_of;  // the preset per type (or the configuration)
     for (const std::string& type : types) {
-        tracking::TrackerParams p = tracker_params(o, type);
+        // A configuration replaces the presets for every type alike: read once, in `checked`.
+        tracking::TrackerParams p = o.config.empty() ? tracker_params(o, type) : checked;
         p.score_transform = transform;
         params_of.emplace(type, p);
     }

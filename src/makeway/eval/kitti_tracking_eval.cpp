@@ -26,6 +26,11 @@ double overlap_of_a(const std::array<double, 4>& a, const std::array<double, 4>&
     return w * h / ((a[2] - a[0]) * (a[3] - a[1]));
 }
 
+// The class evaluated or its neighbour (Van for Car, Person_sitting for Pedestrian).
+bool of_class(const std::string& type, const std::string& cls, const std::string& neighbour) {
+    return type == cls || (!neighbour.empty() && type == neighbour);
+}
+
 struct Loaded {
     std::vector<KittiSequence> boxes;     // the class and its neighbour
     std::vector<KittiSequence> dont_care;
@@ -55,7 +60,7 @@ Loaded load(const std::vector<KittiSequence>& seqs, const KittiEvalParams& p, bo
                     if (!tracker) dc[k].push_back(b);
                     continue;
                 }
-                if (b.type != p.cls && (neighbour.empty() || b.type != neighbour)) continue;
+                if (!of_class(b.type, p.cls, neighbour)) continue;
                 if (b.track_id < 0) continue;  // the devkit skips boxes without an id
                 if (p.fov_deg > 0.0) {
                     const Eigen::Vector3d& c = b.box.centre_m;
@@ -141,7 +146,7 @@ DevkitScores devkit_means(const std::vector<KittiSequence>& seqs, const KittiEva
         std::unordered_map<int, std::size_t> n;
         for (const KittiFrame& f : seq) {
             for (const KittiBox& b : f) {
-                if (b.track_id < 0 || (b.type != p.cls && (neighbour.empty() || b.type != neighbour))) continue;
+                if (b.track_id < 0 || !of_class(b.type, p.cls, neighbour)) continue;
                 sum[b.track_id] += b.score;
                 ++n[b.track_id];
             }

@@ -167,12 +167,9 @@ MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const Velocity
     // surface toward it is a contact the robot caused when the walker steps in (rotating on the
     // spot sweeps a corner; creeping forward closes a gap the walker is about to fill).
     if (params_.dynamic_personal_space_m > 0.0) {
-        const double hx = 0.5 * params_.footprint_length_m, hy = 0.5 * params_.footprint_width_m;
-        const double r2 = params_.dynamic_personal_space_m * params_.dynamic_personal_space_m;
+        const Eigen::Vector2d half(0.5 * params_.footprint_length_m, 0.5 * params_.footprint_width_m);
         for (std::size_t i = 0; i < dynamic.size() && i < pts.size(); ++i) {
-            if (!dynamic[i]) continue;
-            const double dx = std::max(std::abs(pts[i].x()) - hx, 0.0), dy = std::max(std::abs(pts[i].y()) - hy, 0.0);
-            if (dx * dx + dy * dy < r2) return hold(MonitorAction::kStop);
+            if (dynamic[i] && rect_signed_distance(pts[i], half) < params_.dynamic_personal_space_m) return hold(MonitorAction::kStop);
         }
     }
     if (first_contact({current, cmd, params_.latency_s, true}, params_.stop_padding_m, pts, dynamic) >= 0.0) {
