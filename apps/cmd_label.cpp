@@ -66,6 +66,7 @@ rosio::SourceOptions session_source(const fs::path& dir, const LabelOptions& o, 
     so.clouds = fs::is_directory(dir / "clouds") ? (dir / "clouds").string() : dir.string();
     for (const fs::path& odo : {dir / o.odometry_name, fs::path(so.clouds) / o.odometry_name}) {
         if (fs::is_regular_file(odo)) so.odometry = odo.string();
+        else if (fs::exists(odo)) throw io::FileError(odo, "is not a file: --odometry-name names the session's TUM odometry file");
     }
     if (!o.poses_name.empty()) {
         so.odometry.clear();

@@ -80,6 +80,7 @@ int run_run(const RunOptions& o) {
     so.rate_hz = o.rate_hz;
     so.non_finite = o.non_finite == "drop" ? io::NonFinitePolicy::kDrop : io::NonFinitePolicy::kReject;
     so.T_base_sensor = params.T_base_sensor;
+    so.skip_bad_messages = o.skip_bad_messages;
     const std::unique_ptr<rosio::SweepSource> source = rosio::open_sweep_source(so);
     const perception::Detector detector = load_detector(o.model);
     std::optional<verification::CadLibrary> library;
@@ -189,6 +190,7 @@ int run_run(const RunOptions& o) {
     std::size_t chairs = std::count_if(objects.begin(), objects.end(), [](const ObjectEstimate& x) { return x.cls == ObjectClass::kChair; });
     io::Json summary = {{"input", source->describe()},
                         {"sweeps", sweeps},
+                        {"skipped_messages", source->skipped()},
                         {"points", points},
                         {"keyframes", keyframes},
                         {"detections", detections},

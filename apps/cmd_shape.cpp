@@ -1,6 +1,7 @@
 // makeway train-shape, bench shape, complete: the shape networks (issue 19).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -238,7 +239,19 @@ int run_complete(const CompleteOptions& o) {
     else if (o.cls != "chair") throw io::FileError("--class", "'" + o.cls + "' has no shape networks (chair or table)");
     const std::vector<double> b = parse_numbers(o.box, 7, "--box");
     if (!(b[3] > 0 && b[4] > 0 && b[5] > 0)) throw io::FileError("--box", "length, width and height must be positive");
+    // Furniture, seen by a LiDAR: the completion integrates rays from the sensor through the box,
+    // so a sensor 1e30 m away is not slow, it never ends.
+    constexpr double kMaxSize_m = 10.0, kMaxRange_m = 200.0;
+    if (std::max({b[3], b[4], b[5]}) > kMaxSize_m) {
+        throw io::FileError("--box", "length, width and height must be at most " + std::to_string(static_cast<int>(kMaxSize_m)) + " m (furniture)");
+    }
     const std::vector<double> s = parse_numbers(o.sensor, 3, "--sensor");
+    const double range = (Eigen::Vector3d(s[0], s[1], s[2]) - Eigen::Vector3d(b[0], b[1], b[2])).norm();
+    if (range > kMaxRange_m) {
+        char text[96];
+        std::snprintf(text, sizeof(text), "lies %.4g m from the box (a LiDAR sees at most %.0f m)", range, kMaxRange_m);
+        throw io::FileError("--sensor", text);
+    }
     const shape::ShapeModel model = load_shape_model(o.model);
     const PointCloud cloud = io::read_point_cloud(o.cloud).cloud;
     // The returns in the box grown by 10 cm sideways, above its lowest 5 cm (the floor's band).

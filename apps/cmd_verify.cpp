@@ -39,7 +39,8 @@ io::Json to_json(const eval::VerifyBenchArm& a) {
 }  // namespace
 
 int run_verify(const VerifyOptions& options) {
-    const PointCloud raw = io::read_point_cloud(options.cloud, {.non_finite = io::NonFinitePolicy::kDrop}).cloud;
+    const auto policy = options.non_finite == "drop" ? io::NonFinitePolicy::kDrop : io::NonFinitePolicy::kReject;
+    const PointCloud raw = io::read_point_cloud(options.cloud, {.non_finite = policy}).cloud;
     const std::vector<Detection> detections = io::read_detection_frame(options.detections).detections_sensor;
     const verification::CadLibrary library = io::read_cad_folder(options.cad_dir);
     // The floor under each object from the ground plane, when the cloud still holds the ground;

@@ -136,6 +136,7 @@ struct VerifyOptions {
     std::string detections;
     std::string cad_dir;
     std::string out;
+    std::string non_finite = "reject";  ///< as detect: NaN points are bad input unless dropped
 };
 int run_verify(const VerifyOptions& options);
 
@@ -209,6 +210,7 @@ struct RunOptions {
     int max_sweeps = 0;                 ///< 0: all
     std::string non_finite = "reject";
     bool instantaneous = false;         ///< accept sweeps without per-point time (not de-skewed)
+    bool skip_bad_messages = false;     ///< bags: skip and count damaged messages instead of stopping
 };
 int run_run(const RunOptions& options);
 

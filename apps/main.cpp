@@ -7,12 +7,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 
 #include "apps/commands.hpp"
 #include "makeway/sim/furniture.hpp"
 #include "io/interrupt.hpp"
 #include "io/error.hpp"
+#include "io/staged_output.hpp"
 
 namespace {
 
@@ -149,6 +151,9 @@ void add_verify(CLI::App& app, VerifyOptions& o) {
     sub->add_option("--cad", o.cad_dir, "Folder of CAD meshes named chair_*.obj / table_*.obj (also .ply, .stl, "
                                         ".dae), in their object frame: origin on the floor, x forward")
         ->required();
+    sub->add_option("--non-finite", o.non_finite, "Points with NaN/inf coordinates: reject the file (bad input) or drop them")
+        ->check(CLI::IsMember({"reject", "drop"}))
+        ->capture_default_str();
     sub->add_option("--out", o.out, "Result JSON (refined pose and box, residual [m], p_exist, model)")->required();
 }
 
@@ -308,6 +313,10 @@ void add_run(CLI::App& app, RunOptions& o) {
         ->capture_default_str();
     sub->add_flag("--instantaneous", o.instantaneous, "Accept sweeps without a per-point time field, each taken at its "
                                                       "stamp (not de-skewed); off: such a sweep is an error");
+    sub->add_flag("--skip-bad-messages", o.skip_bad_messages, "With --bag: skip messages that do not deserialise or hold "
+                                                              "nonsense, and sweeps stamped before the previous one (counted in "
+                                                              "summary.json); off: the first one is an error")
+        ->needs(bag);
     sub->add_option("--out", o.out, "Output folder: objects/ per keyframe, objects.json, costmap.yaml/.pgm, poses.txt, "
                                     "keyframes/ and keyframes.png, map.png, summary.json")
         ->capture_default_str();
@@ -500,6 +509,23 @@ void check_numbers(CLI::App& app) {
     for (CLI::App* sub : app.get_subcommands({})) check_numbers(*sub);
 }
 
+// Every path option of the chosen subcommand: outputs (--out, --out-bag, OUT) and the inputs
+// (any other value naming something that exists), for refuse_outputs_over_inputs.
+void collect_paths(const CLI::App& app, std::vector<std::pair<std::string, std::string>>& outputs,
+                   std::vector<std::pair<std::string, std::string>>& inputs) {
+    for (const CLI::Option* o : app.get_options()) {
+        if (o->count() == 0) continue;
+        const std::string name = o->get_name();
+        const bool output = name == "--out" || name == "--out-bag" || name == "OUT";
+        for (const std::string& value : o->results()) {
+            std::error_code ec;
+            if (output) outputs.emplace_back(name, value);
+            else if (std::filesystem::exists(value, ec)) inputs.emplace_back(name, value);
+        }
+    }
+    for (const CLI::App* sub : app.get_subcommands()) collect_paths(*sub, outputs, inputs);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -573,6 +599,9 @@ int main(int argc, char** argv) {
         return kExitBadInput;
     }
     try {
+        std::vector<std::pair<std::string, std::string>> outputs, inputs;
+        collect_paths(app, outputs, inputs);
+        makeway::io::refuse_outputs_over_inputs(outputs, inputs);  // before any work: no output replaces an input
         const auto dispatch = [&]() -> int {
             if (app.got_subcommand("info")) return run_info(info);
             if (app.got_subcommand("convert")) return run_convert(convert);

@@ -49,10 +49,11 @@ if(NOT MAKEWAY_FUZZ)
     find_library(ROS_ROSTIME_LIBRARY rostime REQUIRED)
     find_library(ROS_SERIALIZATION_LIBRARY roscpp_serialization REQUIRED)
     find_library(ROS_CPP_COMMON_LIBRARY cpp_common REQUIRED)
+    find_library(ROS_CONSOLE_BRIDGE_LIBRARY console_bridge REQUIRED)  # rosbag's console, captured
     find_path(ROS_SENSOR_MSGS_INCLUDE_DIR sensor_msgs/PointCloud2.h REQUIRED)
     add_library(makeway_ros_bag_deps INTERFACE)
     target_include_directories(makeway_ros_bag_deps SYSTEM INTERFACE ${rosbag_storage_INCLUDE_DIRS} ${ROS_SENSOR_MSGS_INCLUDE_DIR})
     target_link_libraries(makeway_ros_bag_deps INTERFACE ${rosbag_storage_LIBRARIES} ${ROS_ROSTIME_LIBRARY}
-                                                         ${ROS_SERIALIZATION_LIBRARY} ${ROS_CPP_COMMON_LIBRARY})
+                                                         ${ROS_SERIALIZATION_LIBRARY} ${ROS_CPP_COMMON_LIBRARY} ${ROS_CONSOLE_BRIDGE_LIBRARY})
 endif()# roscpp (the node) is found in ros/CMakeLists.txt: its config adds compile definitions to the
 # directory it is found in, which would recompile everything when `make ros` turns the node on.

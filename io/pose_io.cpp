@@ -13,6 +13,10 @@ namespace makeway::io {
 namespace {
 
 constexpr double kUnitTolerance = 1e-3;  // quaternion norm / rotation orthonormality
+// Bounds of a robot's trajectory: a building lies well inside 100 km of its map's origin, and a
+// stamp is seconds since the epoch (1.7e9 now) or since the recording began; 1e10 s is 2286.
+constexpr double kMaxPosition_m = 100e3;
+constexpr double kMaxStamp_s = 1e10;
 
 template <std::size_t N>
 std::array<double, N> parse_numbers(const std::vector<std::string_view>& words, std::size_t line_no) {
@@ -31,6 +35,12 @@ std::array<double, N> parse_numbers(const std::vector<std::string_view>& words, 
         if (!std::isfinite(v[i])) throw FormatError(where + "value is NaN or infinite");
     }
     return v;
+}
+
+std::string shortest(double v) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof(buf), v);  // 1e+300, not 300 digits
+    return std::string(buf, r.ptr);
 }
 
 template <typename Fn>
@@ -74,6 +84,17 @@ std::vector<StampedPose> parse_tum(std::string_view text) {
         }
         if (!poses.empty() && v[0] < poses.back().stamp_s) {
             throw FormatError("line " + std::to_string(line_no) + ": timestamp goes backwards");
+        }
+        if (!poses.empty() && v[0] == poses.back().stamp_s) {
+            throw FormatError("line " + std::to_string(line_no) + ": timestamp " + shortest(v[0]) + " repeats the line before's");
+        }
+        if (v[0] < 0.0 || v[0] > kMaxStamp_s) {
+            throw FormatError("line " + std::to_string(line_no) + ": timestamp " + shortest(v[0]) +
+                              " is not seconds in [0, 1e10] (since the epoch, or since the recording began)");
+        }
+        if (Eigen::Vector3d(v[1], v[2], v[3]).norm() > kMaxPosition_m) {
+            throw FormatError("line " + std::to_string(line_no) + ": position " + shortest(Eigen::Vector3d(v[1], v[2], v[3]).norm()) +
+                              " m from the origin (more than 100 km)");
         }
         StampedPose p;
         p.stamp_s = v[0];

@@ -25,18 +25,25 @@ void ProgressBar::update(std::size_t done, const std::string& note) {
                      "##############################", kWidth - filled, "", done, total_, 100 * frac, eta,
                      note.c_str());
         std::fflush(stderr);
+        drawn_ = true;
         return;
     }
     const int decile = static_cast<int>(frac * 10);
     if (decile == last_decile_) return;
     last_decile_ = decile;
-    std::fprintf(stderr, "%s: %zu/%zu (%.0f%%) %.1fs %s\n", label_.c_str(), done, total_, 100 * frac, elapsed,
+    std::fprintf(stdout, "%s: %zu/%zu (%.0f%%) %.1fs %s\n", label_.c_str(), done, total_, 100 * frac, elapsed,
                  note.c_str());
+    std::fflush(stdout);
 }
 
 void ProgressBar::finish(const std::string& note) {
     update(total_, note);
     if (tty_) std::fputc('\n', stderr);
+    drawn_ = false;
+}
+
+ProgressBar::~ProgressBar() {
+    if (drawn_) std::fputs("\r\033[K", stderr);
 }
 
 }  // namespace makeway::io

@@ -18,10 +18,31 @@ namespace makeway::io {
 namespace fs = std::filesystem;
 namespace {
 
-std::string gigabytes(std::uintmax_t bytes) {
+// "1.7 TB", "3.2 GB", "12.0 MB", "800 bytes": a nearly full disk is not "0.0 GB free".
+std::string human_bytes(std::uintmax_t bytes) {
+    const double b = static_cast<double>(bytes);
     char text[32];
-    std::snprintf(text, sizeof(text), "%.1f GB", static_cast<double>(bytes) / 1e9);
+    if (b >= 1e12) std::snprintf(text, sizeof(text), "%.1f TB", b / 1e12);
+    else if (b >= 1e9) std::snprintf(text, sizeof(text), "%.1f GB", b / 1e9);
+    else if (b >= 1e6) std::snprintf(text, sizeof(text), "%.1f MB", b / 1e6);
+    else if (b >= 1e3) std::snprintf(text, sizeof(text), "%.1f kB", b / 1e3);
+    else std::snprintf(text, sizeof(text), "%ju bytes", bytes);
     return text;
+}
+
+// The command's inputs (option, path), which no output may replace.
+std::mutex g_inputs_mutex;
+std::vector<std::pair<std::string, fs::path>> g_inputs;
+
+// The input `path` is (the same file or folder, through any link), if any.
+const std::pair<std::string, fs::path>* input_at(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) return nullptr;
+    const std::lock_guard<std::mutex> lock(g_inputs_mutex);
+    for (const auto& input : g_inputs) {
+        if (fs::equivalent(path, input.second, ec)) return &input;
+    }
+    return nullptr;
 }
 
 // Throws when an entry of `from` cannot replace its namesake in `to` (a folder where a file goes,
@@ -32,6 +53,9 @@ void check_moves(const fs::path& from, const fs::path& to) {
         std::error_code ec;
         const fs::file_status st = fs::symlink_status(dest, ec);
         if (!fs::exists(st)) continue;
+        if (const auto* input = input_at(dest)) {
+            throw FileError(dest.string(), "is this command's input " + input->first + ": an output would replace it");
+        }
         if (entry.is_directory() && fs::is_directory(st)) {
             check_moves(entry.path(), dest);
         } else if (entry.is_directory() || fs::is_directory(st)) {
@@ -158,6 +182,28 @@ void RecordingFolder::stopped(Json summary, const std::string& why) noexcept {
     }
 }
 
+void protect_inputs(const std::vector<std::pair<std::string, std::string>>& inputs) {
+    const std::lock_guard<std::mutex> lock(g_inputs_mutex);
+    g_inputs.clear();
+    for (const auto& [option, path] : inputs) g_inputs.emplace_back(option, path);
+}
+
+void refuse_outputs_over_inputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                                const std::vector<std::pair<std::string, std::string>>& inputs) {
+    for (const auto& [out_option, out] : outputs) {
+        std::error_code ec;
+        if (out.empty() || !fs::exists(out, ec)) continue;
+        for (const auto& [in_option, in] : inputs) {
+            if (fs::equivalent(out, in, ec)) {
+                throw FileError(out, out_option + " names the input given as " + in_option +
+                                         (fs::path(out).lexically_normal() == fs::path(in).lexically_normal() ? "" : " (the same file through a link)") +
+                                         ": choose another output");
+            }
+        }
+    }
+    protect_inputs(inputs);
+}
+
 void check_free_space(const fs::path& path, std::uintmax_t bytes, const std::string& what) {
     fs::path probe = path;
     std::error_code ec;
@@ -167,7 +213,7 @@ void check_free_space(const fs::path& path, std::uintmax_t bytes, const std::str
     if (ec) return;  // unknown: nothing to check against
     const std::uintmax_t need = bytes + bytes / 20;
     if (space.available < need) {
-        throw FileError(path.string(), what + " need about " + gigabytes(need) + " but " + gigabytes(space.available) +
+        throw FileError(path.string(), what + " need about " + human_bytes(need) + " but " + human_bytes(space.available) +
                                            " are free there");
     }
 }

@@ -14,6 +14,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "io/interrupt.hpp"
 #include "io/json_io.hpp"
@@ -59,6 +61,15 @@ private:
     std::filesystem::path folder_;
     DeferInterrupts defer_;
 };
+
+/// Refuses an output that is one of the command's inputs: FileError naming the output when it is
+/// the same file or folder as an input (through symbolic or hard links included). Pairs are
+/// (option, path); outputs that do not exist yet pass. Then protects the inputs: a StagedOutput
+/// whose commit would replace one of them refuses before anything moves.
+void refuse_outputs_over_inputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                                const std::vector<std::pair<std::string, std::string>>& inputs);
+/// Only the protection (tests; refuse_outputs_over_inputs sets it).
+void protect_inputs(const std::vector<std::pair<std::string, std::string>>& inputs);
 
 /// `path` as the user knows it: a path inside a live staging folder becomes the path it will have
 /// after the commit (FileError names files this way).

@@ -17,6 +17,10 @@
 
 namespace makeway::rosio {
 
+/// Per-point times spanning more than this are refused: a sweep lasts 0.05-0.2 s; 1 s is ten
+/// sweep periods of the slowest common rate (a time field in the wrong unit spans 1e3-1e9 s).
+constexpr double kMaxSweepSpan_s = 1.0;
+
 /// A sweep read from a PointCloud2: points in the message's frame, time since the first point.
 struct CloudSweep {
     PointCloud points;
@@ -25,6 +29,7 @@ struct CloudSweep {
     bool timed = false;       ///< a per-point time field was found
     std::string time_field;   ///< its name: time (Velodyne), t (Ouster), timestamp (Hesai), or empty
     std::string frame_id;
+    std::size_t index = 0;    ///< the message's index on its topic (bags; skipped messages count)
 };
 
 struct StampedPose2 {
@@ -43,12 +48,17 @@ public:
     /// Throws io::FileError naming the bag: not a readable bag; no PointCloud2 messages on the
     /// cloud topic (the message lists the PointCloud2 topics it has); a topic of another type; with
     /// `require_odometry`, the same for the odometry topic.
-    BagReader(const std::filesystem::path& path, const BagTopics& topics, bool require_odometry);
+    /// The bag's structure is checked first (check_bag_structure). A message that does not
+    /// deserialise or holds nonsense (from_point_cloud2, pose_from_odometry) is an io::FileError
+    /// "BAG: TOPIC message K (bag time T s): problem", or with `skip_bad_messages` skipped and
+    /// counted (skipped()); odometry is read whole here, so its bad messages are counted at once.
+    BagReader(const std::filesystem::path& path, const BagTopics& topics, bool require_odometry, bool skip_bad_messages = false);
     ~BagReader();
     BagReader(const BagReader&) = delete;
     BagReader& operator=(const BagReader&) = delete;
 
-    std::size_t sweeps() const;
+    std::size_t sweeps() const;   ///< messages on the cloud topic, bad ones included
+    std::size_t skipped() const;  ///< bad messages skipped so far (both topics)
     const std::vector<StampedPose2>& odometry() const;
     /// The next sweep, nullopt after the last. Throws io::FileError "BAG: TOPIC message K: problem"
     /// for a malformed cloud.

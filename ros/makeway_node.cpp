@@ -211,7 +211,14 @@ int main(int argc, char** argv) {
     // TCP_NODELAY: small messages (odometry at 50-100 Hz) otherwise wait for Nagle's algorithm and
     // the peer's delayed ACK, ~40 ms: a sweep then waits that long for the odometry of its end.
     ros::Subscriber odometry = nh.subscribe<nav_msgs::Odometry>(
-        odom_topic, 1000, [&](const nav_msgs::OdometryConstPtr& msg) { engine->push_odometry({msg->header.stamp.toSec(), rosio::pose_from_odometry(*msg)}); },
+        odom_topic, 1000,
+        [&](const nav_msgs::OdometryConstPtr& msg) {
+            try {
+                engine->push_odometry({msg->header.stamp.toSec(), rosio::pose_from_odometry(*msg)});
+            } catch (const io::FormatError& e) {
+                ROS_ERROR_THROTTLE(5.0, "makeway_node: %s: %s (message skipped)", odom_topic.c_str(), e.what());
+            }
+        },
         ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
     ros::Subscriber goals = nh.subscribe<geometry_msgs::PoseStamped>("/move_base_simple/goal", 5, [&](const geometry_msgs::PoseStampedConstPtr& msg) {
         if (!msg->header.frame_id.empty() && msg->header.frame_id != frame) {

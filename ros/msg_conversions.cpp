@@ -103,6 +103,21 @@ CloudSweep from_point_cloud2(const sensor_msgs::PointCloud2& msg) {
             throw io::FormatError("field '" + f->name + "' must be float32 or float64");
         }
     }
+    // A coordinate declared wider than its slot (x as float64 over x and y's bytes) reads garbage
+    // that looks like points.
+    const PointField* xyz[3] = {fx, fy, fz};
+    for (int a = 0; a < 3; ++a) {
+        for (int b = a + 1; b < 3; ++b) {
+            const std::uint64_t a0 = xyz[a]->offset, a1 = a0 + field_size(xyz[a]->datatype);
+            const std::uint64_t b0 = xyz[b]->offset, b1 = b0 + field_size(xyz[b]->datatype);
+            if (a0 < b1 && b0 < a1) {
+                throw io::FormatError("fields '" + xyz[a]->name + "' and '" + xyz[b]->name + "' overlap (offsets " +
+                                      std::to_string(a0) + " and " + std::to_string(b0) + ", " +
+                                      std::to_string(a1 - a0) + " and " + std::to_string(b1 - b0) + " bytes)");
+            }
+        }
+    }
+    if (n == 0) throw io::FormatError("the cloud holds no points (width " + std::to_string(msg.width) + ", height " + std::to_string(msg.height) + ")");
     const PointField* fi = find_field(msg, "intensity");
     const PointField* fr = find_field(msg, "ring");
     // The time field and how to read it: a relative offset from the stamp, or absolute.
@@ -155,6 +170,10 @@ CloudSweep from_point_cloud2(const sensor_msgs::PointCloud2& msg) {
         // Relative times that are all >= 0: the stamp is the sweep's start (its first firing may
         // have returned nothing). Negative ones (drivers that stamp the end): the first point.
         if (!absolute && first > stamp) first = stamp;
+        if (last - first > kMaxSweepSpan_s) {
+            throw io::FormatError("field '" + out.time_field + "' spans " + std::to_string(last - first) + " s, more than " +
+                                  std::to_string(kMaxSweepSpan_s).substr(0, 3) + " s (a sweep lasts 0.05-0.2 s; wrong unit?)");
+        }
         out.timed = true;
         out.stamp_s = first;
         out.duration_s = last - first;
@@ -191,8 +210,17 @@ sensor_msgs::PointCloud2 to_point_cloud2(const PointCloud& cloud, double stamp_s
 }
 
 Pose2 pose_from_odometry(const nav_msgs::Odometry& msg) {
-    const auto& q = msg.pose.pose.orientation;
-    const double yaw = std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+    const auto& t = msg.pose.pose.position;
+    if (!std::isfinite(t.x) || !std::isfinite(t.y) || !std::isfinite(t.z)) throw io::FormatError("the position is not finite");
+    if (std::hypot(t.x, t.y, t.z) > kMaxOdometryPosition_m) {
+        throw io::FormatError("the position lies " + std::to_string(std::hypot(t.x, t.y, t.z)) + " m from the origin (more than " +
+                              std::to_string(static_cast<int>(kMaxOdometryPosition_m / 1000)) + " km)");
+    }
+    const auto& o = msg.pose.pose.orientation;
+    const double norm = std::sqrt(o.x * o.x + o.y * o.y + o.z * o.z + o.w * o.w);
+    if (!std::isfinite(norm) || norm < 1e-6) throw io::FormatError("the orientation quaternion is zero or not finite");
+    const Eigen::Vector4d q = Eigen::Vector4d(o.x, o.y, o.z, o.w) / norm;  // drivers round; some never normalise
+    const double yaw = std::atan2(2.0 * (q.w() * q.z() + q.x() * q.y()), 1.0 - 2.0 * (q.y() * q.y() + q.z() * q.z()));
     return {msg.pose.pose.position.x, msg.pose.pose.position.y, yaw};
 }
 

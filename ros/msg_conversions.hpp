@@ -20,6 +20,10 @@
 
 namespace makeway::rosio {
 
+/// Odometry positions farther than this from the origin are refused (a building is well inside
+/// 100 km; 1e30 m poses came from damaged messages).
+constexpr double kMaxOdometryPosition_m = 100e3;
+
 /// A stamp as ros::Time: seconds since the epoch, at least 1 ns (rosbag refuses time 0).
 ros::Time to_ros_time(double stamp_s);
 
@@ -30,14 +34,17 @@ ros::Time to_ros_time(double stamp_s);
 /// float64). The sweep starts at the stamp when relative times are all >= 0, else at the first
 /// point. Points with a non-finite coordinate are kept (the caller's policy decides).
 /// Throws io::FormatError on a malformed message (big-endian data, data shorter than
-/// width x height x point_step, fields outside the point, x/y/z missing or of an unknown type).
+/// width x height x point_step, fields outside the point, x/y/z missing, of an unknown type or
+/// overlapping, no points, per-point times spanning more than kMaxSweepSpan_s).
 CloudSweep from_point_cloud2(const sensor_msgs::PointCloud2& msg);
 
 /// The Velodyne driver's layout: x y z intensity (float32), ring (uint16), time (float32, seconds
 /// since stamp_s), unorganised (height 1).
 sensor_msgs::PointCloud2 to_point_cloud2(const PointCloud& cloud, double stamp_s, const std::string& frame_id);
 
-/// The base's planar pose from an Odometry message (yaw from the quaternion).
+/// The base's planar pose from an Odometry message (yaw from the quaternion, which need not be
+/// normalised). Throws io::FormatError for a non-finite position or one beyond
+/// kMaxOdometryPosition_m, and for a zero or non-finite quaternion.
 Pose2 pose_from_odometry(const nav_msgs::Odometry& msg);
 nav_msgs::Odometry to_odometry(const Pose2& pose, double v_mps, double w_radps, double stamp_s,
                                const std::string& frame_id, const std::string& child_frame_id);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "io/error.hpp"
 #include "io/pose_io.hpp"
@@ -69,6 +70,17 @@ public:
         s.file = files_[k].string();
         s.points = io::read_point_cloud(files_[k], {.non_finite = o_.non_finite}).cloud;
         s.timed = s.points.time_s.size() == s.points.size() && !s.points.empty();
+        if (s.timed) {
+            // The bag path's rules (from_point_cloud2): finite times within one sweep's span.
+            const auto [lo, hi] = std::minmax_element(s.points.time_s.begin(), s.points.time_s.end());
+            if (std::any_of(s.points.time_s.begin(), s.points.time_s.end(), [](float t) { return !std::isfinite(t); })) {
+                throw io::FileError(s.file, "the per-point time holds a non-finite value");
+            }
+            if (*hi - *lo > kMaxSweepSpan_s) {
+                throw io::FileError(s.file, "the per-point times span " + std::to_string(*hi - *lo) + " s, more than " +
+                                                std::to_string(kMaxSweepSpan_s).substr(0, 3) + " s (a sweep lasts 0.05-0.2 s; wrong unit?)");
+            }
+        }
         const double measured = s.timed ? sweep_duration(s.points) : 0.0;
         if (poses_.empty()) {
             s.stamp_s = static_cast<double>(k) / o_.rate_hz;
@@ -97,7 +109,7 @@ private:
 
 class BagSource : public SweepSource {
 public:
-    explicit BagSource(const SourceOptions& o) : o_(o), reader_(o.bag, o.topics, false) {
+    explicit BagSource(const SourceOptions& o) : o_(o), reader_(o.bag, o.topics, false, o.skip_bad_messages) {
         if (!o.poses.empty()) {
             poses_ = read_base_poses(o.poses, true, o.T_base_sensor);
             pose_source_ = "the poses span";
@@ -115,11 +127,14 @@ public:
         return std::to_string(reader_.sweeps()) + " sweeps on " + o_.topics.cloud + " in " + o_.bag +
                (poses_.empty() ? ", no odometry on " + o_.topics.odometry : !o_.poses.empty() ? ", external poses " + o_.poses : ", wheel odometry on " + o_.topics.odometry);
     }
+    std::size_t skipped() const override { return reader_.skipped() + out_of_order_; }
     std::optional<SourceSweep> next() override {
-        std::optional<CloudSweep> c = pending_ ? std::move(pending_) : reader_.next();
+        std::optional<CloudSweep> c = pending_ ? std::move(pending_) : following();
+        pending_.reset();
         if (!c) return std::nullopt;
-        pending_ = reader_.next();  // one sweep ahead: this one lasts until that one starts
-        const std::size_t k = k_++;
+        last_stamp_s_ = c->stamp_s;
+        pending_ = following();  // one sweep ahead: this one lasts until that one starts
+        const std::size_t k = c->index;
         SourceSweep s;
         s.file = o_.bag;
         s.item = o_.topics.cloud + " message " + std::to_string(k);
@@ -148,8 +163,24 @@ public:
     }
 
 private:
+    // The next sweep whose stamp follows the last one taken (sweeps overlap otherwise: a driver
+    // stamping every sweep alike, a clock that jumped back).
+    std::optional<CloudSweep> following() {
+        const double after = last_stamp_s_;
+        while (std::optional<CloudSweep> c = reader_.next()) {
+            if (c->stamp_s > after) return c;
+            const std::string what = o_.topics.cloud + " message " + std::to_string(c->index) + ": its sweep starts at " +
+                                     seconds(c->stamp_s) + " s, not after the previous sweep's " + seconds(after) + " s";
+            if (!o_.skip_bad_messages) throw io::FileError(o_.bag, what + " (--skip-bad-messages to skip such sweeps)");
+            if (out_of_order_++ == 0) io::print_warning(o_.bag + ": " + what + "; skipped (more are counted in the summary)");
+        }
+        return std::nullopt;
+    }
+
     SourceOptions o_;
     BagReader reader_;
+    double last_stamp_s_ = -std::numeric_limits<double>::infinity();
+    std::size_t out_of_order_ = 0;
     std::vector<StampedPose2> poses_;
     std::string pose_source_;
     std::size_t k_ = 0;

@@ -35,6 +35,9 @@ struct SourceOptions {
     bool external_poses = false;  ///< bags: the odometry topic holds the external poses
     double rate_hz = 10.0;   ///< sweep rate when nothing gives stamps
     io::NonFinitePolicy non_finite = io::NonFinitePolicy::kReject;
+    /// Bags: messages that do not deserialise or hold nonsense, and sweeps whose stamp does not
+    /// follow the previous one, are skipped and counted instead of ending the run.
+    bool skip_bad_messages = false;
     Isometry3 T_base_sensor = Isometry3::Identity();  ///< to turn external sensor poses into base poses
 };
 
@@ -47,6 +50,8 @@ public:
     /// The base's first pose (odometry or external), when there is one.
     virtual std::optional<Pose2> first_pose() const = 0;
     virtual std::string describe() const = 0;
+    /// Bad messages skipped so far (skip_bad_messages).
+    virtual std::size_t skipped() const { return 0; }
 };
 
 /// Checks everything that can be checked before the first sweep (folders exist and hold sweeps,

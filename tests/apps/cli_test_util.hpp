@@ -41,6 +41,12 @@ inline CliRun run_makeway(const std::string& args, const std::filesystem::path& 
     return run_shell(std::string(MAKEWAY_BIN) + " " + args, dir);
 }
 
+/// A file's bytes (empty when it cannot be read).
+inline std::string slurp(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 /// Lines written to a stream (its newlines).
 inline std::size_t lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
 

@@ -45,6 +45,9 @@ TEST(Cli, HostileInputsAtTheBoundary) {
         walls << "name: w\nfloor: {min_m: [-5, -5], max_m: [5, 5]}\nwalls:\n";
         for (int i = 0; i <= 10000; ++i) walls << "  - {a_m: [0, 0], b_m: [1, 0]}\n";
     }
+    // A wall 2000 km long on a 10 m floor (the simulator allocated until bad_alloc; issue 34).
+    std::ofstream(dir / "long_wall.yaml") << "name: l\nfloor: {min_m: [-5, -5], max_m: [5, 5]}\n"
+                                             "walls:\n  - {a_m: [0, 0], b_m: [2000000, 0]}\n";
     // A FIFO as input (blocked forever waiting for a writer).
     ASSERT_EQ(mkfifo((dir / "pipe.pcd").c_str(), 0600), 0);
     // Detection frames whose stamps go back in time (the progress bar's line came before the error).
@@ -70,6 +73,7 @@ TEST(Cli, HostileInputsAtTheBoundary) {
          (dir / "dets" / "000001.json").string() + ": stamp_s goes back in time"},
         {"simulate --scene " + (dir / "huge.yaml").string() + " --out " + (dir / "o7").string(), "floor: at most 200 m on a side"},
         {"simulate --scene " + (dir / "walls.yaml").string() + " --out " + (dir / "o8").string(), "at most 10000 walls"},
+        {"simulate --scene " + (dir / "long_wall.yaml").string() + " --out " + (dir / "o14").string(), "wall: an end lies more than 10 m beyond the floor"},
         {"info " + (dir / "pipe.pcd").string(), (dir / "pipe.pcd").string() + ": not a regular file"},
         {"info " + (dir / "utf.pcd").string(), (dir / "utf.pcd").string() + ": header FIELDS: field 4 is not a printable ASCII name"},
         {"convert " + (dir / "allnan.bin").string() + " " + (dir / "o1.bin").string() + " --non-finite drop",
@@ -78,6 +82,12 @@ TEST(Cli, HostileInputsAtTheBoundary) {
         {"navigate --scene " + (dir / "good.yaml").string() + " --map " + (dir / "negate.yaml").string() + " --out " + (dir / "o3").string(), "negate must be 0 or 1"},
         {"navigate --scene " + (dir / "good.yaml").string() + " --map " + (dir / "fine.yaml").string() + " --out " + (dir / "o4").string(), "resolution must be in [0.001, 100)"},
         {"simulate --scene " + (dir / "pillar.yaml").string() + " --out " + (dir / "o5").string(), "pillar: size_m and height_m must be > 0"},
+        // A sensor 1e30 m away (the shape completion integrated rays from it forever; issue 34).
+        {"complete --cloud " + (dir / "allnan.bin").string() + " --box 0,0,0.5,0.5,0.5,1,0 --class chair --sensor 1e30,0,0 --out " +
+             (dir / "o13.obj").string(),
+         "--sensor: lies 1e+30 m from the box (a LiDAR sees at most 200 m)"},
+        {"complete --cloud " + (dir / "allnan.bin").string() + " --box 0,0,0.5,50,0.5,1,0 --class chair --out " + (dir / "o13.obj").string(),
+         "--box: length, width and height must be at most 10 m (furniture)"},
     };
     for (const auto& [args, expected] : cases) {
         const CliRun r = run_makeway(args, dir);
@@ -85,7 +95,7 @@ TEST(Cli, HostileInputsAtTheBoundary) {
         EXPECT_EQ(lines(r.err), 1u) << args << "\n" << r.err;
         EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
     }
-    for (const char* out : {"o1.bin", "o2", "o3", "o4", "o5", "o6", "o7", "o8", "o11", "o12"}) {
+    for (const char* out : {"o1.bin", "o2", "o3", "o4", "o5", "o6", "o7", "o8", "o11", "o12", "o13.obj", "o14"}) {
         EXPECT_FALSE(std::filesystem::exists(dir / out)) << out;
     }
     // Where an output was in the way, nothing else was delivered beside it.

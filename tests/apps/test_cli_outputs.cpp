@@ -22,11 +22,7 @@ namespace fs = std::filesystem;
 using testing_util::CliRun;
 using testing_util::lines;
 using testing_util::run_makeway;
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
+using testing_util::slurp;
 
 // Every entry under `dir` that a failed or interrupted run must not leave: staging folders and
 // temporary files.

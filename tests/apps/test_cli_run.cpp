@@ -126,6 +126,14 @@ TEST(Cli, RunRefusesBadRecordingsWithOneLineAndNoOutput) {
     expect_refused("run --bag " + bag + " --poses " + (dir / "late.txt").string(), "late.txt: the poses span 1767225600.500-1767225601.500 s; sweep 0");
     expect_refused("run --bag " + bag + " --clouds " + (dir / "clouds").string(), "excludes");
     expect_refused("run", "give --clouds DIR or --bag FILE");
+    // Per-point times a bag would be refused for (issue 34): NaN, and 1e9 s (a wrong unit).
+    std::filesystem::create_directories(dir / "clouds_t");
+    const std::string header = "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z time\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
+                               "WIDTH 2\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA ascii\n";
+    std::ofstream(dir / "clouds_t" / "0.pcd") << header << "1 2 0.5 nan\n3 1 0.7 0.05\n";
+    expect_refused("run --clouds " + (dir / "clouds_t").string(), "0.pcd: the per-point time holds a non-finite value");
+    std::ofstream(dir / "clouds_t" / "0.pcd") << header << "1 2 0.5 0\n3 1 0.7 1e9\n";
+    expect_refused("run --clouds " + (dir / "clouds_t").string(), "0.pcd: the per-point times span 1000000000.000000 s, more than 1.0 s");
 }
 
 }  // namespace

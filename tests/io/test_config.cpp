@@ -208,3 +208,55 @@ TEST(Config, TheRobotsReaderSkipsTheSimulatorsSections) {
 
 }  // namespace
 }  // namespace makeway::io
+
+namespace makeway::io {
+namespace {
+
+// Every numeric key of the shipped file, tried with the values a damaged or careless file holds
+// (-1, 0, -1e308, 1e308, NaN, a word): refused with one line naming the section, or admitted by
+// the key's bounds; no key admits -1e308, NaN or a word.
+TEST(Config, EveryNumericKeyRefusesNonsense) {
+    std::ifstream in(std::string(MAKEWAY_SOURCE_DIR) + "/config/default.yaml");
+    std::string line, section;
+    std::vector<std::pair<std::string, std::string>> keys;  // (section, key)
+    while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        if (line[0] != ' ') {
+            section = line.substr(0, line.find(':'));
+            continue;
+        }
+        const std::size_t colon = line.find(':');
+        if (line.rfind("  ", 0) != 0 || line[2] == ' ' || colon == std::string::npos) continue;
+        std::string value = line.substr(colon + 1);
+        value = value.substr(0, value.find('#'));
+        value.erase(0, value.find_first_not_of(' '));
+        value.erase(value.find_last_not_of(' ') + 1);
+        char* end = nullptr;
+        std::strtod(value.c_str(), &end);
+        if (value.empty() || *end != '\0') continue;  // not a number (names, lists, booleans)
+        keys.emplace_back(section, line.substr(2, colon - 2));
+    }
+    ASSERT_GT(keys.size(), 150u);
+    std::vector<std::string> accepted;
+    for (const auto& [sec, key] : keys) {
+        for (const char* bad : {"-1", "0", "-1e308", "1e308", ".nan", "text"}) {
+            const std::string problem = problem_of(sec + ":\n  " + key + ": " + bad + "\n");
+            if (problem.empty()) {
+                accepted.push_back(sec + "." + key + "=" + bad);
+                continue;
+            }
+            EXPECT_EQ(problem.find('\n'), std::string::npos) << problem;
+            EXPECT_NE(problem.find(sec), std::string::npos) << sec << "." << key << "=" << bad << ": " << problem;
+        }
+    }
+    // None of these is bounded from below: a damaged file's -1e308 or the string ends here. (The
+    // upper bounds are the parameters issue's: each key's bounds in one table.)
+    for (const std::string& a : accepted) {
+        EXPECT_EQ(a.find("=-1e308"), std::string::npos) << a << " accepted";
+        EXPECT_EQ(a.find("=.nan"), std::string::npos) << a << " accepted";
+        EXPECT_EQ(a.find("=text"), std::string::npos) << a << " accepted";
+    }
+}
+
+}  // namespace
+}  // namespace makeway::io

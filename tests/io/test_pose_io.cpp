@@ -61,6 +61,11 @@ TEST(PoseIo, BadInputSaysWhichLine) {
         {"1 1 2 3 0 0 0 1\n0 1 2 3 0 0 0 1\n", "line 2: timestamp goes backwards"},
         {"0 1 2 x 0 0 0 1\n", "line 1: bad number 'x'"},
         {"# only a comment\n", "no poses"},
+        // Recordings from the wild (issue 34): stamps all alike, ~1e300 or negative; poses of 1e30 m.
+        {"0 1 2 3 0 0 0 1\n0 1 2 3 0 0 0 1\n", "line 2: timestamp 0 repeats the line before's"},
+        {"1e300 1 2 3 0 0 0 1\n", "line 1: timestamp 1e+300 is not seconds in [0, 1e10]"},
+        {"-5 1 2 3 0 0 0 1\n", "line 1: timestamp -5 is not seconds"},
+        {"0 1e30 2 3 0 0 0 1\n", "line 1: position 1e+30 m from the origin (more than 100 km)"},
     };
     for (const auto& [text, expected] : tum_cases) {
         try {

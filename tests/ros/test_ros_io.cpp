@@ -1,17 +1,25 @@
 // PointCloud2 layouts of real drivers (Velodyne, Ouster, Hesai) and malformed ones, the costmap's
 // OccupancyGrid mapping, markers, and bags written then read back.
 #include <gtest/gtest.h>
+#include <rosbag/bag.h>
+#include <sys/stat.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <iterator>
 
 #include "io/error.hpp"
+#include "ros/bag_check.hpp"
 #include "ros/bag_io.hpp"
 #include "ros/msg_conversions.hpp"
+#include "lying_message.hpp"
 
 namespace makeway::rosio {
 namespace {
+
 
 using sensor_msgs::PointField;
 
@@ -269,6 +277,178 @@ TEST(Bag, AWriterDestroyedWithoutCloseLeavesNothing) {
         w.write_text("/t", "a", 1.0);
     }
     EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+std::string slurp(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::uint32_t u32_at(const std::string& b, std::size_t at) {
+    std::uint32_t v;
+    std::memcpy(&v, b.data() + at, 4);
+    return v;
+}
+
+void expect_file_error(const std::function<void()>& f, const std::string& part) {
+    try {
+        f();
+        ADD_FAILURE() << "no error, expected: " << part;
+    } catch (const io::FileError& e) {
+        EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+}
+
+// The damage a hardening probe found to abort rosbag (its Buffer asserts when a length it trusts
+// cannot be allocated): each refused by the walk with the byte it is at, before rosbag reads.
+TEST(BagCheck, DamagedStructuresAreRefusedWithTheirByte) {
+    const auto dir = fresh_dir("bag_check");
+    {
+        BagWriter w(dir / "good.bag");
+        for (int k = 0; k < 3; ++k) w.write_cloud("/velodyne_points", sample_cloud(), 100.0 + 0.1 * k, "velodyne");
+        w.close();
+    }
+    const std::string good = slurp(dir / "good.bag");
+    const BagCheckResult ok = check_bag_structure(dir / "good.bag");
+    EXPECT_EQ(ok.chunks, 1u);
+    EXPECT_EQ(ok.connections, 1u);  // the index's record of the one topic
+    // The bag header at byte 13, then the first chunk.
+    const std::size_t header_len = u32_at(good, 13);
+    const std::size_t chunk = 13 + 4 + header_len + 4 + u32_at(good, 13 + 4 + header_len);
+    const std::size_t chunk_header_len = u32_at(good, chunk);
+    const std::string chunk_header = good.substr(chunk + 4, chunk_header_len);
+    const auto damaged = [&](const std::string& name, const std::function<void(std::string&)>& damage) {
+        std::string b = good;
+        damage(b);
+        std::ofstream(dir / name, std::ios::binary) << b;
+        return dir / name;
+    };
+    const auto put32 = [](std::string& b, std::size_t at, std::uint32_t v) { std::memcpy(b.data() + at, &v, 4); };
+    const auto check = [](const std::filesystem::path& p) { return [p] { check_bag_structure(p); }; };
+    expect_file_error(check(damaged("header_len.bag", [&](std::string& b) { put32(b, 13, 0xFFFFFFF0u); })),
+                      "record at byte 13: declares a header of 4294967280 bytes");
+    const std::size_t size_field = chunk + 4 + chunk_header.find("size=") + 5;
+    expect_file_error(check(damaged("chunk_size.bag", [&](std::string& b) { put32(b, size_field, 0xFFFFFFF0u); })),
+                      "record at byte " + std::to_string(chunk) + " (chunk): declares 4294967280 bytes uncompressed");
+    expect_file_error(check(damaged("chunk_data.bag", [&](std::string& b) { put32(b, chunk + 4 + chunk_header_len, 0xFFFFFFF0u); })),
+                      "(chunk): declares 4294967280 bytes of data, past the end of the file");
+    const std::size_t index_pos = 13 + 4 + std::string(good.data() + 17, header_len).find("index_pos=") + 10;
+    expect_file_error(check(damaged("index_pos.bag", [&](std::string& b) {
+                          const std::uint64_t into_chunk = chunk + 100;
+                          std::memcpy(b.data() + index_pos, &into_chunk, 8);
+                      })),
+                      "index_pos " + std::to_string(chunk + 100) + " is not the start of a record");
+    expect_file_error(check(damaged("scrambled.bag", [&](std::string& b) {
+                          for (std::size_t i = chunk; i < chunk + 12; ++i) b[i] = static_cast<char>(0xA5 ^ i);
+                      })),
+                      "record at byte " + std::to_string(chunk));
+    expect_file_error(check(damaged("cut.bag", [&](std::string& b) { b.resize(chunk + 200); })), "past the end of the file");
+    expect_file_error(check(damaged("v12.bag", [&](std::string& b) { b.replace(0, 13, "#ROSBAG V1.2\n"); })), "bag format 1.2 is not supported");
+    expect_file_error(check(damaged("text.bag", [&](std::string& b) { b = "hello"; })), "not a ROS 1 bag");
+    std::filesystem::create_directories(dir / "folder.bag");
+    expect_file_error(check(dir / "folder.bag"), "is a folder, not a bag file");
+    ASSERT_EQ(mkfifo((dir / "fifo.bag").c_str(), 0600), 0);
+    expect_file_error(check(dir / "fifo.bag"), "is not a regular file");
+    expect_file_error(check(dir / "missing.bag"), "no such bag file");
+    // The reader walks first: the same damage is the same one line, not rosbag's abort.
+    expect_file_error([&] { BagReader r(dir / "header_len.bag", {}, false); }, "declares a header of 4294967280 bytes");
+}
+
+// Messages that deserialise to nothing sane are named (topic, index, bag time); with
+// skip_bad_messages the good ones are read and the bad ones counted.
+TEST(Bag, LyingMessagesAreNamedOrSkipped) {
+    const auto dir = fresh_dir("bag_lying");
+    const sensor_msgs::PointCloud2 cloud = to_point_cloud2(sample_cloud(), 100.0, "velodyne");
+    const testing::LyingMessage good = testing::as_bytes(cloud);
+    std::vector<std::pair<std::string, testing::LyingMessage>> clouds;  // (what, message)
+    clouds.emplace_back("good", good);
+    testing::LyingMessage m = good;
+    m.bytes.resize(5);
+    clouds.emplace_back("5 bytes", m);
+    m = good;
+    m.bytes.resize(200);
+    clouds.emplace_back("cut", m);
+    m = good;  // data's length says 0xFFFFFFF0 (data, then is_dense, end the message)
+    {
+        const std::size_t data_len_at = m.bytes.size() - 1 - cloud.data.size() - 4;
+        const std::uint32_t huge = 0xFFFFFFF0u;
+        std::memcpy(m.bytes.data() + data_len_at, &huge, 4);
+    }
+    clouds.emplace_back("huge data", m);
+    sensor_msgs::PointCloud2 wide = cloud;
+    wide.fields[0].datatype = PointField::FLOAT64;  // x over x's and y's bytes
+    clouds.emplace_back("overlap", testing::as_bytes(wide));
+    sensor_msgs::PointCloud2 slow = cloud;
+    put(slow, 2, 18, 1e9f);  // a per-point time of 1e9 s
+    clouds.emplace_back("time", testing::as_bytes(slow));
+    clouds.emplace_back("good", testing::as_bytes(to_point_cloud2(sample_cloud(), 100.6, "velodyne")));
+    {
+        rosbag::Bag bag((dir / "clouds.bag").string(), rosbag::bagmode::Write);
+        for (std::size_t k = 0; k < clouds.size(); ++k) bag.write("/velodyne_points", ros::Time(100.0 + 0.1 * k), clouds[k].second);
+        const nav_msgs::Odometry odom = to_odometry(Pose2{1.0, 2.0, 0.3}, 0.0, 0.0, 100.0, "odom", "base_link");
+        bag.write("/odom", ros::Time(100.0), odom);
+        nav_msgs::Odometry nan_q = odom;
+        nan_q.header.stamp = ros::Time(100.1);
+        nan_q.pose.pose.orientation.w = NAN;
+        bag.write("/odom", ros::Time(100.1), nan_q);
+        nav_msgs::Odometry zero_q = odom;
+        zero_q.header.stamp = ros::Time(100.2);
+        zero_q.pose.pose.orientation = geometry_msgs::Quaternion();
+        zero_q.pose.pose.orientation.w = 0.0;
+        bag.write("/odom", ros::Time(100.2), zero_q);
+        nav_msgs::Odometry far = odom;
+        far.header.stamp = ros::Time(100.3);
+        far.pose.pose.position.x = 1e30;
+        bag.write("/odom", ros::Time(100.3), far);
+        testing::LyingMessage short_odom = testing::as_bytes(odom);
+        short_odom.bytes.resize(30);
+        bag.write("/odom", ros::Time(100.4), short_odom);
+        nav_msgs::Odometry unnormalised = to_odometry(Pose2{1.5, 2.0, 0.3}, 0.0, 0.0, 100.5, "odom", "base_link");
+        unnormalised.pose.pose.orientation.z *= 3.0;
+        unnormalised.pose.pose.orientation.w *= 3.0;
+        bag.write("/odom", ros::Time(100.5), unnormalised);
+    }
+    // Without skipping: the first bad odometry message ends it, named.
+    expect_file_error([&] { BagReader r(dir / "clouds.bag", {}, true); },
+                      "/odom message 1 (bag time 100.100 s): the orientation quaternion is zero or not finite");
+    BagReader r(dir / "clouds.bag", {}, true, true);
+    EXPECT_EQ(r.skipped(), 4u);  // NaN and zero quaternions, 1e30 m, 30 bytes
+    ASSERT_EQ(r.odometry().size(), 2u);
+    EXPECT_NEAR(r.odometry()[1].pose.x_m, 1.5, 1e-12);
+    EXPECT_NEAR(r.odometry()[1].pose.yaw_rad, 0.3, 1e-12);  // the unnormalised quaternion's yaw
+    std::vector<std::size_t> read;
+    while (auto s = r.next()) read.push_back(s->index);
+    EXPECT_EQ(read, (std::vector<std::size_t>{0, 6}));
+    EXPECT_EQ(r.skipped(), 4u + 5u);
+    // Each bad cloud, after a good one, names its problem.
+    const std::vector<std::string> expected = {
+        "/velodyne_points message 1 (bag time 100.100 s): the header needs 12 bytes, the message has 5 left",
+        "/velodyne_points message 1 (bag time 100.100 s): data needs",
+        "data needs 4294967280 bytes",
+        "fields 'x' and 'y' overlap (offsets 0 and 4, 8 and 4 bytes)",
+        "field 'time' spans 1000000000.000000 s, more than 1.0 s"};
+    for (std::size_t k = 0; k < expected.size(); ++k) {
+        const auto path = dir / ("bad" + std::to_string(k) + ".bag");
+        {
+            rosbag::Bag bag(path.string(), rosbag::bagmode::Write);
+            bag.write("/velodyne_points", ros::Time(100.0), good);
+            bag.write("/velodyne_points", ros::Time(100.1), clouds[k + 1].second);
+        }
+        BagReader strict(path, {}, false);
+        ASSERT_TRUE(strict.next()) << clouds[k + 1].first;
+        expect_file_error([&] { strict.next(); }, expected[k]);
+    }
+    // A topic recorded under another definition of PointCloud2 (rosbag keeps one md5sum per topic:
+    // the first message's): refused by name, not read with this definition's layout.
+    {
+        rosbag::Bag bag((dir / "md5.bag").string(), rosbag::bagmode::Write);
+        testing::LyingMessage lie = good;
+        lie.md5 = "0123456789abcdef0123456789abcdef";
+        bag.write("/velodyne_points", ros::Time(100.0), lie);
+    }
+    BagReader other(dir / "md5.bag", {}, false);
+    expect_file_error([&] { other.next(); }, "/velodyne_points message 0 (bag time 100.000 s): its md5sum 0123456789abcdef0123456789abcdef "
+                                             "is not sensor_msgs/PointCloud2's 1158d486dd51d683ce2f1be655c3c181");
 }
 
 }  // namespace

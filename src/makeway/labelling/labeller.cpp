@@ -64,6 +64,12 @@ std::vector<std::string> LabelParams::validate() const {
     if (max_splits < 0) e.push_back("labelling.max_splits must be >= 0");
     if (!(label_distance_m > 0.0) || !(unknown_box_margin_m >= 0.0)) e.push_back("labelling.label_distance_m > 0, unknown_box_margin_m >= 0");
     if (!(range_m > 0.0)) e.push_back("labelling.range_m must be > 0");
+    // Shares and distances a damaged file sets to -1 or 1e308 (the labels would silently be empty).
+    if (!(min_coverage >= 0.0 && min_coverage <= 1.0)) e.push_back("labelling.min_coverage must be in [0, 1]");
+    if (!(max_seen_through >= 0.0 && max_seen_through <= 1.0)) e.push_back("labelling.max_seen_through must be in [0, 1]");
+    if (!(duplicate_iou > 0.0 && duplicate_iou <= 1.0)) e.push_back("labelling.duplicate_iou must be in (0, 1]");
+    if (!(dbscan_z_scale > 0.0 && dbscan_z_scale <= 10.0)) e.push_back("labelling.dbscan_z_scale must be in (0, 10]");
+    if (!(split_distance_m > 0.0 && split_distance_m <= 2.0)) e.push_back("labelling.split_distance_m must be in (0, 2]");
     return e;
 }
 

@@ -42,7 +42,7 @@ std::vector<std::string> OdometryParams::validate() const {
     if (!(residual_sigma_m > 0.0 && wheel_sigma_m > 0.0 && wheel_sigma_rad > 0.0 && wheel_sigma_per_m >= 0.0 && wheel_sigma_per_rad >= 0.0)) {
         p.push_back("odometry sigmas must be > 0");
     }
-    if (!std::isfinite(min_height_m)) p.push_back("odometry min_height_m must be finite");
+    if (!(min_height_m >= -5.0 && min_height_m <= 5.0)) p.push_back("odometry min_height_m must be in [-5, 5] (above the base)");
     return p;
 }
 

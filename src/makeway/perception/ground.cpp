@@ -15,6 +15,7 @@ std::vector<std::string> GroundPlaneParams::validate() const {
     if (iterations < 1 || iterations > 100000) p.push_back("iterations must be in [1, 100000]");
     if (!(max_tilt_deg > 0.0 && max_tilt_deg <= 90.0)) p.push_back("max_tilt_deg must be in (0, 90]");
     if (!(voxel_m >= 0.0 && voxel_m < 1.0)) p.push_back("voxel_m must be in [0, 1)");
+    if (!(min_sensor_height_m >= 0.0 && min_sensor_height_m <= 10.0)) p.push_back("min_sensor_height_m must be in [0, 10]");
     return p;
 }
 

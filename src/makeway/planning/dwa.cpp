@@ -77,6 +77,7 @@ std::vector<std::string> DwaParams::validate() const {
     std::vector<std::string> out;
     if (!(max_v_mps > 0.0 && min_v_mps <= max_v_mps && min_v_mps >= -max_v_mps)) out.push_back("need min_v_mps <= max_v_mps, max_v_mps > 0");
     if (!(max_w_radps > 0.0)) out.push_back("max_w_radps must be > 0");
+    if (!(lookahead_m > 0.0 && lookahead_m <= 20.0)) out.push_back("lookahead_m must be in (0, 20]");
     if (!(acc_v_mps2 > 0.0 && acc_w_radps2 > 0.0)) out.push_back("accelerations must be > 0");
     if (!(control_dt_s > 0.0 && rollout_dt_s > 0.0 && horizon_s >= rollout_dt_s)) out.push_back("need 0 < rollout_dt_s <= horizon_s, control_dt_s > 0");
     if (v_samples < 2 || w_samples < 2 || v_samples * w_samples > 10000) out.push_back("v_samples and w_samples must be >= 2 (at most 10000 pairs)");

@@ -1,5 +1,6 @@
 #include "makeway/sim/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -39,6 +40,26 @@ std::vector<std::string> Scene::validate() const {
     for (const Walker& w : walkers) {
         if (w.route_m.size() < 2) p.push_back("walker: route needs at least 2 points");
         if (!(w.speed_mps >= 0.0 && w.speed_mps < 5.0)) p.push_back("walker: speed_mps must be in [0, 5)");
+    }
+    const auto near_floor = [&](const Eigen::Vector2d& q) {
+        return (q.array() >= floor_min_m.array() - kMaxBeyondFloor_m).all() && (q.array() <= floor_max_m.array() + kMaxBeyondFloor_m).all();
+    };
+    const std::string beyond = " lies more than " + std::to_string(static_cast<int>(kMaxBeyondFloor_m)) + " m beyond the floor";
+    for (const Wall& w : walls) {
+        if (!near_floor(w.a_m) || !near_floor(w.b_m)) p.push_back("wall: an end" + beyond);
+    }
+    for (const Pillar& q : pillars) {
+        if (!near_floor(q.centre_m)) p.push_back("pillar: its centre" + beyond);
+    }
+    for (const SceneObject& o : objects) {
+        if (std::isfinite(o.pose.x_m) && std::isfinite(o.pose.y_m) && !near_floor({o.pose.x_m, o.pose.y_m})) {
+            p.push_back("object " + std::to_string(o.id) + beyond);
+        }
+    }
+    for (const Walker& w : walkers) {
+        if (std::any_of(w.route_m.begin(), w.route_m.end(), [&](const Eigen::Vector2d& q) { return !near_floor(q); })) {
+            p.push_back("walker: a route point" + beyond);
+        }
     }
     for (const Wall& w : walls) {
         if (!(w.thickness_m > 0.0 && w.height_m > 0.0)) p.push_back("wall: thickness_m and height_m must be > 0");

@@ -64,6 +64,9 @@ struct ChairPusher {
 
 /// What Scene::validate() accepts at most.
 constexpr double kMaxFloorExtent_m = 200.0;
+/// Walls, pillars, furniture and walkers' routes lie on the floor or at most this far beyond it
+/// (a wall 2000 km long made the simulator allocate until it failed).
+constexpr double kMaxBeyondFloor_m = 10.0;
 constexpr std::size_t kMaxStructures = 10000, kMaxObjects = 2000, kMaxWalkers = 200;
 
 struct Scene {

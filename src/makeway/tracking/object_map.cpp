@@ -27,7 +27,7 @@ std::vector<std::string> TrackerParams::validate() const {
         for (std::string& e : m.validate()) p.push_back(std::move(e));
     }
     if (std::none_of(tracked_classes.begin(), tracked_classes.end(), [](bool b) { return b; })) p.push_back("no class is tracked");
-    if (!std::isfinite(min_score)) p.push_back("min_score must be finite");
+    if (!(min_score >= 0.0 && min_score <= 1.0)) p.push_back("min_score must be in [0, 1] (a probability, after the score transform)");
     if (!(min_giou >= -1.0 && min_giou <= 1.0)) p.push_back("min_giou must be in [-1, 1]");
     if (!(sensor_range_m > 0.0)) p.push_back("sensor_range_m must be > 0");
     if (!(miss_range_m >= 0.0)) p.push_back("miss_range_m must be >= 0");

@@ -21,6 +21,7 @@ std::vector<std::string> VerifyParams::validate() const {
     if (!(shape_e_max_m > e_min_m && shape_e_max_m < 1.0)) p.push_back("need e_min_m < shape_e_max_m < 1");
     if (candidate_iterations < 0 || candidate_iterations > 100) p.push_back("candidate_iterations must be in [0, 100]");
     if (max_models < 1) p.push_back("max_models must be at least 1");
+    if (!(max_size_mismatch > 0.0 && max_size_mismatch <= 10.0)) p.push_back("max_size_mismatch must be in (0, 10]");
     if (!(min_yaw_margin >= 0.0)) p.push_back("min_yaw_margin must be >= 0");
     if (num_threads < 1 || num_threads > 256) p.push_back("num_threads must be in [1, 256]");
     if (!(reseed_tolerance_m >= 0.0 && reseed_tolerance_m < 1.0)) p.push_back("reseed_tolerance_m must be in [0, 1) (0: never reseeded)");
