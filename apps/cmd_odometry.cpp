@@ -30,6 +30,7 @@ int run_odometry(const OdometryOptions& o) {
             throw io::FileError(o.odometry, "holds " + std::to_string(wheels.size()) + " poses for " + std::to_string(files.size()) + " sweeps");
         }
     }
+    if (const std::string p = io::start_problem(o.start); !p.empty()) throw io::FileError("--start", p);
     const Pose2 start{o.start[0], o.start[1], o.start[2]};
     odometry::LidarOdometry odo(cfg.system.odometry, cfg.robot.T_robot_sensor(), start);
     std::vector<io::StampedPose> out;

@@ -63,6 +63,8 @@ void view_bounds(const std::vector<Pose2>& trajectory, const std::vector<ObjectE
 int run_run(const RunOptions& o) {
     const io::Config cfg = io::load_config(o.config);
     std::optional<Isometry3> extrinsics;
+    if (const std::string p = o.extrinsics.empty() ? "" : io::extrinsics_problem(o.extrinsics); !p.empty()) throw io::FileError("--extrinsics", p);
+    if (const std::string p = o.start.empty() ? "" : io::start_problem(o.start); !p.empty()) throw io::FileError("--start", p);
     if (!o.extrinsics.empty()) {
         const std::vector<double>& e = o.extrinsics;
         extrinsics = make_T_xyz_rpy({e[0], e[1], e[2]}, e[3], e[4], e[5]);

@@ -347,6 +347,7 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("dynamic_cluster_min_new", m.dynamic_cluster_min_new);
         s.read("dynamic_min_height_m", m.dynamic_min_height_m);
         s.read("dynamic_personal_space_m", m.dynamic_personal_space_m);
+        s.read("personal_space_object_margin_m", m.personal_space_object_margin_m);
         s.read("min_scale", m.min_scale);
         s.read("lowest_beam_deg", m.lowest_beam_deg);
         s.read("blind_memory_s", m.blind_memory_s);

@@ -1,11 +1,13 @@
 #include "io/pose_io.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
 #include <string>
 
 #include "io/error.hpp"
+#include "makeway/common/angles.hpp"
 #include "io/file_util.hpp"
 #include "io/text_scan.hpp"
 
@@ -159,6 +161,24 @@ void write_kitti_poses(const std::filesystem::path& path, const std::vector<Isom
         out.back() = '\n';
     }
     write_file_atomic(path, out);
+}
+
+std::string extrinsics_problem(const std::vector<double>& v) {
+    if (v.size() != 6 || !std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); })) return "expected 6 finite numbers";
+    if (Eigen::Vector3d(v[0], v[1], v[2]).norm() > 10.0) return "the sensor lies " + shortest(Eigen::Vector3d(v[0], v[1], v[2]).norm()) + " m from the base (at most 10 m)";
+    for (std::size_t i = 3; i < 6; ++i) {
+        if (std::abs(v[i]) > 2 * kPi) return "angle " + shortest(v[i]) + " is beyond +-2 pi (radians, not degrees)";
+    }
+    return "";
+}
+
+std::string start_problem(const std::vector<double>& v) {
+    if (v.size() != 3 || !std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); })) return "expected 3 finite numbers";
+    if (Eigen::Vector2d(v[0], v[1]).norm() > kMaxPosition_m) {
+        return "the start lies " + shortest(Eigen::Vector2d(v[0], v[1]).norm()) + " m from the origin (at most 100 km)";
+    }
+    if (std::abs(v[2]) > 2 * kPi) return "yaw " + shortest(v[2]) + " is beyond +-2 pi (radians, not degrees)";
+    return "";
 }
 
 }  // namespace makeway::io

@@ -20,6 +20,12 @@ void write_tum(const std::filesystem::path& path, const std::vector<StampedPose>
 std::vector<Isometry3> read_kitti_poses(const std::filesystem::path& path);
 void write_kitti_poses(const std::filesystem::path& path, const std::vector<Isometry3>& poses);
 
+/// What is wrong with a sensor mounting given by hand (x y z roll pitch yaw [m, rad]: the sensor
+/// within 10 m of the base, angles within +-2 pi) or a start pose (x y yaw: within 100 km of the
+/// map's origin); empty when nothing is. A 1e30 there gave poses of 1e12-1e300 m.
+std::string extrinsics_problem(const std::vector<double>& xyz_rpy);
+std::string start_problem(const std::vector<double>& xy_yaw);
+
 /// Buffer parsers behind the readers (and the fuzzers). Throw FormatError.
 std::vector<StampedPose> parse_tum(std::string_view text);
 std::vector<Isometry3> parse_kitti_poses(std::string_view text);

@@ -45,6 +45,7 @@
 #include <thread>
 
 #include "io/error.hpp"
+#include "io/pose_io.hpp"
 #include "ros/msg_conversions.hpp"
 #include "ros/node_util.hpp"
 #include "ros/node_engine.hpp"
@@ -121,12 +122,20 @@ int main(int argc, char** argv) {
             ROS_FATAL("makeway_node: ~start: expected \"x y yaw\" (3 finite numbers), got \"%s\"", start.c_str());
             return 2;
         }
+        if (const std::string p = io::start_problem(v); !p.empty()) {
+            ROS_FATAL("makeway_node: ~start: %s", p.c_str());
+            return 2;
+        }
         settings.start = Pose2{v[0], v[1], v[2]};
     }
     const std::string extrinsics = param<std::string>(pnh, "extrinsics", "");
     if (!extrinsics.empty()) {
         if (!numbers(extrinsics, 6, v)) {
             ROS_FATAL("makeway_node: ~extrinsics: expected \"x y z roll pitch yaw\" (6 finite numbers), got \"%s\"", extrinsics.c_str());
+            return 2;
+        }
+        if (const std::string p = io::extrinsics_problem(v); !p.empty()) {
+            ROS_FATAL("makeway_node: ~extrinsics: %s", p.c_str());
             return 2;
         }
         settings.T_base_sensor = make_T_xyz_rpy({v[0], v[1], v[2]}, v[3], v[4], v[5]);

@@ -126,6 +126,10 @@ TEST(Cli, RunRefusesBadRecordingsWithOneLineAndNoOutput) {
     expect_refused("run --bag " + bag + " --poses " + (dir / "late.txt").string(), "late.txt: the poses span 1767225600.500-1767225601.500 s; sweep 0");
     expect_refused("run --bag " + bag + " --clouds " + (dir / "clouds").string(), "excludes");
     expect_refused("run", "give --clouds DIR or --bag FILE");
+    // Poses by hand beyond any robot (issue 34: 1e30 gave poses of 1e12-1e300 m).
+    expect_refused("run --bag " + bag + " --extrinsics 1e30 0 0 0 0 0", "--extrinsics: the sensor lies 1e+30 m from the base (at most 10 m)");
+    expect_refused("run --bag " + bag + " --start 1e30 0 0", "--start: the start lies 1e+30 m from the origin (at most 100 km)");
+    expect_refused("run --bag " + bag + " --start 0 0 90", "--start: yaw 90 is beyond +-2 pi (radians, not degrees)");
     // Per-point times a bag would be refused for (issue 34): NaN, and 1e9 s (a wrong unit).
     std::filesystem::create_directories(dir / "clouds_t");
     const std::string header = "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z time\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"

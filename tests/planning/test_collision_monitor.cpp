@@ -259,6 +259,38 @@ TEST(CollisionMonitor, PersonalSpaceHoldsTheRobotBesideAWalker) {
     EXPECT_FALSE(p.validate().empty());
 }
 
+// Through filter(): returns new in this sweep 10 cm beside a creeping robot hold it, unless they
+// lie beside a chair the robot knows of (someone pulling it: the stop zone's business, not the
+// personal space's, or the robot waits beside every pulled chair).
+TEST(CollisionMonitor, PersonalSpaceLeavesAPulledChairToTheStopZone) {
+    const auto sweep = [](bool mover) {
+        PointCloud c;
+        for (double y = -1.0; y <= 1.0; y += 0.02) c.xyz.emplace_back(3.0f, static_cast<float>(y), 0.5f);  // a wall ahead
+        if (mover) {
+            for (double x = -0.1; x <= 0.1 + 1e-9; x += 0.02) c.xyz.emplace_back(static_cast<float>(x), -0.315f, 0.5f);
+        }
+        return c;
+    };
+    const PointCloud before = sweep(false), now = sweep(true);
+    const VelocityCommand creep{0.2, 0.0};
+    const std::vector<Polygon2> pulled = {{{-0.2, -0.3}, {0.2, -0.3}, {0.2, -0.7}, {-0.2, -0.7}}};  // the returns are its front
+    const std::vector<Polygon2> far = {{{1.0, 1.0}, {1.4, 1.0}, {1.4, 1.4}, {1.0, 1.4}}};
+    const auto action = [&](const std::vector<Polygon2>* chairs, double space) {
+        CollisionMonitorParams p = jackal();
+        p.dynamic_personal_space_m = space;
+        CollisionMonitor m(p);
+        m.filter({0.0, Pose2{}, &before, creep, 0.2, 0.0, nullptr, chairs});
+        return m.filter({0.1, Pose2{}, &now, creep, 0.2, 0.0, nullptr, chairs}).action;
+    };
+    EXPECT_EQ(action(nullptr, 0.15), MonitorAction::kStop);  // a walker: held
+    EXPECT_EQ(action(&far, 0.15), MonitorAction::kStop);     // a chair elsewhere explains nothing here
+    EXPECT_NE(action(&pulled, 0.15), MonitorAction::kStop);  // the chair being pulled: driven on
+    EXPECT_NE(action(nullptr, 0.0), MonitorAction::kStop);   // personal space off
+    CollisionMonitorParams p = jackal();
+    p.personal_space_object_margin_m = -0.1;
+    EXPECT_FALSE(p.validate().empty());
+}
+
 TEST(CollisionMonitor, ALowFootSeenInOneSweepIsRemembered) {
     // A round table's foot (radius 0.28 m, 3 cm high) around a pedestal at x = 1.2 m: the lowest
     // beam (-25 deg from 0.45 m) reaches its top only 0.90-0.965 m from the sensor, so a robot

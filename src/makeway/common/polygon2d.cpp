@@ -1,6 +1,7 @@
 #include "makeway/common/polygon2d.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace makeway {
 namespace {
@@ -63,6 +64,24 @@ Polygon2 convex_hull(Polygon2 points) {
     }
     hull.resize(k - 1);  // the last point repeats the first
     return hull;
+}
+
+double convex_distance(const Polygon2& polygon, const Eigen::Vector2d& p) {
+    if (polygon.empty()) return std::numeric_limits<double>::infinity();
+    bool left = true, right = true;  // p on one side of every edge: inside
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+        const Eigen::Vector2d& a = polygon[i];
+        const Eigen::Vector2d& b = polygon[(i + 1) % polygon.size()];
+        const Eigen::Vector2d ab = b - a, ap = p - a;
+        const double cross = ab.x() * ap.y() - ab.y() * ap.x();
+        left = left && cross >= 0.0;
+        right = right && cross <= 0.0;
+        const double len2 = ab.squaredNorm();
+        const double t = len2 > 0.0 ? std::clamp(ab.dot(ap) / len2, 0.0, 1.0) : 0.0;
+        nearest = std::min(nearest, (ap - t * ab).norm());
+    }
+    return left || right ? 0.0 : nearest;
 }
 
 }  // namespace makeway

@@ -48,16 +48,17 @@ Controller::Step Controller::step(const NavigatorInput& in) {
     // open below their top.
     const planning::CollisionMonitorParams& mp = monitor_.params();
     std::erase_if(moved_at_, [&](const auto& kv) { return in.t_s - kv.second > mp.blind_memory_s; });  // a long run's ids do not pile up
-    std::vector<Polygon2> chairs;
+    std::vector<Polygon2> chairs, moved_chairs;
     for (const ObjectEstimate& o : in.objects) {
         if (o.cls != ObjectClass::kChair || o.existence < min_existence_) continue;
+        const auto c = o.box_world.bev_corners();
+        chairs.emplace_back(c.begin(), c.end());
         if (o.velocity_mps.norm() > mp.object_moving_mps) moved_at_[o.id] = in.t_s;
         const auto moved = moved_at_.find(o.id);
         if (moved == moved_at_.end() || in.t_s - moved->second > mp.blind_memory_s) continue;
-        const auto c = o.box_world.bev_corners();
-        chairs.emplace_back(c.begin(), c.end());
+        moved_chairs.push_back(chairs.back());
     }
-    out.guard = monitor_.filter({in.t_s, in.pose, in.points_world, wanted, in.v_mps, in.w_radps, &chairs});
+    out.guard = monitor_.filter({in.t_s, in.pose, in.points_world, wanted, in.v_mps, in.w_radps, &moved_chairs, &chairs});
     out.monitor_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     // Idle (never driven, arrived, gave up, cancelled): zero, whatever the monitor was doing (a
     // recovery it had started is not a goal's to finish).

@@ -69,6 +69,9 @@ std::vector<std::string> CollisionMonitorParams::validate() const {
     if (!(lowest_beam_deg >= -90.0 && lowest_beam_deg <= 90.0)) p.push_back("lowest_beam_deg must be in [-90, 90]");
     if (!(blind_memory_s >= 0.0 && blind_memory_s <= 60.0)) p.push_back("blind_memory_s must be in [0, 60]");
     if (!(dynamic_personal_space_m >= 0.0 && dynamic_personal_space_m <= 2.0)) p.push_back("dynamic_personal_space_m must be in [0, 2]");
+    if (!(personal_space_object_margin_m >= 0.0 && personal_space_object_margin_m <= 1.0)) {
+        p.push_back("personal_space_object_margin_m must be in [0, 1]");
+    }
     if (!(object_moving_mps >= 0.0 && object_moving_mps <= 10.0)) p.push_back("object_moving_mps must be in [0, 10]");
     if (!(max_range_m > 0.0 && max_range_m <= 50.0)) p.push_back("max_range_m must be in (0, 50]");
     if (!(recovery_after_s > 0.0)) p.push_back("recovery_after_s must be > 0");
@@ -169,7 +172,7 @@ MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const Velocity
     if (params_.dynamic_personal_space_m > 0.0) {
         const Eigen::Vector2d half(0.5 * params_.footprint_length_m, 0.5 * params_.footprint_width_m);
         for (std::size_t i = 0; i < dynamic.size() && i < pts.size(); ++i) {
-            if (dynamic[i] && rect_signed_distance(pts[i], half) < params_.dynamic_personal_space_m) return hold(MonitorAction::kStop);
+            if (dynamic[i] == 1 && rect_signed_distance(pts[i], half) < params_.dynamic_personal_space_m) return hold(MonitorAction::kStop);
         }
     }
     if (first_contact({current, cmd, params_.latency_s, true}, params_.stop_padding_m, pts, dynamic) >= 0.0) {
@@ -329,6 +332,26 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
         previous_movers_.push_back(std::move(movers));
         while (static_cast<int>(previous_cells_.size()) > params_.dynamic_history) previous_cells_.pop_front();
         while (static_cast<int>(previous_movers_.size()) > params_.dynamic_history) previous_movers_.pop_front();
+    }
+
+    // New returns beside a known chair are the chair moving (someone pulls it): still movers for
+    // the stop zone, but out of the personal space, which is for walkers.
+    if (params_.dynamic_personal_space_m > 0.0 && in.chairs_world != nullptr && !in.chairs_world->empty()) {
+        std::vector<Polygon2> chairs;
+        for (const Polygon2& poly : *in.chairs_world) {
+            Polygon2 base;
+            for (const Eigen::Vector2d& q : poly) base.push_back(T_base_world * q);
+            chairs.push_back(std::move(base));
+        }
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+            if (dynamic[i] == 0) continue;
+            for (const Polygon2& chair : chairs) {
+                if (convex_distance(chair, pts[i]) <= params_.personal_space_object_margin_m) {
+                    dynamic[i] = 2;
+                    break;
+                }
+            }
+        }
     }
 
     // Object footprints where the sensor cannot see the floor: their outlines, sampled.

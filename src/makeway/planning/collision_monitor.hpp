@@ -46,9 +46,9 @@
 // walker who could step into its way before it has braked, and waits while the walker is near
 // its path; a walker standing still is an obstacle like any other (its returns are not new).
 // With dynamic_personal_space_m, a new return that close to the footprint holds the robot whatever
-// the command (a robot creeping or turning beside a walker meets the walker's next step). Off by
-// default: on 200 scenes 0.3 m took robot-caused person contacts from 8 to 5 over the four
-// methods, but cost `ours` 6 successes and added 6 collisions (README).
+// the command (a robot creeping or turning beside a walker meets the walker's next step), unless
+// it lies beside a chair the robot knows of (a pulled chair's returns are new too, and a robot
+// held by every pulled chair beside it gives up). Off by default (README).
 // Returns seen in one sweep only are not remembered (the floor's noise); with low_edge_support a
 // low one is, when it is an arc of returns (a table's foot, in the lowest ring's reach about one
 // sweep). Off by default: on 200 scenes oppo won 2 runs with it and ours lost 2 (README).
@@ -102,7 +102,8 @@ struct CollisionMonitorParams {
     double dynamic_cluster_m = 0.0;     ///< returns within about this of a mover (this sweep or the last dynamic_history) move too; 0: off ...
     int dynamic_cluster_min_new = 5;    ///< ... a mover: a cell of that size with this many new returns
     double dynamic_min_height_m = 0.1;  ///< lower returns are never new (floor noise at the lowest rings' reach)
-    double dynamic_personal_space_m = 0.0;  ///< a new return this close to the footprint holds the robot (any command); 0: off (README)
+    double dynamic_personal_space_m = 0.0;  ///< a new return this close to the footprint holds the robot (any command); 0: off (README) ...
+    double personal_space_object_margin_m = 0.2;  ///< ... unless it lies this close to a known chair (MonitorInput::chairs_world): the chair moves, not a walker
     double min_scale = 0.05;            ///< an approach scale below this holds the robot (counts as a stop)
     double sensor_height_m = 0.45;      ///< the LiDAR above the floor (on the base's centre) ...
     double lowest_beam_deg = -25.0;     ///< ... and its lowest beam: what it cannot see near it is remembered ...
@@ -133,6 +134,9 @@ struct MonitorInput {
     /// Objects solid below the body's top (null or empty: none): where the sensor cannot see the
     /// floor, their outlines count as returns (with object_footprints).
     const std::vector<Polygon2>* footprints_world = nullptr;
+    /// Every chair the robot knows of (null: none): a new return beside one is the chair being
+    /// pulled, which the personal space leaves to the stop zone (a walker's is not beside one).
+    const std::vector<Polygon2>* chairs_world = nullptr;
 };
 
 struct MonitorResult {
@@ -151,8 +155,9 @@ public:
     MonitorResult filter(const MonitorInput& input);
     /// The check alone, on returns already in the base frame (x forward, y left): no memory, no
     /// recovery. What filter() does per cycle, exposed for tests and tools.
-    /// `dynamic` (empty, or one flag per point): returns that are new in this sweep; `current`:
-    /// the velocity now (the first form: already at the commanded velocity).
+    /// `dynamic` (empty, or one flag per point): returns that are new in this sweep (1), or new and
+    /// beside a known chair (2: moving, but no walker: out of the personal space); `current`: the
+    /// velocity now (the first form: already at the commanded velocity).
     MonitorResult check(const VelocityCommand& command, const std::vector<Eigen::Vector2d>& points_base,
                         const std::vector<char>& dynamic = {}) const;
     MonitorResult check(const VelocityCommand& command, const VelocityCommand& current,
