@@ -72,10 +72,10 @@ public:
         s.timed = s.points.time_s.size() == s.points.size() && !s.points.empty();
         if (s.timed) {
             // The bag path's rules (from_point_cloud2): finite times within one sweep's span.
-            const auto [lo, hi] = std::minmax_element(s.points.time_s.begin(), s.points.time_s.end());
             if (std::any_of(s.points.time_s.begin(), s.points.time_s.end(), [](float t) { return !std::isfinite(t); })) {
                 throw io::FileError(s.file, "the per-point time holds a non-finite value");
             }
+            const auto [lo, hi] = std::minmax_element(s.points.time_s.begin(), s.points.time_s.end());
             if (*hi - *lo > kMaxSweepSpan_s) {
                 throw io::FileError(s.file, "the per-point times span " + std::to_string(*hi - *lo) + " s, more than " +
                                                 std::to_string(kMaxSweepSpan_s).substr(0, 3) + " s (a sweep lasts 0.05-0.2 s; wrong unit?)");
@@ -183,7 +183,6 @@ private:
     std::size_t out_of_order_ = 0;
     std::vector<StampedPose2> poses_;
     std::string pose_source_;
-    std::size_t k_ = 0;
     double previous_duration_ = 0.0;
     std::optional<CloudSweep> pending_;
 };
