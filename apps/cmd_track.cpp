@@ -214,7 +214,7 @@ std::vector<std::string> kitti_types(const std::vector<KittiSequenceInput>& inpu
 io::Json settings_json(const tracking::TrackerParams& p) {
     return {{"sensor_range_m", p.sensor_range_m}, {"min_score", p.min_score}, {"score_transform", name_of(p.score_transform)},
             {"out_of_range", p.out_of_range == tracking::OutOfRange::kDrop ? "drop" : "freeze"}, {"min_hits", p.min_hits},
-            {"max_misses", p.max_misses}, {"min_giou", p.min_giou}, {"min_existence", p.min_existence}, {"merge_iou", p.merge_iou},
+            {"max_misses", p.max_misses}, {"min_giou", p.min_giou}, {"max_centre_distance_m", p.max_centre_distance_m}, {"min_existence", p.min_existence}, {"merge_iou", p.merge_iou},
             {"accel_sigma_mps2", p.kalman.accel_sigma_mps2}, {"position_sigma_mps", p.kalman.position_sigma_mps},
             {"initial_velocity_sigma_mps", p.kalman.initial_velocity_sigma_mps},
             {"meas_position_sigma_m", p.kalman.meas_position_sigma_m}};

@@ -274,6 +274,7 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("min_giou", t.min_giou);
         s.read("sensor_range_m", t.sensor_range_m);
         s.read("association_gate_m", t.association_gate_m);
+        s.read("max_centre_distance_m", t.max_centre_distance_m);
         s.read("min_hits", t.min_hits);
         s.read("max_misses", t.max_misses);
         s.read("min_existence", t.min_existence);

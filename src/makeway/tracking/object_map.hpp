@@ -65,7 +65,10 @@ struct TrackerParams {
     std::array<bool, kNumObjectClasses> tracked_classes{true, true};  ///< detections of other classes are not used
     ScoreTransform score_transform = ScoreTransform::kNone;
     double min_score = 0.0;          ///< detections scoring below this (after the transform) are not used
-    double min_giou = -0.1;          ///< associated pairs need at least this 3D GIoU
+    double min_giou = -0.1;          ///< associated pairs need at least this 3D GIoU ...
+    /// ... or, when > 0, pairs are scored by the distance between their centres instead of GIoU
+    /// and need at most this (thin boxes like cyclists overlap little from frame to frame).
+    double max_centre_distance_m = 0.0;
     double sensor_range_m = 10.0;    ///< objects farther from the sensor are neither matched nor penalised
     OutOfRange out_of_range = OutOfRange::kFreeze;
     /// Unmatched objects farther than this are not penalised either: where the detector cannot see
