@@ -64,7 +64,7 @@ public:
     // `n` bytes at `pos`, which must lie before `end` (the file's or an enclosing chunk's end).
     std::string bytes(std::uint64_t pos, std::uint64_t n, std::uint64_t end, const std::string& what) {
         if (pos > end || n > end - pos) {
-            fail("record at byte " + std::to_string(pos) + ": " + what + " of " + std::to_string(n) + " bytes runs past " +
+            fail("at byte " + std::to_string(pos) + ": " + what + " of " + std::to_string(n) + " bytes runs past " +
                  (end == size_ ? "the end of the file (" + std::to_string(size_) + " bytes; cut short?)" : "the end of its chunk"));
         }
         std::string out(static_cast<std::size_t>(n), '\0');
