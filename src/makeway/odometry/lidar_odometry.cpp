@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <numeric>
 #include <stdexcept>
 
@@ -28,21 +29,25 @@ double sq(double v) { return v * v; }
 
 std::vector<std::string> OdometryParams::validate() const {
     std::vector<std::string> p;
-    if (!(map.voxel_m > 0.01 && map.voxel_m <= 10.0)) p.push_back("odometry voxel_m must be in (0.01, 10]");
-    if (map.max_points_per_voxel < 1 || map.max_points_per_voxel > 1000) p.push_back("odometry max_points_per_voxel must be in [1, 1000]");
-    if (map.min_points_for_plane < 3) p.push_back("odometry min_points_for_plane must be >= 3");
-    if (!(map.planarity > 0.0 && map.planarity < 1.0)) p.push_back("odometry planarity must be in (0, 1)");
-    if (!(source_voxel_m > 0.0 && insert_voxel_m > 0.0)) p.push_back("odometry source_voxel_m and insert_voxel_m must be > 0");
-    if (!(min_range_m >= 0.0 && max_range_m > min_range_m)) p.push_back("odometry needs 0 <= min_range_m < max_range_m");
-    if (!(map_radius_m > 0.0)) p.push_back("odometry map_radius_m must be > 0");
-    if (max_iterations < 1 || max_iterations > 1000) p.push_back("odometry max_iterations must be in [1, 1000]");
+    if (!(map.voxel_m > 0.01 && map.voxel_m <= 10.0)) p.push_back("voxel_m must be in (0.01, 10]");
+    if (map.max_points_per_voxel < 1 || map.max_points_per_voxel > 1000) p.push_back("max_points_per_voxel must be in [1, 1000]");
+    if (map.min_points_for_plane < 3) p.push_back("min_points_for_plane must be >= 3");
+    if (!(map.planarity > 0.0 && map.planarity < 1.0)) p.push_back("planarity must be in (0, 1)");
+    if (!(source_voxel_m > 0.0 && insert_voxel_m > 0.0)) p.push_back("source_voxel_m and insert_voxel_m must be > 0");
+    if (!(min_range_m >= 0.0 && max_range_m > min_range_m)) p.push_back("needs 0 <= min_range_m < max_range_m");
+    if (!(map_radius_m > 0.0)) p.push_back("map_radius_m must be > 0");
+    if (max_iterations < 1 || max_iterations > 1000) p.push_back("max_iterations must be in [1, 1000]");
     if (!(min_threshold_m > 0.0 && min_threshold_m <= initial_threshold_m && initial_threshold_m <= max_threshold_m)) {
-        p.push_back("odometry needs 0 < min_threshold_m <= initial_threshold_m <= max_threshold_m");
+        p.push_back("needs 0 < min_threshold_m <= initial_threshold_m <= max_threshold_m");
     }
-    if (!(residual_sigma_m > 0.0 && wheel_sigma_m > 0.0 && wheel_sigma_rad > 0.0 && wheel_sigma_per_m >= 0.0 && wheel_sigma_per_rad >= 0.0)) {
-        p.push_back("odometry sigmas must be > 0");
+    // Each sigma named (the section's reader prefixes "lidar_odometry."): a group message sent
+    // users hunting for which of five keys was wrong.
+    for (const auto& [name, v, zero_ok] : {std::tuple{"residual_sigma_m", residual_sigma_m, false}, std::tuple{"wheel_sigma_m", wheel_sigma_m, false},
+                                           std::tuple{"wheel_sigma_rad", wheel_sigma_rad, false}, std::tuple{"wheel_sigma_per_m", wheel_sigma_per_m, true},
+                                           std::tuple{"wheel_sigma_per_rad", wheel_sigma_per_rad, true}}) {
+        if (!((zero_ok ? v >= 0.0 : v > 0.0) && v <= 10.0)) p.push_back(std::string(name) + (zero_ok ? " must be in [0, 10]" : " must be in (0, 10]"));
     }
-    if (!(min_height_m >= -5.0 && min_height_m <= 5.0)) p.push_back("odometry min_height_m must be in [-5, 5] (above the base)");
+    if (!(min_height_m >= -5.0 && min_height_m <= 5.0)) p.push_back("min_height_m must be in [-5, 5] (above the base)");
     return p;
 }
 
@@ -51,7 +56,7 @@ LidarOdometry::LidarOdometry(const OdometryParams& params, const Isometry3& T_ba
     if (const auto problems = params.validate(); !problems.empty()) {
         std::string all;
         for (const auto& p : problems) all += (all.empty() ? "" : "; ") + p;
-        throw std::invalid_argument(all);
+        throw std::invalid_argument("lidar odometry: " + all);
     }
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <string>
+#include <utility>
 
 #include "makeway/common/angles.hpp"
 
@@ -92,11 +94,9 @@ RobotState step_diff_drive(const RobotState& state, const VelocityCommand& comma
 
 std::vector<std::string> OdometryNoiseParams::validate() const {
     std::vector<std::string> p;
-    for (double v : {translation_noise_per_m, heading_noise_per_rad, heading_noise_per_m}) {
-        if (!(v >= 0.0 && v <= 1.0)) {
-            p.push_back("odometry noise values must be in [0, 1]");
-            break;
-        }
+    for (const auto& [name, v] : {std::pair{"translation_noise_per_m", translation_noise_per_m}, std::pair{"heading_noise_per_rad", heading_noise_per_rad},
+                                  std::pair{"heading_noise_per_m", heading_noise_per_m}}) {
+        if (!(v >= 0.0 && v <= 1.0)) p.push_back(std::string(name) + " must be in [0, 1]");
     }
     return p;
 }
