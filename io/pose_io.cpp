@@ -15,9 +15,7 @@ namespace makeway::io {
 namespace {
 
 constexpr double kUnitTolerance = 1e-3;  // quaternion norm / rotation orthonormality
-// Bounds of a robot's trajectory: a building lies well inside 100 km of its map's origin, and a
-// stamp is seconds since the epoch (1.7e9 now) or since the recording began; 1e10 s is 2286.
-constexpr double kMaxPosition_m = 100e3;
+// A stamp is seconds since the epoch (1.7e9 now) or since the recording began; 1e10 s is 2286.
 constexpr double kMaxStamp_s = 1e10;
 
 template <std::size_t N>
@@ -39,9 +37,10 @@ std::array<double, N> parse_numbers(const std::vector<std::string_view>& words, 
     return v;
 }
 
+// The shortest round-trip form: files keep every bit, messages say 1e+300, not 300 digits.
 std::string shortest(double v) {
     char buf[32];
-    const auto r = std::to_chars(buf, buf + sizeof(buf), v);  // 1e+300, not 300 digits
+    const auto r = std::to_chars(buf, buf + sizeof(buf), v);
     return std::string(buf, r.ptr);
 }
 
@@ -57,11 +56,6 @@ void for_each_data_line(std::string_view text, Fn&& fn) {
     }
 }
 
-void append_number(std::string& out, double v) {
-    char buf[32];
-    const auto r = std::to_chars(buf, buf + sizeof(buf), v);  // shortest round-trip form
-    out.append(buf, r.ptr);
-}
 
 template <typename T, typename Parse>
 T read_with(const std::filesystem::path& path, Parse parse) {
@@ -141,7 +135,7 @@ void write_tum(const std::filesystem::path& path, const std::vector<StampedPose>
         const Eigen::Quaterniond q(p.T_world_sensor.linear());
         const Eigen::Vector3d t = p.T_world_sensor.translation();
         for (double v : {p.stamp_s, t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()}) {
-            append_number(out, v);
+            out += shortest(v);
             out += ' ';
         }
         out.back() = '\n';
@@ -154,7 +148,7 @@ void write_kitti_poses(const std::filesystem::path& path, const std::vector<Isom
     for (const Isometry3& T : poses) {
         for (int r = 0; r < 3; ++r) {
             for (int c = 0; c < 4; ++c) {
-                append_number(out, T.matrix()(r, c));
+                out += shortest(T.matrix()(r, c));
                 out += ' ';
             }
         }

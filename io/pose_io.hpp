@@ -20,6 +20,11 @@ void write_tum(const std::filesystem::path& path, const std::vector<StampedPose>
 std::vector<Isometry3> read_kitti_poses(const std::filesystem::path& path);
 void write_kitti_poses(const std::filesystem::path& path, const std::vector<Isometry3>& poses);
 
+/// Positions farther than this from the map's origin are refused wherever poses come in (TUM
+/// files, odometry messages, --start): a building lies well inside 100 km of it, and 1e30 m poses
+/// come from damaged data.
+constexpr double kMaxPosition_m = 100e3;
+
 /// What is wrong with a sensor mounting given by hand (x y z roll pitch yaw [m, rad]: the sensor
 /// within 10 m of the base, angles within +-2 pi) or a start pose (x y yaw: within 100 km of the
 /// map's origin); empty when nothing is. A 1e30 there gave poses of 1e12-1e300 m.

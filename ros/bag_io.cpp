@@ -111,13 +111,20 @@ M deserialise(const rosbag::MessageInstance& m) {
     return msg;
 }
 
-std::string seconds(double t) {
+}  // namespace
+
+std::string seconds_text(double t_s) {
     char text[32];
-    std::snprintf(text, sizeof(text), "%.3f", t);
+    std::snprintf(text, sizeof(text), "%.3f", t_s);
     return text;
 }
 
-}  // namespace
+std::string sweep_span_problem(double span_s) {
+    if (span_s <= kMaxSweepSpan_s) return "";
+    char bound[16];
+    std::snprintf(bound, sizeof(bound), "%.1f", kMaxSweepSpan_s);
+    return std::to_string(span_s) + " s, more than " + bound + " s (a sweep lasts 0.05-0.2 s; wrong unit?)";
+}
 
 struct BagReader::Impl {
     std::filesystem::path path;
@@ -132,7 +139,7 @@ struct BagReader::Impl {
     // A message that cannot be used: an error naming it, or with skip_bad a warning (the first
     // only: a damaged stretch can hold thousands) and a count.
     void bad(const std::string& topic, std::size_t k, double stamp_s, const std::string& problem) {
-        const std::string what = topic + " message " + std::to_string(k) + " (bag time " + seconds(stamp_s) + " s): " + problem;
+        const std::string what = topic + " message " + std::to_string(k) + " (bag time " + seconds_text(stamp_s) + " s): " + problem;
         if (!skip_bad) throw io::FileError(path.string(), what + " (--skip-bad-messages to skip such messages)");
         if (skipped++ == 0) io::print_warning(path.string() + ": " + what + "; skipped (more are counted in the summary)");
     }

@@ -20,6 +20,12 @@ namespace makeway::rosio {
 /// Per-point times spanning more than this are refused: a sweep lasts 0.05-0.2 s; 1 s is ten
 /// sweep periods of the slowest common rate (a time field in the wrong unit spans 1e3-1e9 s).
 constexpr double kMaxSweepSpan_s = 1.0;
+/// Empty when per-point times spanning `span_s` fit one sweep, else what is wrong after the
+/// subject ("spans " + this): the span, the bound and why.
+std::string sweep_span_problem(double span_s);
+
+/// A stamp as errors show it: seconds with 3 decimals.
+std::string seconds_text(double t_s);
 
 /// A sweep read from a PointCloud2: points in the message's frame, time since the first point.
 struct CloudSweep {

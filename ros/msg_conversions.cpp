@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "io/error.hpp"
+#include "io/pose_io.hpp"
 #include "makeway/common/angles.hpp"
 
 namespace makeway::rosio {
@@ -170,10 +171,7 @@ CloudSweep from_point_cloud2(const sensor_msgs::PointCloud2& msg) {
         // Relative times that are all >= 0: the stamp is the sweep's start (its first firing may
         // have returned nothing). Negative ones (drivers that stamp the end): the first point.
         if (!absolute && first > stamp) first = stamp;
-        if (last - first > kMaxSweepSpan_s) {
-            throw io::FormatError("field '" + out.time_field + "' spans " + std::to_string(last - first) + " s, more than " +
-                                  std::to_string(kMaxSweepSpan_s).substr(0, 3) + " s (a sweep lasts 0.05-0.2 s; wrong unit?)");
-        }
+        if (const std::string p = sweep_span_problem(last - first); !p.empty()) throw io::FormatError("field '" + out.time_field + "' spans " + p);
         out.timed = true;
         out.stamp_s = first;
         out.duration_s = last - first;
@@ -212,9 +210,9 @@ sensor_msgs::PointCloud2 to_point_cloud2(const PointCloud& cloud, double stamp_s
 Pose2 pose_from_odometry(const nav_msgs::Odometry& msg) {
     const auto& t = msg.pose.pose.position;
     if (!std::isfinite(t.x) || !std::isfinite(t.y) || !std::isfinite(t.z)) throw io::FormatError("the position is not finite");
-    if (std::hypot(t.x, t.y, t.z) > kMaxOdometryPosition_m) {
+    if (std::hypot(t.x, t.y, t.z) > io::kMaxPosition_m) {
         throw io::FormatError("the position lies " + std::to_string(std::hypot(t.x, t.y, t.z)) + " m from the origin (more than " +
-                              std::to_string(static_cast<int>(kMaxOdometryPosition_m / 1000)) + " km)");
+                              std::to_string(static_cast<int>(io::kMaxPosition_m / 1000)) + " km)");
     }
     const auto& o = msg.pose.pose.orientation;
     const double norm = std::sqrt(o.x * o.x + o.y * o.y + o.z * o.z + o.w * o.w);

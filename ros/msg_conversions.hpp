@@ -20,9 +20,6 @@
 
 namespace makeway::rosio {
 
-/// Odometry positions farther than this from the origin are refused (a building is well inside
-/// 100 km; 1e30 m poses came from damaged messages).
-constexpr double kMaxOdometryPosition_m = 100e3;
 
 /// A stamp as ros::Time: seconds since the epoch, at least 1 ns (rosbag refuses time 0).
 ros::Time to_ros_time(double stamp_s);
@@ -44,7 +41,7 @@ sensor_msgs::PointCloud2 to_point_cloud2(const PointCloud& cloud, double stamp_s
 
 /// The base's planar pose from an Odometry message (yaw from the quaternion, which need not be
 /// normalised). Throws io::FormatError for a non-finite position or one beyond
-/// kMaxOdometryPosition_m, and for a zero or non-finite quaternion.
+/// io::kMaxPosition_m, and for a zero or non-finite quaternion.
 Pose2 pose_from_odometry(const nav_msgs::Odometry& msg);
 nav_msgs::Odometry to_odometry(const Pose2& pose, double v_mps, double w_radps, double stamp_s,
                                const std::string& frame_id, const std::string& child_frame_id);

@@ -11,12 +11,6 @@ namespace makeway::rosio {
 namespace fs = std::filesystem;
 namespace {
 
-std::string seconds(double t) {
-    char b[32];
-    std::snprintf(b, sizeof(b), "%.3f", t);
-    return b;
-}
-
 // The base's planar poses from a TUM file: wheel odometry holds the base; external poses hold the
 // sensor (as `makeway odometry` and `simulate`'s poses_gt.txt write them).
 std::vector<StampedPose2> read_base_poses(const std::string& path, bool sensor_poses, const Isometry3& T_base_sensor) {
@@ -76,10 +70,7 @@ public:
                 throw io::FileError(s.file, "the per-point time holds a non-finite value");
             }
             const auto [lo, hi] = std::minmax_element(s.points.time_s.begin(), s.points.time_s.end());
-            if (*hi - *lo > kMaxSweepSpan_s) {
-                throw io::FileError(s.file, "the per-point times span " + std::to_string(*hi - *lo) + " s, more than " +
-                                                std::to_string(kMaxSweepSpan_s).substr(0, 3) + " s (a sweep lasts 0.05-0.2 s; wrong unit?)");
-            }
+            if (const std::string p = sweep_span_problem(*hi - *lo); !p.empty()) throw io::FileError(s.file, "the per-point times span " + p);
         }
         const double measured = s.timed ? sweep_duration(s.points) : 0.0;
         if (poses_.empty()) {
@@ -154,9 +145,9 @@ public:
             s.pose_end = interpolate_at(poses_, s.stamp_s + s.duration_s);
             if (!s.pose_start || !s.pose_end) {
                 throw io::FileError(o_.poses.empty() ? o_.bag : o_.poses,
-                                    pose_source_ + " " + seconds(poses_.front().stamp_s) + "-" + seconds(poses_.back().stamp_s) +
-                                        " s; sweep " + std::to_string(k) + " (" + seconds(s.stamp_s) + "-" +
-                                        seconds(s.stamp_s + s.duration_s) + " s) lies outside");
+                                    pose_source_ + " " + seconds_text(poses_.front().stamp_s) + "-" + seconds_text(poses_.back().stamp_s) +
+                                        " s; sweep " + std::to_string(k) + " (" + seconds_text(s.stamp_s) + "-" +
+                                        seconds_text(s.stamp_s + s.duration_s) + " s) lies outside");
             }
         }
         return s;
@@ -170,7 +161,7 @@ private:
         while (std::optional<CloudSweep> c = reader_.next()) {
             if (c->stamp_s > after) return c;
             const std::string what = o_.topics.cloud + " message " + std::to_string(c->index) + ": its sweep starts at " +
-                                     seconds(c->stamp_s) + " s, not after the previous sweep's " + seconds(after) + " s";
+                                     seconds_text(c->stamp_s) + " s, not after the previous sweep's " + seconds_text(after) + " s";
             if (!o_.skip_bad_messages) throw io::FileError(o_.bag, what + " (--skip-bad-messages to skip such sweeps)");
             if (out_of_order_++ == 0) io::print_warning(o_.bag + ": " + what + "; skipped (more are counted in the summary)");
         }
