@@ -473,6 +473,7 @@ int run_bench_track(const BenchTrackOptions& o) {
     p.scenes = o.scenes;
     p.seed = o.seed;
     p.use_scan_occlusion = o.scan_occlusion;
+    if (!o.config.empty()) p.tracker = io::load_config(o.config).system.tracker;
     io::ProgressBar bar("bench track", static_cast<std::size_t>(p.scenes));
     const eval::TrackBenchResult r = eval::run_track_bench(p, [&](int done, int) { bar.update(static_cast<std::size_t>(done)); });
     bar.finish();
@@ -483,6 +484,7 @@ int run_bench_track(const BenchTrackOptions& o) {
     j["seed"] = p.seed;
     j["mean_detections_per_frame"] = r.mean_detections_per_frame;
     j["scan_occlusion"] = p.use_scan_occlusion;
+    if (!o.config.empty()) j["config"] = o.config;
     j["yaw_within_10deg_detections"] = r.yaw_within_10deg_detections;
     j["yaw_within_10deg_map"] = r.yaw_within_10deg_map;
     j["occlusion_gaps_up_to_2s"] = r.occlusion_gaps;

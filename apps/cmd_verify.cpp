@@ -31,6 +31,7 @@ io::Json to_json(const eval::VerifyBenchArm& a) {
     return {{"before", to_json(a.before)},
             {"after", to_json(a.after)},
             {"true_rejection_rate", a.true_rejection_rate},
+            {"approximate_rate", a.approximate_rate},
             {"false_acceptance_rate", a.false_acceptance_rate},
             {"ms_per_object_median", a.ms_per_object_median},
             {"ms_per_object_p99", a.ms_per_object_p99}};
@@ -78,16 +79,20 @@ int run_bench_verify(const BenchVerifyOptions& options) {
     p.scenes = options.scenes;
     p.seed = options.seed;
     p.verify.min_yaw_margin = options.min_yaw_margin;
+    p.verify.approx_e_max_m = options.approx_e_max_m;
+    if (const auto problems = p.verify.validate(); !problems.empty()) throw io::FileError("--approx-e-max", problems.front());
     io::ProgressBar bar("bench verify", static_cast<std::size_t>(p.scenes));
     const eval::VerifyBenchResult r = eval::run_verify_bench(p, [&](int done, int) { bar.update(static_cast<std::size_t>(done)); });
     bar.finish();
     const io::Json j = {{"scenes", p.scenes},
                         {"seed", p.seed},
                         {"min_yaw_margin", p.verify.min_yaw_margin},
+                        {"approx_e_max_m", p.verify.approx_e_max_m},
                         {"true_boxes", r.true_boxes},
                         {"false_boxes", r.false_boxes},
                         {"matched", to_json(r.matched)},
-                        {"mismatched", to_json(r.mismatched)}};
+                        {"mismatched", to_json(r.mismatched)},
+                        {"scaled", to_json(r.scaled)}};
     io::write_json(std::filesystem::path(options.out_dir) / "summary.json", j);
     std::cout << io::dump_json(j, 2) << "\n";
     return 0;

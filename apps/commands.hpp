@@ -124,6 +124,7 @@ struct BenchVerifyOptions {
     std::uint64_t seed = 0;
     std::string out_dir = "out/bench_verify";
     double min_yaw_margin = 0.0;  ///< VerifyParams::min_yaw_margin
+    double approx_e_max_m = 0.0;  ///< VerifyParams::approx_e_max_m
 };
 int run_bench_verify(const BenchVerifyOptions& options);
 
@@ -175,6 +176,7 @@ struct EvalTrackingOptions {
 int run_eval_tracking(const EvalTrackingOptions& options);
 
 struct BenchTrackOptions {
+    std::string config;  ///< YAML whose tracking section replaces the defaults (empty: none)
     bool scan_occlusion = false;
     int scenes = 5;
     std::uint64_t seed = 0;

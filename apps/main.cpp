@@ -410,12 +410,13 @@ void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchM
     trk->add_option("--scenes", trk_o.scenes, "Scenes (alternating medium and dense)")->check(CLI::Range(1, 1000))
         ->capture_default_str();
     trk->add_option("--seed", trk_o.seed, "Seed of scenes and corruption")->capture_default_str();
+    trk->add_option("--config", trk_o.config, "YAML configuration: its tracking section replaces the defaults");
     trk->add_option("--out", trk_o.out_dir, "Output folder (summary.json)")->capture_default_str();
     trk->add_flag("--scan-occlusion", trk_o.scan_occlusion, "Also treat LiDAR returns in front of an object as occlusion "
                                                              "(walls, people), beyond the paper's object boxes");
     auto* ver = bench->add_subcommand("verify", "CAD verification on simulated keyframes: ground-truth boxes "
                                                 "corrupted like detector output (noise, yaw flips) and false "
-                                                "boxes on walls, with matching and non-matching CAD models");
+                                                "boxes on walls, with matching, non-matching and scaled CAD models");
     ver->add_option("--scenes", ver_o.scenes, "Scenes (alternating medium and dense)")->check(CLI::Range(1, 1000))
         ->capture_default_str();
     ver->add_option("--seed", ver_o.seed, "Seed of scenes and corruption")->capture_default_str();
@@ -423,6 +424,10 @@ void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchM
     ver->add_option("--min-yaw-margin", ver_o.min_yaw_margin, "Reject fits whose best rival orientation is within this "
                                                               "fraction of the winner's residual (0: off)")
         ->check(CLI::Range(0.0, 10.0))
+        ->capture_default_str();
+    ver->add_option("--approx-e-max", ver_o.approx_e_max_m, "Accept fits up to this residual [m] as approximate (the network's "
+                                                            "score stays; 0: off, else above e_max 0.035)")
+        ->check(CLI::Range(0.0, 0.999))
         ->capture_default_str();
     auto* nav = bench->add_subcommand("nav", "The navigation benchmark (the paper's Table II): every method on "
                                              "generated scenes of varied density; writes results.json, table.md "

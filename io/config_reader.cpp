@@ -221,6 +221,7 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("min_yaw_margin", v.min_yaw_margin);
         s.read("e_min_m", v.e_min_m);
         s.read("e_max_m", v.e_max_m);
+        s.read("approx_e_max_m", v.approx_e_max_m);
         s.read("shape_e_max_m", v.shape_e_max_m);
         s.read("shape_match_distance_m", sys.shapes.match_distance_m);
         s.read("shape_max_views", sys.shapes.max_views);
@@ -279,6 +280,8 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("max_misses", t.max_misses);
         s.read("min_existence", t.min_existence);
         s.read("existence_grace_frames", t.existence_grace_frames);
+        s.read("same_view_m", t.same_view_m);
+        s.read("same_view_period_s", t.same_view_period_s);
         s.finish();
         s.add_validation(t.validate());
     }

@@ -249,6 +249,53 @@ TEST(Lifecycle, CentreDistanceAssociatesThinBoxesGIoUCannot) {
     EXPECT_FALSE(bad.validate().empty());
 }
 
+// A robot drives toward a chair at (4, 1) (four keyframes 0.5 s and 0.5 m apart: four views, the
+// verifier sure at 0.9), then stops at x = 2 and keeps looking for `watch_s`: each keyframe
+// `score(k)` (negative: no detection). Returns whether the chair is in the map at the end.
+template <typename Score>
+bool watched_chair_stays(const TrackerParams& params, double watch_s, Score score) {
+    ObjectMap map(params);
+    const Eigen::Vector3d chair(4.0, 1.0, 0.0);
+    double t = 0.0;
+    auto frame = [&](double x, double s) {
+        const Isometry3 T_world_sensor(Eigen::Translation3d(x, 0.0, 0.0));
+        std::vector<Detection> dets;
+        if (s >= 0.0) dets.push_back(chair_at(chair - Eigen::Vector3d(x, 0.0, 0.0), s));
+        map.update(dets, T_world_sensor, t);
+        t += 0.5;
+    };
+    for (int k = 0; k < 4; ++k) frame(0.5 * k, 0.9);
+    for (int k = 0; t < 2.0 + watch_s - 1e-9; ++k) frame(2.0, score(k));
+    return find_chair(map.objects()).has_value();
+}
+
+TEST(Lifecycle, AChairWatchedByAStillRobotStaysInTheMap) {
+    // Standing still, the verifier doubts the chair (0.4, missed every fourth keyframe: mean 0.3)
+    // frame after frame: the same doubt repeated, not new evidence. One vote per view (and one
+    // more every same_view_period_s): existence (3.6 + 5 x 0.3) / 9 = 0.57 after 10 s.
+    auto doubtful = [](int k) { return k % 4 == 3 ? -1.0 : 0.4; };
+    EXPECT_TRUE(watched_chair_stays(TrackerParams{}, 10.0, doubtful));
+    // Counted frame by frame (the paper's average), 20 keyframes of 0.3 outvote the four views:
+    // (3.6 + 6) / 24 = 0.4, and the chair leaves.
+    TrackerParams every_frame;
+    every_frame.same_view_m = 0.0;
+    EXPECT_FALSE(watched_chair_stays(every_frame, 10.0, doubtful));
+    // Doubt that lasts wins in the end: a vote every 2 s, (3.6 + 15 x 0.3) / 19 < 0.5 by 30 s.
+    EXPECT_FALSE(watched_chair_stays(TrackerParams{}, 30.0, doubtful));
+}
+
+TEST(Lifecycle, AChairTakenAwayWhileTheRobotWatchesLeavesWithTime) {
+    // No detection at all from the still robot: a vote of 0 every 2 s. After 3.5 s two such views
+    // (3.6 / 6 = 0.6: stays), after 7 s four (3.6 / 8 < 0.5: gone); at frame rate it would be gone
+    // after four keyframes.
+    auto gone = [](int) { return -1.0; };
+    EXPECT_TRUE(watched_chair_stays(TrackerParams{}, 3.5, gone));
+    EXPECT_FALSE(watched_chair_stays(TrackerParams{}, 7.0, gone));
+    TrackerParams every_frame;
+    every_frame.same_view_m = 0.0;
+    EXPECT_FALSE(watched_chair_stays(every_frame, 2.0, gone));  // 3.6 / (4 + 4) < 0.5 after 4 keyframes
+}
+
 TEST(Lifecycle, StampsGoingBackInTimeAreRefused) {
     ObjectMap map;
     map.update({}, Isometry3::Identity(), 1.0);

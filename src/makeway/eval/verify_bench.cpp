@@ -45,15 +45,25 @@ OrientationStats stats(const std::vector<Sample>& samples, bool after) {
     return s;
 }
 
-verification::CadLibrary build_library(const sim::SceneObject& o, bool matched) {
-    // The object's own model (matched) or none of its dimensions (mismatched), plus one model of
-    // every other style of its class.
+// Which library an object is verified against: its own model plus one of every other style of its
+// class (matched); other dimensions of its style instead of its own (mismatched); its own model
+// scaled by 0.9-1.1 per axis, as a CAD library of similar furniture has it (scaled).
+enum class Arm { kMatched, kMismatched, kScaled };
+constexpr int kArms = 3;
+
+verification::CadLibrary build_library(const sim::SceneObject& o, Arm arm) {
     verification::CadLibrary lib;
     for (sim::FurnitureStyle style : sim::scene_styles_of(o.cls)) {
         const bool own = std::string(sim::to_string(style)) == o.style;
-        const std::uint64_t seed = own && matched ? o.model_seed : o.model_seed + 7919 + static_cast<std::uint64_t>(style);
-        lib.add(std::string(sim::to_string(style)) + "_" + std::to_string(seed), o.cls,
-                sim::make_furniture(style, seed).mesh_object);
+        const std::uint64_t seed = own && arm != Arm::kMismatched ? o.model_seed : o.model_seed + 7919 + static_cast<std::uint64_t>(style);
+        TriangleMesh mesh = sim::make_furniture(style, seed).mesh_object;
+        if (own && arm == Arm::kScaled) {
+            Rng rng = make_rng(o.model_seed, 77);
+            const Eigen::Vector3f scale(static_cast<float>(uniform(rng, 0.9, 1.1)), static_cast<float>(uniform(rng, 0.9, 1.1)),
+                                        static_cast<float>(uniform(rng, 0.9, 1.1)));
+            for (Eigen::Vector3f& v : mesh.vertices_m) v = v.cwiseProduct(scale);
+        }
+        lib.add(std::string(sim::to_string(style)) + "_" + std::to_string(seed), o.cls, mesh);
     }
     return lib;
 }
@@ -62,10 +72,10 @@ verification::CadLibrary build_library(const sim::SceneObject& o, bool matched) 
 // model seeds are the scene's own); the false boxes' two proxies share one for the whole run.
 class LibraryCache {
 public:
-    const verification::CadLibrary& get(const sim::SceneObject& o, bool matched) {
-        const std::string key = o.style + "/" + std::to_string(o.model_seed) + (matched ? "/matched" : "/mismatched");
+    const verification::CadLibrary& get(const sim::SceneObject& o, Arm arm) {
+        const std::string key = o.style + "/" + std::to_string(o.model_seed) + "/" + std::to_string(static_cast<int>(arm));
         auto it = cache_.find(key);
-        if (it == cache_.end()) it = cache_.emplace(key, build_library(o, matched)).first;
+        if (it == cache_.end()) it = cache_.emplace(key, build_library(o, arm)).first;
         return it->second;
     }
 
@@ -115,9 +125,9 @@ BenchKeyframe simulate_bench_keyframe(std::uint64_t seed, int k) {
 
 VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::function<void(int, int)>& progress) {
     VerifyBenchResult result;
-    std::vector<Sample> samples[2];
-    std::vector<double> ms[2];
-    std::size_t true_rejected[2] = {0, 0}, false_accepted[2] = {0, 0};
+    std::vector<Sample> samples[kArms];
+    std::vector<double> ms[kArms];
+    std::size_t true_rejected[kArms] = {}, false_accepted[kArms] = {}, approximate[kArms] = {};
     Rng rng = make_rng(p.seed, 500);
     LibraryCache proxy_libraries;
     for (int k = 0; k < p.scenes; ++k) {
@@ -148,8 +158,8 @@ VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::functi
             const double flip = u < p.p_flip_90 ? kPi / 2 : u < 2 * p.p_flip_90 ? -kPi / 2 : u < 2 * p.p_flip_90 + p.p_flip_180 ? kPi : 0.0;
             det.box_sensor.yaw_rad = wrap_angle(truth.yaw_rad + flip + normal(rng, 0, deg_to_rad(p.yaw_sigma_deg)));
             ++result.true_boxes;
-            for (int arm = 0; arm < 2; ++arm) {
-                const verification::CadLibrary& lib = libraries.get(o, arm == 0);
+            for (int arm = 0; arm < kArms; ++arm) {
+                const verification::CadLibrary& lib = libraries.get(o, static_cast<Arm>(arm));
                 const auto t0 = std::chrono::steady_clock::now();
                 const verification::VerifiedDetection v =
                     verification::verify_detection(cloud, det, lib, p.verify, floor_z(det.box_sensor.centre_m));
@@ -157,6 +167,7 @@ VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::functi
                 Sample smp;
                 smp.accepted = v.accepted;
                 true_rejected[arm] += !v.accepted;
+                approximate[arm] += v.approximate;
                 const auto yb = yaw_error_deg(o.style, det.box_sensor.yaw_rad, yaw_of(T_sensor_object));
                 const auto ya = yaw_error_deg(o.style, yaw_of(v.T_sensor_object), yaw_of(T_sensor_object));
                 smp.scored_yaw = yb.has_value();
@@ -182,18 +193,19 @@ VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::functi
             sim::SceneObject proxy;
             proxy.cls = det.cls;
             proxy.style = det.cls == ObjectClass::kChair ? "four_leg_chair" : "rect_table";
-            for (int arm = 0; arm < 2; ++arm) {
-                const verification::CadLibrary& lib = proxy_libraries.get(proxy, arm == 0);
+            for (int arm = 0; arm < kArms; ++arm) {
+                const verification::CadLibrary& lib = proxy_libraries.get(proxy, static_cast<Arm>(arm));
                 false_accepted[arm] += verification::verify_detection(cloud, det, lib, p.verify, floor_z(c)).accepted;
             }
         }
         if (progress) progress(k + 1, p.scenes);
     }
-    for (int arm = 0; arm < 2; ++arm) {
-        VerifyBenchArm& a = arm == 0 ? result.matched : result.mismatched;
+    for (int arm = 0; arm < kArms; ++arm) {
+        VerifyBenchArm& a = arm == 0 ? result.matched : arm == 1 ? result.mismatched : result.scaled;
         a.before = stats(samples[arm], false);
         a.after = stats(samples[arm], true);
         a.true_rejection_rate = result.true_boxes ? static_cast<double>(true_rejected[arm]) / result.true_boxes : 0.0;
+        a.approximate_rate = result.true_boxes ? static_cast<double>(approximate[arm]) / result.true_boxes : 0.0;
         a.false_acceptance_rate = result.false_boxes ? static_cast<double>(false_accepted[arm]) / result.false_boxes : 0.0;
         a.ms_per_object_median = median(ms[arm]);
         a.ms_per_object_p99 = percentile(ms[arm], 0.99);

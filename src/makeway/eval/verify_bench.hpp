@@ -1,7 +1,8 @@
 #pragma once
 // The verification benchmark: simulated keyframes, ground-truth boxes corrupted the way detectors
 // fail (centre, size and yaw noise; yaw flips by pi/2, pi, 3pi/2), plus false boxes on walls and
-// clutter; verification with CAD models that match the objects, and with models that do not.
+// clutter; verification with CAD models that match the objects, with models that do not, and with
+// the objects' own models scaled by 0.9-1.1 per axis (similar, not identical).
 #include <functional>
 #include <optional>
 #include <string>
@@ -34,10 +35,11 @@ struct OrientationStats {
     double median_centre_error_m = 0.0;
 };
 
-struct VerifyBenchArm {   ///< one library: matched or mismatched models
+struct VerifyBenchArm {   ///< one library: matched, mismatched or scaled models
     OrientationStats before;
     OrientationStats after;          ///< accepted detections at their refined pose
     double true_rejection_rate = 0.0;
+    double approximate_rate = 0.0;   ///< true boxes accepted by the approximate level (approx_e_max_m)
     double false_acceptance_rate = 0.0;
     double ms_per_object_median = 0.0;
     double ms_per_object_p99 = 0.0;
@@ -46,6 +48,7 @@ struct VerifyBenchArm {   ///< one library: matched or mismatched models
 struct VerifyBenchResult {
     VerifyBenchArm matched;
     VerifyBenchArm mismatched;
+    VerifyBenchArm scaled;
     std::size_t true_boxes = 0;
     std::size_t false_boxes = 0;
 };

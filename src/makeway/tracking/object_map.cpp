@@ -37,6 +37,8 @@ std::vector<std::string> TrackerParams::validate() const {
     if (max_misses < 1) p.push_back("max_misses must be >= 1");
     if (!(min_existence >= 0.0 && min_existence <= 1.0)) p.push_back("min_existence must be in [0, 1]");
     if (existence_grace_frames < 1) p.push_back("existence_grace_frames must be >= 1");
+    if (!(same_view_m >= 0.0 && same_view_m <= 100.0)) p.push_back("same_view_m must be in [0, 100] (0: every frame a view)");
+    if (!(same_view_period_s > 0.0 && same_view_period_s <= 3600.0)) p.push_back("same_view_period_s must be in (0, 3600]");
     if (!(max_unobserved_s > 0.0)) p.push_back("max_unobserved_s must be > 0 (inf: never)");
     if (!(max_floor_gap_m > 0.0)) p.push_back("max_floor_gap_m must be > 0 (inf: no floor prior)");
     if (!(merge_iou > 0.0 && merge_iou <= 1.0)) p.push_back("merge_iou must be in (0, 1]");
@@ -63,7 +65,10 @@ double Track::class_confidence() const {
     return *std::max_element(p.begin(), p.end());
 }
 
-double Track::existence() const { return existence_frames ? existence_sum / existence_frames : 0.0; }
+double Track::existence() const {
+    const int n = views();
+    return n ? (existence_sum + (view_frames > 0 ? view_sum / view_frames : 0.0)) / n : 0.0;
+}
 
 namespace {
 
@@ -122,6 +127,30 @@ std::vector<bool> ObjectMap::usable_detections(const std::vector<Detection>& det
         usable[i] = ok;
     }
     return usable;
+}
+
+void ObjectMap::judge(Track& t, double evidence, bool miss, const Eigen::Vector3d& sensor, double stamp_s) const {
+    const Eigen::Vector2d offset = (sensor - t.filter.box().centre_m).head<2>();
+    const bool same_view = params_.same_view_m > 0.0 && t.view_frames > 0 && (offset - t.view_offset).norm() < params_.same_view_m &&
+                           stamp_s - t.view_start_s < params_.same_view_period_s;
+    if (!same_view) {
+        if (t.view_frames > 0) {  // close the open view: one vote, its frames' mean
+            t.existence_sum += t.view_sum / t.view_frames;
+            ++t.existence_views;
+        }
+        t.view_sum = 0.0;
+        t.view_frames = 0;
+        t.view_offset = offset;
+        t.view_start_s = stamp_s;
+        t.view_missed = false;
+    }
+    t.view_sum += evidence;
+    ++t.view_frames;
+    ++t.existence_frames;
+    if (miss && !t.view_missed) {
+        ++t.misses;
+        t.view_missed = true;
+    }
 }
 
 void ObjectMap::predict(double dt, const Eigen::Vector3d& sensor, TrackerFrameResult& out) {
@@ -268,10 +297,10 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
                 t.class_probability_sum[static_cast<std::size_t>(c)] += dets[i].class_probabilities[static_cast<std::size_t>(c)];
             }
             ++t.class_frames;
-            t.existence_sum += scores[i];
-            ++t.existence_frames;
+            judge(t, scores[i], false, sensor, stamp_s);
             ++t.hits;
             t.misses = 0;
+            t.view_missed = false;
             t.last_stamp_s = stamp_s;
             t.seen_at.emplace_back(stamp_s, det_world[i].centre_m.head<2>());
             matched_track[static_cast<std::size_t>(j)] = true;
@@ -303,8 +332,7 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
             out.occluded.push_back(t.id);
             continue;
         }
-        ++t.existence_frames;  // adds 0 to the sum
-        ++t.misses;
+        judge(t, 0.0, true, sensor, stamp_s);  // evidence 0, one more miss (once per view)
     }
     // The class motion priors: at rest until moved, velocities of unobserved objects decaying,
     // speeds bounded.
@@ -327,8 +355,7 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
         t.T_world_object_birth = det_world[i].T_frame_box();
         t.class_probability_sum = dets[i].class_probabilities;
         t.class_frames = 1;
-        t.existence_sum = scores[i];
-        t.existence_frames = 1;
+        judge(t, scores[i], false, sensor, stamp_s);
         t.hits = 1;
         t.last_stamp_s = stamp_s;
         t.seen_at.emplace_back(stamp_s, det_world[i].centre_m.head<2>());
@@ -353,6 +380,7 @@ TrackerParams traffic_preset(std::string_view type) {
     p.kalman.initial_velocity_sigma_mps = 30.0;
     p.kalman.accel_sigma_mps2 = 5.0;
     p.min_existence = 0.0;
+    p.same_view_m = 0.0;  // the camera frame moves with the car: every frame is news
     p.merge_iou = 1.0;
     p.min_giou = -0.1;
     p.min_hits = 2;

@@ -81,6 +81,16 @@ struct TrackerParams {
     int max_misses = 10;             ///< consecutive unexplained misses that remove an object
     double min_existence = 0.5;      ///< fused existence below this removes an object ...
     int existence_grace_frames = 3;  ///< ... once it has been judged on this many frames
+    /// A robot standing still sees the same frame again and again: the detector's and the
+    /// verifier's errors repeat with it, so repeated frames are not independent evidence. Frames
+    /// that see an object from about the same place (the sensor's offset from the object, world
+    /// x-y, within same_view_m of the view's first frame) within same_view_period_s are one view:
+    /// the object's existence averages views (each view's mean evidence), and a view counts at
+    /// most one miss. So a chair watched by a still robot keeps the existence its earlier views
+    /// gave it, and a chair taken away while the robot watches leaves by time (a view every
+    /// same_view_period_s) instead of by frame rate. 0: every frame is a view (the paper's eq.).
+    double same_view_m = 0.25;
+    double same_view_period_s = 2.0;
     /// Any object not associated with a detection for this long leaves the map, wherever it is
     /// (occluded, out of range): memory of an unseen room expires. Infinity: never.
     double max_unobserved_s = 60.0;
@@ -112,8 +122,16 @@ struct Track {
     Isometry3 T_world_object_birth = Isometry3::Identity();  ///< the object's own frame, anchored at birth
     std::array<double, kNumObjectClasses> class_probability_sum{};  ///< eq. (3): sum over the k frames
     int class_frames = 0;
-    double existence_sum = 0.0;      ///< over frames where the object was visible and in range
-    int existence_frames = 0;
+    double existence_sum = 0.0;      ///< over closed views where the object was visible and in range
+    int existence_views = 0;         ///< closed views (TrackerParams::same_view_m)
+    int existence_frames = 0;        ///< frames judged (existence_grace_frames)
+    /// The open view: evidence summed over its frames, where it was seen from, when it began,
+    /// whether it counted a miss.
+    double view_sum = 0.0;
+    int view_frames = 0;
+    Eigen::Vector2d view_offset = Eigen::Vector2d::Zero();
+    double view_start_s = 0.0;
+    bool view_missed = false;
     int hits = 0;
     int misses = 0;                  ///< consecutive unexplained misses
     int age_frames = 0;
@@ -123,7 +141,8 @@ struct Track {
     ObjectClass cls() const;                                        ///< eq. (4)
     double class_confidence() const;                                ///< eq. (5)
     std::array<double, kNumObjectClasses> class_distribution() const;  ///< eq. (3)
-    double existence() const;
+    double existence() const;  ///< the mean over views, the open one included
+    int views() const { return existence_views + (view_frames > 0 ? 1 : 0); }
     bool confirmed(int min_hits) const { return hits >= min_hits; }
 };
 
@@ -167,6 +186,9 @@ private:
     void apply_motion_prior(double stamp_s, double dt);  ///< objects not associated at stamp_s decay
     void merge_duplicates(TrackerFrameResult& out);
     bool in_range(const OrientedBox& box, const Eigen::Vector3d& sensor) const;
+    /// One frame's existence evidence for `t` (a detection's score, or 0 for an unexplained
+    /// miss), folded into its open view or opening a new one.
+    void judge(Track& t, double evidence, bool miss, const Eigen::Vector3d& sensor, double stamp_s) const;
 
     TrackerParams params_;
     std::function<bool(const Eigen::Vector2d&)> region_;

@@ -19,6 +19,7 @@ std::vector<std::string> VerifyParams::validate() const {
     if (!(box_margin_m >= 0.0 && box_margin_m < 2.0)) p.push_back("box_margin_m must be in [0, 2)");
     if (!(e_min_m >= 0.0 && e_min_m < e_max_m)) p.push_back("need 0 <= e_min_m < e_max_m");
     if (!(shape_e_max_m > e_min_m && shape_e_max_m < 1.0)) p.push_back("need e_min_m < shape_e_max_m < 1");
+    if (!(approx_e_max_m == 0.0 || (approx_e_max_m > e_max_m && approx_e_max_m < 1.0))) p.push_back("need approx_e_max_m 0 (off) or e_max_m < approx_e_max_m < 1");
     if (candidate_iterations < 0 || candidate_iterations > 100) p.push_back("candidate_iterations must be in [0, 100]");
     if (max_models < 1) p.push_back("max_models must be at least 1");
     if (!(max_size_mismatch > 0.0 && max_size_mismatch <= 10.0)) p.push_back("max_size_mismatch must be in (0, 10]");
@@ -150,8 +151,9 @@ VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det,
     out.yaw_margin = rival_e / std::max(best_e, 1e-9) - 1.0;
     // Only the winner is refined at the finest level; acceptance uses its trimmed residual.
     take_fit(out, *best_model, align(levelled, *best_model, best_pose, params.icp, rank_level + 1 < levels ? rank_level + 1 : rank_level));
-    if (out.residual_m > params.e_max_m) {
-        out.reason = "residual " + std::to_string(out.residual_m) + " m above e_max";
+    const bool approximate = out.residual_m > params.e_max_m && out.residual_m <= params.approx_e_max_m;
+    if (out.residual_m > params.e_max_m && !approximate) {
+        out.reason = "residual " + std::to_string(out.residual_m) + " m above e_max" + (params.approx_e_max_m > 0.0 ? " and approx_e_max" : "");
         return out;
     }
     if (out.yaw_margin < params.min_yaw_margin) {
@@ -159,7 +161,17 @@ VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det,
         return out;
     }
     out.accepted = true;
-    out.p_exist = existence_probability(out.residual_m, params.e_min_m, params.e_max_m);
+    out.approximate = approximate;
+    out.p_exist = approximate ? std::clamp(det.score, 0.0, 1.0) : existence_probability(out.residual_m, params.e_min_m, params.e_max_m);
+    if (approximate) {
+        // The model is not the object: its orientation is what the fit gives; its extent (a model
+        // 30 % narrower fits into a corner of the scan) is not. The network's box, turned.
+        const double turn = angle_diff(out.box_sensor.yaw_rad, det.box_sensor.yaw_rad);
+        OrientedBox box = det.box_sensor;
+        box.yaw_rad = out.box_sensor.yaw_rad;
+        if (std::abs(std::abs(turn) - kPi / 2) < kPi / 4) std::swap(box.size_m.x(), box.size_m.y());
+        out.box_sensor = box;
+    }
     return out;
 }
 
@@ -207,6 +219,7 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
     seeded.box_sensor = own.models().front().box_object.transformed(estimate->T_sensor_object);
     VerifyParams shape_params = params;
     shape_params.e_max_m = std::max(params.shape_e_max_m, params.e_min_m + 1e-6);
+    shape_params.approx_e_max_m = 0.0;  // the completed shape is the object's own: no second level
     VerifiedDetection shaped = verify_with_cad(cloud, seeded, own, shape_params, floor_z);
     shaped.detection = det;
     if (!shaped.accepted) {
