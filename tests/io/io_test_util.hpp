@@ -12,11 +12,13 @@
 
 namespace makeway::testing_util {
 
-/// A folder under the test temp dir, fresh for each test.
+/// A folder under the test temp dir, fresh for each test (or, from SetUpTestSuite, for the suite).
 inline std::filesystem::path fresh_dir(const std::string& name) {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    const auto dir = std::filesystem::path(::testing::TempDir()) / "makeway_tests" /
-                     (std::string(info->test_suite_name()) + "." + info->name() + "." + name);
+    const ::testing::UnitTest& unit = *::testing::UnitTest::GetInstance();
+    const auto* info = unit.current_test_info();
+    const std::string owner = info ? std::string(info->test_suite_name()) + "." + info->name()
+                                   : std::string(unit.current_test_suite() ? unit.current_test_suite()->name() : "suite") + ".suite";
+    const auto dir = std::filesystem::path(::testing::TempDir()) / "makeway_tests" / (owner + "." + name);
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../apps/cli_test_util.hpp"
+#include "../io/io_test_util.hpp"
 #include "lying_message.hpp"
 
 namespace makeway {
@@ -20,16 +21,10 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing_util::CliRun;
+using testing_util::fresh_dir;
 using testing_util::lines;
 using testing_util::run_makeway;
 using testing_util::slurp;
-
-fs::path fresh_dir(const std::string& name) {
-    const auto dir = fs::temp_directory_path() / ("makeway_test_cli_bags_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
 
 // Nothing delivered and nothing half-written (staging folders) left in `dir` beside `keep`.
 void expect_only(const fs::path& dir, std::vector<std::string> keep) {

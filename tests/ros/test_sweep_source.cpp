@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "../io/io_test_util.hpp"
 #include "io/error.hpp"
 #include "io/point_cloud_io.hpp"
 #include "io/pose_io.hpp"
@@ -21,13 +22,7 @@ namespace makeway::rosio {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path fresh_dir(const std::string& name) {
-    const auto dir = fs::temp_directory_path() / ("makeway_test_source_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+using testing_util::fresh_dir;
 
 struct Outcome {
     std::vector<Pose2> poses;
