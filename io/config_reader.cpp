@@ -350,6 +350,9 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("dynamic_cluster_m", m.dynamic_cluster_m);
         s.read("dynamic_cluster_min_new", m.dynamic_cluster_min_new);
         s.read("dynamic_min_height_m", m.dynamic_min_height_m);
+        s.read("dynamic_memory_s", m.dynamic_memory_s);
+        s.read("dynamic_memory_range_m", m.dynamic_memory_range_m);
+        s.read("dynamic_memory_min_new", m.dynamic_memory_min_new);
         s.read("dynamic_personal_space_m", m.dynamic_personal_space_m);
         s.read("personal_space_object_margin_m", m.personal_space_object_margin_m);
         s.read("min_scale", m.min_scale);
@@ -357,6 +360,7 @@ void read_system(const YAML::Node& root, pipeline::SystemParams& sys, std::vecto
         s.read("blind_memory_s", m.blind_memory_s);
         s.read("object_footprints", m.object_footprints);
         s.read("object_moving_mps", m.object_moving_mps);
+        s.read("object_lead_s", m.object_lead_s);
         s.read("max_range_m", m.max_range_m);
         s.read("recovery_after_s", m.recovery_after_s);
         s.read("backup_speed_mps", m.backup_speed_mps);

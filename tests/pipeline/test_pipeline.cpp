@@ -7,7 +7,9 @@
 #include "makeway/common/angles.hpp"
 #include "makeway/common/statistics.hpp"
 #include "makeway/perception/accumulator.hpp"
+#include "makeway/common/polygon2d.hpp"
 #include "makeway/pipeline/navigator.hpp"
+#include "makeway/pipeline/online_system.hpp"
 #include "makeway/pipeline/pipeline.hpp"
 #include "makeway/planning/dwa.hpp"
 #include "makeway/sim/lidar.hpp"
@@ -178,6 +180,24 @@ TEST(Deskew, SweepFromAKnownMotionMatchesTheStaticGeometry) {
 
 // The navigator: drives a hand-made empty room to its goal on a perfect pose, and gives a defined
 // answer when the goal lies inside a wall.
+// A chair pulled at 0.3 m/s along its x: with object_lead_s 1 its footprint for the monitor is its
+// box and the box 0.3 m on (0.5 x 0.4 m: 0.20 + 0.3 x 0.4 = 0.32 m^2, reaching 0.55 m ahead of its
+// centre); a still chair, or lead 0, is the box.
+TEST(Controller, AMovingChairsFootprintLeadsAlongItsVelocity) {
+    ObjectEstimate chair;
+    chair.cls = ObjectClass::kChair;
+    chair.box_world.size_m = {0.5, 0.4, 0.9};
+    chair.velocity_mps = {0.3, 0.0};
+    const Polygon2 led = chair_footprint(chair, 1.0);
+    EXPECT_NEAR(signed_area(led), 0.32, 1e-9);
+    double ahead = -1.0;
+    for (const Eigen::Vector2d& q : led) ahead = std::max(ahead, q.x());
+    EXPECT_NEAR(ahead, 0.55, 1e-9);
+    EXPECT_NEAR(signed_area(chair_footprint(chair, 0.0)), 0.20, 1e-9);
+    chair.velocity_mps.setZero();
+    EXPECT_NEAR(signed_area(chair_footprint(chair, 1.0)), 0.20, 1e-9);
+}
+
 TEST(Navigator, ReachesTheGoalInAnEmptyRoomAndReportsBlockedGoals) {
     Costmap map({-3.0, -3.0}, 0.05, 120, 120, cost::kFree);
     for (int i = 0; i < 120; ++i) {

@@ -172,11 +172,14 @@ TEST(CollisionMonitor, WaitsForAWalkerCrossingThePathThenPasses) {
 struct WalkerTurn {
     double heading_rad, start_m, turn_s;
 };
-double speed_at_walker_contact(const WalkerTurn& walk, double cluster_m, int min_seen = 1) {
+double speed_at_walker_contact(const WalkerTurn& walk, double cluster_m, int min_seen = 1, double memory_s = 0.0,
+                               double memory_range_m = 0.8) {
     const sim::RobotParams robot;
     CollisionMonitorParams p = jackal();
     p.dynamic_cluster_m = cluster_m;
     p.dynamic_min_seen = min_seen;
+    p.dynamic_memory_s = memory_s;
+    p.dynamic_memory_range_m = memory_range_m;
     CollisionMonitor monitor(p);
     sim::RobotState state;
     VelocityCommand cmd;
@@ -213,23 +216,28 @@ double speed_at_walker_contact(const WalkerTurn& walk, double cluster_m, int min
 
 // 750 walks (heading every 0.25 rad, starting 1-3 m ahead, turning after 0.5-3 s) in front of a
 // robot asked for full speed: robot-caused contacts with new returns alone (a cell seen in any of
-// the last 5 sweeps is known), keeping a mover a mover, and a cell seen in only one of them new.
+// the last 5 sweeps is known), keeping a mover a mover, a cell seen in only one of them new, and
+// a mover remembered where it was last seen new (dynamic_memory_s).
 TEST(CollisionMonitor, AWalkerTurningBackIsStillAMover) {
-    int clustered = 0, once_known = 0, twice_known = 0;
+    int clustered = 0, once_known = 0, twice_known = 0, remembered_near = 0, remembered_far = 0;
     for (double heading = -3.0; heading <= 3.01; heading += 0.25) {
         for (double start = 1.0; start <= 3.01; start += 0.5) {
             for (double turn = 0.5; turn <= 3.01; turn += 0.5) {
                 clustered += speed_at_walker_contact({heading, start, turn}, 0.3) > 0.05;
                 once_known += speed_at_walker_contact({heading, start, turn}, 0.0) > 0.05;
                 twice_known += speed_at_walker_contact({heading, start, turn}, 0.0, 2) > 0.05;
+                remembered_near += speed_at_walker_contact({heading, start, turn}, 0.0, 1, 1.0, 0.8) > 0.05;
+                remembered_far += speed_at_walker_contact({heading, start, turn}, 0.0, 1, 1.0, 1.5) > 0.05;
             }
         }
     }
-    std::printf("robot-caused contacts in 750 walks: new returns alone %d, clustered movers %d, seen twice to be known %d\n",
-                once_known, clustered, twice_known);
+    std::printf("robot-caused contacts in 750 walks: new returns alone %d, clustered movers %d, seen twice to be known %d, "
+                "movers remembered 1 s within 0.8 m %d, within 1.5 m %d\n", once_known, clustered, twice_known, remembered_near, remembered_far);
     EXPECT_LE(clustered, 2);    // measured: 2 (a walker cutting back across the robot's bow at 0.12 m/s)
     EXPECT_GE(once_known, 6);   // measured: 6 (new returns alone)
     EXPECT_LE(twice_known, 2);  // measured: 2 (dynamic_min_seen 2: off by default, README)
+    EXPECT_LE(remembered_far, 2);  // measured: 2 (dynamic_memory_s 1 within 1.5 m; 0.5 s: 6) ...
+    EXPECT_GE(remembered_near, 6);  // ... 6 within 0.8 m: these walkers turn back 1-3 m out (README)
 }
 
 // A walker beside the robot's right side, 10 cm from it, while the robot creeps forward: the side
@@ -288,6 +296,41 @@ TEST(CollisionMonitor, PersonalSpaceLeavesAPulledChairToTheStopZone) {
     EXPECT_NE(action(nullptr, 0.0), MonitorAction::kStop);   // personal space off
     CollisionMonitorParams p = jackal();
     p.personal_space_object_margin_m = -0.1;
+    EXPECT_FALSE(p.validate().empty());
+}
+
+// A walker steps up to the robot's bow and inside the sensor's minimum range: seen new in one
+// sweep 0.3 m ahead of the footprint, then not at all. With dynamic_memory_s it stays a mover where
+// it was last seen, its padding grown by its age: the robot is held from creeping at it (and may
+// back away) until the memory ends; without, it drives on as if the walker had vanished.
+TEST(CollisionMonitor, AWalkerInsideTheMinimumRangeIsRememberedAsAMover) {
+    const auto sweep = [](bool walker) {
+        PointCloud c;
+        for (double y = -1.0; y <= 1.0; y += 0.02) c.xyz.emplace_back(3.0f, static_cast<float>(y), 0.5f);  // a wall ahead
+        if (walker) {
+            for (double y = -0.1; y <= 0.1 + 1e-9; y += 0.02) c.xyz.emplace_back(0.55f, static_cast<float>(y), 0.5f);
+        }
+        return c;
+    };
+    const PointCloud wall = sweep(false), seen = sweep(true);
+    const VelocityCommand creep{0.3, 0.0}, back{-0.2, 0.0};
+    const auto run = [&](double memory_s, const VelocityCommand& cmd, double t_s) {
+        CollisionMonitorParams p = jackal();
+        p.dynamic_memory_s = memory_s;
+        CollisionMonitor m(p);
+        m.filter({0.0, Pose2{}, &wall, {}, 0.0, 0.0});
+        m.filter({0.1, Pose2{}, &seen, {}, 0.0, 0.0});  // new: a mover
+        MonitorResult r;
+        for (double t = 0.2; t <= t_s + 1e-9; t += 0.1) r = m.filter({t, Pose2{}, &wall, cmd, 0.0, 0.0});  // gone from view
+        return r.action;
+    };
+    EXPECT_EQ(run(0.0, creep, 0.2), MonitorAction::kNone);  // no memory: driven at the walker
+    EXPECT_EQ(run(1.0, creep, 0.2), MonitorAction::kStop);  // remembered: held
+    EXPECT_EQ(run(1.0, creep, 1.0), MonitorAction::kStop);  // ... while the memory lasts
+    EXPECT_EQ(run(1.0, back, 0.5), MonitorAction::kNone);   // backing away is always allowed
+    EXPECT_EQ(run(1.0, creep, 1.3), MonitorAction::kNone);  // forgotten after 1 s
+    CollisionMonitorParams p = jackal();
+    p.dynamic_memory_s = -1.0;
     EXPECT_FALSE(p.validate().empty());
 }
 

@@ -34,6 +34,14 @@ void Controller::set_route(std::vector<Eigen::Vector2d> legs_m) {
     navigator_.set_route(std::move(legs_m));
 }
 
+Polygon2 chair_footprint(const ObjectEstimate& o, double lead_s) {
+    const auto c = o.box_world.bev_corners();
+    Polygon2 out(c.begin(), c.end());
+    if (lead_s <= 0.0 || o.velocity_mps.squaredNorm() == 0.0) return out;
+    for (const auto& q : c) out.push_back(q + lead_s * o.velocity_mps);
+    return convex_hull(std::move(out));
+}
+
 Controller::Step Controller::step(const NavigatorInput& in) {
     Step out;
     out.navigating = navigating_;
@@ -52,12 +60,11 @@ Controller::Step Controller::step(const NavigatorInput& in) {
     std::vector<Polygon2> chairs, moved_chairs;
     for (const ObjectEstimate& o : in.objects) {
         if (o.cls != ObjectClass::kChair || o.existence < min_existence_) continue;
-        const auto c = o.box_world.bev_corners();
-        chairs.emplace_back(c.begin(), c.end());
         if (o.velocity_mps.norm() > mp.object_moving_mps) moved_at_[o.id] = in.t_s;
         const auto moved = moved_at_.find(o.id);
-        if (moved == moved_at_.end() || in.t_s - moved->second > mp.blind_memory_s) continue;
-        moved_chairs.push_back(chairs.back());
+        const bool moving = moved != moved_at_.end() && in.t_s - moved->second <= mp.blind_memory_s;
+        chairs.push_back(chair_footprint(o, moving ? mp.object_lead_s : 0.0));
+        if (moving) moved_chairs.push_back(chairs.back());
     }
     out.guard = monitor_.filter({in.t_s, in.pose, in.points_world, wanted, in.v_mps, in.w_radps, &moved_chairs, &chairs});
     out.monitor_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();

@@ -68,11 +68,15 @@ std::vector<std::string> CollisionMonitorParams::validate() const {
     if (!(sensor_height_m >= 0.0 && sensor_height_m <= 5.0)) p.push_back("sensor_height_m must be in [0, 5]");
     if (!(lowest_beam_deg >= -90.0 && lowest_beam_deg <= 90.0)) p.push_back("lowest_beam_deg must be in [-90, 90]");
     if (!(blind_memory_s >= 0.0 && blind_memory_s <= 60.0)) p.push_back("blind_memory_s must be in [0, 60]");
+    if (!(dynamic_memory_s >= 0.0 && dynamic_memory_s <= 10.0)) p.push_back("dynamic_memory_s must be in [0, 10] (0: off)");
+    if (!(dynamic_memory_range_m > 0.0 && dynamic_memory_range_m <= 10.0)) p.push_back("dynamic_memory_range_m must be in (0, 10]");
+    if (dynamic_memory_min_new < 1 || dynamic_memory_min_new > 1000) p.push_back("dynamic_memory_min_new must be in [1, 1000]");
     if (!(dynamic_personal_space_m >= 0.0 && dynamic_personal_space_m <= 2.0)) p.push_back("dynamic_personal_space_m must be in [0, 2]");
     if (!(personal_space_object_margin_m >= 0.0 && personal_space_object_margin_m <= 1.0)) {
         p.push_back("personal_space_object_margin_m must be in [0, 1]");
     }
     if (!(object_moving_mps >= 0.0 && object_moving_mps <= 10.0)) p.push_back("object_moving_mps must be in [0, 10]");
+    if (!(object_lead_s >= 0.0 && object_lead_s <= 5.0)) p.push_back("object_lead_s must be in [0, 5]");
     if (!(max_range_m > 0.0 && max_range_m <= 50.0)) p.push_back("max_range_m must be in (0, 50]");
     if (!(recovery_after_s > 0.0)) p.push_back("recovery_after_s must be > 0");
     if (!(backup_speed_mps > 0.0 && backup_distance_m >= 0.0)) p.push_back("backup_speed_mps must be > 0, backup_distance_m >= 0");
@@ -111,7 +115,7 @@ std::vector<std::pair<double, Pose2>> CollisionMonitor::trajectory(const Motion&
 }
 
 double CollisionMonitor::first_contact(const Motion& m, double padding, const std::vector<Eigen::Vector2d>& pts,
-                                       const std::vector<char>& dynamic) const {
+                                       const std::vector<char>& dynamic, const std::vector<double>& age_s) const {
     const Eigen::Vector2d half(0.5 * params_.footprint_length_m, 0.5 * params_.footprint_width_m);
     const std::vector<std::pair<double, Pose2>> poses = trajectory(m);
     // Only returns the padded footprint can reach along the way.
@@ -119,17 +123,19 @@ double CollisionMonitor::first_contact(const Motion& m, double padding, const st
     double travel = 0.0;
     for (const auto& [t, q] : poses) travel = std::max(travel, std::hypot(q.x_m, q.y_m));
     const double reach = half.norm() + padding + travel + 1e-9;
-    const double reach_dynamic = reach + grow * (L + poses.back().first);
     std::vector<Eigen::Vector2d> near;
     std::vector<double> now;     // each return's distance to the footprint where the robot stands
     std::vector<double> growth;  // its padding's growth per second along the way
+    std::vector<double> lead;    // the time it has had to move before the check (age + latency)
     for (std::size_t i = 0; i < pts.size(); ++i) {
         const bool moving = !dynamic.empty() && dynamic[i] != 0 && grow > 0.0;
-        const double r = moving ? reach_dynamic : reach;
+        const double before = L + (i < age_s.size() ? age_s[i] : 0.0);
+        const double r = moving ? reach + grow * (before + poses.back().first) : reach;
         if (pts[i].squaredNorm() > r * r) continue;
         near.push_back(pts[i]);
         now.push_back(rect_signed_distance(pts[i], half));
         growth.push_back(moving ? grow : 0.0);
+        lead.push_back(before);
     }
     if (static_cast<int>(near.size()) < params_.min_points) return -1.0;
     for (const auto& [t, q] : poses) {
@@ -139,7 +145,7 @@ double CollisionMonitor::first_contact(const Motion& m, double padding, const st
             const Eigen::Vector2d d = near[j] - Eigen::Vector2d(q.x_m, q.y_m);
             const double sd = rect_signed_distance({c * d.x() + s * d.y(), -s * d.x() + c * d.y()}, half);
             // Inside the zone, and closer than now: a robot may always move away from what is near.
-            if (sd <= padding + growth[j] * (L + t) && sd < now[j] - 1e-4 && ++hits >= params_.min_points) return t;
+            if (sd <= padding + growth[j] * (lead[j] + t) && sd < now[j] - 1e-4 && ++hits >= params_.min_points) return t;
         }
     }
     return -1.0;
@@ -151,7 +157,8 @@ MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const std::vec
 }
 
 MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const VelocityCommand& current,
-                                      const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic) const {
+                                      const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic,
+                                      const std::vector<double>& age_s) const {
     MonitorResult r;
     r.command = cmd;
     if (!params_.enabled) return r;
@@ -175,12 +182,12 @@ MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const Velocity
             if (dynamic[i] == 1 && rect_signed_distance(pts[i], half) < params_.dynamic_personal_space_m) return hold(MonitorAction::kStop);
         }
     }
-    if (first_contact({current, cmd, params_.latency_s, true}, params_.stop_padding_m, pts, dynamic) >= 0.0) {
+    if (first_contact({current, cmd, params_.latency_s, true}, params_.stop_padding_m, pts, dynamic, age_s) >= 0.0) {
         return hold(MonitorAction::kStop);
     }
     double scale = 1.0;
     const double T = params_.time_before_collision_s;
-    const double t_c = T > 0.0 ? first_contact({current, cmd, T, false}, params_.stop_padding_m, pts, dynamic) : -1.0;
+    const double t_c = T > 0.0 ? first_contact({current, cmd, T, false}, params_.stop_padding_m, pts, dynamic, age_s) : -1.0;
     if (t_c >= 0.0 && t_c / T < scale) {  // contact kept at least T away at the scaled speed
         scale = t_c / T;
         r.action = MonitorAction::kApproach;
@@ -200,8 +207,9 @@ MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const Velocity
 }
 
 bool CollisionMonitor::recovery_free(const VelocityCommand& c, const VelocityCommand& current, double duration_s,
-                                     const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic) const {
-    return first_contact({current, c, duration_s + params_.latency_s, true}, params_.stop_padding_m, pts, dynamic) < 0.0;
+                                     const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic,
+                                     const std::vector<double>& age_s) const {
+    return first_contact({current, c, duration_s + params_.latency_s, true}, params_.stop_padding_m, pts, dynamic, age_s) < 0.0;
 }
 
 double CollisionMonitor::blind_radius_m(double z_m) const {
@@ -335,8 +343,8 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     }
 
     // New returns beside a known chair are the chair moving (someone pulls it): still movers for
-    // the stop zone, but out of the personal space, which is for walkers.
-    if (params_.dynamic_personal_space_m > 0.0 && in.chairs_world != nullptr && !in.chairs_world->empty()) {
+    // the stop zone, but out of the personal space and the movers' memory, which are for walkers.
+    if ((params_.dynamic_personal_space_m > 0.0 || params_.dynamic_memory_s > 0.0) && in.chairs_world != nullptr && !in.chairs_world->empty()) {
         std::vector<Polygon2> chairs;
         for (const Polygon2& poly : *in.chairs_world) {
             Polygon2 base;
@@ -354,6 +362,40 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
         }
     }
 
+    // Remembered movers: forgotten after dynamic_memory_s, or once new returns are seen within
+    // the reach they have had since (the mover, seen again, stands for itself); the others join
+    // the returns, flagged, with their age. Of this sweep's movers, a walker's are remembered:
+    // near the robot (dynamic_memory_range_m), not beside a known chair, and with at least
+    // dynamic_memory_min_new new returns within 0.2 m (a body's edge; a sliver of wall coming out
+    // of a shadow as the robot moves is a few).
+    std::vector<double> age(pts.size(), 0.0);
+    if (params_.dynamic_memory_s > 0.0) {
+        std::vector<Eigen::Vector2d> seen_now, walker;
+        for (std::size_t i = 0; i < dynamic.size(); ++i) {
+            if (dynamic[i] != 0) seen_now.push_back(pts[i]);
+        }
+        const double range2 = params_.dynamic_memory_range_m * params_.dynamic_memory_range_m;
+        for (std::size_t i = 0; i < dynamic.size(); ++i) {
+            if (dynamic[i] != 1 || pts[i].squaredNorm() > range2) continue;
+            const auto around = std::count_if(seen_now.begin(), seen_now.end(), [&](const Eigen::Vector2d& s) { return (s - pts[i]).squaredNorm() <= 0.04; });
+            if (around >= params_.dynamic_memory_min_new) walker.push_back(pts[i]);
+        }
+        std::erase_if(movers_, [&](const std::pair<Eigen::Vector2d, double>& m) {
+            const double a = in.t_s - m.second;
+            if (a > params_.dynamic_memory_s + 1e-9) return true;
+            const double r = params_.dynamic_speed_mps * a + kThinCell_m;
+            const Eigen::Vector2d q = T_base_world * m.first;
+            return std::any_of(seen_now.begin(), seen_now.end(), [&](const Eigen::Vector2d& s) { return (s - q).squaredNorm() <= r * r; });
+        });
+        for (const auto& [p, t] : movers_) {
+            pts.push_back(T_base_world * p);
+            dynamic.push_back(1);
+            age.push_back(in.t_s - t);
+        }
+        const Isometry2 T_world_base = to_isometry(in.pose);
+        for (const Eigen::Vector2d& q : walker) movers_.emplace_back(T_world_base * q, in.t_s);
+    }
+
     // Object footprints where the sensor cannot see the floor: their outlines, sampled.
     if (params_.object_footprints && in.footprints_world != nullptr) {
         const double blind = blind_radius_m(params_.body.ground_clearance_m);
@@ -366,6 +408,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
                     if ((q - here).norm() >= blind) continue;
                     pts.push_back(T_base_world * q);
                     dynamic.push_back(0);
+                    age.push_back(0.0);
                 }
             }
         }
@@ -373,7 +416,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
 
     const VelocityCommand current{in.v_mps, in.w_radps};
     if (in.t_s < recovery_until_) {  // recovering: the recovery's own command, stop-checked
-        MonitorResult r = check(recovery_command_, current, pts, dynamic);
+        MonitorResult r = check(recovery_command_, current, pts, dynamic, age);
         r.recovering = true;
         if (r.scale < params_.min_scale) {  // something came into the way: end the recovery, held
             recovery_until_ = -1.0;
@@ -385,7 +428,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
         r.action = recovery_command_.v_mps != 0.0 ? MonitorAction::kBackup : MonitorAction::kRotate;
         return r;
     }
-    MonitorResult r = check(in.command, current, pts, dynamic);
+    MonitorResult r = check(in.command, current, pts, dynamic, age);
     if (r.scale >= params_.min_scale) {
         held_since_ = -1.0;
         return r;
@@ -397,12 +440,12 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     const double turn_sign = in.command.w_radps < 0.0 ? -1.0 : 1.0;
     const VelocityCommand turns[2] = {{0.0, turn_sign * params_.rotate_speed_radps}, {0.0, -turn_sign * params_.rotate_speed_radps}};
     std::optional<std::pair<VelocityCommand, double>> chosen;
-    if (params_.backup_distance_m > 0.0 && recovery_free(backup, current, params_.backup_distance_m / params_.backup_speed_mps, pts, dynamic)) {
+    if (params_.backup_distance_m > 0.0 && recovery_free(backup, current, params_.backup_distance_m / params_.backup_speed_mps, pts, dynamic, age)) {
         chosen = {backup, params_.backup_distance_m / params_.backup_speed_mps};
     } else {
         for (const VelocityCommand& t : turns) {
             const double d = params_.rotate_angle_rad / params_.rotate_speed_radps;
-            if (params_.rotate_angle_rad > 0.0 && recovery_free(t, current, d, pts, dynamic)) {
+            if (params_.rotate_angle_rad > 0.0 && recovery_free(t, current, d, pts, dynamic, age)) {
                 chosen = {t, d};
                 break;
             }

@@ -12,7 +12,7 @@
 // 2 cm above the floor): a chair leg the robot closes in on vanishes from its sweeps. So a return
 // is remembered (up to blind_memory_s) while it lies closer to the sensor than both that radius
 // and where it was seen from; once the sensor could see its place again, only the new sweep counts.
-// New returns (below) are not remembered: a walker that has moved on leaves no trail.
+// New returns (below) are not remembered there: a walker that has moved on leaves no trail.
 // Memory cannot follow what moves inside that blind ring (a chair a person pulls toward a turning
 // robot: its seat is seen, its base is not): with object_footprints, the footprints the caller
 // hands in (the Controller: chairs of the object map that moved lately) stand in for returns
@@ -49,6 +49,12 @@
 // the command (a robot creeping or turning beside a walker meets the walker's next step), unless
 // it lies beside a chair the robot knows of (a pulled chair's returns are new too, and a robot
 // held by every pulled chair beside it gives up). Off by default (README).
+// With dynamic_memory_s, a walker near the robot (dynamic_memory_range_m; a body's worth of new
+// returns, not beside a known chair) is remembered that long as a mover, its padding grown by its
+// age too (a walker last seen 0.5 s ago may be 0.5 m from there), until new returns are seen
+// within that reach of it (the walker, seen again). A walker who turns back toward the robot walks into
+// cells it left, not new, and one who steps inside the sensor's minimum range is not seen at all:
+// either way the robot does not move off toward where it was last seen moving.
 // Returns seen in one sweep only are not remembered (the floor's noise); with low_edge_support a
 // low one is, when it is an arc of returns (a table's foot, in the lowest ring's reach about one
 // sweep). Off by default: on 200 scenes oppo won 2 runs with it and ours lost 2 (README).
@@ -102,6 +108,9 @@ struct CollisionMonitorParams {
     double dynamic_cluster_m = 0.0;     ///< returns within about this of a mover (this sweep or the last dynamic_history) move too; 0: off ...
     int dynamic_cluster_min_new = 5;    ///< ... a mover: a cell of that size with this many new returns
     double dynamic_min_height_m = 0.1;  ///< lower returns are never new (floor noise at the lowest rings' reach)
+    double dynamic_memory_s = 0.0;      ///< a mover is remembered this long, its padding growing with its age, until seen again; 0: off
+    double dynamic_memory_range_m = 0.8;  ///< ... movers this close to the base (farther, the next sweeps see them again) ...
+    int dynamic_memory_min_new = 5;     ///< ... with this many new returns within 0.2 m (a body, not a sliver out of a shadow)
     double dynamic_personal_space_m = 0.0;  ///< a new return this close to the footprint holds the robot (any command); 0: off (README) ...
     double personal_space_object_margin_m = 0.2;  ///< ... unless it lies this close to a known chair (MonitorInput::chairs_world): the chair moves, not a walker
     double min_scale = 0.05;            ///< an approach scale below this holds the robot (counts as a stop)
@@ -111,6 +120,7 @@ struct CollisionMonitorParams {
     int low_edge_support = 0;           ///< a return below dynamic_min_height_m seen in one sweep only is remembered with this many returns around it (5 x 5 cells); 0: never
     bool object_footprints = true;      ///< inside the blind ring, MonitorInput::footprints_world count as returns ...
     double object_moving_mps = 0.05;    ///< ... (the Controller's: chairs that moved faster than this in the last blind_memory_s)
+    double object_lead_s = 0.0;         ///< ... each swept along its velocity this far ahead (the map lags a keyframe); 0: where it is
     double max_range_m = 4.0;           ///< returns farther than this from the base are not looked at
     double recovery_after_s = 3.0;      ///< held this long: start a recovery
     double backup_speed_mps = 0.15;
@@ -160,8 +170,11 @@ public:
     /// velocity now (the first form: already at the commanded velocity).
     MonitorResult check(const VelocityCommand& command, const std::vector<Eigen::Vector2d>& points_base,
                         const std::vector<char>& dynamic = {}) const;
+    /// `age_s` (empty, or one per point): how long ago a flagged return was seen (remembered
+    /// movers); its padding grows by dynamic_speed_mps over that age too.
     MonitorResult check(const VelocityCommand& command, const VelocityCommand& current,
-                        const std::vector<Eigen::Vector2d>& points_base, const std::vector<char>& dynamic = {}) const;
+                        const std::vector<Eigen::Vector2d>& points_base, const std::vector<char>& dynamic = {},
+                        const std::vector<double>& age_s = {}) const;
     const CollisionMonitorParams& params() const { return params_; }
 
 private:
@@ -181,17 +194,19 @@ private:
     std::vector<std::pair<double, Pose2>> trajectory(const Motion& m) const;
     /// The first time along `m` at which the footprint grown by `padding` holds min_points returns
     /// it is closing in on; negative: none. A flagged (`dynamic`) return's padding grows by
-    /// dynamic_speed_mps (latency_s + t).
+    /// dynamic_speed_mps (age + latency_s + t).
     double first_contact(const Motion& m, double padding, const std::vector<Eigen::Vector2d>& pts,
-                         const std::vector<char>& dynamic = {}) const;
+                         const std::vector<char>& dynamic = {}, const std::vector<double>& age_s = {}) const;
     /// How far from the sensor a part z_m above the floor drops out of its lowest beam.
     double blind_radius_m(double z_m) const;
     bool recovery_free(const VelocityCommand& c, const VelocityCommand& current, double duration_s,
-                       const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic) const;
+                       const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic,
+                       const std::vector<double>& age_s) const;
 
     CollisionMonitorParams params_;
     double tan_down_;  ///< tan of the lowest beam's angle below the horizon
     std::vector<Remembered> memory_;
+    std::vector<std::pair<Eigen::Vector2d, double>> movers_;  ///< remembered movers (world, when seen), dynamic_memory_s
     std::deque<std::vector<std::int64_t>> previous_cells_;  ///< the last sweeps' thinned cells (each sorted), for new returns
     std::deque<std::vector<std::int64_t>> previous_movers_; ///< the last sweeps' coarse cells of new returns (each sorted)
     double held_since_ = -1.0;     ///< when the current hold began (-1: not held)
