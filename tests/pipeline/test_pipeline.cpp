@@ -5,9 +5,9 @@
 
 #include "../sim/sim_test_util.hpp"
 #include "makeway/common/angles.hpp"
+#include "makeway/common/polygon2d.hpp"
 #include "makeway/common/statistics.hpp"
 #include "makeway/perception/accumulator.hpp"
-#include "makeway/common/polygon2d.hpp"
 #include "makeway/pipeline/navigator.hpp"
 #include "makeway/pipeline/online_system.hpp"
 #include "makeway/pipeline/pipeline.hpp"
@@ -178,8 +178,6 @@ TEST(Deskew, SweepFromAKnownMotionMatchesTheStaticGeometry) {
     EXPECT_GT(percentile(skewed, 0.9), 0.1);  // the same sweep taken as instantaneous is smeared
 }
 
-// The navigator: drives a hand-made empty room to its goal on a perfect pose, and gives a defined
-// answer when the goal lies inside a wall.
 // A chair pulled at 0.3 m/s along its x: with object_lead_s 1 its footprint for the monitor is its
 // box and the box 0.3 m on (0.5 x 0.4 m: 0.20 + 0.3 x 0.4 = 0.32 m^2, reaching 0.55 m ahead of its
 // centre); a still chair, or lead 0, is the box.
@@ -198,6 +196,8 @@ TEST(Controller, AMovingChairsFootprintLeadsAlongItsVelocity) {
     EXPECT_NEAR(signed_area(chair_footprint(chair, 1.0)), 0.20, 1e-9);
 }
 
+// The navigator: drives a hand-made empty room to its goal on a perfect pose, and gives a defined
+// answer when the goal lies inside a wall.
 TEST(Navigator, ReachesTheGoalInAnEmptyRoomAndReportsBlockedGoals) {
     Costmap map({-3.0, -3.0}, 0.05, 120, 120, cost::kFree);
     for (int i = 0; i < 120; ++i) {

@@ -21,13 +21,13 @@
 
 namespace makeway::pipeline {
 
-/// The navigator, then the collision monitor between it and the motors (every method of the
-/// benchmark drives through this; `ours` inside an OnlineSystem).
 /// A chair's footprint for the collision monitor: its box, swept along its velocity for lead_s
 /// (collision_monitor.object_lead_s: the object map lags a pulled chair by up to a keyframe);
 /// lead_s 0 or a still chair: the box.
 Polygon2 chair_footprint(const ObjectEstimate& o, double lead_s);
 
+/// The navigator, then the collision monitor between it and the motors (every method of the
+/// benchmark drives through this; `ours` inside an OnlineSystem).
 class Controller {
 public:
     /// Throws std::invalid_argument listing every problem of `params` (monitor included).

@@ -52,9 +52,10 @@
 // With dynamic_memory_s, a walker near the robot (dynamic_memory_range_m; a body's worth of new
 // returns, not beside a known chair) is remembered that long as a mover, its padding grown by its
 // age too (a walker last seen 0.5 s ago may be 0.5 m from there), until new returns are seen
-// within that reach of it (the walker, seen again). A walker who turns back toward the robot walks into
-// cells it left, not new, and one who steps inside the sensor's minimum range is not seen at all:
-// either way the robot does not move off toward where it was last seen moving.
+// within that reach of it (the walker, seen again). A walker who turns back toward the robot
+// walks into cells it left, not new, and one who steps inside the sensor's minimum range is not
+// seen at all: either way the robot does not move off toward where it was last seen moving. Off
+// by default: ours, whose object map knows a pulled chair late, loses runs to it (README).
 // Returns seen in one sweep only are not remembered (the floor's noise); with low_edge_support a
 // low one is, when it is an arc of returns (a table's foot, in the lowest ring's reach about one
 // sweep). Off by default: on 200 scenes oppo won 2 runs with it and ours lost 2 (README).
