@@ -147,7 +147,10 @@ void ObjectMap::judge(Track& t, double evidence, bool miss, const Eigen::Vector3
     t.view_sum += evidence;
     ++t.view_frames;
     ++t.existence_frames;
-    if (miss && !t.view_missed) {
+    if (!miss) {  // explained: the run of misses ends
+        t.misses = 0;
+        t.view_missed = false;
+    } else if (!t.view_missed) {
         ++t.misses;
         t.view_missed = true;
     }
@@ -299,8 +302,6 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
             ++t.class_frames;
             judge(t, scores[i], false, sensor, stamp_s);
             ++t.hits;
-            t.misses = 0;
-            t.view_missed = false;
             t.last_stamp_s = stamp_s;
             t.seen_at.emplace_back(stamp_s, det_world[i].centre_m.head<2>());
             matched_track[static_cast<std::size_t>(j)] = true;

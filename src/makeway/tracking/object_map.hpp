@@ -187,7 +187,8 @@ private:
     void merge_duplicates(TrackerFrameResult& out);
     bool in_range(const OrientedBox& box, const Eigen::Vector3d& sensor) const;
     /// One frame's existence evidence for `t` (a detection's score, or 0 for an unexplained
-    /// miss), folded into its open view or opening a new one.
+    /// miss), folded into its open view or opening a new one; a miss adds to t.misses once per
+    /// view, a detection ends the run of misses.
     void judge(Track& t, double evidence, bool miss, const Eigen::Vector3d& sensor, double stamp_s) const;
 
     TrackerParams params_;
