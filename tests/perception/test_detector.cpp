@@ -103,6 +103,26 @@ TEST(Detector, SharedByThreadsGivesTheSerialAnswers) {
     EXPECT_EQ(mismatches, std::vector<int>(3, 0));
 }
 
+// bench nav leaves the simulated intensity out when the detector says it reads none: the flag must
+// tell the truth. Without the channel the heads ignore intensity; with it they change with it.
+TEST(Detector, SaysWhetherItReadsIntensity) {
+    synthetic_set(1, 5);
+    PointCloud with = clouds[0];
+    with.intensity.assign(with.size(), 0.0f);
+    for (std::size_t i = 0; i < with.size(); ++i) with.intensity[i] = static_cast<float>(i % 200);
+    PointCloud without = clouds[0];
+    without.intensity.clear();
+    ASSERT_GT(with.size(), 50u);
+    const Detector plain(small_params());
+    EXPECT_FALSE(plain.uses_intensity());
+    EXPECT_EQ(plain.heads(with), plain.heads(without));
+    DetectorParams p = small_params();
+    p.grid.intensity = true;
+    const Detector reading(p);
+    EXPECT_TRUE(reading.uses_intensity());
+    EXPECT_NE(reading.heads(with), reading.heads(without));
+}
+
 TEST(Detector, EmptyCloudGivesNoDetections) {
     const Detector det(small_params());
     EXPECT_TRUE(det.detect(PointCloud{}).empty());  // fresh heatmaps start at 0.1, below the threshold

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "makeway/common/angles.hpp"
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/mesh_primitives.hpp"
@@ -147,6 +149,28 @@ TEST_F(SimulatedScene, SameSeedSameSweepForAnyThreadCountAndRayMode) {
     for (std::size_t i = 0; i < a.size(); ++i) ASSERT_LT((a.xyz[i] - c.xyz[i]).norm(), 1e-4f);
     const PointCloud other_seed = simulate_sweep(world, lidar, pose, 1.0, 10, 2);
     EXPECT_FALSE(a.xyz == other_seed.xyz);
+}
+
+// Leaving intensity out (bench nav, when nothing reads it) skips its draws and nothing else: the
+// same returns, rings, times, labels and instances to the bit, no intensity channel; and the
+// world's hits carry the intensity model's inputs again once a sweep asks for them.
+TEST_F(SimulatedScene, WithoutIntensityTheSameReturns) {
+    World world(*scene_, models());
+    LidarParams lidar;
+    const PoseAtTime pose = [](double t) { return make_T_xyz_yaw({-2.0 + t, 0.5, 0.45}, 0.3 * t); };
+    const PointCloud with = simulate_sweep(world, lidar, pose, 1.0, 9, 2);
+    lidar.intensity = false;
+    const PointCloud without = simulate_sweep(world, lidar, pose, 1.0, 9, 2);
+    ASSERT_GT(with.size(), 10000u);
+    ASSERT_EQ(with.size(), without.size());
+    EXPECT_TRUE(with.xyz == without.xyz && with.ring == without.ring && with.time_s == without.time_s &&
+                with.label == without.label && with.instance == without.instance);
+    EXPECT_EQ(with.intensity.size(), with.size());
+    EXPECT_TRUE(without.intensity.empty());
+    EXPECT_GT(*std::max_element(with.intensity.begin(), with.intensity.end()), 20.0f);
+    lidar.intensity = true;
+    const PointCloud again = simulate_sweep(world, lidar, pose, 1.0, 9, 2);
+    EXPECT_EQ(again.intensity, with.intensity);
 }
 
 TEST(Lidar, UserMeshInASceneIsHitAndLabelled) {

@@ -90,6 +90,15 @@ void PointCloud::append(const PointCloud& other) {
     append_channel(instance, other.instance);
 }
 
+void PointCloud::reserve(std::size_t n, PointFields f) {
+    xyz.reserve(n);
+    if (f.intensity) intensity.reserve(n);
+    if (f.ring) ring.reserve(n);
+    if (f.time) time_s.reserve(n);
+    if (f.label) label.reserve(n);
+    if (f.instance) instance.reserve(n);
+}
+
 PointCloud PointCloud::transformed(const Eigen::Isometry3d& T) const {
     PointCloud out = *this;
     const Eigen::Isometry3f Tf = T.cast<float>();

@@ -50,6 +50,9 @@ struct PointCloud {
 
     /// Appends `other`; both clouds must carry the same channels (checked, throws on mismatch).
     void append(const PointCloud& other);
+    /// Room for `n` points in every channel present in `fields` (appending that many then copies
+    /// each channel once, with no reallocation).
+    void reserve(std::size_t n, PointFields fields);
 
     /// Positions mapped through T (e.g. T_world_sensor * points_sensor); channels kept.
     PointCloud transformed(const Eigen::Isometry3d& T) const;

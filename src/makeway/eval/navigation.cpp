@@ -226,7 +226,9 @@ NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, Ob
     pipeline::Controller controller(params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m),
                                     navigator_params(method, params));
     controller.set_route(route_of(scene));
-    return drive(scene, method, params, controller, [&](const SimSweep& s) {
+    NavParams p = params;
+    p.lidar.intensity = params.lidar.intensity && source.reads_intensity();
+    return drive(scene, method, p, controller, [&](const SimSweep& s) {
         // The baselines are fed the truth: the pose, the velocity and (gt-perc) the objects.
         Thought th;
         th.pose = project_to_plane(s.T_world_sensor_end * T_sensor_robot);
@@ -262,7 +264,9 @@ NavRunResult run_navigation_online(const sim::Scene& scene, const NavMethod& met
     online.set_route(route_of(scene));
     std::vector<KeyframeObjects> keyframes;
     std::vector<pipeline::StageTiming> timing;
-    NavRunResult out = drive(scene, method, params, online.controller(), [&](const SimSweep& s) {
+    NavParams p = params;
+    p.lidar.intensity = params.lidar.intensity && detector.uses_intensity();
+    NavRunResult out = drive(scene, method, p, online.controller(), [&](const SimSweep& s) {
         const pipeline::OnlineStep step = online.process({*s.points_sensor, s.stamp_s, s.duration_s, s.odometry_start, s.odometry_end});
         const pipeline::SweepResult& r = step.sweep;
         if (r.keyframe) {

@@ -23,6 +23,8 @@ public:
     virtual ~ObjectSource() = default;
     virtual std::string name() const = 0;
     virtual std::vector<ObjectEstimate> objects(const ObjectSourceInput& input) = 0;
+    /// Whether objects() reads the sweep's intensity (if not, the simulator leaves it out).
+    virtual bool reads_intensity() const { return true; }
 };
 
 /// No semantics: the classic costmap planners.
@@ -30,6 +32,7 @@ class NoObjects : public ObjectSource {
 public:
     std::string name() const override { return "none"; }
     std::vector<ObjectEstimate> objects(const ObjectSourceInput&) override { return {}; }
+    bool reads_intensity() const override { return false; }
 };
 
 /// Perfect perception: every chair and table of the scene where it is at time t.
@@ -39,6 +42,7 @@ public:
         : scene_(scene), models_(std::move(models)) {}
     std::string name() const override { return "ground_truth"; }
     std::vector<ObjectEstimate> objects(const ObjectSourceInput& input) override;
+    bool reads_intensity() const override { return false; }
 
 private:
     const sim::Scene& scene_;

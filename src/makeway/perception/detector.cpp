@@ -1,5 +1,7 @@
 #include "makeway/perception/detector.hpp"
 
+#include <dlfcn.h>
+
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
@@ -123,7 +125,14 @@ Detector Detector::load(const std::filesystem::path& path) {
 }
 
 void set_inference_threads(int threads) {
-    if (threads > 0) torch::set_num_threads(threads);
+    if (threads <= 0) return;
+    torch::set_num_threads(threads);
+    // Debian's libtorch multiplies through the system BLAS (OpenBLAS), whose own pool of a thread
+    // per core spins in sched_yield between calls: left alone, it takes the cores the caller kept
+    // for other work (a quarter of the CPU samples of a study-space run; in bench nav's shards
+    // four times their system time). Looked up at run time, so that any other BLAS links as well.
+    using SetThreads = void (*)(int);
+    if (auto* set_blas = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set_blas(threads);
 }
 
 std::vector<float> Detector::heads(const PointCloud& cloud) const {

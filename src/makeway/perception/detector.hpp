@@ -40,6 +40,7 @@ public:
     /// Safe to call from several threads at once.
     std::vector<Detection> detect(const PointCloud& cloud_sensor) const override;
     double reach_m() const override { return params_.grid.range_m; }
+    bool uses_intensity() const override { return params_.grid.intensity; }
     /// The decoded head maps for a cloud (channel-major, see bev_grid.hpp).
     std::vector<float> heads(const PointCloud& cloud_sensor) const;
 
@@ -54,7 +55,8 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-/// Threads torch uses for inference and training in this process.
+/// Threads torch, and the OpenBLAS under it when that is the BLAS linked, use for inference and
+/// training in this process.
 void set_inference_threads(int threads);
 
 /// A labelled training sample: a keyframe and its boxes in the sensor frame.

@@ -16,6 +16,8 @@ public:
     virtual std::vector<Detection> detect(const PointCloud& cloud_sensor) const = 0;
     /// Half the side of the square around the sensor that the detector looks at [m].
     virtual double reach_m() const = 0;
+    /// Whether detect() reads the points' intensity (a source may then leave it out).
+    virtual bool uses_intensity() const { return true; }
 };
 
 }  // namespace makeway::perception

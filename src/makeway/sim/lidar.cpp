@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <tuple>
 
 #include "makeway/common/angles.hpp"
 #include "makeway/common/random.hpp"
@@ -132,8 +133,11 @@ PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtT
             // One normal pair serves two beams; the uniform decides dropout.
             const std::uint64_t ray_id = static_cast<std::uint64_t>(c) * beams + b;
             const auto [n0, n1] = counter_normal_pair(stream, ray_id);
-            const auto [m0, m1] = counter_normal_pair(stream ^ kIntensityStream, ray_id);
-            const auto [e0, e1] = counter_normal_pair(stream ^ kIntensityStream, ~ray_id);
+            double m0 = 0.0, m1 = 0.0, e0 = 0.0, e1 = 0.0;
+            if (params.intensity) {
+                std::tie(m0, m1) = counter_normal_pair(stream ^ kIntensityStream, ray_id);
+                std::tie(e0, e1) = counter_normal_pair(stream ^ kIntensityStream, ~ray_id);
+            }
             for (int k = 0; k < 2 && b + k < beams; ++k) {
                 const RayHit& h = hits[b + k];
                 RayResult& r = o[b + k];
@@ -144,7 +148,7 @@ PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtT
                 if (range < params.min_range_m || range > params.max_range_m) continue;
                 r.keep = true;
                 r.xyz = static_cast<float>(range) * dirs_sensor[b + k];
-                r.intensity = return_intensity(h, params, k == 0 ? m0 : m1, k == 0 ? e0 : e1);
+                r.intensity = params.intensity ? return_intensity(h, params, k == 0 ? m0 : m1, k == 0 ? e0 : e1) : 0.0f;
                 r.label = static_cast<std::uint8_t>(h.label);
                 r.instance = h.instance;
             }
@@ -156,6 +160,7 @@ PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtT
         limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                       static_cast<std::size_t>(params.num_threads));
     }
+    world.set_surface_model(params.intensity);
     const int slices = std::min(params.time_slices, columns);
     for (int s = 0; s < slices; ++s) {
         const int c0 = s * columns / slices, c1 = (s + 1) * columns / slices;
@@ -173,13 +178,13 @@ PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtT
     std::size_t n = 0;
     for (const RayResult& r : out) n += r.keep;
     PointCloud cloud;
-    cloud.resize(n, PointFields{.intensity = true, .ring = true, .time = true, .label = true, .instance = true});
+    cloud.resize(n, PointFields{.intensity = params.intensity, .ring = true, .time = true, .label = true, .instance = true});
     std::size_t i = 0;
     for (std::size_t k = 0; k < out.size(); ++k) {
         const RayResult& r = out[k];
         if (!r.keep) continue;
         cloud.xyz[i] = r.xyz;
-        cloud.intensity[i] = r.intensity;
+        if (params.intensity) cloud.intensity[i] = r.intensity;
         cloud.ring[i] = static_cast<std::uint16_t>(k % beams);
         cloud.time_s[i] = static_cast<float>(static_cast<double>(k / beams) * dt_column);
         cloud.label[i] = r.label;

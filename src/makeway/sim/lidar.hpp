@@ -29,6 +29,11 @@ struct LidarParams {
     int time_slices = 10;           ///< the world is moved this many times per sweep
     int num_threads = 1;            ///< 1: serial; > 1: TBB with this many threads
     bool use_packets = true;        ///< Embree 8-ray packets (false: one ray at a time)
+    /// Each return's intensity, with its noise. false: the sweep has no intensity channel, and the
+    /// surface model and two of the three noise draws per return are skipped (World's surface
+    /// model is set to match), for runs where nothing reads it; positions, dropout, ranges, labels
+    /// are the same either way.
+    bool intensity = true;
 
     std::vector<std::string> validate() const;
     int num_columns() const;

@@ -95,6 +95,7 @@ struct World::Impl {
     std::vector<std::pair<SemanticLabel, std::uint32_t>> inst_labels;  // instance geometry id -> label
     std::vector<Eigen::Matrix3f> inst_rotation;          // instance geometry id -> R_world_object now
     std::uint64_t material_seed = 0;
+    bool surface_model = true;
 
     // Ng is Embree's unnormalised geometric normal, in the object frame for instances.
     RayHit to_hit(unsigned geom_id, unsigned inst_id, unsigned prim_id, float t, const Eigen::Vector3f& Ng,
@@ -108,12 +109,14 @@ struct World::Impl {
         if (inst_id != RTC_INVALID_GEOMETRY_ID) {
             h.label = inst_labels[inst_id].first;
             h.instance = inst_labels[inst_id].second;
+            if (!surface_model) return h;
             normal = inst_rotation[inst_id] * Ng;
             // A part takes the frame or the surface material of its object.
             const int which = static_cast<int>(counter_uniform(material_seed ^ h.instance, part) < 0.5);
             h.reflectivity = draw_reflectivity(material_seed, object_surface(h.instance, which));
         } else {
             h.label = geom_labels[geom_id];
+            if (!surface_model) return h;
             const std::uint64_t surface = h.label == SemanticLabel::kGround    ? kFloorSurface
                                           : h.label == SemanticLabel::kCeiling ? kCeilingSurface
                                                                                : structure_surface(part);
@@ -204,6 +207,8 @@ World::~World() {
     if (impl_->person_scene) rtcReleaseScene(impl_->person_scene);
     if (impl_->device) rtcReleaseDevice(impl_->device);
 }
+
+void World::set_surface_model(bool on) { impl_->surface_model = on; }
 
 void World::set_time(double t_s) {
     if (t_s == time_s_) return;

@@ -47,6 +47,10 @@ public:
     void set_time(double t_s);
     double time_s() const { return time_s_; }
 
+    /// Whether hits carry the surface's reflectivity and incidence (the intensity model's inputs);
+    /// off, they are left at their defaults and their draws skipped. On by default.
+    void set_surface_model(bool on);
+
     /// First hit along a ray (direction need not be unit; range is along the unit direction).
     RayHit cast(const Eigen::Vector3f& origin_m, const Eigen::Vector3f& direction,
                 float max_range_m) const;
