@@ -187,8 +187,14 @@ void add_track(CLI::App& app, TrackOptions& o, EvalTrackingOptions& e) {
                                                       "existence) or track-mean (the mean of its detections' so far)")
         ->check(CLI::IsMember({"detection", "existence", "track-mean"}))
         ->capture_default_str();
-    sub->add_flag("--coasting", o.coasting, "kitti: also write confirmed tracks in frames without a detection "
-                                            "(their predicted boxes); off: only boxes updated by a detection");
+    auto* coast = sub->add_flag("--coasting", o.coasting, "kitti: also write confirmed tracks of every type in frames "
+                                                          "without a detection (their predicted boxes); default: each "
+                                                          "type's preset (Pedestrian one frame, the others none)");
+    sub->add_flag("--no-coasting", o.no_coasting, "kitti: only boxes updated by a detection, for every type")->excludes(coast);
+    sub->add_option("--coasting-frames", o.coasting_frames, "kitti, with --coasting: write a track's predicted box "
+                                                            "at most this many frames after its last detection (0: "
+                                                            "until the track is dropped)")
+        ->check(CLI::Range(0, 1000));
     sub->add_flag("!--no-backfill", o.backfill, "kitti: a track's output starts at the frame that confirms it (default: "
                                                "at its first detection, the frames that led to it written too, as AB3DMOT)");
     sub->add_option("--out", o.out, "Output folder: per-frame JSON objects, or one KITTI file per sequence; and "

@@ -220,5 +220,38 @@ TEST(Cli, TrackAndEvaluateKittiAsPublishedDataArrive) {
     EXPECT_EQ(md["classes"]["car"]["all_boxes"]["tp"].get<int>(), car["tp"].get<int>());  // the first pass keeps every box
 }
 
+// Coasting per KITTI type: a pedestrian's predicted box goes out for one frame after its last
+// detection by default (its preset), a car's for none; --no-coasting and --coasting with
+// --coasting-frames override every type.
+TEST(Cli, TrackKittiCoastsPedestriansOneFrameByDefault) {
+    const auto dir = testing_util::fresh_dir("kitti_coast");
+    std::filesystem::create_directories(dir / "dets");
+    std::string dets;
+    for (int f = 0; f < 30; ++f) {
+        dets += kitti_line(f, -1, "Car", 2.0, 20.0, 4.2);  // seen throughout: the sequence goes on
+        if (f <= 14) dets += kitti_line(f, -1, "Car", -6.0, 40.0, 3.0), dets += kitti_line(f, -1, "Pedestrian", 5.0, 12.0, 1.5);
+    }
+    std::ofstream(dir / "dets" / "0000.txt") << dets;
+    const auto last_frame = [&](const std::string& options, const std::string& out, const std::string& type, double x) {
+        const CliRun r = run_makeway("track --format kitti " + options + " --detections " + (dir / "dets").string() + " --out " + (dir / out).string(), dir);
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        int last = -1;
+        for (const auto& t : io::read_kitti_tracking(dir / out / "0000.txt")) {
+            if (t.type == type && std::abs(t.location_cam_m.x() - x) < 1.0) last = std::max(last, t.frame);
+        }
+        return last;
+    };
+    EXPECT_EQ(last_frame("", "preset", "Pedestrian", 5.0), 15);
+    EXPECT_EQ(last_frame("", "preset", "Car", -6.0), 14);
+    const io::Json summary = io::read_json(dir / "preset" / "summary.json");
+    EXPECT_EQ(summary["coasting_frames_per_type"]["Pedestrian"].get<int>(), 1);
+    EXPECT_EQ(summary["coasting_frames_per_type"]["Car"].get<int>(), -1);
+    EXPECT_EQ(last_frame("--no-coasting", "none", "Pedestrian", 5.0), 14);
+    EXPECT_EQ(last_frame("--coasting --coasting-frames 2", "two", "Pedestrian", 5.0), 16);
+    EXPECT_EQ(last_frame("--coasting --coasting-frames 2", "two", "Car", -6.0), 16);
+    const CliRun both = run_makeway("track --format kitti --coasting --no-coasting --detections " + (dir / "dets").string() + " --out " + (dir / "x").string(), dir);
+    EXPECT_EQ(both.exit_code, 2);
+}
+
 }  // namespace
 }  // namespace makeway
