@@ -152,8 +152,8 @@ std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInp
             run.update_s += std::chrono::duration<double>(Clock::now() - t0).count();
             updated.insert(f);
             // Output: boxes updated by a detection this frame (and the predicted boxes of confirmed
-            // tracks without one, as coasting_frames_for allows); a track's boxes from before it was confirmed
-            // wait in `pending` and go out when it is (--no-backfill: they are dropped).
+            // tracks without one, as coasting_frames_for allows); a track's boxes from before it was
+            // confirmed wait in `pending` and go out when it is (--no-backfill: they are dropped).
             std::unordered_map<std::uint32_t, std::size_t> detection_of;  // map id -> record index matched now
             for (std::size_t k = 0; k < idx.size(); ++k) {
                 if (r.track_of_detection[k] < 0) continue;
@@ -168,7 +168,8 @@ std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInp
                 const auto det = detection_of.find(id);
                 const bool detected = det != detection_of.end();
                 const bool confirmed = t.confirmed(params.min_hits);
-                const bool coasts = confirmed && coasting_frames >= 0 && (coasting_frames == 0 || t.misses <= coasting_frames);
+                const bool coasts =
+                    confirmed && coasting_frames >= 0 && (coasting_frames == 0 || t.misses <= coasting_frames);
                 if (!detected && !coasts) continue;
                 const Eigen::Vector3d& c = t.filter.box().centre_m;
                 if (o.fov_deg > 0.0 && (c.x() <= 0.0 || std::abs(std::atan2(c.y(), c.x())) > half_fov)) continue;
@@ -253,7 +254,8 @@ void write_summary(const fs::path& file, const TrackOptions& o, const tracking::
     }
     if (o.format == "kitti") {
         j["rate_hz"] = o.rate_hz, j["fov_deg"] = o.fov_deg;
-        j["output_score"] = o.output_score, j["coasting"] = o.coasting, j["coasting_frames"] = o.coasting_frames, j["backfill"] = o.backfill;
+        j["output_score"] = o.output_score, j["coasting"] = o.coasting, j["coasting_frames"] = o.coasting_frames;
+        j["backfill"] = o.backfill;
     }
     io::write_json(file, j);
     std::cout << std::fixed << std::setprecision(1) << "tracked " << run.frames << " frames in " << std::setprecision(3) << run.update_s

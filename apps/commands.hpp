@@ -157,9 +157,9 @@ struct TrackOptions {
     std::string out_of_range;    ///< freeze or drop; empty: the configuration's
     double fov_deg = 0.0;        ///< > 0: KITTI output only within this horizontal field of view
     std::string output_score = "detection";  ///< kitti: detection, existence or track-mean
-    bool coasting = false;       ///< kitti: also boxes of confirmed tracks not detected in the frame
+    bool coasting = false;       ///< kitti: boxes of confirmed tracks not detected in the frame, every type (default: the type's preset)
     int coasting_frames = 0;     ///< kitti, with coasting: at most this many frames after the last detection (0: until dropped)
-    bool no_coasting = false;    ///< kitti: no coasting boxes for any type (the default is each type's preset)
+    bool no_coasting = false;    ///< kitti: no such boxes for any type
     bool backfill = true;        ///< kitti: a confirmed track's output starts at its first detection
     std::string out;
 };

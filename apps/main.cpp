@@ -194,7 +194,8 @@ void add_track(CLI::App& app, TrackOptions& o, EvalTrackingOptions& e) {
     sub->add_option("--coasting-frames", o.coasting_frames, "kitti, with --coasting: write a track's predicted box "
                                                             "at most this many frames after its last detection (0: "
                                                             "until the track is dropped)")
-        ->check(CLI::Range(0, 1000));
+        ->check(CLI::Range(0, 1000))
+        ->needs(coast);
     sub->add_flag("!--no-backfill", o.backfill, "kitti: a track's output starts at the frame that confirms it (default: "
                                                "at its first detection, the frames that led to it written too, as AB3DMOT)");
     sub->add_option("--out", o.out, "Output folder: per-frame JSON objects, or one KITTI file per sequence; and "

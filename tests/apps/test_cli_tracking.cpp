@@ -229,11 +229,12 @@ TEST(Cli, TrackKittiCoastsPedestriansOneFrameByDefault) {
     std::string dets;
     for (int f = 0; f < 30; ++f) {
         dets += kitti_line(f, -1, "Car", 2.0, 20.0, 4.2);  // seen throughout: the sequence goes on
-        if (f <= 14) dets += kitti_line(f, -1, "Car", -6.0, 40.0, 3.0), dets += kitti_line(f, -1, "Pedestrian", 5.0, 12.0, 1.5);
+        if (f <= 14) dets += kitti_line(f, -1, "Car", -6.0, 40.0, 3.0) + kitti_line(f, -1, "Pedestrian", 5.0, 12.0, 1.5);
     }
     std::ofstream(dir / "dets" / "0000.txt") << dets;
     const auto last_frame = [&](const std::string& options, const std::string& out, const std::string& type, double x) {
-        const CliRun r = run_makeway("track --format kitti " + options + " --detections " + (dir / "dets").string() + " --out " + (dir / out).string(), dir);
+        const CliRun r =
+            run_makeway("track --format kitti " + options + " --detections " + (dir / "dets").string() + " --out " + (dir / out).string(), dir);
         EXPECT_EQ(r.exit_code, 0) << r.err;
         int last = -1;
         for (const auto& t : io::read_kitti_tracking(dir / out / "0000.txt")) {
@@ -249,8 +250,12 @@ TEST(Cli, TrackKittiCoastsPedestriansOneFrameByDefault) {
     EXPECT_EQ(last_frame("--no-coasting", "none", "Pedestrian", 5.0), 14);
     EXPECT_EQ(last_frame("--coasting --coasting-frames 2", "two", "Pedestrian", 5.0), 16);
     EXPECT_EQ(last_frame("--coasting --coasting-frames 2", "two", "Car", -6.0), 16);
-    const CliRun both = run_makeway("track --format kitti --coasting --no-coasting --detections " + (dir / "dets").string() + " --out " + (dir / "x").string(), dir);
-    EXPECT_EQ(both.exit_code, 2);
+    for (const char* bad : {"--coasting --no-coasting", "--coasting-frames 2"}) {  // contradictory; frames without coasting
+        const CliRun r =
+            run_makeway(std::string("track --format kitti ") + bad + " --detections " + (dir / "dets").string() + " --out " + (dir / "x").string(), dir);
+        EXPECT_EQ(r.exit_code, 2) << bad;
+        EXPECT_FALSE(std::filesystem::exists(dir / "x")) << bad;
+    }
 }
 
 }  // namespace
