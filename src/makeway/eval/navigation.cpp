@@ -112,8 +112,9 @@ std::vector<Eigen::Vector2d> route_of(const sim::Scene& scene) {
 
 // The simulator's loop: act on the last command while the LiDAR sweeps (the robot moves within
 // the sweep), score every physics step, then let the robot's software see the sweep and decide.
+// Intensity is simulated only when the software reads it (`reads_intensity`).
 NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavParams& params, const pipeline::Controller& controller,
-                   const Think& think) {
+                   bool reads_intensity, const Think& think) {
     NavRunResult out;
     out.method = method.name;
     const std::vector<sim::ObjectModel> models = sim::models_of(scene);
@@ -135,6 +136,8 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
     VelocityCommand cmd;
     const double period = 1.0 / params.lidar.rate_hz, dt = period / params.physics_steps;
     const Isometry3 T_robot_sensor = params.robot.T_robot_sensor();
+    sim::LidarParams lidar = params.lidar;
+    lidar.intensity = lidar.intensity && reads_intensity;
     out.min_clearance_m = 1e9;
     for (int k = 0; k * period < params.time_limit_s; ++k) {
         if (params.on_sweep) params.on_sweep();
@@ -154,7 +157,7 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
         out.min_clearance_m = std::min(out.min_clearance_m, checker.clearance_m(state.pose, t + period, 2.0));
         // Sense: the sweep over that period, from the moving sensor.
         const sim::PoseAtTime T_world_sensor_at = sim::sensor_pose_along(std::move(poses), t, dt, T_robot_sensor);
-        const PointCloud sweep = sim::simulate_sweep(world, params.lidar, T_world_sensor_at, t, params.seed, static_cast<std::uint64_t>(k));
+        const PointCloud sweep = sim::simulate_sweep(world, lidar, T_world_sensor_at, t, params.seed, static_cast<std::uint64_t>(k));
         const Thought thought = think({&sweep, t, period, odometry_start, odometry.pose(), T_world_sensor_at(t),
                                        T_world_sensor_at(t + period), state.v_mps, state.w_radps});
         out.estimated_trajectory.push_back(thought.pose);
@@ -226,9 +229,7 @@ NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, Ob
     pipeline::Controller controller(params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m),
                                     navigator_params(method, params));
     controller.set_route(route_of(scene));
-    NavParams p = params;
-    p.lidar.intensity = params.lidar.intensity && source.reads_intensity();
-    return drive(scene, method, p, controller, [&](const SimSweep& s) {
+    return drive(scene, method, params, controller, source.reads_intensity(), [&](const SimSweep& s) {
         // The baselines are fed the truth: the pose, the velocity and (gt-perc) the objects.
         Thought th;
         th.pose = project_to_plane(s.T_world_sensor_end * T_sensor_robot);
@@ -264,9 +265,7 @@ NavRunResult run_navigation_online(const sim::Scene& scene, const NavMethod& met
     online.set_route(route_of(scene));
     std::vector<KeyframeObjects> keyframes;
     std::vector<pipeline::StageTiming> timing;
-    NavParams p = params;
-    p.lidar.intensity = params.lidar.intensity && detector.uses_intensity();
-    NavRunResult out = drive(scene, method, p, online.controller(), [&](const SimSweep& s) {
+    NavRunResult out = drive(scene, method, params, online.controller(), detector.uses_intensity(), [&](const SimSweep& s) {
         const pipeline::OnlineStep step = online.process({*s.points_sensor, s.stamp_s, s.duration_s, s.odometry_start, s.odometry_end});
         const pipeline::SweepResult& r = step.sweep;
         if (r.keyframe) {
