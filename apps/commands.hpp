@@ -15,6 +15,12 @@ struct InfoOptions {
 };
 int run_info(const InfoOptions& options);
 
+struct ConfigOptions {
+    std::string file;       ///< empty: the built-in defaults
+    bool describe = false;  ///< each key's value, admitted values, unit and doc instead of YAML
+};
+int run_config(const ConfigOptions& options);
+
 struct ConvertOptions {
     std::string input;
     std::string output;

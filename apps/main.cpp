@@ -27,6 +27,13 @@ void add_info(CLI::App& app, InfoOptions& o) {
     sub->add_option("FILE", o.path, "Point cloud (.pcd, .ply, or KITTI .bin)")->required();
 }
 
+void add_config(CLI::App& app, ConfigOptions& o) {
+    auto* sub = app.add_subcommand("config", "Print the configuration: config/default.yaml as the stages' parameter "
+                                             "tables generate it, or FILE as makeway reads it (defaults filled in)");
+    sub->add_option("FILE", o.file, "A configuration file to read (checked: every problem listed, exit 2)")->check(CLI::ExistingFile);
+    sub->add_flag("--describe", o.describe, "One line per key: value, admitted values, unit, doc");
+}
+
 void add_convert(CLI::App& app, ConvertOptions& o) {
     auto* sub = app.add_subcommand("convert", "Convert a point cloud between PCD, PLY and KITTI .bin "
                                               "by file extension, keeping every field both hold");
@@ -547,6 +554,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "makeway 0.1.0");
     app.require_subcommand(1);
     InfoOptions info;
+    ConfigOptions config;
     ConvertOptions convert;
     DemoOptions demo;
     CadOptions cad;
@@ -575,6 +583,7 @@ int main(int argc, char** argv) {
     BenchShapeOptions bench_shape;
     CompleteOptions complete;
     add_info(app, info);
+    add_config(app, config);
     add_convert(app, convert);
     add_demo(app, demo);
     add_cad(app, cad);
@@ -616,6 +625,7 @@ int main(int argc, char** argv) {
         makeway::io::refuse_outputs_over_inputs(outputs, inputs);  // before any work: no output replaces an input
         const auto dispatch = [&]() -> int {
             if (app.got_subcommand("info")) return run_info(info);
+            if (app.got_subcommand("config")) return run_config(config);
             if (app.got_subcommand("convert")) return run_convert(convert);
             if (app.got_subcommand("demo")) return run_demo(demo);
             if (app.got_subcommand("cad")) return run_cad(cad);

@@ -13,6 +13,7 @@
 #include "makeway/costmap/affordance.hpp"
 #include "makeway/labelling/labeller.hpp"
 #include "makeway/pipeline/system_params.hpp"
+#include "makeway/common/param_table.hpp"
 #include "makeway/common/robot_description.hpp"
 
 namespace YAML {
@@ -39,6 +40,8 @@ public:
     void read(const char* key, std::uint32_t& value);
     /// A pair of numbers written as [a, b].
     void read(const char* key, Eigen::Vector2d& value);
+    /// Whether the mapping holds `key` (reading nothing, marking nothing as known).
+    bool has(const char* key) const;
     /// The raw node under `key` (null when absent), for lists and nested mappings.
     YAML::Node take(const char* key);
     /// Records a problem under this section's prefix.
@@ -61,8 +64,6 @@ private:
     bool allow_infinity_ = false;
 };
 
-/// "a" for one problem, "3 problems: a; b; c" for several: one line, every problem.
-std::string join_problems(const std::vector<std::string>& problems);
 
 /// The sections of a makeway configuration file that configure the robot's software (and the robot
 /// it drives); config/default.yaml documents each key. The simulator's sections (scene, lidar,
@@ -95,11 +96,15 @@ Config parse_config(std::string_view yaml_text);
 Config load_config(const std::filesystem::path& path);
 
 namespace detail {
-/// Reads the sections a derived configuration adds (io/sim_config.cpp), appending their problems.
-using MoreSections = std::function<void(const YAML::Node& root, std::vector<std::string>& problems)>;
+/// Reads the sections a derived configuration adds (io/sim_config.cpp), appending their problems
+/// and the deprecated keys they read.
+using MoreSections =
+    std::function<void(const YAML::Node& root, std::vector<std::string>& problems, std::vector<std::string>& deprecated)>;
 /// Config's sections of `yaml_text` into `config`, then `more`'s; throws FormatError listing every
-/// problem of every section, or on a syntax error or a top level that is no mapping.
-void parse_into(std::string_view yaml_text, Config& config, const MoreSections& more);
+/// problem of every section, or on a syntax error or a top level that is no mapping. Deprecated
+/// keys that were read go to `deprecated`, or (null) one warning each on stderr.
+void parse_into(std::string_view yaml_text, Config& config, const MoreSections& more,
+                std::vector<std::string>* deprecated = nullptr);
 /// parse_into on the file's text; throws FileError("PATH: ...") on a missing file or any problem.
 void load_into(const std::filesystem::path& path, Config& config, const MoreSections& more);
 }  // namespace detail

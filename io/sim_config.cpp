@@ -5,76 +5,68 @@
 #include <string>
 #include <vector>
 
+#include "makeway/sim/param_tables.hpp"
 
 namespace makeway::io {
 
 namespace {
 
-void read_sim_sections(const YAML::Node& const_root, SimConfig& cfg, std::vector<std::string>& problems) {
-    {
-        YamlSection s(const_root["scene"], "scene", problems);
-        std::string density(sim::to_string(cfg.scene.density));
-        std::string layout = cfg.scene.layout == sim::Layout::kStudySpace ? "study_space" : "random";
-        s.read("seed", cfg.scene.seed);
-        s.read("density", density);
-        s.read("layout", layout);
-        s.read("people", cfg.scene.people);
-        s.finish();
-        if (const auto d = sim::parse_density(density)) {
-            cfg.scene.density = *d;
-        } else {
-            s.problem("density must be sparse, medium or dense (got '" + density + "')");
-        }
-        if (const auto l = sim::parse_layout(layout)) {
-            cfg.scene.layout = *l;
-        } else {
-            s.problem("layout must be random or study_space (got '" + layout + "')");
-        }
-    }
-    {
-        YamlSection s(const_root["lidar"], "lidar", problems);
-        sim::LidarParams& l = cfg.lidar;
-        s.read("azimuth_step_deg", l.azimuth_step_deg);
-        s.read("rate_hz", l.rate_hz);
-        s.read("min_range_m", l.min_range_m);
-        s.read("max_range_m", l.max_range_m);
-        s.read("range_noise_m", l.range_noise_m);
-        s.read("dropout", l.dropout);
-        s.read("intensity_falloff_m", l.intensity_falloff_m);
-        s.read("intensity_speckle", l.intensity_speckle);
-        s.read("intensity_noise", l.intensity_noise);
-        s.read("time_slices", l.time_slices);
-        s.read("num_threads", l.num_threads);
-        s.read("use_packets", l.use_packets);
-        s.finish();
-        s.add_validation(l.validate());
-    }
-    {
-        YamlSection s(const_root["odometry"], "odometry", problems);
-        s.read("translation_noise_per_m", cfg.odometry.translation_noise_per_m);
-        s.read("heading_noise_per_rad", cfg.odometry.heading_noise_per_rad);
-        s.read("heading_noise_per_m", cfg.odometry.heading_noise_per_m);
-        s.finish();
-        s.add_validation(cfg.odometry.validate());
-    }
-    {
-        YamlSection s(const_root["simulation"], "simulation", problems);
-        s.read("frames", cfg.simulation.frames);
-        s.read("seed", cfg.simulation.seed);
-        s.finish();
-        if (cfg.simulation.frames < 1 || cfg.simulation.frames > 1000000) {
-            s.add_validation({"frames must be in [1, 1000000] (got " + std::to_string(cfg.simulation.frames) + ")"});
-        }
-    }
+const ParamTable<SimulationConfig>& simulation_table() {
+    static const ParamTable<SimulationConfig> t = [] {
+        ParamTable<SimulationConfig> s;
+        s.add("frames", &SimulationConfig::frames, closed(1, 1000000), "sweeps the demo records with full ground truth (10 per second)")
+            .add("seed", &SimulationConfig::seed, closed(0.0, 1.8446744073709552e19), "sensor noise and odometry drift");
+        return s;
+    }();
+    return t;
+}
+
+// The simulator's own sections, in the order the file lists them among the others.
+std::vector<BoundSection> simulator_sections(SimConfig& c) {
+    std::vector<BoundSection> s;
+    s.push_back(bind_section("scene", "the procedural scene `makeway demo` drives through", sim::scene_gen_table(), c.scene));
+    s.push_back(bind_section("lidar", "Velodyne Ultra Puck (VLP-32C): 32 beams, -25..+15 deg", sim::lidar_table(), c.lidar));
+    s.push_back(bind_section("odometry", "wheel odometry drift; sigmas grow with the square root of the motion", sim::wheel_noise_table(),
+                             c.odometry));
+    s.push_back(bind_section("simulation", "", simulation_table(), c.simulation));
+    return s;
+}
+
+void read_sim_sections(const YAML::Node& root, SimConfig& cfg, std::vector<std::string>& problems, std::vector<std::string>& deprecated) {
+    std::vector<BoundSection> sections = simulator_sections(cfg);
+    read_sections(root, sections, problems, deprecated);
     cfg.scene.robot = cfg.robot;  // the simulated robot is the described one
 }
 
 }  // namespace
 
+std::vector<BoundSection> sim_config_sections(SimConfig& c) {
+    std::vector<BoundSection> sim = simulator_sections(c), ours = config_sections(c);
+    // scene, lidar, robot, odometry, simulation, then the robot's software.
+    std::vector<BoundSection> all;
+    all.push_back(std::move(sim[0]));
+    all.push_back(std::move(sim[1]));
+    all.push_back(std::move(ours[0]));
+    all.push_back(std::move(sim[2]));
+    all.push_back(std::move(sim[3]));
+    for (std::size_t i = 1; i < ours.size(); ++i) all.push_back(std::move(ours[i]));
+    return all;
+}
+
+std::string default_config_yaml() {
+    SimConfig defaults;
+    return write_sections(sim_config_sections(defaults),
+                          "# makeway configuration. Every key is optional: a missing key keeps its built-in default (shown).\n"
+                          "# Units are in the key names. `makeway demo --config FILE` and `makeway simulate --config FILE`\n"
+                          "# read it. Unknown keys, wrong types and out-of-range values are all reported at once.\n"
+                          "# Generated from the stages' parameter tables (`makeway config > config/default.yaml`);\n"
+                          "# `makeway config --describe` lists each key's admitted values and unit.\n");
+}
+
 SimConfig parse_sim_config(std::string_view yaml_text) {
     SimConfig config;
-    detail::parse_into(yaml_text, config, [&](const YAML::Node& root, std::vector<std::string>& problems) {
-        read_sim_sections(root, config, problems);
+    detail::parse_into(yaml_text, config, [&](const YAML::Node& root, std::vector<std::string>& problems, std::vector<std::string>& deprecated) {
+        read_sim_sections(root, config, problems, deprecated);
     });
     return config;
 }
@@ -82,8 +74,8 @@ SimConfig parse_sim_config(std::string_view yaml_text) {
 SimConfig load_sim_config(const std::filesystem::path& path) {
     SimConfig config;
     if (path.empty()) return config;
-    detail::load_into(path, config, [&](const YAML::Node& root, std::vector<std::string>& problems) {
-        read_sim_sections(root, config, problems);
+    detail::load_into(path, config, [&](const YAML::Node& root, std::vector<std::string>& problems, std::vector<std::string>& deprecated) {
+        read_sim_sections(root, config, problems, deprecated);
     });
     return config;
 }

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "io/config_reader.hpp"
+#include "io/config_sections.hpp"
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/robot.hpp"
 #include "makeway/sim/scene_generator.hpp"
@@ -27,6 +28,11 @@ struct SimConfig : Config {
     sim::OdometryNoiseParams odometry;  ///< the simulated wheel odometry's drift
     SimulationConfig simulation;
 };
+
+/// Every section of a whole file, bound to `c`, in the order config/default.yaml lists them.
+std::vector<BoundSection> sim_config_sections(SimConfig& c);
+/// config/default.yaml as the stages' tables describe it (a test checks the file against it).
+std::string default_config_yaml();
 
 /// Throws FormatError listing every problem, of every section ("3 problems: a; b; c").
 SimConfig parse_sim_config(std::string_view yaml_text);

@@ -20,6 +20,30 @@ using testing_util::CliRun;
 using testing_util::lines;
 using testing_util::run_makeway;
 
+// `makeway config` prints the shipped file, reads a user's file back with every key, and lists
+// the keys; a bad file is one line and exit 2.
+TEST(Cli, ConfigPrintsDescribesAndChecks) {
+    const auto dir = testing_util::fresh_dir("config");
+    const CliRun shipped = run_makeway("config", dir);
+    ASSERT_EQ(shipped.exit_code, 0) << shipped.err;
+    EXPECT_EQ(shipped.out, io::read_file(std::string(MAKEWAY_SOURCE_DIR) + "/config/default.yaml"));
+    std::ofstream(dir / "mine.yaml") << "collision_monitor:\n  latency_s: 0.3\n";
+    const CliRun mine = run_makeway("config " + (dir / "mine.yaml").string(), dir);
+    ASSERT_EQ(mine.exit_code, 0) << mine.err;
+    EXPECT_NE(mine.out.find("  latency_s: 0.3 "), std::string::npos) << mine.out;
+    EXPECT_NE(mine.out.find("  stop_padding_m: 0.04 "), std::string::npos) << mine.out;  // the default, filled in
+    const CliRun described = run_makeway("config --describe", dir);
+    ASSERT_EQ(described.exit_code, 0) << described.err;
+    EXPECT_NE(described.out.find("  latency_s = 0.2"), std::string::npos) << described.out;
+    EXPECT_NE(described.out.find("[0, 2] [s]  sweep age"), std::string::npos) << described.out;
+    std::ofstream(dir / "bad.yaml") << "collision_monitor:\n  latency_s: 7\n";
+    const CliRun bad = run_makeway("config " + (dir / "bad.yaml").string(), dir);
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_EQ(lines(bad.err), 1u) << bad.err;
+    EXPECT_NE(bad.err.find("collision_monitor.latency_s must be in [0, 2] (got 7)"), std::string::npos) << bad.err;
+    EXPECT_TRUE(bad.out.empty()) << bad.out;
+}
+
 TEST(Cli, InfoPrintsOneJsonObject) {
     const auto dir = testing_util::fresh_dir("info");
     PointCloud c = testing_util::random_cloud(1, 100, PointFields::all());

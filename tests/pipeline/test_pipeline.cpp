@@ -122,7 +122,7 @@ TEST(Pipeline, InvalidParamsAreAllListedAtOnce) {
         ADD_FAILURE() << "accepted";
     } catch (const std::invalid_argument& e) {
         const std::string what = e.what();
-        EXPECT_NE(what.find("keyframe.window"), std::string::npos) << what;
+        EXPECT_NE(what.find("perception.keyframe_window"), std::string::npos) << what;  // as the file names it
         EXPECT_NE(what.find("tracking."), std::string::npos) << what;
         EXPECT_NE(what.find("navigation.stuck_timeout_s"), std::string::npos) << what;
     }

@@ -1,19 +1,31 @@
 #include "makeway/common/robot_description.hpp"
 
+#include "makeway/common/param_tables.hpp"
+
 namespace makeway {
 
-std::vector<std::string> RobotDescription::validate() const {
-    std::vector<std::string> p;
-    if (!(length_m > 0.05 && length_m < 5.0)) p.push_back("length_m must be in (0.05, 5)");
-    if (!(width_m > 0.05 && width_m < 5.0)) p.push_back("width_m must be in (0.05, 5)");
-    if (!(lidar_height_m > 0.0 && lidar_height_m < 3.0)) p.push_back("lidar_height_m must be in (0, 3)");
-    if (!(body_height_m > 0.0 && body_height_m < 3.0)) p.push_back("body_height_m must be in (0, 3)");
-    if (!(ground_clearance_m >= 0.0 && ground_clearance_m < body_height_m)) p.push_back("ground_clearance_m must be in [0, body_height_m)");
-    if (!(max_v_mps > 0.0 && max_v_mps <= 5.0)) p.push_back("max_v_mps must be in (0, 5]");
-    if (!(max_w_radps > 0.0 && max_w_radps <= 10.0)) p.push_back("max_w_radps must be in (0, 10]");
-    if (!(max_acc_mps2 > 0.0 && max_acc_mps2 <= 20.0)) p.push_back("max_acc_mps2 must be in (0, 20]");
-    if (!(max_ang_acc_radps2 > 0.0 && max_ang_acc_radps2 <= 50.0)) p.push_back("max_ang_acc_radps2 must be in (0, 50]");
-    return p;
+const ParamTable<RobotDescription>& robot_description_table() {
+    using R = RobotDescription;
+    static const ParamTable<R> table = [] {
+        ParamTable<R> t;
+        t.add("length_m", &R::length_m, open(0.05, 5.0), "footprint along x (a rectangle centred on the base)")
+            .add("width_m", &R::width_m, open(0.05, 5.0), "footprint along y")
+            .add("body_height_m", &R::body_height_m, open(0.0, 3.0), "collisions are checked below this height")
+            .add("ground_clearance_m", &R::ground_clearance_m, below(0.0, 3.0),
+                 "parts lower are rolled over; the costmap marks what lies between the two")
+            .add("lidar_height_m", &R::lidar_height_m, open(0.0, 3.0),
+                 "the sensor over the base's centre (run --extrinsics / the node's ~extrinsics override it)")
+            .add("max_v_mps", &R::max_v_mps, above(0.0, 5.0), "top speed")
+            .add("max_w_radps", &R::max_w_radps, above(0.0, 10.0), "top turn rate")
+            .add("max_acc_mps2", &R::max_acc_mps2, above(0.0, 20.0), "linear acceleration and braking limit")
+            .add("max_ang_acc_radps2", &R::max_ang_acc_radps2, above(0.0, 50.0), "angular acceleration limit")
+            .require([](const R& r) { return r.ground_clearance_m < r.body_height_m; },
+                     "ground_clearance_m must be in [0, body_height_m)");
+        return t;
+    }();
+    return table;
 }
+
+std::vector<std::string> RobotDescription::validate() const { return robot_description_table().problems(*this); }
 
 }  // namespace makeway

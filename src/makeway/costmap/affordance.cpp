@@ -1,5 +1,7 @@
 #include "makeway/costmap/affordance.hpp"
 
+#include "makeway/costmap/param_tables.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -22,26 +24,34 @@ Eigen::Vector2d zone_half_extent(const ObjectEstimate& o, const AffordanceParams
 
 }  // namespace
 
-std::vector<std::string> AffordanceParams::validate() const {
-    std::vector<std::string> out;
-    auto check = [&](const char* name, double v, double lo, double hi) {
-        if (!(v >= lo && v <= hi)) {
-            out.push_back(std::string(name) + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                          "] (got " + std::to_string(v) + ")");
-        }
-    };
-    check("chair.forward_back_m", chair.forward_back_m, 0.0, 5.0);
-    check("chair.side_m", chair.side_m, 0.0, 5.0);
-    check("chair.peak_cost", chair.peak_cost, 0.0, 252.0);
-    check("chair.edge_cost", chair.edge_cost, 0.0, chair.peak_cost);
-    check("table.sides_m", table.sides_m, 0.0, 5.0);
-    check("table.ends_m", table.ends_m, 0.0, 5.0);
-    check("table.square_tolerance_m", table.square_tolerance_m, 0.0, 5.0);
-    check("table.peak_cost", table.peak_cost, 0.0, 252.0);
-    check("table.edge_cost", table.edge_cost, 0.0, table.peak_cost);
-    check("min_existence", min_existence, 0.0, 1.0);
-    return out;
+const ParamTable<AffordanceParams>& affordance_table() {
+    using A = AffordanceParams;
+    static const ParamTable<A> table = [] {
+        ParamTable<ChairZoneParams> chair;
+        chair.add("forward_back_m", &ChairZoneParams::forward_back_m, closed(0.0, 5.0),
+                  "an ellipse along the chair's axis: reach beyond the chair, both ways")
+            .add("side_m", &ChairZoneParams::side_m, closed(0.0, 5.0), "reach beyond the chair sideways")
+            .add("peak_cost", &ChairZoneParams::peak_cost, closed(0.0, 252.0), "on the chair; soft costs are 1..252")
+            .add("edge_cost", &ChairZoneParams::edge_cost, closed(0.0, 252.0), "at the zone boundary")
+            .require([](const ChairZoneParams& c) { return c.edge_cost <= c.peak_cost; }, "edge_cost must be at most peak_cost");
+        ParamTable<TableZoneParams> tab;
+        tab.add("sides_m", &TableZoneParams::sides_m, closed(0.0, 5.0), "a rectangle padded on the long (sitting) sides by this ...")
+            .add("ends_m", &TableZoneParams::ends_m, closed(0.0, 5.0), "... and at the ends by this")
+            .add("square_tolerance_m", &TableZoneParams::square_tolerance_m, closed(0.0, 5.0),
+                 "|length - width| below this: padded all round")
+            .add("peak_cost", &TableZoneParams::peak_cost, closed(0.0, 252.0), "on the table")
+            .add("edge_cost", &TableZoneParams::edge_cost, closed(0.0, 252.0), "at the zone boundary")
+            .require([](const TableZoneParams& t) { return t.edge_cost <= t.peak_cost; }, "edge_cost must be at most peak_cost");
+        ParamTable<A> t;
+        t.add("min_existence", &A::min_existence, closed(0.0, 1.0), "objects less likely than this get no zone")
+            .include("chair.", [](A& a) -> ChairZoneParams& { return a.chair; }, chair)
+            .include("table.", [](A& a) -> TableZoneParams& { return a.table; }, tab);
+        return t;
+    }();
+    return table;
 }
+
+std::vector<std::string> AffordanceParams::validate() const { return affordance_table().problems(*this); }
 
 double zone_coordinate(const ObjectEstimate& o, const AffordanceParams& p, const Eigen::Vector2d& p_m) {
     const Eigen::Vector2d q = to_object_frame(o, p_m).cwiseAbs();

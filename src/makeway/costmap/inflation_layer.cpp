@@ -1,5 +1,7 @@
 #include "makeway/costmap/inflation_layer.hpp"
 
+#include "makeway/costmap/param_tables.hpp"
+
 #include <cmath>
 #include <limits>
 
@@ -33,13 +35,21 @@ void dt1d(const std::vector<double>& f, std::vector<double>& d, std::vector<int>
 
 }  // namespace
 
+const ParamTable<InflationParams>& inflation_table() {
+    static const ParamTable<InflationParams> table = [] {
+        ParamTable<InflationParams> t;
+        t.add("cost_scaling", &InflationParams::cost_scaling, open(0.0, 100.0), "k [1/m]: costs decay as exp(-k (d - inscribed))");
+        return t;
+    }();
+    return table;
+}
+
 std::vector<std::string> InflationParams::validate() const {
-    std::vector<std::string> out;
+    std::vector<std::string> out = inflation_table().problems(*this);
     if (!(inscribed_radius_m > 0.0 && inscribed_radius_m < 5.0)) out.push_back("inscribed_radius_m must be in (0, 5)");
     if (!(inflation_radius_m >= inscribed_radius_m && inflation_radius_m < 10.0)) {
         out.push_back("inflation_radius_m must be in [inscribed_radius_m, 10)");
     }
-    if (!(cost_scaling > 0.0 && cost_scaling < 100.0)) out.push_back("cost_scaling must be in (0, 100)");
     return out;
 }
 

@@ -1,5 +1,7 @@
 #include "makeway/costmap/obstacle_layer.hpp"
 
+#include "makeway/costmap/param_tables.hpp"
+
 #include "makeway/costmap/ray_walk.hpp"
 
 #include <cmath>
@@ -7,14 +9,30 @@
 
 namespace makeway::costmap {
 
+const ParamTable<ObstacleLayerParams>& obstacle_layer_table() {
+    using O = ObstacleLayerParams;
+    static const ParamTable<O> table = [] {
+        ParamTable<O> t;
+        t.add("low_mark_range_m", &O::low_mark_range_m, closed(0.0, 100.0),
+              "returns below 5 cm mark only this close (a tilted pose estimate lifts the far floor) ...")
+            .renamed_from("low_obstacle_range_m")
+            .add("low_min_returns", &O::low_min_returns, closed(1, 65535), "... and only when this many fall in a cell ...")
+            .renamed_from("low_obstacle_min_returns")
+            .add("low_min_share", &O::low_min_share, closed(0.0, 1.0),
+                 "... and this share of the cell's low returns stand above the clearance (floor noise lifts a few)")
+            .renamed_from("low_obstacle_min_share")
+            .add("mark_range_m", &O::mark_range_m, above(0.0, 100.0), "returns farther do not mark")
+            .add("clear_range_m", &O::clear_range_m, above(0.0, 100.0), "rays clear free space this far")
+            .require([](const O& o) { return o.mark_range_m <= o.clear_range_m; }, "mark_range_m must be in (0, clear_range_m]");
+        return t;
+    }();
+    return table;
+}
+
 std::vector<std::string> ObstacleLayerParams::validate() const {
-    std::vector<std::string> out;
+    std::vector<std::string> out = obstacle_layer_table().problems(*this);
     if (!(body.ground_clearance_m >= 0.0 && body.ground_clearance_m < body.top_m)) out.push_back("the body's ground clearance must be in [0, its top)");
-    if (!(low_band_top_m >= 0.0 && low_mark_range_m >= 0.0)) out.push_back("low_band_top_m and low_mark_range_m must be >= 0");
-    if (low_min_returns < 1 || low_min_returns > 65535) out.push_back("low_min_returns must be in [1, 65535]");
-    if (!(low_min_share >= 0.0 && low_min_share <= 1.0)) out.push_back("low_min_share must be in [0, 1]");
-    if (!(mark_range_m > 0.0 && mark_range_m <= clear_range_m)) out.push_back("mark_range_m must be in (0, clear_range_m]");
-    if (!(clear_range_m > 0.0 && clear_range_m <= 100.0)) out.push_back("clear_range_m must be in (0, 100]");
+    if (!(low_band_top_m >= 0.0 && low_band_top_m <= 1.0)) out.push_back("low_band_top_m must be in [0, 1]");
     return out;
 }
 

@@ -6,6 +6,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "makeway/common/param_table.hpp"
 #include "makeway/common/angles.hpp"
 #include "makeway/common/box_overlap.hpp"
 #include "makeway/common/voxel_thin.hpp"
@@ -36,42 +37,6 @@ std::size_t count_explained(const std::vector<Eigen::Vector3d>& points, const ve
 }
 
 }  // namespace
-
-LabelParams::LabelParams() {
-    // Clusters are rough boxes: every model of the class is tried, whatever its size.
-    verify.max_size_mismatch = 1.2;
-    verify.max_models = 32;
-    verify.box_margin_m = 0.05;
-    verify.num_threads = 1;
-    // A session's map is many keyframes of a still object: its fit is tighter than one keyframe's.
-    verify.e_max_m = 0.025;
-}
-
-std::vector<std::string> LabelParams::validate() const {
-    std::vector<std::string> e = system.validate();
-    for (const std::string& s : align.validate()) e.push_back(s);
-    for (const std::string& s : occupancy.validate()) e.push_back(s);
-    for (const std::string& s : verify.validate()) e.push_back("labelling.verify: " + s);
-    if (trace_every < 1) e.push_back("labelling.trace_every must be >= 1");
-    if (!(trace_voxel_m > 0.0) || !(map_voxel_m > 0.0)) e.push_back("labelling.trace_voxel_m and map_voxel_m must be > 0");
-    if (!(dbscan.eps_m > 0.0) || dbscan.min_points < 1) e.push_back("labelling.dbscan: eps_m > 0 and min_points >= 1");
-    if (!(min_object_height_m >= 0.0 && max_object_height_m > min_object_height_m && max_object_length_m > 0.0)) {
-        e.push_back("labelling: 0 <= min_object_height_m < max_object_height_m and max_object_length_m > 0");
-    }
-    if (!(movable_share >= 0.0 && movable_share <= 1.0) || !(split_share > 0.0 && split_share <= 1.0)) {
-        e.push_back("labelling.movable_share in [0, 1] and split_share in (0, 1]");
-    }
-    if (max_splits < 0) e.push_back("labelling.max_splits must be >= 0");
-    if (!(label_distance_m > 0.0) || !(unknown_box_margin_m >= 0.0)) e.push_back("labelling.label_distance_m > 0, unknown_box_margin_m >= 0");
-    if (!(range_m > 0.0)) e.push_back("labelling.range_m must be > 0");
-    // Shares and distances a damaged file sets to -1 or 1e308 (the labels would silently be empty).
-    if (!(min_coverage >= 0.0 && min_coverage <= 1.0)) e.push_back("labelling.min_coverage must be in [0, 1]");
-    if (!(max_seen_through >= 0.0 && max_seen_through <= 1.0)) e.push_back("labelling.max_seen_through must be in [0, 1]");
-    if (!(duplicate_iou > 0.0 && duplicate_iou <= 1.0)) e.push_back("labelling.duplicate_iou must be in (0, 1]");
-    if (!(dbscan_z_scale > 0.0 && dbscan_z_scale <= 10.0)) e.push_back("labelling.dbscan_z_scale must be in (0, 10]");
-    if (!(split_distance_m > 0.0 && split_distance_m <= 2.0)) e.push_back("labelling.split_distance_m must be in (0, 2]");
-    return e;
-}
 
 struct Labeller::Impl {
     struct TracedSweep {
@@ -169,7 +134,7 @@ struct Labeller::Impl {
 };
 
 Labeller::Labeller(const LabelParams& params) : impl_(std::make_unique<Impl>()) {
-    pipeline::throw_if_problems(params.validate());
+    throw_if_problems(params.validate());
     impl_->params = params;
 }
 Labeller::~Labeller() = default;

@@ -1,5 +1,7 @@
 #include "makeway/labelling/occupancy.hpp"
 
+#include "makeway/labelling/param_tables.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -17,14 +19,26 @@ std::string_view to_string(PointClass c) {
     return "?";
 }
 
+const ParamTable<OccupancyParams>& occupancy_table() {
+    using O = OccupancyParams;
+    static const ParamTable<O> table = [] {
+        ParamTable<O> t;
+        t.add("voxel_m", &O::voxel_m, above(0.0, 10.0), "the multi-session occupancy grid")
+            .add("end_margin_m", &O::end_margin_m, closed(0.0, 10.0), "free space stops this short of a return ...")
+            .add("range_margin", &O::range_margin, closed(0.0, 1.0), "... plus this share of its range (grazing rays do not carve surfaces)")
+            .add("min_free_sweeps", &O::min_free_sweeps, closed(1, 100000), "movable: another session saw the voxel free in this many sweeps ...")
+            .add("absent_hit_ratio", &O::absent_hit_ratio, below(0.0, 1.0), "... and hit it in at most this share of them")
+            .add("dynamic_min_free", &O::dynamic_min_free, closed(1, 100000), "dynamic: its own session saw it free this often ...")
+            .add("dynamic_hit_ratio", &O::dynamic_hit_ratio, below(0.0, 1.0), "... and hit it in fewer than this share of them");
+        return t;
+    }();
+    return table;
+}
+
 std::vector<std::string> OccupancyParams::validate() const {
     std::vector<std::string> e;
-    if (!(voxel_m > 0.0)) e.push_back("labelling.voxel_m must be > 0");
-    if (!(end_margin_m >= 0.0) || !(range_margin >= 0.0)) e.push_back("labelling.end_margin_m and range_margin must be >= 0");
+    for (const std::string& s : occupancy_table().problems(*this)) e.push_back("labelling." + s);
     if (!(max_range_m > 0.0)) e.push_back("labelling.max_range_m must be > 0");
-    if (min_free_sweeps < 1 || dynamic_min_free < 1) e.push_back("labelling.min_free_sweeps and dynamic_min_free must be >= 1");
-    if (!(absent_hit_ratio >= 0.0 && absent_hit_ratio < 1.0)) e.push_back("labelling.absent_hit_ratio must be in [0, 1)");
-    if (!(dynamic_hit_ratio >= 0.0 && dynamic_hit_ratio < 1.0)) e.push_back("labelling.dynamic_hit_ratio must be in [0, 1)");
     return e;
 }
 

@@ -1,5 +1,7 @@
 #include "makeway/odometry/lidar_odometry.hpp"
 
+#include "makeway/odometry/param_tables.hpp"
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -27,37 +29,50 @@ double sq(double v) { return v * v; }
 
 }  // namespace
 
+const ParamTable<OdometryParams>& odometry_table() {
+    using O = OdometryParams;
+    static const ParamTable<O> table = [] {
+        ParamTable<O> t;
+        t.add_ref("voxel_m", [](O& o) -> double& { return o.map.voxel_m; }, above(0.01, 10.0),
+                  "map voxels; each keeps at most max_points_per_voxel points and its shape")
+            .add_ref("max_points_per_voxel", [](O& o) -> int& { return o.map.max_points_per_voxel; }, closed(1, 1000), "")
+            .add_ref("planarity", [](O& o) -> double& { return o.map.planarity; }, open(0.0, 1.0),
+                     "spread ratio below which a voxel is a plane (or, of the larger two, a line)")
+            .add("source_voxel_m", &O::source_voxel_m, above(0.0, 10.0), "registration uses one point per voxel of this size")
+            .add("insert_voxel_m", &O::insert_voxel_m, above(0.0, 10.0), "the map receives one point per voxel of this size")
+            .add("min_range_m", &O::min_range_m, closed(0.0, 1000.0), "closer returns (the robot, a person at the sensor) unused")
+            .add("max_range_m", &O::max_range_m, above(0.0, 1000.0), "")
+            .add("min_height_m", &O::min_height_m, closed(-5.0, 5.0), "points lower above the base (the floor) are left out")
+            .add("map_radius_m", &O::map_radius_m, above(0.0, 1000.0), "voxels farther from the robot are dropped")
+            .add("max_iterations", &O::max_iterations, closed(1, 1000), "")
+            .add("convergence_m", &O::convergence_m, above(0.0, 1.0), "iterations stop when a step moves less (rotation at 1 m counted alike)")
+            .add("initial_threshold_m", &O::initial_threshold_m, above(0.0, 100.0),
+                 "correspondence distance until the adaptive one has 5 sweeps of history")
+            .add("min_threshold_m", &O::min_threshold_m, above(0.0, 100.0), "")
+            .add("max_threshold_m", &O::max_threshold_m, above(0.0, 100.0), "")
+            .add("residual_sigma_m", &O::residual_sigma_m, above(0.0, 10.0), "one correspondence's noise, weighed against the wheel prior")
+            .add("wheel_sigma_m", &O::wheel_sigma_m, above(0.0, 10.0), "the wheel prediction's sigma per sweep: floor ...")
+            .add("wheel_sigma_per_m", &O::wheel_sigma_per_m, closed(0.0, 10.0), "... plus this share of the distance driven")
+            .add("wheel_sigma_rad", &O::wheel_sigma_rad, above(0.0, 10.0), "")
+            .add("wheel_sigma_per_rad", &O::wheel_sigma_per_rad, closed(0.0, 10.0), "")
+            .add("deskew", &O::deskew, "move each point with the pose at its own time")
+            .require([](const O& o) { return o.min_range_m < o.max_range_m; }, "needs 0 <= min_range_m < max_range_m")
+            .require([](const O& o) { return o.min_threshold_m <= o.initial_threshold_m && o.initial_threshold_m <= o.max_threshold_m; },
+                     "needs 0 < min_threshold_m <= initial_threshold_m <= max_threshold_m");
+        return t;
+    }();
+    return table;
+}
+
 std::vector<std::string> OdometryParams::validate() const {
-    std::vector<std::string> p;
-    if (!(map.voxel_m > 0.01 && map.voxel_m <= 10.0)) p.push_back("voxel_m must be in (0.01, 10]");
-    if (map.max_points_per_voxel < 1 || map.max_points_per_voxel > 1000) p.push_back("max_points_per_voxel must be in [1, 1000]");
+    std::vector<std::string> p = odometry_table().problems(*this);
     if (map.min_points_for_plane < 3) p.push_back("min_points_for_plane must be >= 3");
-    if (!(map.planarity > 0.0 && map.planarity < 1.0)) p.push_back("planarity must be in (0, 1)");
-    if (!(source_voxel_m > 0.0 && insert_voxel_m > 0.0)) p.push_back("source_voxel_m and insert_voxel_m must be > 0");
-    if (!(min_range_m >= 0.0 && max_range_m > min_range_m)) p.push_back("needs 0 <= min_range_m < max_range_m");
-    if (!(map_radius_m > 0.0)) p.push_back("map_radius_m must be > 0");
-    if (max_iterations < 1 || max_iterations > 1000) p.push_back("max_iterations must be in [1, 1000]");
-    if (!(min_threshold_m > 0.0 && min_threshold_m <= initial_threshold_m && initial_threshold_m <= max_threshold_m)) {
-        p.push_back("needs 0 < min_threshold_m <= initial_threshold_m <= max_threshold_m");
-    }
-    // Each sigma named (the section's reader prefixes "lidar_odometry."): a group message sent
-    // users hunting for which of five keys was wrong.
-    for (const auto& [name, v, zero_ok] : {std::tuple{"residual_sigma_m", residual_sigma_m, false}, std::tuple{"wheel_sigma_m", wheel_sigma_m, false},
-                                           std::tuple{"wheel_sigma_rad", wheel_sigma_rad, false}, std::tuple{"wheel_sigma_per_m", wheel_sigma_per_m, true},
-                                           std::tuple{"wheel_sigma_per_rad", wheel_sigma_per_rad, true}}) {
-        if (!((zero_ok ? v >= 0.0 : v > 0.0) && v <= 10.0)) p.push_back(std::string(name) + (zero_ok ? " must be in [0, 10]" : " must be in (0, 10]"));
-    }
-    if (!(min_height_m >= -5.0 && min_height_m <= 5.0)) p.push_back("min_height_m must be in [-5, 5] (above the base)");
     return p;
 }
 
 LidarOdometry::LidarOdometry(const OdometryParams& params, const Isometry3& T_base_sensor, const Pose2& start_pose)
     : params_(params), T_base_sensor_(T_base_sensor), pose_(start_pose), map_(params.map) {
-    if (const auto problems = params.validate(); !problems.empty()) {
-        std::string all;
-        for (const auto& p : problems) all += (all.empty() ? "" : "; ") + p;
-        throw std::invalid_argument("lidar odometry: " + all);
-    }
+    throw_if_problems(params.validate(), "lidar odometry");
 }
 
 OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, double /*stamp_s*/, double duration_s,

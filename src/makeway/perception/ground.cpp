@@ -1,5 +1,7 @@
 #include "makeway/perception/ground.hpp"
 
+#include "makeway/perception/param_tables.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
@@ -9,21 +11,36 @@
 
 namespace makeway::perception {
 
-std::vector<std::string> GroundPlaneParams::validate() const {
-    std::vector<std::string> p;
-    if (!(inlier_distance_m > 0.0 && inlier_distance_m < 1.0)) p.push_back("inlier_distance_m must be in (0, 1)");
-    if (iterations < 1 || iterations > 100000) p.push_back("iterations must be in [1, 100000]");
-    if (!(max_tilt_deg > 0.0 && max_tilt_deg <= 90.0)) p.push_back("max_tilt_deg must be in (0, 90]");
-    if (!(voxel_m >= 0.0 && voxel_m < 1.0)) p.push_back("voxel_m must be in [0, 1)");
-    if (!(min_sensor_height_m >= 0.0 && min_sensor_height_m <= 10.0)) p.push_back("min_sensor_height_m must be in [0, 10]");
-    return p;
+const ParamTable<GroundPlaneParams>& ground_plane_table() {
+    using G = GroundPlaneParams;
+    static const ParamTable<G> table = [] {
+        ParamTable<G> t;
+        t.add("inlier_distance_m", &G::inlier_distance_m, open(0.0, 1.0), "")
+            .add("iterations", &G::iterations, closed(1, 100000), "")
+            .add("max_tilt_deg", &G::max_tilt_deg, above(0.0, 90.0), "the ground is roughly below a robot's sensor")
+            .add("voxel_m", &G::voxel_m, below(0.0, 1.0), "RANSAC hypotheses scored by inlier area (voxels of this size; 0: points)")
+            .add("min_sensor_height_m", &G::min_sensor_height_m, closed(0.0, 10.0), "")
+            .add("seed", &G::seed, closed(0.0, 1.8446744073709552e19), "");
+        return t;
+    }();
+    return table;
 }
 
-std::vector<std::string> GroundFilterParams::validate() const {
-    std::vector<std::string> p;
-    if (!(ground_band_m >= 0.0 && ground_band_m < ceiling_height_m)) p.push_back("need 0 <= ground_band_m < ceiling_height_m");
-    return p;
+const ParamTable<GroundFilterParams>& ground_filter_table() {
+    using F = GroundFilterParams;
+    static const ParamTable<F> table = [] {
+        ParamTable<F> t;
+        t.add("ground_band_m", &F::ground_band_m, closed(0.0, 10.0), "points lower than this above the ground are removed")
+            .add("ceiling_height_m", &F::ceiling_height_m, above(0.0, 100.0), "points higher than this above the ground are removed")
+            .require([](const F& f) { return f.ground_band_m < f.ceiling_height_m; }, "need 0 <= ground_band_m < ceiling_height_m");
+        return t;
+    }();
+    return table;
 }
+
+std::vector<std::string> GroundPlaneParams::validate() const { return ground_plane_table().problems(*this); }
+
+std::vector<std::string> GroundFilterParams::validate() const { return ground_filter_table().problems(*this); }
 
 GroundPlaneResult fit_ground_plane(const PointCloud& cloud, const GroundPlaneParams& params) {
     GroundPlaneResult best;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "makeway/common/param_table.hpp"
 #include "makeway/costmap/affordance_layer.hpp"
 #include "makeway/costmap/inflation_layer.hpp"
 #include "makeway/costmap/obstacle_layer.hpp"

@@ -5,6 +5,8 @@
 #include <optional>
 #include <unordered_set>
 
+#include "makeway/common/param_table.hpp"
+
 namespace makeway::pipeline {
 namespace {
 

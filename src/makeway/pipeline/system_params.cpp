@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "makeway/perception/accumulator.hpp"
+#include "makeway/perception/param_tables.hpp"
+#include "makeway/pipeline/param_tables.hpp"
 
 namespace makeway::pipeline {
 namespace {
@@ -14,12 +15,6 @@ void add(std::vector<std::string>& out, const std::string& prefix, const std::ve
 
 }  // namespace
 
-void throw_if_problems(const std::vector<std::string>& problems) {
-    if (problems.empty()) return;
-    std::string all;
-    for (const std::string& p : problems) all += (all.empty() ? "" : "; ") + p;
-    throw std::invalid_argument(all);
-}
 
 void apply_robot(const RobotDescription& robot, SystemParams& params, const Isometry3* T_base_sensor) {
     params.T_base_sensor = T_base_sensor ? *T_base_sensor : robot.T_robot_sensor();
@@ -44,14 +39,21 @@ void apply_robot(const RobotDescription& robot, SystemParams& params, const Isom
     m.sensor_height_m = params.T_base_sensor.translation().z();  // the blind ring is the mounted sensor's
 }
 
-std::vector<std::string> KeyframeParams::validate() const {
-    std::vector<std::string> p;
-    p = perception::AccumulatorParams{.window = window, .deskew = deskew}.validate();
-    if (every < 1 || every > 1000) p.push_back("every must be in [1, 1000]");
-    add(p, "ground", ground.validate());
-    add(p, "ground_filter", ground_filter.validate());
-    return p;
+const ParamTable<KeyframeParams>& keyframe_table() {
+    using K = KeyframeParams;
+    static const ParamTable<K> table = [] {
+        ParamTable<K> t;
+        t.add("keyframe_window", &K::window, closed(1, 100), "sweeps accumulated into a keyframe (de-skewed, newest sweep's frame)")
+            .add("keyframe_every", &K::every, closed(1, 1000), "sweeps between keyframes (10 Hz sweeps: 2 Hz keyframes)")
+            .add("deskew", &K::deskew, "move each point with the sensor pose at its own time")
+            .include("ground_", [](K& k) -> perception::GroundPlaneParams& { return k.ground; }, perception::ground_plane_table())
+            .include("", [](K& k) -> perception::GroundFilterParams& { return k.ground_filter; }, perception::ground_filter_table());
+        return t;
+    }();
+    return table;
 }
+
+std::vector<std::string> KeyframeParams::validate() const { return keyframe_table().problems(*this); }
 
 std::vector<std::string> NavigatorParams::validate() const {
     std::vector<std::string> p;
@@ -65,39 +67,46 @@ std::vector<std::string> NavigatorParams::validate() const {
     return p;
 }
 
-std::vector<std::string> NavigatorParams::validate_policy() const {
-    std::vector<std::string> p;
-    auto positive = [&](double v, const char* name, double hi) {
-        if (!(v > 0.0 && v <= hi)) p.push_back(std::string(name) + " must be in (0, " + std::to_string(static_cast<int>(hi)) + "]");
-    };
-    positive(replan_period_s, "replan_period_s", 600);
-    positive(blocked_lookahead_m, "blocked_lookahead_m", 100);
-    if (!(blocked_ignore_m >= 0.0 && blocked_ignore_m < blocked_lookahead_m)) p.push_back("blocked_ignore_m must be in [0, blocked_lookahead_m)");
-    if (turn_target_index < 1 || turn_target_index > 1000) p.push_back("turn_target_index must be in [1, 1000]");
-    positive(turn_rate_radps, "turn_rate_radps", 10);
-    positive(stuck_progress_m, "stuck_progress_m", 10);
-    positive(stuck_timeout_s, "stuck_timeout_s", 600);
-    positive(backup_speed_mps, "backup_speed_mps", 5);
-    positive(backup_duration_s, "backup_duration_s", 60);
-    positive(standstill_timeout_s, "standstill_timeout_s", 600);
-    positive(standstill_v_mps, "standstill_v_mps", 1);
-    positive(standstill_w_radps, "standstill_w_radps", 1);
-    positive(waypoint_tolerance_m, "waypoint_tolerance_m", 10);
-    positive(goal_tolerance_m, "goal_tolerance_m", 10);
-    positive(give_up_s, "give_up_s", 3600);
-    if (!(plan_to_tolerance >= 0.0 && plan_to_tolerance < 1.0)) p.push_back("plan_to_tolerance must be in [0, 1)");
-    if (!(detour_ahead_m >= 0.0 && detour_ahead_m <= 10.0)) p.push_back("detour_ahead_m must be in [0, 10]");
-    if (!(detour_radius_m >= 0.0 && detour_radius_m <= 5.0)) p.push_back("detour_radius_m must be in [0, 5] (0: no detours)");
-    if (!(detour_memory_s >= 0.0 && detour_memory_s <= 3600.0)) p.push_back("detour_memory_s must be in [0, 3600]");
-    if (max_detours < 0 || max_detours > 100) p.push_back("max_detours must be in [0, 100] (0: no detours)");
-    return p;
+const ParamTable<NavigatorParams>& navigator_policy_table() {
+    using N = NavigatorParams;
+    static const ParamTable<N> table = [] {
+        ParamTable<N> t;
+        t.add("replan_period_s", &N::replan_period_s, above(0.0, 600.0), "the global plan is renewed at least this often")
+            .add("blocked_lookahead_m", &N::blocked_lookahead_m, above(0.0, 100.0), "a lethal cell on the plan this far ahead forces a replan ...")
+            .add("blocked_ignore_m", &N::blocked_ignore_m, closed(0.0, 100.0), "... unless it is this close to the robot")
+            .add("turn_target_index", &N::turn_target_index, closed(1, 1000), "no safe velocity: turn on the spot toward this plan point")
+            .add("turn_rate_radps", &N::turn_rate_radps, above(0.0, 10.0), "")
+            .add("stuck_progress_m", &N::stuck_progress_m, above(0.0, 10.0), "the way left along the plan shrinking by less than this ...")
+            .add("stuck_timeout_s", &N::stuck_timeout_s, above(0.0, 600.0), "... for this long: back up, then replan")
+            .add("backup_speed_mps", &N::backup_speed_mps, above(0.0, 5.0), "")
+            .add("backup_duration_s", &N::backup_duration_s, above(0.0, 60.0), "")
+            .add("standstill_timeout_s", &N::standstill_timeout_s, above(0.0, 600.0),
+                 "DWA's best velocity a standstill this long: stuck now (back up, replan around)")
+            .add("standstill_v_mps", &N::standstill_v_mps, above(0.0, 1.0), "standstill: slower than this ...")
+            .add("standstill_w_radps", &N::standstill_w_radps, above(0.0, 1.0), "... turning slower than this")
+            .add("waypoint_tolerance_m", &N::waypoint_tolerance_m, above(0.0, 10.0), "a waypoint counts as reached this close")
+            .add("goal_tolerance_m", &N::goal_tolerance_m, above(0.0, 10.0), "the goal counts as reached this close (own pose estimate)")
+            .add("give_up_s", &N::give_up_s, above(0.0, 3600.0), "no plan, or no progress along it despite recoveries, this long: the mission fails")
+            .add("detour_ahead_m", &N::detour_ahead_m, closed(0.0, 10.0), "stuck: A* avoids the plan's point this far ahead ...")
+            .add("detour_radius_m", &N::detour_radius_m, closed(0.0, 5.0), "... this wide (0: never) ...")
+            .add("detour_memory_s", &N::detour_memory_s, closed(0.0, 3600.0), "... this long ...")
+            .add("max_detours", &N::max_detours, closed(0, 100),
+                 "... this often per leg (the first detour gets give_up_s of its own; no other way: through it again)")
+            .add("plan_to_tolerance", &N::plan_to_tolerance, below(0.0, 1.0),
+                 "A* ends anywhere within this share of the tolerance (a goal inside a zone is approached from its cheap side)")
+            .require([](const N& n) { return n.blocked_ignore_m < n.blocked_lookahead_m; }, "blocked_ignore_m must be in [0, blocked_lookahead_m)");
+        return t;
+    }();
+    return table;
 }
+
+std::vector<std::string> NavigatorParams::validate_policy() const { return navigator_policy_table().problems(*this); }
 
 std::vector<std::string> SystemParams::validate() const {
     std::vector<std::string> p;
     if (!T_base_sensor.matrix().allFinite()) p.push_back("T_base_sensor must be finite");
     if (lidar_odometry) add(p, "lidar_odometry", odometry.validate());
-    add(p, "keyframe", keyframe.validate());
+    add(p, "perception", keyframe.validate());  // its keys are the perception section's
     add(p, "verification", verify.validate());
     add(p, "verification.shapes", shapes.validate());
     add(p, "tracking", tracker.validate());

@@ -96,7 +96,5 @@ struct SystemParams {
 /// description's, lidar_height_m above the base's centre).
 void apply_robot(const RobotDescription& robot, SystemParams& params, const Isometry3* T_base_sensor = nullptr);
 
-/// Throws std::invalid_argument with every problem on one line ("a; b; c"); nothing when empty.
-void throw_if_problems(const std::vector<std::string>& problems);
 
 }  // namespace makeway::pipeline

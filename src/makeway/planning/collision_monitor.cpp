@@ -1,5 +1,7 @@
 #include "makeway/planning/collision_monitor.hpp"
 
+#include "makeway/planning/param_tables.hpp"
+
 #include <algorithm>
 #include <optional>
 #include <cmath>
@@ -43,52 +45,86 @@ std::string_view to_string(MonitorAction a) {
     return "none";
 }
 
+const ParamTable<CollisionMonitorParams>& collision_monitor_table() {
+    using C = CollisionMonitorParams;
+    static const ParamTable<C> table = [] {
+        ParamTable<C> t;
+        t.add("enabled", &C::enabled, "")
+            .add("latency_s", &C::latency_s, closed(0.0, 2.0),
+                 "sweep age + one control period: how long a command runs before the next check can change it")
+            .add("min_points", &C::min_points, closed(1, 100000), "returns in a zone before it acts")
+            .add("stop_padding_m", &C::stop_padding_m, closed(0.0, 1.0),
+                 "stop zone: footprint + this along the command for latency_s, then braking (2.5 sigma of the LiDAR's range noise)")
+            .add("slowdown_padding_m", &C::slowdown_padding_m, closed(0.0, 2.0), "slowdown zone: footprint + this, swept ...")
+            .add("slowdown_time_s", &C::slowdown_time_s, closed(0.0, 10.0), "... along the command this much longer before braking")
+            .add("slowdown_ratio", &C::slowdown_ratio, above(0.0, 1.0),
+                 "inside the slowdown zone: at most this share of the top speed (a cap: DWA samples around the current speed)")
+            .add("time_before_collision_s", &C::time_before_collision_s, closed(0.0, 10.0),
+                 "approach: the command slowed so that contact stays at least this far ahead (0: off)")
+            .add("simulation_time_step_s", &C::simulation_time_step_s, closed(0.005, 1.0), "the zones' time step along the predicted motion")
+            .add("dynamic_speed_mps", &C::dynamic_speed_mps, closed(0.0, 5.0),
+                 "returns new in this sweep (people) may move this fast: their stop and approach padding grows with it")
+            .add("dynamic_history", &C::dynamic_history, closed(1, 100), "new: a return in the cell (or next to it) in fewer than dynamic_min_seen ...")
+            .add("dynamic_min_seen", &C::dynamic_min_seen, closed(1, 100),
+                 "... of the last dynamic_history sweeps (2: a walker turning back over cells it left stays new; off: README)")
+            .add("dynamic_cluster_m", &C::dynamic_cluster_m, closed(0.0, 2.0),
+                 "> 0: a mover stays one, returns about this close to a mover (this sweep or those) move too (off: README) ...")
+            .add("dynamic_cluster_min_new", &C::dynamic_cluster_min_new, closed(1, 1000),
+                 "... a mover: a cell that size with this many new returns (not a sliver out of a shadow)")
+            .add("dynamic_min_height_m", &C::dynamic_min_height_m, closed(0.0, 3.0),
+                 "... and at least this high (lower: the floor's noise where the lowest rings graze it)")
+            .add("dynamic_memory_s", &C::dynamic_memory_s, closed(0.0, 10.0),
+                 "a mover is remembered this long (padding growing with its age) until seen again: a walker turning back or inside "
+                 "the minimum range (0: off; README)")
+            .add("dynamic_memory_range_m", &C::dynamic_memory_range_m, above(0.0, 10.0),
+                 "... movers this close to the base (farther, the next sweeps see them again) ...")
+            .add("dynamic_memory_min_new", &C::dynamic_memory_min_new, closed(1, 1000),
+                 "... with this many new returns within 0.2 m (a body, not a sliver of wall out of a shadow)")
+            .add("dynamic_personal_space_m", &C::dynamic_personal_space_m, closed(0.0, 2.0),
+                 "a new return this close to the footprint holds the robot whatever the command (0: off; README) ...")
+            .add("personal_space_object_margin_m", &C::personal_space_object_margin_m, closed(0.0, 1.0),
+                 "... unless it lies this close to a known chair (a pulled chair, not a walker)")
+            .add("min_scale", &C::min_scale, below(0.0, 1.0), "an approach scale below this holds the robot")
+            .add("lowest_beam_deg", &C::lowest_beam_deg, closed(-90.0, 90.0),
+                 "the LiDAR's lowest beam (VLP-32C); with robot.lidar_height_m: what it cannot see near it")
+            .add("blind_memory_s", &C::blind_memory_s, closed(0.0, 60.0),
+                 "returns the sensor can no longer see (a chair leg it closes in on) are remembered at most this long")
+            .add("low_edge_support", &C::low_edge_support, closed(0, 24),
+                 "a low return seen in one sweep only (a table foot 3 cm high) is remembered with this many returns around it "
+                 "(5 x 5 cells; 0: never)")
+            .add("object_footprints", &C::object_footprints,
+                 "inside that blind ring the object map's chairs count as returns (a pulled chair's base is not seen) ...")
+            .add("object_moving_mps", &C::object_moving_mps, closed(0.0, 10.0),
+                 "... those that moved faster than this in the last blind_memory_s (a box also covers the backrest above the body)")
+            .add("object_lead_s", &C::object_lead_s, closed(0.0, 5.0),
+                 "... each swept along its velocity this far ahead (the object map lags a keyframe; 0: where it is)")
+            .add("max_range_m", &C::max_range_m, above(0.0, 50.0), "returns farther than this from the base are not looked at")
+            .add("recovery_after_s", &C::recovery_after_s, above(0.0, 3600.0),
+                 "held this long: back up into space the sweep shows free, else turn on the spot")
+            .add("backup_speed_mps", &C::backup_speed_mps, above(0.0, 5.0), "")
+            .add("backup_distance_m", &C::backup_distance_m, closed(0.0, 10.0), "")
+            .add("rotate_speed_radps", &C::rotate_speed_radps, above(0.0, 10.0), "")
+            .add("rotate_angle_rad", &C::rotate_angle_rad, closed(0.0, 10.0), "")
+            .require([](const C& c) { return c.slowdown_padding_m >= c.stop_padding_m; }, "slowdown_padding_m must be in [stop_padding_m, 2]")
+            .require([](const C& c) { return c.dynamic_min_seen <= c.dynamic_history; }, "dynamic_min_seen must be in [1, dynamic_history]");
+        return t;
+    }();
+    return table;
+}
+
 std::vector<std::string> CollisionMonitorParams::validate() const {
-    std::vector<std::string> p;
+    std::vector<std::string> p = collision_monitor_table().problems(*this);
     if (!(footprint_length_m > 0.0 && footprint_width_m > 0.0)) p.push_back("footprint must be positive");
     if (!(body.top_m > body.ground_clearance_m)) p.push_back("body top must be above its ground clearance");
     if (!(max_acc_mps2 > 0.0 && max_ang_acc_radps2 > 0.0)) p.push_back("accelerations must be > 0");
     if (!(max_v_mps > 0.0 && max_w_radps > 0.0)) p.push_back("top speeds must be > 0");
-    if (!(latency_s >= 0.0 && latency_s <= 2.0)) p.push_back("latency_s must be in [0, 2]");
-    if (min_points < 1) p.push_back("min_points must be >= 1");
-    if (!(stop_padding_m >= 0.0 && stop_padding_m <= 1.0)) p.push_back("stop_padding_m must be in [0, 1]");
-    if (!(slowdown_padding_m >= stop_padding_m && slowdown_padding_m <= 2.0)) p.push_back("slowdown_padding_m must be in [stop_padding_m, 2]");
-    if (!(slowdown_time_s >= 0.0 && slowdown_time_s <= 10.0)) p.push_back("slowdown_time_s must be in [0, 10]");
-    if (!(slowdown_ratio > 0.0 && slowdown_ratio <= 1.0)) p.push_back("slowdown_ratio must be in (0, 1]");
-    if (!(time_before_collision_s >= 0.0 && time_before_collision_s <= 10.0)) p.push_back("time_before_collision_s must be in [0, 10]");
-    if (!(simulation_time_step_s >= 0.005 && simulation_time_step_s <= 1.0)) p.push_back("simulation_time_step_s must be in [0.005, 1]");
-    if (!(min_scale >= 0.0 && min_scale < 1.0)) p.push_back("min_scale must be in [0, 1)");
-    if (!(dynamic_speed_mps >= 0.0 && dynamic_speed_mps <= 5.0)) p.push_back("dynamic_speed_mps must be in [0, 5]");
-    if (!(dynamic_min_height_m >= 0.0 && dynamic_min_height_m <= 3.0)) p.push_back("dynamic_min_height_m must be in [0, 3]");
-    if (dynamic_history < 1 || dynamic_history > 100) p.push_back("dynamic_history must be in [1, 100]");
-    if (dynamic_min_seen < 1 || dynamic_min_seen > dynamic_history) p.push_back("dynamic_min_seen must be in [1, dynamic_history]");
-    if (low_edge_support < 0 || low_edge_support > 24) p.push_back("low_edge_support must be in [0, 24] (0: off)");
-    if (!(dynamic_cluster_m >= 0.0 && dynamic_cluster_m <= 2.0)) p.push_back("dynamic_cluster_m must be in [0, 2] (0: only new returns move)");
-    if (dynamic_cluster_min_new < 1 || dynamic_cluster_min_new > 1000) p.push_back("dynamic_cluster_min_new must be in [1, 1000]");
     if (!(sensor_height_m >= 0.0 && sensor_height_m <= 5.0)) p.push_back("sensor_height_m must be in [0, 5]");
-    if (!(lowest_beam_deg >= -90.0 && lowest_beam_deg <= 90.0)) p.push_back("lowest_beam_deg must be in [-90, 90]");
-    if (!(blind_memory_s >= 0.0 && blind_memory_s <= 60.0)) p.push_back("blind_memory_s must be in [0, 60]");
-    if (!(dynamic_memory_s >= 0.0 && dynamic_memory_s <= 10.0)) p.push_back("dynamic_memory_s must be in [0, 10] (0: off)");
-    if (!(dynamic_memory_range_m > 0.0 && dynamic_memory_range_m <= 10.0)) p.push_back("dynamic_memory_range_m must be in (0, 10]");
-    if (dynamic_memory_min_new < 1 || dynamic_memory_min_new > 1000) p.push_back("dynamic_memory_min_new must be in [1, 1000]");
-    if (!(dynamic_personal_space_m >= 0.0 && dynamic_personal_space_m <= 2.0)) p.push_back("dynamic_personal_space_m must be in [0, 2]");
-    if (!(personal_space_object_margin_m >= 0.0 && personal_space_object_margin_m <= 1.0)) {
-        p.push_back("personal_space_object_margin_m must be in [0, 1]");
-    }
-    if (!(object_moving_mps >= 0.0 && object_moving_mps <= 10.0)) p.push_back("object_moving_mps must be in [0, 10]");
-    if (!(object_lead_s >= 0.0 && object_lead_s <= 5.0)) p.push_back("object_lead_s must be in [0, 5]");
-    if (!(max_range_m > 0.0 && max_range_m <= 50.0)) p.push_back("max_range_m must be in (0, 50]");
-    if (!(recovery_after_s > 0.0)) p.push_back("recovery_after_s must be > 0");
-    if (!(backup_speed_mps > 0.0 && backup_distance_m >= 0.0)) p.push_back("backup_speed_mps must be > 0, backup_distance_m >= 0");
-    if (!(rotate_speed_radps > 0.0 && rotate_angle_rad >= 0.0)) p.push_back("rotate_speed_radps must be > 0, rotate_angle_rad >= 0");
     return p;
 }
 
 CollisionMonitor::CollisionMonitor(const CollisionMonitorParams& params)
     : params_(params), tan_down_(std::tan(-params.lowest_beam_deg * kPi / 180.0)) {
-    std::string all;
-    for (const std::string& s : params_.validate()) all += (all.empty() ? "" : "; ") + s;
-    if (!all.empty()) throw std::invalid_argument("collision monitor: " + all);
+    throw_if_problems(params_.validate(), "collision monitor");
 }
 
 std::vector<std::pair<double, Pose2>> CollisionMonitor::trajectory(const Motion& m) const {

@@ -1,5 +1,7 @@
 #include "makeway/planning/dwa.hpp"
 
+#include "makeway/planning/param_tables.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -73,17 +75,30 @@ Eigen::Vector2d carrot(const Costmap& map, const std::vector<Eigen::Vector2d>& p
 
 }  // namespace
 
+const ParamTable<DwaParams>& dwa_table() {
+    using D = DwaParams;
+    static const ParamTable<D> table = [] {
+        ParamTable<D> t;
+        t.add("horizon_s", &D::horizon_s, above(0.0, 10.0), "rollouts this long")
+            .add("lookahead_m", &D::lookahead_m, above(0.0, 20.0), "carrot distance along the global path")
+            .add("plan_envelope", &D::plan_envelope,
+                 "DWA keeps to the costs the global plan accepts (no cutting through zones the plan went around)")
+            .add("envelope_margin", &D::envelope_margin, closed(0.0, 252.0), "cost units above the plan's highest cost still inside the envelope")
+            .require([](const D& d) { return d.horizon_s >= d.rollout_dt_s; }, "need 0 < rollout_dt_s <= horizon_s");
+        return t;
+    }();
+    return table;
+}
+
 std::vector<std::string> DwaParams::validate() const {
-    std::vector<std::string> out;
+    std::vector<std::string> out = dwa_table().problems(*this);
     if (!(max_v_mps > 0.0 && min_v_mps <= max_v_mps && min_v_mps >= -max_v_mps)) out.push_back("need min_v_mps <= max_v_mps, max_v_mps > 0");
     if (!(max_w_radps > 0.0)) out.push_back("max_w_radps must be > 0");
-    if (!(lookahead_m > 0.0 && lookahead_m <= 20.0)) out.push_back("lookahead_m must be in (0, 20]");
     if (!(acc_v_mps2 > 0.0 && acc_w_radps2 > 0.0)) out.push_back("accelerations must be > 0");
-    if (!(control_dt_s > 0.0 && rollout_dt_s > 0.0 && horizon_s >= rollout_dt_s)) out.push_back("need 0 < rollout_dt_s <= horizon_s, control_dt_s > 0");
+    if (!(control_dt_s > 0.0 && rollout_dt_s > 0.0)) out.push_back("need rollout_dt_s > 0, control_dt_s > 0");
     if (v_samples < 2 || w_samples < 2 || v_samples * w_samples > 10000) out.push_back("v_samples and w_samples must be >= 2 (at most 10000 pairs)");
     if (!(footprint_length_m > 0.0 && footprint_width_m > 0.0)) out.push_back("footprint must be positive");
     if (!(footprint_padding_m >= 0.0 && footprint_padding_m <= 1.0)) out.push_back("footprint_padding_m must be in [0, 1]");
-    if (!(envelope_margin >= 0.0 && envelope_margin <= 252.0)) out.push_back("envelope_margin must be in [0, 252]");
     return out;
 }
 

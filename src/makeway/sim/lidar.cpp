@@ -1,5 +1,7 @@
 #include "makeway/sim/lidar.hpp"
 
+#include "makeway/sim/param_tables.hpp"
+
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -65,22 +67,11 @@ int LidarParams::num_columns() const {
 }
 
 std::vector<std::string> LidarParams::validate() const {
-    std::vector<std::string> p;
+    std::vector<std::string> p = lidar_table().problems(*this);
     if (elevations_deg.empty() || elevations_deg.size() > 256) p.push_back("elevations_deg must hold 1..256 angles");
     for (double e : elevations_deg) {
         if (!(e > -90.0 && e < 90.0)) p.push_back("elevations_deg must lie in (-90, 90)");
     }
-    if (!(azimuth_step_deg >= 0.01 && azimuth_step_deg <= 10.0)) p.push_back("azimuth_step_deg must be in [0.01, 10]");
-    if (!(rate_hz >= 1.0 && rate_hz <= 50.0)) p.push_back("rate_hz must be in [1, 50]");
-    if (!(min_range_m >= 0.0 && min_range_m < max_range_m)) p.push_back("min_range_m must be in [0, max_range_m)");
-    if (!(max_range_m > 0.0 && max_range_m <= 1000.0)) p.push_back("max_range_m must be in (0, 1000]");
-    if (!(range_noise_m >= 0.0 && range_noise_m <= 1.0)) p.push_back("range_noise_m must be in [0, 1]");
-    if (!(dropout >= 0.0 && dropout <= 1.0)) p.push_back("dropout must be in [0, 1]");
-    if (time_slices < 1 || time_slices > 3600) p.push_back("time_slices must be in [1, 3600]");
-    if (!(intensity_falloff_m > 0.0 && intensity_falloff_m <= 1000.0)) p.push_back("intensity_falloff_m must be in (0, 1000]");
-    if (!(intensity_speckle >= 0.0 && intensity_speckle <= 1.0)) p.push_back("intensity_speckle must be in [0, 1]");
-    if (!(intensity_noise >= 0.0 && intensity_noise <= 50.0)) p.push_back("intensity_noise must be in [0, 50]");
-    if (num_threads < 1 || num_threads > 256) p.push_back("num_threads must be in [1, 256]");
     return p;
 }
 

@@ -1,5 +1,7 @@
 #include "makeway/sim/robot.hpp"
 
+#include "makeway/sim/param_tables.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -92,14 +94,7 @@ RobotState step_diff_drive(const RobotState& state, const VelocityCommand& comma
     return next;
 }
 
-std::vector<std::string> OdometryNoiseParams::validate() const {
-    std::vector<std::string> p;
-    for (const auto& [name, v] : {std::pair{"translation_noise_per_m", translation_noise_per_m}, std::pair{"heading_noise_per_rad", heading_noise_per_rad},
-                                  std::pair{"heading_noise_per_m", heading_noise_per_m}}) {
-        if (!(v >= 0.0 && v <= 1.0)) p.push_back(std::string(name) + " must be in [0, 1]");
-    }
-    return p;
-}
+std::vector<std::string> OdometryNoiseParams::validate() const { return wheel_noise_table().problems(*this); }
 
 WheelOdometry::WheelOdometry(const Pose2& start, const OdometryNoiseParams& params, std::uint64_t seed)
     : pose_(start), params_(params), rng_(make_rng(seed, 7)) {}

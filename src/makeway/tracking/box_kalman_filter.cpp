@@ -1,5 +1,7 @@
 #include "makeway/tracking/box_kalman_filter.hpp"
 
+#include "makeway/tracking/param_tables.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -8,19 +10,26 @@
 
 namespace makeway::tracking {
 
-std::vector<std::string> KalmanParams::validate() const {
-    std::vector<std::string> p;
-    for (double s : {accel_sigma_mps2, yaw_rate_sigma_radps, size_sigma_mps, meas_position_sigma_m, meas_yaw_sigma_rad,
-                     meas_size_sigma_m, initial_velocity_sigma_mps}) {
-        if (!(s > 0.0 && s < 100.0)) {
-            p.push_back("Kalman noise sigmas must be in (0, 100)");
-            break;
-        }
-    }
-    if (!(position_sigma_mps >= 0.0 && position_sigma_mps < 100.0)) p.push_back("Kalman position_sigma_mps must be in [0, 100)");
-    if (heading_votes_to_turn < 1) p.push_back("heading_votes_to_turn must be >= 1");
-    return p;
+const ParamTable<KalmanParams>& kalman_table() {
+    using K = KalmanParams;
+    static const ParamTable<K> table = [] {
+        ParamTable<K> t;
+        t.add("accel_sigma_mps2", &K::accel_sigma_mps2, open(0.0, 100.0), "the box filter (centre, yaw, size, velocity): white-noise acceleration")
+            .add("position_sigma_mps", &K::position_sigma_mps, below(0.0, 100.0),
+                 "position random walk [m/sqrt(s)] (traffic boxes jump; furniture's do not)")
+            .add("yaw_rate_sigma_radps", &K::yaw_rate_sigma_radps, open(0.0, 100.0), "yaw random walk")
+            .add("size_sigma_mps", &K::size_sigma_mps, open(0.0, 100.0), "size random walk")
+            .add("meas_position_sigma_m", &K::meas_position_sigma_m, open(0.0, 100.0), "a detection's centre ...")
+            .add("meas_yaw_sigma_rad", &K::meas_yaw_sigma_rad, open(0.0, 100.0), "... yaw ...")
+            .add("meas_size_sigma_m", &K::meas_size_sigma_m, open(0.0, 100.0), "... and size noise")
+            .add("initial_velocity_sigma_mps", &K::initial_velocity_sigma_mps, open(0.0, 100.0), "a new object's velocity: 0 +- this")
+            .add("heading_votes_to_turn", &K::heading_votes_to_turn, closed(1, 1000), "net detections for another quarter turn that turn a track");
+        return t;
+    }();
+    return table;
 }
+
+std::vector<std::string> KalmanParams::validate() const { return kalman_table().problems(*this); }
 
 BoxKalmanFilter::BoxKalmanFilter(const OrientedBox& b, const KalmanParams& params) : params_(params) {
     x_ << b.centre_m, b.yaw_rad, b.size_m, Eigen::Vector3d::Zero();

@@ -1,5 +1,7 @@
 #include "makeway/tracking/object_map.hpp"
 
+#include "makeway/tracking/param_tables.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -12,37 +14,83 @@
 
 namespace makeway::tracking {
 
-std::vector<std::string> MotionPrior::validate() const {
-    std::vector<std::string> p;
-    if (!(velocity_decay_s >= 0.0)) p.push_back("velocity_decay_s must be >= 0 (inf: no decay)");
-    if (!(max_speed_mps > 0.0)) p.push_back("max_speed_mps must be > 0");
-    if (!(min_displacement_m >= 0.0)) p.push_back("min_displacement_m must be >= 0");
-    if (!(motion_window_s > 0.0)) p.push_back("motion_window_s must be > 0");
-    return p;
+const ParamTable<MotionPrior>& motion_prior_table() {
+    using M = MotionPrior;
+    static const ParamTable<M> table = [] {
+        ParamTable<M> t;
+        t.add("velocity_decay_s", &M::velocity_decay_s, closed(0.0, 3600.0).or_infinity(),
+              "an unobserved object's velocity decays with this time constant (.inf: never)")
+            .add("max_speed_mps", &M::max_speed_mps, above(0.0, 100.0), "horizontal speed estimates are clamped to this")
+            .add("planar", &M::planar, "no vertical motion")
+            .add("min_displacement_m", &M::min_displacement_m, closed(0.0, 100.0), "held at rest until its detections moved this far ...")
+            .add("motion_window_s", &M::motion_window_s, above(0.0, 3600.0), "... within this window (3+ boxes over half of it)");
+        return t;
+    }();
+    return table;
 }
 
+const ParamTable<TrackerParams>& tracker_table() {
+    using T = TrackerParams;
+    static const ParamTable<T> table = [] {
+        ParamTable<T> t;
+        t.add_choice("classes",
+                     [](T& p) {
+                         ParamChoice c;
+                         c.list = true;
+                         for (ObjectClass cls : kAllObjectClasses) c.names.emplace_back(to_string(cls));
+                         c.get = [&p] {
+                             std::vector<std::string> on;
+                             for (ObjectClass cls : kAllObjectClasses) {
+                                 if (p.tracked_classes[static_cast<std::size_t>(cls)]) on.emplace_back(to_string(cls));
+                             }
+                             return on;
+                         };
+                         c.set = [&p](const std::vector<std::string>& names) {
+                             p.tracked_classes.fill(false);
+                             for (const std::string& n : names) p.tracked_classes[static_cast<std::size_t>(*parse_object_class(n))] = true;
+                         };
+                         return c;
+                     },
+                     "detections of other classes are not used")
+            .add("min_score", &T::min_score, closed(0.0, 1.0), "detections scoring below this (after the transform) are not used")
+            .choice("score_transform", &T::score_transform, {{"none", ScoreTransform::kNone}, {"sigmoid", ScoreTransform::kSigmoid}},
+                    "none (probabilities) or sigmoid (raw logits)")
+            .add("min_giou", &T::min_giou, closed(-1.0, 1.0), "associated pairs need at least this 3D GIoU")
+            .add("sensor_range_m", &T::sensor_range_m, above(0.0, 1000.0), "objects farther from the sensor are neither matched nor penalised")
+            .choice("out_of_range", &T::out_of_range, {{"freeze", OutOfRange::kFreeze}, {"drop", OutOfRange::kDrop}},
+                    "freeze (remember where last seen) or drop")
+            .add("max_unobserved_s", &T::max_unobserved_s, above(0.0, 1e9).or_infinity(), "any object unseen this long leaves the map (.inf: never)")
+            .add("max_floor_gap_m", &T::max_floor_gap_m, above(0.0, 100.0).or_infinity(),
+                 "detections whose bottom is farther from the floor plane are not used (.inf: no floor prior)")
+            .add("merge_iou", &T::merge_iou, above(0.0, 1.0), "two confirmed objects of a class overlapping more (BEV IoU) are one")
+            .add("motion_gate_sigma", &T::motion_gate_sigma, above(0.0, 100.0).or_infinity(),
+                 "detections farther than max speed x dt + this many sigmas are not associated (.inf: no gate)");
+        for (ObjectClass cls : kAllObjectClasses) {
+            const auto i = static_cast<std::size_t>(cls);
+            t.include(std::string(to_string(cls)) + "_", [i](T& p) -> MotionPrior& { return p.motion[i]; }, motion_prior_table());
+        }
+        t.add("association_gate_m", &T::association_gate_m, closed(0.0, 100.0), "")
+            .add("max_centre_distance_m", &T::max_centre_distance_m, closed(0.0, 100.0),
+                 "> 0: pairs scored by centre distance (at most this) instead of min_giou")
+            .include("", [](T& p) -> KalmanParams& { return p.kalman; }, kalman_table())
+            .add("min_hits", &T::min_hits, closed(1, 1000), "detections before an object enters the map's output")
+            .add("max_misses", &T::max_misses, closed(1, 100000), "consecutive unexplained misses that remove an object")
+            .add("min_existence", &T::min_existence, closed(0.0, 1.0), "fused existence below this removes an object ...")
+            .add("existence_grace_frames", &T::existence_grace_frames, closed(1, 1000), "... once it has been judged on this many frames")
+            .add("same_view_m", &T::same_view_m, closed(0.0, 100.0), "frames seeing an object from within this of one place ...")
+            .add("same_view_period_s", &T::same_view_period_s, above(0.0, 3600.0),
+                 "... and this long are one view: a still robot's repeated frames are one vote (0 m: every frame)");
+        return t;
+    }();
+    return table;
+}
+
+std::vector<std::string> MotionPrior::validate() const { return motion_prior_table().problems(*this); }
+
 std::vector<std::string> TrackerParams::validate() const {
-    std::vector<std::string> p = kalman.validate();
-    for (const MotionPrior& m : motion) {
-        for (std::string& e : m.validate()) p.push_back(std::move(e));
-    }
+    std::vector<std::string> p = tracker_table().problems(*this);
     if (std::none_of(tracked_classes.begin(), tracked_classes.end(), [](bool b) { return b; })) p.push_back("no class is tracked");
-    if (!(min_score >= 0.0 && min_score <= 1.0)) p.push_back("min_score must be in [0, 1] (a probability, after the score transform)");
-    if (!(min_giou >= -1.0 && min_giou <= 1.0)) p.push_back("min_giou must be in [-1, 1]");
-    if (!(sensor_range_m > 0.0)) p.push_back("sensor_range_m must be > 0");
     if (!(miss_range_m >= 0.0)) p.push_back("miss_range_m must be >= 0");
-    if (!(association_gate_m >= 0.0)) p.push_back("association_gate_m must be >= 0");
-    if (!(max_centre_distance_m >= 0.0 && max_centre_distance_m <= 100.0)) p.push_back("max_centre_distance_m must be in [0, 100] (0: GIoU)");
-    if (min_hits < 1) p.push_back("min_hits must be >= 1");
-    if (max_misses < 1) p.push_back("max_misses must be >= 1");
-    if (!(min_existence >= 0.0 && min_existence <= 1.0)) p.push_back("min_existence must be in [0, 1]");
-    if (existence_grace_frames < 1) p.push_back("existence_grace_frames must be >= 1");
-    if (!(same_view_m >= 0.0 && same_view_m <= 100.0)) p.push_back("same_view_m must be in [0, 100] (0: every frame a view)");
-    if (!(same_view_period_s > 0.0 && same_view_period_s <= 3600.0)) p.push_back("same_view_period_s must be in (0, 3600]");
-    if (!(max_unobserved_s > 0.0)) p.push_back("max_unobserved_s must be > 0 (inf: never)");
-    if (!(max_floor_gap_m > 0.0)) p.push_back("max_floor_gap_m must be > 0 (inf: no floor prior)");
-    if (!(merge_iou > 0.0 && merge_iou <= 1.0)) p.push_back("merge_iou must be in (0, 1]");
-    if (!(motion_gate_sigma > 0.0)) p.push_back("motion_gate_sigma must be > 0 (inf: no motion gate)");
     if (!(occlusion.blocked_fraction > 0.0 && occlusion.blocked_fraction <= 1.0)) p.push_back("blocked_fraction must be in (0, 1]");
     return p;
 }

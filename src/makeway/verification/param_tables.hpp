@@ -1,0 +1,10 @@
+#pragma once
+// The CAD verification's configurable parameters (common/param_table.hpp).
+#include "makeway/common/param_table.hpp"
+#include "makeway/verification/verifier.hpp"
+
+namespace makeway::verification {
+
+const ParamTable<VerifyParams>& verify_table();
+
+}  // namespace makeway::verification
