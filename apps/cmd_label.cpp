@@ -107,7 +107,7 @@ int run_label(const LabelOptions& o) {
     const io::Config cfg = io::load_config(o.config);
     labelling::LabelParams params = cfg.labelling;
     params.system = io::online_system_params(cfg);
-    if (!o.poses_name.empty()) params.system.lidar_odometry = false;  // the given poses are the pose
+    if (!o.poses_name.empty()) params.system.lidar_odometry_enabled = false;  // the given poses are the pose
     std::optional<verification::CadLibrary> library;
     if (!o.cad.empty()) library = io::read_cad_folder(o.cad);
     std::optional<perception::Detector> detector;

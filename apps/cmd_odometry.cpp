@@ -32,7 +32,7 @@ int run_odometry(const OdometryOptions& o) {
     }
     if (const std::string p = io::start_problem(o.start); !p.empty()) throw io::FileError("--start", p);
     const Pose2 start{o.start[0], o.start[1], o.start[2]};
-    odometry::LidarOdometry odo(cfg.system.odometry, cfg.robot.T_robot_sensor(), start);
+    odometry::LidarOdometry odo(cfg.system.lidar_odometry, cfg.robot.T_robot_sensor(), start);
     std::vector<io::StampedPose> out;
     io::ProgressBar bar("odometry", files.size());
     double seconds = 0.0;
@@ -76,7 +76,7 @@ int run_bench_odometry(const BenchOdometryOptions& o) {
     std::size_t sweeps = 0;
     for (const auto& d : drives) {
         const auto truth = eval::truth_of(d);
-        const auto run = eval::run_makeway_odometry(d, cfg.system.odometry, seq.robot.T_robot_sensor());
+        const auto run = eval::run_makeway_odometry(d, cfg.system.lidar_odometry, seq.robot.T_robot_sensor());
         scores.push_back({d.name, "makeway", eval::trajectory_metrics(run.poses, truth), static_cast<double>(d.sweeps.size()) / run.seconds});
         scores.push_back({d.name, "wheels", eval::trajectory_metrics(eval::dead_reckoning(d), truth), 0.0});
         sweeps += d.sweeps.size();

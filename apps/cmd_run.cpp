@@ -71,7 +71,7 @@ int run_run(const RunOptions& o) {
     }
     pipeline::SystemParams params = io::online_system_params(cfg, extrinsics ? &*extrinsics : nullptr);
     const bool external = !o.poses.empty();
-    if (external) params.lidar_odometry = false;  // the given poses are the pose: no odometry runs
+    if (external) params.lidar_odometry_enabled = false;  // the given poses are the pose: no odometry runs
 
     rosio::SourceOptions so;
     so.clouds = o.clouds;
@@ -111,7 +111,7 @@ int run_run(const RunOptions& o) {
     std::cout << "run: " << source->describe()
               << (library ? ", " + std::to_string(library->models().size()) + " CAD models" : prior ? ", no CAD models" : ", no CAD models (verification skipped)")
               << (prior ? ", shape networks" : "")
-              << (external ? ", external poses (no odometry)" : params.lidar_odometry ? ", LiDAR odometry" : ", wheel odometry alone") << "\n";
+              << (external ? ", external poses (no odometry)" : params.lidar_odometry_enabled ? ", LiDAR odometry" : ", wheel odometry alone") << "\n";
 
     Timings timings;
     std::vector<Pose2> trajectory;
@@ -200,7 +200,7 @@ int run_run(const RunOptions& o) {
                                                   : prior ? std::string("on: no CAD models") : std::string("skipped: no --cad")) +
                                              (prior ? ", shape networks from " + o.shape_model : std::string())},
                         {"verified_accepted", accepted},
-                        {"pose", external ? "external (--poses)" : params.lidar_odometry ? "LiDAR odometry" : "wheel odometry"},
+                        {"pose", external ? "external (--poses)" : params.lidar_odometry_enabled ? "LiDAR odometry" : "wheel odometry"},
                         {"objects", objects.size()},
                         {"chairs", chairs},
                         {"tables", objects.size() - chairs},

@@ -413,7 +413,7 @@ void add_bench(CLI::App& app, BenchSimOptions& o, BenchNavOptions& nav_o, BenchM
     auto* odo = bench->add_subcommand("odometry", "LiDAR odometry on simulated drives (medium and dense scenes with people "
                                                   "and pulled chairs, corridors): ATE, RPE over 1 m and 5 m, sweeps per second; "
                                                   "writes summary.json and table.md");
-    odo->add_option("--config", odo_o.config, "YAML configuration: lidar, robot, odometry and lidar_odometry sections");
+    odo->add_option("--config", odo_o.config, "YAML configuration: lidar, robot, wheel_noise and lidar_odometry sections");
     odo->add_option("--scenes", odo_o.scenes, "Drives (every fifth a corridor)")->check(CLI::Range(1, 1000))->capture_default_str();
     odo->add_option("--seed", odo_o.seed, "Seed of scenes, sensor noise and wheel drift")->capture_default_str();
     odo->add_option("--max-sweeps", odo_o.max_sweeps, "Sweeps per drive at most")->check(CLI::Range(10, 100000))->capture_default_str();

@@ -67,7 +67,7 @@ private:
 
 /// The sections of a makeway configuration file that configure the robot's software (and the robot
 /// it drives); config/default.yaml documents each key. The simulator's sections (scene, lidar,
-/// odometry, simulation) are read by io/sim_config.hpp: this reader accepts and skips them, so one
+/// wheel_noise, simulation) are read by io/sim_config.hpp: this reader accepts and skips them, so one
 /// file configures the benchmark and the robot alike, and the program on the robot never links the
 /// simulator.
 struct Config {
@@ -81,7 +81,8 @@ struct Config {
 };
 
 /// Top-level sections that belong to the simulator (io/sim_config.hpp).
-inline const std::vector<std::string> kSimulatorSections{"scene", "lidar", "odometry", "simulation"};
+inline const std::vector<std::string> kSimulatorSections{"scene", "lidar", "wheel_noise", "simulation",
+                                                         "odometry" /* wheel_noise's old name */};
 
 /// The online system's parameters as the program runs it on a robot (`ours` in the benchmark,
 /// `makeway run`, makeway_node): the configuration's sections, the affordance zones into the

@@ -25,8 +25,8 @@ using pipeline::SystemParams;
 const ParamTable<SystemParams>& lidar_odometry_section() {
     static const ParamTable<SystemParams> t = [] {
         ParamTable<SystemParams> s;
-        s.add("enabled", &SystemParams::lidar_odometry, "false: the wheel odometry alone")
-            .include("", [](SystemParams& p) -> odometry::OdometryParams& { return p.odometry; }, odometry::odometry_table());
+        s.add("enabled", &SystemParams::lidar_odometry_enabled, "false: the wheel odometry alone")
+            .include("", [](SystemParams& p) -> odometry::OdometryParams& { return p.lidar_odometry; }, odometry::odometry_table());
         return s;
     }();
     return t;
@@ -35,7 +35,7 @@ const ParamTable<SystemParams>& lidar_odometry_section() {
 const ParamTable<SystemParams>& verification_section() {
     static const ParamTable<SystemParams> t = [] {
         ParamTable<SystemParams> s;
-        s.add("enabled", &SystemParams::verification, "false: detections are not checked against CAD models")
+        s.add("enabled", &SystemParams::verification_enabled, "false: detections are not checked against CAD models")
             .include("", [](SystemParams& p) -> verification::VerifyParams& { return p.verify; }, verification::verify_table())
             .include("shape_", [](SystemParams& p) -> pipeline::TrackedShapeParams& { return p.shapes; }, pipeline::tracked_shape_table());
         return s;
@@ -170,7 +170,13 @@ std::vector<BoundSection> config_sections(Config& c) {
 void read_sections(const YAML::Node& root, std::vector<BoundSection>& sections, std::vector<std::string>& problems,
                    std::vector<std::string>& deprecated) {
     for (BoundSection& sec : sections) {
-        YamlSection s(root[sec.name], sec.name, problems);
+        const bool old = !sec.old_name.empty() && root.IsMap() && root[sec.old_name];
+        if (old && root[sec.name]) {
+            problems.push_back(sec.old_name + " and " + sec.name + ": both given (" + sec.old_name + " is " + sec.name + "'s old name)");
+            continue;
+        }
+        if (old) deprecated.push_back(sec.old_name + ": the section is deprecated: it is now " + sec.name);
+        YamlSection s(root[old ? sec.old_name : sec.name], old ? sec.old_name : sec.name, problems);
         // Keys "group.key" live in the nested mapping `group`, read after the section's own keys.
         std::vector<std::string> groups;
         for (const BoundParam& p : sec.params) {

@@ -25,6 +25,7 @@ struct BoundSection {
     std::string name;
     std::string doc;      ///< the comment on the section's line
     std::string preface;  ///< comment lines written above it (may be empty)
+    std::string old_name;  ///< the section's former name, still read (with a deprecation warning)
     std::vector<BoundParam> params;
     std::function<std::vector<std::string>()> problems;  ///< each range and rule broken, by key
 };
@@ -32,7 +33,7 @@ struct BoundSection {
 /// `table`'s keys bound to `p` (both must outlive the section).
 template <class P>
 BoundSection bind_section(std::string name, std::string doc, const ParamTable<P>& table, P& p, std::string preface = {}) {
-    BoundSection s{std::move(name), std::move(doc), std::move(preface), {}, [&table, &p] { return table.problems(p); }};
+    BoundSection s{std::move(name), std::move(doc), std::move(preface), {}, {}, [&table, &p] { return table.problems(p); }};
     for (const auto& e : table.entries()) s.params.push_back({e.key, e.ref(p), e.range, e.doc, e.old_key});
     return s;
 }

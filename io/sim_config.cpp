@@ -26,8 +26,9 @@ std::vector<BoundSection> simulator_sections(SimConfig& c) {
     std::vector<BoundSection> s;
     s.push_back(bind_section("scene", "the procedural scene `makeway demo` drives through", sim::scene_gen_table(), c.scene));
     s.push_back(bind_section("lidar", "Velodyne Ultra Puck (VLP-32C): 32 beams, -25..+15 deg", sim::lidar_table(), c.lidar));
-    s.push_back(bind_section("odometry", "wheel odometry drift; sigmas grow with the square root of the motion", sim::wheel_noise_table(),
-                             c.odometry));
+    s.push_back(bind_section("wheel_noise", "the simulated wheel odometry's drift; sigmas grow with the square root of the motion",
+                             sim::wheel_noise_table(), c.odometry));
+    s.back().old_name = "odometry";
     s.push_back(bind_section("simulation", "", simulation_table(), c.simulation));
     return s;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The simulator's sections of a makeway configuration file (scene, lidar, odometry, simulation),
+// The simulator's sections of a makeway configuration file (scene, lidar, wheel_noise, simulation),
 // with everything the robot's software reads (io/config_reader.hpp). Only the programs that
 // simulate read these: the library is io_sim, and the robot's node links io without it.
 #include <cstdint>

@@ -32,7 +32,8 @@ TEST(ConfigTables, ShippedDefaultFileIsGeneratedFromTheTables) {
 }
 
 // A file that sets every key of the shipped file to another admitted value (the four renamed keys
-// under their old names): each value reaches a member, and that member is written under the key.
+// and the renamed section under their old names): each value reaches a member, and that member is
+// written under the key.
 TEST(ConfigTables, EveryKeyOfAFileReachesItsMember) {
     const std::string path = std::string(MAKEWAY_SOURCE_DIR) + "/tests/data/config_every_key.yaml";
     SimConfig c = load_sim_config(path);
@@ -47,9 +48,9 @@ TEST(ConfigTables, EveryKeyOfAFileReachesItsMember) {
     };
     // The node of `key` ("group.key": in the nested mapping), under its old name where only that is given.
     // (Const nodes throughout: assigning to a YAML::Node writes into the document.)
-    const auto at = [](const YAML::Node& root, const std::string& section, const BoundParam& p) {
+    const auto at = [](const YAML::Node& root, const BoundSection& section, const BoundParam& p) {
         const std::size_t dot = p.key.find('.');
-        const YAML::Node sec = root[section];
+        const YAML::Node sec = root[section.name] || section.old_name.empty() ? root[section.name] : root[section.old_name];
         const YAML::Node map = dot == std::string::npos ? sec : sec[p.key.substr(0, dot)];
         const std::string key = dot == std::string::npos ? p.key : p.key.substr(dot + 1);
         return map[key] || p.old_key.empty() ? map[key] : map[p.old_key];
@@ -58,10 +59,10 @@ TEST(ConfigTables, EveryKeyOfAFileReachesItsMember) {
     const YAML::Node default_yaml = YAML::Load(write_sections(sim_config_sections(defaults), ""));
     for (const BoundSection& sec : sim_config_sections(defaults)) {
         for (const BoundParam& p : sec.params) {
-            const YAML::Node v = at(in, sec.name, p), written = at(out, sec.name, p);
+            const YAML::Node v = at(in, sec, p), written = at(out, sec, p);
             ASSERT_TRUE(v) << sec.name << "." << p.key << " is not in the test file";
             EXPECT_TRUE(same(v, written)) << sec.name << "." << p.key << ": " << YAML::Dump(v) << " read, " << YAML::Dump(written) << " written";
-            EXPECT_FALSE(same(v, at(default_yaml, sec.name, p))) << sec.name << "." << p.key << " is the default in the test file: it proves nothing";
+            EXPECT_FALSE(same(v, at(default_yaml, sec, p))) << sec.name << "." << p.key << " is the default in the test file: it proves nothing";
             nested += p.key.find('.') != std::string::npos;
             ++keys;
         }
@@ -85,6 +86,19 @@ TEST(ConfigTables, RenamedKeysAreReadWithAWarning) {
     } catch (const FormatError& e) {
         EXPECT_EQ(std::string(e.what()),
                   "costmap: low_obstacle_range_m and low_mark_range_m both given (low_obstacle_range_m is low_mark_range_m's old name)");
+    }
+}
+
+// The simulator's `odometry` section is `wheel_noise` now (the online system's is lidar_odometry).
+TEST(ConfigTables, TheRenamedSectionIsReadUnderItsOldName) {
+    EXPECT_EQ(parse_sim_config("odometry:\n  translation_noise_per_m: 0.05\n").odometry.translation_noise_per_m, 0.05);
+    EXPECT_EQ(parse_sim_config("wheel_noise:\n  translation_noise_per_m: 0.04\n").odometry.translation_noise_per_m, 0.04);
+    EXPECT_EQ(parse_config("odometry:\n  translation_noise_per_m: 0.05\n").robot.max_v_mps, RobotDescription{}.max_v_mps);  // skipped
+    try {
+        parse_sim_config("odometry:\n  heading_noise_per_m: 0.05\nwheel_noise:\n  heading_noise_per_m: 0.04\n");
+        FAIL() << "both sections accepted";
+    } catch (const FormatError& e) {
+        EXPECT_EQ(std::string(e.what()), "odometry and wheel_noise: both given (odometry is wheel_noise's old name)");
     }
 }
 

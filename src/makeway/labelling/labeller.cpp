@@ -10,6 +10,7 @@
 #include "makeway/common/angles.hpp"
 #include "makeway/common/box_overlap.hpp"
 #include "makeway/common/voxel_thin.hpp"
+#include "makeway/labelling/object_rules.hpp"
 #include "makeway/labelling/upright_box.hpp"
 
 namespace makeway::labelling {
@@ -23,17 +24,6 @@ std::vector<Eigen::Vector3d> to_world(const PointCloud& cloud, const Isometry3& 
     out.reserve(cloud.size());
     for (const Eigen::Vector3f& p : cloud.xyz) out.push_back(T * p.cast<double>());
     return out;
-}
-
-// Points within `distance` of the model's surface (finest level) at T_object_world.
-std::size_t count_explained(const std::vector<Eigen::Vector3d>& points, const verification::CadModel& model,
-                            const Isometry3& T_object_world, double distance = 0.06) {
-    std::size_t n = 0;
-    double d2 = 0.0;
-    for (const Eigen::Vector3d& p : points) {
-        if (model.levels.back().nearest(T_object_world * p, distance, &d2) != verification::ModelLevel::kNone) ++n;
-    }
-    return n;
 }
 
 }  // namespace
@@ -71,13 +61,6 @@ struct Labeller::Impl {
     std::vector<std::vector<std::size_t>> objects_of;  ///< per session: indices into objects
     std::vector<verification::CadLibrary> single_models;  ///< the library split into one-model libraries
 
-    const verification::CadLibrary& single_model(const verification::CadLibrary& library, std::size_t index) {
-        if (single_models.size() != library.models().size()) {
-            single_models.clear();
-            for (std::size_t i = 0; i < library.models().size(); ++i) single_models.push_back(library.only(i));
-        }
-        return single_models[index];
-    }
     bool finished = false;
     double seconds_front_end = 0.0;
 
@@ -254,130 +237,56 @@ void Labeller::Impl::find_objects(int session, const verification::CadLibrary* l
         points.push_back(p);
         movable.push_back(c == PointClass::kMovable);
     }
-    struct Pending {
-        std::vector<Eigen::Vector3d> points;
-        std::vector<char> movable;
-        int depth = 0;
+    // Step 4: clusters, split again where a fit or the furniture size says two things touch.
+    std::deque<Cluster> queue;
+    const auto enqueue = [&](std::vector<Cluster> clusters) {
+        report.clusters += clusters.size();
+        for (Cluster& c : clusters) queue.push_back(std::move(c));
     };
-    std::deque<Pending> queue;
-    auto cluster_into_queue = [&](const std::vector<Eigen::Vector3d>& pts, const std::vector<char>& mov, int depth) {
-        // Heights scaled first: below 1, vertical gaps count for less (an office chair's thin column).
-        std::vector<Eigen::Vector3d> scaled = pts;
-        for (Eigen::Vector3d& q : scaled) q.z() *= params.dbscan_z_scale;
-        const DbscanResult clusters = dbscan(scaled, params.dbscan);
-        for (const std::vector<std::size_t>& members : cluster_members(clusters)) {
-            if (members.size() < params.min_cluster_points) continue;
-            Pending p;
-            p.depth = depth;
-            for (std::size_t i : members) {
-                p.points.push_back(pts[i]);
-                p.movable.push_back(mov[i]);
-            }
-            queue.push_back(std::move(p));
-            ++report.clusters;
-        }
+    enqueue(cluster_points(points, movable, 0, params));
+    const bool have_models = library && !library->models().empty();
+    if (have_models && single_models.size() != library->models().size()) {
+        single_models.clear();
+        for (std::size_t i = 0; i < library->models().size(); ++i) single_models.push_back(library->only(i));
+    }
+    const SeenThrough through = [&](const verification::CadModel& model, const Isometry3& T_world_object) {
+        return seen_through(session, model, T_world_object);
     };
-    cluster_into_queue(points, movable, 0);
     while (!queue.empty()) {
-        Pending c = std::move(queue.front());
+        const Cluster c = std::move(queue.front());
         queue.pop_front();
-        const std::size_t n = c.points.size();
-        const std::size_t n_movable = static_cast<std::size_t>(std::count(c.movable.begin(), c.movable.end(), 1));
-        const double share = static_cast<double>(n_movable) / static_cast<double>(n);
+        const std::size_t n = c.points_world.size();
+        const double share = static_cast<double>(c.movable_count()) / static_cast<double>(n);
         Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-        for (const Eigen::Vector3d& p : c.points) centroid += p;
+        for (const Eigen::Vector3d& p : c.points_world) centroid += p;
         centroid /= static_cast<double>(n);
         const double floor_z = floor_z_at(s, centroid.x(), centroid.y());
-        const OrientedBox box = upright_pca_box(c.points, floor_z);
-        const double height = box.z_max_m() - floor_z;
-        const bool furniture_sized = height >= params.min_object_height_m && height <= params.max_object_height_m &&
-                                     std::max(box.size_m.x(), box.size_m.y()) <= params.max_object_length_m;
-        if (!furniture_sized) {
+        const OrientedBox box_world = upright_pca_box(c.points_world, floor_z);
+        if (!furniture_sized(box_world, floor_z, params)) {
             // A wall with chairs against it: its Movable points may still be objects of their own.
-            if (c.depth < params.max_splits && n_movable >= params.min_cluster_points && n_movable < n) {
-                std::vector<Eigen::Vector3d> pts;
-                for (std::size_t i = 0; i < n; ++i) {
-                    if (c.movable[i]) pts.push_back(c.points[i]);
-                }
-                cluster_into_queue(pts, std::vector<char>(pts.size(), 1), c.depth + 1);
-            }
+            if (const auto part = movable_part(c, params)) enqueue(cluster_points(*part, std::vector<char>(part->size(), 1), c.depth + 1, params));
             continue;
         }
-        // Step 5: every model of either class, one at a time, from the PCA box turned by 0 and 45 deg
-        // (the verifier tries the four quarter turns of each: a square footprint's PCA yaw says
-        // nothing); the lowest accepted residual that explains enough of the cluster and is not
-        // contradicted by free space wins.
-        std::optional<verification::VerifiedDetection> best;
-        const verification::CadModel* best_model = nullptr;
-        std::size_t best_explained = 0;
-        double best_through = 0.0;
-        if (library && !library->models().empty()) {
-            PointCloud cloud;
-            for (const Eigen::Vector3d& p : c.points) cloud.xyz.push_back(p.cast<float>());
-            for (std::size_t mi = 0; mi < library->models().size(); ++mi) {
-                const verification::CadModel& model = library->models()[mi];
-                const verification::CadLibrary& one = single_model(*library, mi);
-                for (double turn : {0.0, 0.25 * kPi}) {
-                    Detection det;
-                    det.box_sensor = box;
-                    det.box_sensor.yaw_rad += turn;
-                    det.cls = model.cls;
-                    det.class_probabilities.fill(0.0);
-                    det.class_probabilities[static_cast<std::size_t>(model.cls)] = 1.0;
-                    verification::VerifiedDetection v = verification::verify_detection(cloud, det, one, params.verify, floor_z);
-                    if (!v.accepted || (best && v.residual_m >= best->residual_m)) continue;
-                    const std::size_t explained = count_explained(c.points, model, v.T_sensor_object.inverse(), params.label_distance_m);
-                    if (static_cast<double>(explained) < params.min_coverage * static_cast<double>(n) ||
-                        explained < params.min_object_points) {
-                        continue;
-                    }
-                    // Free-space test: where the session's rays passed through the model's surface, the
-                    // object is not there (a table's top placed over a chair whose legs it matched, an
-                    // office chair's armrests on one that has none).
-                    const double through = seen_through(session, model, v.T_sensor_object);
-                    if (through > params.max_seen_through) continue;
-                    best_through = through;
-                    best = std::move(v);
-                    best_model = &model;
-                    best_explained = explained;
-                }
-            }
-        }
+        // Step 5: the CAD model that fits best (object_rules.hpp: residual, explained share, free space).
+        const std::optional<CadFit> best = have_models ? fit_cad_model(c, box_world, floor_z, single_models, through, params) : std::nullopt;
         Object o;
         o.info.session = session;
         o.info.map_points = n;
         o.info.movable_share = share;
         if (best) {
-            o.model = best_model;
-            o.T_object_world = best->T_sensor_object.inverse();
-            // What the model leaves far from its surface: another object merged into the cluster (a
-            // chair tucked under its table); nearer, it is the object's own noise.
-            std::vector<Eigen::Vector3d> rest;
-            std::vector<char> rest_movable;
-            for (std::size_t i = 0; i < n; ++i) {
-                double d2 = 0.0;
-                if (best_model->levels.back().nearest(o.T_object_world * c.points[i], params.split_distance_m, &d2) !=
-                    verification::ModelLevel::kNone) {
-                    continue;
-                }
-                rest.push_back(c.points[i]);
-                rest_movable.push_back(c.movable[i]);
-            }
-            if (c.depth < params.max_splits && rest.size() >= params.min_cluster_points &&
-                static_cast<double>(rest.size()) >= params.split_share * static_cast<double>(n)) {
-                cluster_into_queue(rest, rest_movable, c.depth + 1);
-            }
-            (void)best_explained;
-            o.info.cls = best->detection.cls;
-            o.info.box_world = best->box_sensor;
-            o.info.model = best->model;
+            o.model = best->model;
+            o.T_object_world = best->verified.T_sensor_object.inverse();
+            if (auto rest = unexplained_rest(c, *best, params)) enqueue(cluster_points(rest->points_world, rest->movable, rest->depth, params));
+            o.info.cls = best->verified.detection.cls;
+            o.info.box_world = best->verified.box_sensor;  // the verifier's frame was the world
+            o.info.model = best->verified.model;
             o.info.class_source = "cad";
-            o.info.residual_m = best->residual_m;
-            o.info.seen_through = best_through;
-            o.info.T_world_object = best->T_sensor_object;
+            o.info.residual_m = best->verified.residual_m;
+            o.info.seen_through = best->seen_through;
+            o.info.T_world_object = best->verified.T_sensor_object;
         } else if (share >= params.movable_share && n >= params.min_object_points) {
-            o.info.box_world = box;
-            if (classify_unknown) o.info.cls = classify_unknown(session, box, c.points);
+            o.info.box_world = box_world;
+            if (classify_unknown) o.info.cls = classify_unknown(session, box_world, c.points_world);
             o.info.class_source = o.info.cls ? "detector" : "unknown";
         } else {
             continue;  // Permanent: it never moved and no model explains it

@@ -12,7 +12,7 @@ double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std
 
 FrontEnd::FrontEnd(const SystemParams& params, const Pose2& start_pose)
     : params_(params), start_pose_(start_pose), accumulator_({.window = params.keyframe.window, .deskew = params.keyframe.deskew}) {
-    if (params.lidar_odometry) lidar_odometry_.emplace(params.odometry, params.T_base_sensor, start_pose);
+    if (params.lidar_odometry_enabled) lidar_odometry_.emplace(params.lidar_odometry, params.T_base_sensor, start_pose);
 }
 
 Isometry3 FrontEnd::T_world_sensor_at(const Pose2& odometry) const {

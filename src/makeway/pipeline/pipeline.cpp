@@ -112,7 +112,7 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
     kf.evidence = kf.detections;
     const bool have_cad = library_ && !library_->models().empty();
     if (shapes_) shapes_->begin_keyframe(kf.T_world_keyframe);
-    if (params_.verification && (have_cad || shapes_)) {
+    if (params_.verification_enabled && (have_cad || shapes_)) {
         const PreparedKeyframe& prepared = kf.prepared;
         // Objects the map verified lately: one ICP from their last fit (the full search when it fails).
         const auto seeds = have_cad ? seeds_for(kf.detections, kf.T_world_keyframe, stamp_s) : std::vector<std::optional<verification::VerifySeed>>{};

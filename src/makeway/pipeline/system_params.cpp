@@ -105,7 +105,7 @@ std::vector<std::string> NavigatorParams::validate_policy() const { return navig
 std::vector<std::string> SystemParams::validate() const {
     std::vector<std::string> p;
     if (!T_base_sensor.matrix().allFinite()) p.push_back("T_base_sensor must be finite");
-    if (lidar_odometry) add(p, "lidar_odometry", odometry.validate());
+    if (lidar_odometry_enabled) add(p, "lidar_odometry", lidar_odometry.validate());
     add(p, "perception", keyframe.validate());  // its keys are the perception section's
     add(p, "verification", verify.validate());
     add(p, "verification.shapes", shapes.validate());

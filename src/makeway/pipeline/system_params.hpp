@@ -77,10 +77,10 @@ struct SystemParams {
     Isometry3 T_base_sensor = Isometry3::Identity();
     /// The pose of every sweep: LiDAR odometry fused with the wheel odometry (the paper's front
     /// end); false: the wheel odometry alone.
-    bool lidar_odometry = true;
-    odometry::OdometryParams odometry;
+    bool lidar_odometry_enabled = true;
+    odometry::OdometryParams lidar_odometry;  ///< the `lidar_odometry` section
     KeyframeParams keyframe;
-    bool verification = true;  ///< with a CAD library: 4-DoF ICP, p_exist as existence evidence
+    bool verification_enabled = true;  ///< with a CAD library: 4-DoF ICP, p_exist as existence evidence
     verification::VerifyParams verify;
     TrackedShapeParams shapes;  ///< with a shape prior: learned shapes kept per tracked object
     tracking::TrackerParams tracker;
