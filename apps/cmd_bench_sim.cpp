@@ -23,7 +23,8 @@ sim::Scene bench_scene(std::uint64_t seed) {
     const double c = 10.0;
     s.walls = {{{-c, -c}, {c, -c}}, {{c, -c}, {c, c}}, {{c, c}, {-c, c}}, {{-c, c}, {-c, -c}}};
     Rng rng = make_rng(seed, 77);
-    const int kSceneStyles = 7;  // the styles generated scenes draw from (sim::scene_styles_of): comparable numbers
+    const int kSceneStyles =
+        7;  // the styles generated scenes draw from (sim::scene_styles_of): comparable numbers
     std::vector<OrientedBox> boxes;
     while (s.objects.size() < 40) {
         sim::SceneObject o;
@@ -35,7 +36,9 @@ sim::Scene bench_scene(std::uint64_t seed) {
         o.pose = {uniform(rng, -8.5, 8.5), uniform(rng, -8.5, 8.5), uniform(rng, -kPi, kPi)};
         const OrientedBox box = sim::model_of(o).box_object.transformed(lift_to_3d(o.pose));
         if (std::hypot(o.pose.x_m, o.pose.y_m) < 1.5) continue;  // the sensor stands at the centre
-        if (std::any_of(boxes.begin(), boxes.end(), [&](const auto& b) { return iou_bev(b, box) > 0.0; })) continue;
+        if (std::any_of(boxes.begin(), boxes.end(),
+                        [&](const auto& b) { return iou_bev(b, box) > 0.0; }))
+            continue;
         boxes.push_back(box);
         s.objects.push_back(o);
     }
@@ -48,7 +51,9 @@ int run_bench_sim(const BenchSimOptions& options) {
     const sim::Scene scene = bench_scene(options.seed);
     const std::vector<sim::ObjectModel> models = sim::models_of(scene);
     sim::World world(scene, models);
-    const sim::PoseAtTime pose = [](double t) { return make_T_xyz_yaw({0.5 * t, 0.0, 0.45}, 0.1 * t); };
+    const sim::PoseAtTime pose = [](double t) {
+        return make_T_xyz_yaw({0.5 * t, 0.0, 0.45}, 0.1 * t);
+    };
 
     auto measure = [&](int threads, bool packets) {
         sim::LidarParams lidar;
@@ -58,8 +63,11 @@ int run_bench_sim(const BenchSimOptions& options) {
         sim::SweepStats stats;
         for (int i = 0; i < options.sweeps + 1; ++i) {
             const auto t0 = std::chrono::steady_clock::now();
-            const PointCloud c = sim::simulate_sweep(world, lidar, pose, 0.1 * i, options.seed, i, &stats);
-            const double dt = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            const PointCloud c =
+                sim::simulate_sweep(world, lidar, pose, 0.1 * i, options.seed, i, &stats);
+            const double dt =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                    .count();
             if (i > 0) ms.push_back(dt);  // the first sweep warms caches and builds the BVH
         }
         return std::make_pair(median(ms), stats);

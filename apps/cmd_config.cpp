@@ -16,7 +16,9 @@ int run_config(const ConfigOptions& options) {
     if (options.describe) {
         std::cout << io::describe_sections(sections);
     } else {
-        std::cout << io::write_sections(sections, "# " + options.file + " as makeway reads it: every key, defaults filled in.\n");
+        std::cout << io::write_sections(
+            sections,
+            "# " + options.file + " as makeway reads it: every key, defaults filled in.\n");
     }
     return 0;
 }

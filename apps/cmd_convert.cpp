@@ -21,7 +21,8 @@ std::string join(const std::vector<std::string>& words) {
 
 int run_convert(const ConvertOptions& options) {
     if (!io::cloud_format_from_path(options.output)) {
-        throw io::FileError(options.output, "unknown point-cloud extension (expected .pcd, .ply or .bin)");
+        throw io::FileError(options.output,
+                            "unknown point-cloud extension (expected .pcd, .ply or .bin)");
     }
     const io::CloudFile file =
         io::read_point_cloud(options.input, {.non_finite = parse_policy(options.non_finite)});
@@ -30,14 +31,15 @@ int run_convert(const ConvertOptions& options) {
     }
     if (!file.info.ignored_fields.empty()) {
         io::print_warning(options.input + ": fields not kept (makeway has no channel for them): " +
-                      join(file.info.ignored_fields));
+                          join(file.info.ignored_fields));
     }
     io::CloudWriteOptions write;
     write.pcd = *io::parse_pcd_encoding(options.pcd_encoding);
     write.ply = *io::parse_ply_encoding(options.ply_encoding);
     const auto dropped = io::write_point_cloud(options.output, file.cloud, write);
     if (!dropped.empty()) {
-        io::print_warning(options.output + ": the format cannot hold " + join(dropped) + "; dropped");
+        io::print_warning(options.output + ": the format cannot hold " + join(dropped) +
+                          "; dropped");
     }
     return 0;
 }

@@ -19,8 +19,8 @@
 #include "makeway/common/box_overlap.hpp"
 #include "makeway/eval/label_bench.hpp"
 #include "makeway/eval/session_bench.hpp"
-#include "makeway/sim/furniture.hpp"
 #include "makeway/labelling/labeller.hpp"
+#include "makeway/sim/furniture.hpp"
 #include "ros/sweep_source.hpp"
 
 namespace makeway::apps {
@@ -28,11 +28,16 @@ namespace fs = std::filesystem;
 namespace {
 
 io::Json metrics_json(const eval::DetectionMetrics& m) {
-    io::Json j = {{"map_25", m.map_25}, {"map_50", m.map_50}, {"mar_25", m.mar_25}, {"mar_50", m.mar_50}};
+    io::Json j = {
+        {"map_25", m.map_25}, {"map_50", m.map_50}, {"mar_25", m.mar_25}, {"mar_50", m.mar_50}};
     io::Json per = io::Json::object();
     for (const auto& [cls, c] : m.per_class) {
-        per[std::string(to_string(cls))] = {{"ap_25", c.ap_25}, {"ap_50", c.ap_50}, {"ar_25", c.ar_25}, {"ar_50", c.ar_50},
-                                            {"yaw_within_10deg", c.yaw_within_10deg}, {"ground_truth", c.ground_truth},
+        per[std::string(to_string(cls))] = {{"ap_25", c.ap_25},
+                                            {"ap_50", c.ap_50},
+                                            {"ar_25", c.ar_25},
+                                            {"ar_50", c.ar_50},
+                                            {"yaw_within_10deg", c.yaw_within_10deg},
+                                            {"ground_truth", c.ground_truth},
                                             {"labels", c.detections}};
     }
     j["per_class"] = per;
@@ -40,7 +45,8 @@ io::Json metrics_json(const eval::DetectionMetrics& m) {
 }
 
 io::Json panoptic_json(const eval::PanopticQuality& p) {
-    return {{"pq", p.pq()}, {"sq", p.sq()}, {"rq", p.rq()}, {"tp", p.tp}, {"fp", p.fp}, {"fn", p.fn}};
+    return {{"pq", p.pq()}, {"sq", p.sq()}, {"rq", p.rq()},
+            {"tp", p.tp},   {"fp", p.fp},   {"fn", p.fn}};
 }
 
 // Yaw within 10 deg over the matched boxes of both classes, weighted by their ground truth.
@@ -55,38 +61,50 @@ double yaw_within_10(const eval::DetectionMetrics& m) {
 
 // A session folder as `makeway simulate` writes it (clouds/ and odometry.txt) or as `makeway run`
 // reads one (a folder of sweeps, odometry.txt beside or inside it); a .bag file is a ROS 1 bag.
-rosio::SourceOptions session_source(const fs::path& dir, const LabelOptions& o, const Isometry3& T_base_sensor) {
+rosio::SourceOptions session_source(const fs::path& dir, const LabelOptions& o,
+                                    const Isometry3& T_base_sensor) {
     rosio::SourceOptions so;
     so.T_base_sensor = T_base_sensor;
     if (dir.extension() == ".bag") {
         so.bag = dir.string();
         return so;
     }
-    if (!fs::is_directory(dir)) throw io::FileError(dir, "not a session folder (sweeps, or clouds/ and odometry.txt) or a .bag file");
+    if (!fs::is_directory(dir))
+        throw io::FileError(
+            dir, "not a session folder (sweeps, or clouds/ and odometry.txt) or a .bag file");
     so.clouds = fs::is_directory(dir / "clouds") ? (dir / "clouds").string() : dir.string();
     for (const fs::path& odo : {dir / o.odometry_name, fs::path(so.clouds) / o.odometry_name}) {
-        if (fs::is_regular_file(odo)) so.odometry = odo.string();
-        else if (fs::exists(odo)) throw io::FileError(odo, "is not a file: --odometry-name names the session's TUM odometry file");
+        if (fs::is_regular_file(odo))
+            so.odometry = odo.string();
+        else if (fs::exists(odo))
+            throw io::FileError(
+                odo, "is not a file: --odometry-name names the session's TUM odometry file");
     }
     if (!o.poses_name.empty()) {
         so.odometry.clear();
         for (const fs::path& poses : {dir / o.poses_name, fs::path(so.clouds) / o.poses_name}) {
             if (fs::is_regular_file(poses)) so.poses = poses.string();
         }
-        if (so.poses.empty()) throw io::FileError(dir / o.poses_name, "no such pose file (--poses-name)");
+        if (so.poses.empty())
+            throw io::FileError(dir / o.poses_name, "no such pose file (--poses-name)");
     }
     return so;
 }
 
-// The previous round's detector names model-less clusters: the cluster is put where a keyframe would
-// see it (2 m ahead of a sensor at its mounting height) and the best detection over its box wins.
-labelling::UnknownClassifier detector_classifier(const perception::Detector& detector, const Isometry3& T_base_sensor) {
-    return [&detector, T_base_sensor](int, const OrientedBox& box_world, const std::vector<Eigen::Vector3d>& points_world)
-               -> std::optional<ObjectClass> {
-        const Eigen::Vector3d at(box_world.centre_m.x() - 2.0, box_world.centre_m.y(), T_base_sensor.translation().z());
+// The previous round's detector names model-less clusters: the cluster is put where a keyframe
+// would see it (2 m ahead of a sensor at its mounting height) and the best detection over its box
+// wins.
+labelling::UnknownClassifier detector_classifier(const perception::Detector& detector,
+                                                 const Isometry3& T_base_sensor) {
+    return [&detector, T_base_sensor](
+               int, const OrientedBox& box_world,
+               const std::vector<Eigen::Vector3d>& points_world) -> std::optional<ObjectClass> {
+        const Eigen::Vector3d at(box_world.centre_m.x() - 2.0, box_world.centre_m.y(),
+                                 T_base_sensor.translation().z());
         const Isometry3 T_sensor_world = make_T_xyz_yaw(at, 0.0).inverse();
         PointCloud cloud;
-        for (const Eigen::Vector3d& p : points_world) cloud.xyz.push_back((T_sensor_world * p).cast<float>());
+        for (const Eigen::Vector3d& p : points_world)
+            cloud.xyz.push_back((T_sensor_world * p).cast<float>());
         const OrientedBox box = box_world.transformed(T_sensor_world);
         std::optional<ObjectClass> cls;
         double best = 0.0;
@@ -98,7 +116,8 @@ labelling::UnknownClassifier detector_classifier(const perception::Detector& det
 }
 
 void write_point_labels(const fs::path& path, const std::vector<std::uint32_t>& labels) {
-    io::write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(labels.data()), labels.size() * sizeof(std::uint32_t)));
+    io::write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(labels.data()),
+                                                 labels.size() * sizeof(std::uint32_t)));
 }
 
 }  // namespace
@@ -107,7 +126,8 @@ int run_label(const LabelOptions& o) {
     const io::Config cfg = io::load_config(o.config);
     labelling::LabelParams params = cfg.labelling;
     params.system = io::online_system_params(cfg);
-    if (!o.poses_name.empty()) params.system.lidar_odometry_enabled = false;  // the given poses are the pose
+    if (!o.poses_name.empty())
+        params.system.lidar_odometry_enabled = false;  // the given poses are the pose
     std::optional<verification::CadLibrary> library;
     if (!o.cad.empty()) library = io::read_cad_folder(o.cad);
     std::optional<perception::Detector> detector;
@@ -116,13 +136,17 @@ int run_label(const LabelOptions& o) {
     std::vector<std::unique_ptr<rosio::SweepSource>> sources;
     std::size_t total = 0;
     for (const std::string& dir : o.sessions) {
-        sources.push_back(rosio::open_sweep_source(session_source(dir, o, params.system.T_base_sensor)));
-        total += o.max_sweeps > 0 ? std::min<std::size_t>(sources.back()->size(), static_cast<std::size_t>(o.max_sweeps)) : sources.back()->size();
+        sources.push_back(
+            rosio::open_sweep_source(session_source(dir, o, params.system.T_base_sensor)));
+        total += o.max_sweeps > 0 ? std::min<std::size_t>(sources.back()->size(),
+                                                          static_cast<std::size_t>(o.max_sweeps))
+                                  : sources.back()->size();
     }
     io::StagedOutput staged(o.out);  // the whole dataset or none of it
     labelling::Labeller labeller(params);
     std::cout << "label: " << o.sessions.size() << " sessions, " << total << " sweeps"
-              << (library ? ", " + std::to_string(library->models().size()) + " CAD models" : ", no CAD models (PCA boxes, unknown classes)")
+              << (library ? ", " + std::to_string(library->models().size()) + " CAD models"
+                          : ", no CAD models (PCA boxes, unknown classes)")
               << (detector ? ", classes of model-less objects from " + o.model : "") << "\n";
     io::ProgressBar bar("label: sweeps", total);
     std::size_t done = 0;
@@ -132,29 +156,37 @@ int run_label(const LabelOptions& o) {
         std::size_t n = 0;
         while (std::optional<rosio::SourceSweep> s = source.next()) {
             if (o.max_sweeps > 0 && n >= static_cast<std::size_t>(o.max_sweeps)) break;
-            if (!s->timed) throw io::FileError(s->file, "no per-point time field (time, t or timestamp): the sweep cannot be de-skewed");
-            labeller.add_sweep({std::move(s->points), s->stamp_s, s->duration_s, s->pose_start, s->pose_end});
+            if (!s->timed)
+                throw io::FileError(s->file,
+                                    "no per-point time field (time, t or timestamp): the sweep "
+                                    "cannot be de-skewed");
+            labeller.add_sweep(
+                {std::move(s->points), s->stamp_s, s->duration_s, s->pose_start, s->pose_end});
             ++n;
             bar.update(++done);
         }
         if (n < static_cast<std::size_t>(params.system.keyframe.every)) {
-            throw io::FileError(o.sessions[i], "fewer sweeps (" + std::to_string(n) + ") than one keyframe needs (" +
-                                                   std::to_string(params.system.keyframe.every) + ")");
+            throw io::FileError(o.sessions[i], "fewer sweeps (" + std::to_string(n) +
+                                                   ") than one keyframe needs (" +
+                                                   std::to_string(params.system.keyframe.every) +
+                                                   ")");
         }
     }
     bar.finish();
     std::string stage;
     std::optional<io::ProgressBar> step;
-    const labelling::LabelResult r = labeller.finish(
-        library ? &*library : nullptr, detector ? detector_classifier(*detector, params.system.T_base_sensor) : labelling::UnknownClassifier{},
-        [&](const std::string& name, std::size_t d, std::size_t t) {
-            if (name != stage) {
-                if (step) step->finish();
-                stage = name;
-                step.emplace("label: " + name, t);
-            }
-            step->update(d);
-        });
+    const labelling::LabelResult r =
+        labeller.finish(library ? &*library : nullptr,
+                        detector ? detector_classifier(*detector, params.system.T_base_sensor)
+                                 : labelling::UnknownClassifier{},
+                        [&](const std::string& name, std::size_t d, std::size_t t) {
+                            if (name != stage) {
+                                if (step) step->finish();
+                                stage = name;
+                                step.emplace("label: " + name, t);
+                            }
+                            step->update(d);
+                        });
     if (step) step->finish();
 
     const fs::path out = staged.staging();
@@ -169,33 +201,59 @@ int run_label(const LabelOptions& o) {
             ++index;
         }
         const labelling::SessionReport& rep = r.reports[s];
-        sessions.push_back({{"folder", o.sessions[s]}, {"sweeps", rep.sweeps}, {"keyframes", rep.keyframes},
-                            {"alignment", {{"residual_m", rep.alignment.residual_m}, {"inlier_fraction", rep.alignment.inlier_fraction},
-                                           {"correction_m", rep.alignment.correction_m}, {"correction_deg", rep.alignment.correction_deg},
-                                           {"T_reference_session", io::pose_to_json(rep.alignment.T_reference_session)}}},
-                            {"clusters", rep.clusters}, {"objects", rep.objects}, {"cad_objects", rep.cad_objects},
-                            {"unknown_objects", rep.unknown_objects}});
+        sessions.push_back(
+            {{"folder", o.sessions[s]},
+             {"sweeps", rep.sweeps},
+             {"keyframes", rep.keyframes},
+             {"alignment",
+              {{"residual_m", rep.alignment.residual_m},
+               {"inlier_fraction", rep.alignment.inlier_fraction},
+               {"correction_m", rep.alignment.correction_m},
+               {"correction_deg", rep.alignment.correction_deg},
+               {"T_reference_session", io::pose_to_json(rep.alignment.T_reference_session)}}},
+             {"clusters", rep.clusters},
+             {"objects", rep.objects},
+             {"cad_objects", rep.cad_objects},
+             {"unknown_objects", rep.unknown_objects}});
     }
     io::Json objects = io::Json::array();
     for (const labelling::LabelledWorldObject& w : r.objects) {
-        objects.push_back({{"id", w.id}, {"session", w.session}, {"class", w.cls ? std::string(to_string(*w.cls)) : "unknown"},
-                           {"class_source", w.class_source}, {"model", w.model}, {"box_world", io::to_json(w.box_world)},
-                           {"residual_m", w.residual_m}, {"seen_through", w.seen_through}, {"map_points", w.map_points},
+        objects.push_back({{"id", w.id},
+                           {"session", w.session},
+                           {"class", w.cls ? std::string(to_string(*w.cls)) : "unknown"},
+                           {"class_source", w.class_source},
+                           {"model", w.model},
+                           {"box_world", io::to_json(w.box_world)},
+                           {"residual_m", w.residual_m},
+                           {"seen_through", w.seen_through},
+                           {"map_points", w.map_points},
                            {"movable_share", w.movable_share}});
     }
     io::Json counts = io::Json::object();
-    for (int c = 0; c < labelling::kNumPointClasses; ++c) counts[std::string(labelling::to_string(static_cast<labelling::PointClass>(c)))] = r.point_class_counts[c];
+    for (int c = 0; c < labelling::kNumPointClasses; ++c)
+        counts[std::string(labelling::to_string(static_cast<labelling::PointClass>(c)))] =
+            r.point_class_counts[c];
     io::write_json(out / "objects.json", {{"objects", objects}});
-    io::write_json(out / "meta.json", {{"auto_labelled", true}, {"sessions", sessions}, {"keyframes", index}, {"objects", labelled},
+    io::write_json(out / "meta.json", {{"auto_labelled", true},
+                                       {"sessions", sessions},
+                                       {"keyframes", index},
+                                       {"objects", labelled},
                                        {"point_classes", counts},
-                                       {"seconds", {{"front_end", r.seconds_front_end}, {"align", r.seconds_align}, {"ray_tracing", r.seconds_trace},
-                                                    {"objects", r.seconds_objects}, {"labels", r.seconds_points}}}});
+                                       {"seconds",
+                                        {{"front_end", r.seconds_front_end},
+                                         {"align", r.seconds_align},
+                                         {"ray_tracing", r.seconds_trace},
+                                         {"objects", r.seconds_objects},
+                                         {"labels", r.seconds_points}}}});
     staged.commit();
-    std::cout << "wrote " << index << " keyframes with " << labelled << " labelled objects (" << r.objects.size() << " objects over "
-              << r.sessions.size() << " sessions) to " << o.out << "\n";
+    std::cout << "wrote " << index << " keyframes with " << labelled << " labelled objects ("
+              << r.objects.size() << " objects over " << r.sessions.size() << " sessions) to "
+              << o.out << "\n";
     for (std::size_t s = 1; s < r.reports.size(); ++s) {
-        std::printf("session %zu aligned to session 1: residual %.1f mm, correction %.1f cm %.2f deg\n", s + 1,
-                    1e3 * r.reports[s].alignment.residual_m, 1e2 * r.reports[s].alignment.correction_m, r.reports[s].alignment.correction_deg);
+        std::printf(
+            "session %zu aligned to session 1: residual %.1f mm, correction %.1f cm %.2f deg\n",
+            s + 1, 1e3 * r.reports[s].alignment.residual_m,
+            1e2 * r.reports[s].alignment.correction_m, r.reports[s].alignment.correction_deg);
     }
     return 0;
 }
@@ -208,23 +266,48 @@ int run_bench_label(const BenchLabelOptions& o) {
     p.max_sweeps = o.max_sweeps;
     p.cad = !o.no_cad;
     io::ProgressBar bar("bench label", static_cast<std::size_t>(p.scenes));
-    const eval::LabelBenchResult r = eval::run_label_bench(p, [&](int done, int) { bar.update(static_cast<std::size_t>(done)); });
+    const eval::LabelBenchResult r = eval::run_label_bench(
+        p, [&](int done, int) { bar.update(static_cast<std::size_t>(done)); });
     bar.finish();
     io::Json scenes = io::Json::array();
     for (const eval::LabelBenchScene& s : r.scenes) {
         const auto iou = eval::class_iou(s.confusion);
-        scenes.push_back({{"name", s.name}, {"sweeps", s.sweeps}, {"keyframes", s.keyframes}, {"objects", s.objects},
-                          {"cad_objects", s.cad_objects}, {"unknown_objects", s.unknown_objects},
-                          {"alignment_residual_m", s.alignment_residual_m}, {"alignment_correction_m", s.alignment_correction_m},
-                          {"iou", {{"ground", iou[0]}, {"permanent", iou[1]}, {"movable", iou[2]}, {"dynamic", iou[3]}}},
-                          {"panoptic", panoptic_json(s.panoptic)}, {"boxes", metrics_json(s.boxes)},
-                          {"still_boxes", metrics_json(s.still_boxes)}, {"iou_by_motion", {{"movable", eval::class_iou(s.confusion_by_motion)[2]}, {"dynamic", eval::class_iou(s.confusion_by_motion)[3]}}},
+        scenes.push_back({{"name", s.name},
+                          {"sweeps", s.sweeps},
+                          {"keyframes", s.keyframes},
+                          {"objects", s.objects},
+                          {"cad_objects", s.cad_objects},
+                          {"unknown_objects", s.unknown_objects},
+                          {"alignment_residual_m", s.alignment_residual_m},
+                          {"alignment_correction_m", s.alignment_correction_m},
+                          {"iou",
+                           {{"ground", iou[0]},
+                            {"permanent", iou[1]},
+                            {"movable", iou[2]},
+                            {"dynamic", iou[3]}}},
+                          {"panoptic", panoptic_json(s.panoptic)},
+                          {"boxes", metrics_json(s.boxes)},
+                          {"still_boxes", metrics_json(s.still_boxes)},
+                          {"iou_by_motion",
+                           {{"movable", eval::class_iou(s.confusion_by_motion)[2]},
+                            {"dynamic", eval::class_iou(s.confusion_by_motion)[3]}}},
                           {"label_seconds", s.label_seconds}});
     }
-    const io::Json j = {{"scenes", p.scenes}, {"sessions", p.sessions}, {"seed", p.seed}, {"cad", p.cad},
-                        {"iou", {{"ground", r.iou[0]}, {"permanent", r.iou[1]}, {"movable", r.iou[2]}, {"dynamic", r.iou[3]}}},
+    const io::Json j = {{"scenes", p.scenes},
+                        {"sessions", p.sessions},
+                        {"seed", p.seed},
+                        {"cad", p.cad},
+                        {"iou",
+                         {{"ground", r.iou[0]},
+                          {"permanent", r.iou[1]},
+                          {"movable", r.iou[2]},
+                          {"dynamic", r.iou[3]}}},
                         {"confusion_truth_by_predicted", r.confusion},
-                        {"iou_by_motion", {{"ground", r.iou_by_motion[0]}, {"permanent", r.iou_by_motion[1]}, {"movable", r.iou_by_motion[2]}, {"dynamic", r.iou_by_motion[3]}}},
+                        {"iou_by_motion",
+                         {{"ground", r.iou_by_motion[0]},
+                          {"permanent", r.iou_by_motion[1]},
+                          {"movable", r.iou_by_motion[2]},
+                          {"dynamic", r.iou_by_motion[3]}}},
                         {"still_boxes", metrics_json(r.still_boxes)},
                         {"still_yaw_within_10deg", yaw_within_10(r.still_boxes)},
                         {"panoptic", panoptic_json(r.panoptic)},
@@ -233,18 +316,23 @@ int run_bench_label(const BenchLabelOptions& o) {
                         {"per_scene", scenes}};
     const fs::path out(o.out_dir);
     io::write_json(out / "summary.json", j);
-    std::cout << "point IoU: ground " << r.iou[0] << ", permanent " << r.iou[1] << ", movable " << r.iou[2] << ", dynamic " << r.iou[3]
-              << "\ninstances: PQ " << r.panoptic.pq() << " (SQ " << r.panoptic.sq() << ", RQ " << r.panoptic.rq() << ")"
-              << "\nboxes: AP@0.25 " << r.boxes.map_25 << ", AP@0.5 " << r.boxes.map_50 << ", yaw within 10 deg "
-              << yaw_within_10(r.boxes) << "\nby motion (chairs pulled during a session as dynamic): movable IoU " << r.iou_by_motion[2]
-              << ", dynamic IoU " << r.iou_by_motion[3] << ", box AP@0.25 " << r.still_boxes.map_25 << ", AP@0.5 " << r.still_boxes.map_50
-              << ", yaw within 10 deg " << yaw_within_10(r.still_boxes) << "\nwrote " << (out / "summary.json").string() << "\n";
+    std::cout << "point IoU: ground " << r.iou[0] << ", permanent " << r.iou[1] << ", movable "
+              << r.iou[2] << ", dynamic " << r.iou[3] << "\ninstances: PQ " << r.panoptic.pq()
+              << " (SQ " << r.panoptic.sq() << ", RQ " << r.panoptic.rq() << ")"
+              << "\nboxes: AP@0.25 " << r.boxes.map_25 << ", AP@0.5 " << r.boxes.map_50
+              << ", yaw within 10 deg " << yaw_within_10(r.boxes)
+              << "\nby motion (chairs pulled during a session as dynamic): movable IoU "
+              << r.iou_by_motion[2] << ", dynamic IoU " << r.iou_by_motion[3] << ", box AP@0.25 "
+              << r.still_boxes.map_25 << ", AP@0.5 " << r.still_boxes.map_50
+              << ", yaw within 10 deg " << yaw_within_10(r.still_boxes) << "\nwrote "
+              << (out / "summary.json").string() << "\n";
     return 0;
 }
 
 int run_bench_sessions(const BenchSessionsOptions& o) {
     for (const std::string& style : o.left_out_styles) {
-        if (!sim::parse_furniture_style(style)) throw std::invalid_argument("--left-out-styles: unknown style '" + style + "'");
+        if (!sim::parse_furniture_style(style))
+            throw std::invalid_argument("--left-out-styles: unknown style '" + style + "'");
     }
     perception::Detector detector = load_detector(o.model);
     perception::set_inference_threads(o.threads);
@@ -260,28 +348,43 @@ int run_bench_sessions(const BenchSessionsOptions& o) {
     p.train.epochs = o.epochs;
     p.train.threads = o.threads;
     const auto t0 = std::chrono::steady_clock::now();
-    const std::vector<eval::SessionRound> rounds = eval::run_session_bench(detector, p, [&](const std::string& what) {
-        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        std::printf("[%6.0f s] %s\n", s, what.c_str());
-        std::fflush(stdout);
-    });
+    const std::vector<eval::SessionRound> rounds =
+        eval::run_session_bench(detector, p, [&](const std::string& what) {
+            const double s =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            std::printf("[%6.0f s] %s\n", s, what.c_str());
+            std::fflush(stdout);
+        });
     const fs::path out(o.out_dir);
     io::Json rows = io::Json::array();
-    std::string table = "| round | auto-labelled keyframes | labelled objects | left-out mAP@0.25 | left-out mAP@0.5 | trained styles mAP@0.25 | trained styles mAP@0.5 |\n"
-                        "| --- | --- | --- | --- | --- | --- | --- |\n";
+    std::string table =
+        "| round | auto-labelled keyframes | labelled objects | left-out mAP@0.25 | left-out "
+        "mAP@0.5 | trained styles mAP@0.25 | trained styles mAP@0.5 |\n"
+        "| --- | --- | --- | --- | --- | --- | --- |\n";
     char line[256];
     for (const eval::SessionRound& r : rounds) {
-        rows.push_back({{"round", r.round}, {"labelled_keyframes", r.labelled_keyframes}, {"labelled_objects", r.labelled_objects},
-                        {"left_out_map_25", r.left_out_map_25}, {"left_out_map_50", r.left_out_map_50},
-                        {"held_out_map_25", r.held_out_map_25}, {"held_out_map_50", r.held_out_map_50},
-                        {"label_seconds", r.label_seconds}, {"train_seconds", r.train_seconds}});
-        std::snprintf(line, sizeof(line), "| %d | %zu | %zu | %.3f | %.3f | %.3f | %.3f |\n", r.round, r.labelled_keyframes, r.labelled_objects,
-                      r.left_out_map_25, r.left_out_map_50, r.held_out_map_25, r.held_out_map_50);
+        rows.push_back({{"round", r.round},
+                        {"labelled_keyframes", r.labelled_keyframes},
+                        {"labelled_objects", r.labelled_objects},
+                        {"left_out_map_25", r.left_out_map_25},
+                        {"left_out_map_50", r.left_out_map_50},
+                        {"held_out_map_25", r.held_out_map_25},
+                        {"held_out_map_50", r.held_out_map_50},
+                        {"label_seconds", r.label_seconds},
+                        {"train_seconds", r.train_seconds}});
+        std::snprintf(line, sizeof(line), "| %d | %zu | %zu | %.3f | %.3f | %.3f | %.3f |\n",
+                      r.round, r.labelled_keyframes, r.labelled_objects, r.left_out_map_25,
+                      r.left_out_map_50, r.held_out_map_25, r.held_out_map_50);
         table += line;
     }
-    io::write_json(out / "summary.json", {{"left_out_styles", p.left_out_styles}, {"rounds", rows}, {"scenes_per_round", p.scenes_per_round},
-                                          {"sessions", p.sessions}, {"epochs", p.train.epochs}, {"replay_scenes", p.replay_scenes},
-                                          {"eval_scenes", p.eval_scenes}, {"seed", p.seed}});
+    io::write_json(out / "summary.json", {{"left_out_styles", p.left_out_styles},
+                                          {"rounds", rows},
+                                          {"scenes_per_round", p.scenes_per_round},
+                                          {"sessions", p.sessions},
+                                          {"epochs", p.train.epochs},
+                                          {"replay_scenes", p.replay_scenes},
+                                          {"eval_scenes", p.eval_scenes},
+                                          {"seed", p.seed}});
     io::write_file_atomic(out / "table.md", table);
     detector.save(out / "model.pt");
     std::cout << table;

@@ -12,41 +12,46 @@
 #include <optional>
 
 #include "apps/commands.hpp"
-#include "io/json_io.hpp"
 #include "apps/model_path.hpp"
 #include "apps/nav_report.hpp"
 #include "apps/nav_run.hpp"
-#include "makeway/shape/learned_prior.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
+#include "io/json_io.hpp"
 #include "io/map_server_io.hpp"
 #include "io/nav_png.hpp"
 #include "io/progress.hpp"
 #include "io/scene_io.hpp"
 #include "io/staged_output.hpp"
+#include "makeway/shape/learned_prior.hpp"
 #include "makeway/sim/scene_generator.hpp"
 
 namespace makeway::apps {
 
 int run_navigate(const NavigateOptions& options) {
     const io::SimConfig cfg = io::load_sim_config(options.config);
-    const sim::Scene scene = io::read_scene(options.scene, {.allow_outside_paths = options.allow_outside_paths});
+    const sim::Scene scene =
+        io::read_scene(options.scene, {.allow_outside_paths = options.allow_outside_paths});
     eval::NavParams params = nav_params(cfg);
     params.seed = options.seed;
     params.time_limit_s = options.time_limit_s;
     if (!options.map.empty()) params.static_map = io::read_map_server(options.map);
     std::optional<perception::Detector> detector;
     if (options.method == "ours") detector = load_detector(options.model);
-    const eval::NavRunResult r = run_nav_method(scene, options.method, params, detector ? &*detector : nullptr);
-    io::StagedOutput staged(options.out_dir);  // run.json, costmap.yaml/.pgm, route.png: all or none
+    const eval::NavRunResult r =
+        run_nav_method(scene, options.method, params, detector ? &*detector : nullptr);
+    io::StagedOutput staged(
+        options.out_dir);  // run.json, costmap.yaml/.pgm, route.png: all or none
     const std::filesystem::path out = staged.staging();
     io::Json j = run_to_json(r, true);
     j["scene"] = options.scene;
     io::write_json(out / "run.json", j);
     io::write_map_server(out / "costmap.yaml", r.final_costmap);
-    io::write_nav_png(out / "route.png", scene, r.final_costmap, {{options.method, r.trajectory}}, r.last_plan,
-                      scene.name + " / " + options.method + ": " + (r.success ? "success" : "failed (" + r.failure + ")") +
-                          ", " + std::to_string(r.time_s).substr(0, 5) + " s, risk " +
+    io::write_nav_png(out / "route.png", scene, r.final_costmap, {{options.method, r.trajectory}},
+                      r.last_plan,
+                      scene.name + " / " + options.method + ": " +
+                          (r.success ? "success" : "failed (" + r.failure + ")") + ", " +
+                          std::to_string(r.time_s).substr(0, 5) + " s, risk " +
                           std::to_string(r.risk_time_s).substr(0, 4) + " s",
                       params.system.navigator.affordance);
     staged.commit();
@@ -60,31 +65,36 @@ constexpr const char* kPartialKind = "makeway bench nav partial";
 
 // results.json, table.md, risk_time.png and timing.json from the runs of every scene: the same
 // function for one run and for merged shards, so both give the same bytes.
-void write_nav_results(const std::filesystem::path& out, const io::Json& header, const io::Json& runs,
-                       const io::Json& timing, double time_limit_s) {
+void write_nav_results(const std::filesystem::path& out, const io::Json& header,
+                       const io::Json& runs, const io::Json& timing, double time_limit_s) {
     const io::Json summary = summarise_nav(header, runs);
     io::write_json(out / "results.json", summary);
     const auto methods = header["methods"].get<std::vector<std::string>>();
     const io::Json timing_summary = summarise_timing(timing, methods);
     io::write_json(out / "timing.json", {{"aggregate", timing_summary}, {"runs", timing}});
-    const std::string table = "# Navigation benchmark: " + std::to_string(header["scenes"].get<int>()) + " scenes, seed " +
-                              std::to_string(header["seed"].get<std::uint64_t>()) + "\n\n" + nav_table_markdown(summary) +
-                              "\nSums and means over successful runs (success = goal reached in " +
-                              std::to_string(static_cast<int>(time_limit_s)) +
-                              " s without touching a wall, pillar or piece of furniture; walking people do "
-                              "not avoid the robot, so contacts with them are counted apart). Avoidable risk = risk "
-                              "time - the least risk time any collision-free route has at top speed (unavoidable). "
-                              "Intervals: 2,000 bootstrap resamples of the scenes.\n\n![risk vs time](risk_time.png)\n";
+    const std::string table =
+        "# Navigation benchmark: " + std::to_string(header["scenes"].get<int>()) +
+        " scenes, seed " + std::to_string(header["seed"].get<std::uint64_t>()) + "\n\n" +
+        nav_table_markdown(summary) +
+        "\nSums and means over successful runs (success = goal reached in " +
+        std::to_string(static_cast<int>(time_limit_s)) +
+        " s without touching a wall, pillar or piece of furniture; walking people do "
+        "not avoid the robot, so contacts with them are counted apart). Avoidable risk = risk "
+        "time - the least risk time any collision-free route has at top speed (unavoidable). "
+        "Intervals: 2,000 bootstrap resamples of the scenes.\n\n![risk vs time](risk_time.png)\n";
     io::write_file_atomic(out / "table.md", table);
     write_risk_time_plot(out / "risk_time.png", summary);
     std::cout << table;
     for (const std::string& m : methods) {
         std::cout << m << ": control cycle " << timing_summary[m]["cycle_ms_median"].get<double>()
-                  << " ms median (of the runs' medians), " << timing_summary[m]["cycle_ms_p99"].get<double>() << " ms p99";
-        if (m == "ours") {  // the full system drives on its own pose (LiDAR odometry fused with the wheels)
+                  << " ms median (of the runs' medians), "
+                  << timing_summary[m]["cycle_ms_p99"].get<double>() << " ms p99";
+        if (m == "ours") {  // the full system drives on its own pose (LiDAR odometry fused with the
+                            // wheels)
             const io::Json& a = summary["aggregate"][m];
-            std::cout << "; its pose: ATE " << 100 * a["pose_ate_m_median"].get<double>() << " cm median, "
-                      << 100 * a["pose_ate_m_max"].get<double>() << " cm max, final error "
+            std::cout << "; its pose: ATE " << 100 * a["pose_ate_m_median"].get<double>()
+                      << " cm median, " << 100 * a["pose_ate_m_max"].get<double>()
+                      << " cm max, final error "
                       << 100 * a["final_pose_error_m_median"].get<double>() << " cm median";
         }
         std::cout << "\n";
@@ -96,7 +106,8 @@ void write_nav_results(const std::filesystem::path& out, const io::Json& header,
 std::optional<std::pair<int, int>> parse_shard(const std::string& text) {
     int k = -1, n = -1;
     char slash = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d %c %d %c", &k, &slash, &n, &extra) != 3 || slash != '/') return std::nullopt;
+    if (std::sscanf(text.c_str(), "%d %c %d %c", &k, &slash, &n, &extra) != 3 || slash != '/')
+        return std::nullopt;
     if (n < 1 || n > 100000 || k < 0 || k >= n) return std::nullopt;
     return std::make_pair(k, n);
 }
@@ -104,32 +115,41 @@ std::optional<std::pair<int, int>> parse_shard(const std::string& text) {
 int run_bench_nav(const BenchNavOptions& options) {
     const io::SimConfig cfg = io::load_sim_config(options.config);
     const auto shard = parse_shard(options.shard.empty() ? "0/1" : options.shard);
-    if (!shard) throw std::invalid_argument("--shard " + options.shard + ": expected K/N with 0 <= K < N");
+    if (!shard)
+        throw std::invalid_argument("--shard " + options.shard + ": expected K/N with 0 <= K < N");
     const bool partial = !options.shard.empty();
-    io::StagedOutput staged(options.out_dir);  // scenes, routes, results (or the partial): all or none
+    io::StagedOutput staged(
+        options.out_dir);  // scenes, routes, results (or the partial): all or none
     const std::filesystem::path out = staged.staging();
     // The full system `ours` joins when detector weights are there (given, or the default ones).
     std::vector<std::string> methods = eval::nav_method_names();
     std::optional<perception::Detector> detector;
-    const bool ours_asked = std::find(options.methods.begin(), options.methods.end(), "ours") != options.methods.end();
+    const bool ours_asked =
+        std::find(options.methods.begin(), options.methods.end(), "ours") != options.methods.end();
     if (!options.model.empty() || default_model_path() || ours_asked) {
-        detector = load_detector(options.model);  // names the missing default file when ours was asked for
+        detector =
+            load_detector(options.model);  // names the missing default file when ours was asked for
         perception::set_inference_threads(1);  // runs go in parallel instead
         methods.push_back("ours");
     } else {
-        std::cout << "no detector weights (models/detector.pt; `make model`): the full system `ours` is left out\n";
+        std::cout << "no detector weights (models/detector.pt; `make model`): the full system "
+                     "`ours` is left out\n";
     }
     std::unique_ptr<shape::LearnedShapePrior> prior;  // ours without CAD models: the learned shapes
     if (!options.shape_model.empty()) {
-        prior = std::make_unique<shape::LearnedShapePrior>(std::make_shared<const shape::ShapeModel>(load_shape_model(options.shape_model)));
+        prior = std::make_unique<shape::LearnedShapePrior>(
+            std::make_shared<const shape::ShapeModel>(load_shape_model(options.shape_model)));
     }
     if (!options.methods.empty()) {
         std::erase_if(methods, [&](const std::string& m) {
-            return std::find(options.methods.begin(), options.methods.end(), m) == options.methods.end();
+            return std::find(options.methods.begin(), options.methods.end(), m) ==
+                   options.methods.end();
         });
     }
-    // Scene i is the same scene in every shard (its seed is seed + i); shard K takes i = K, K + N, ...
-    const sim::Density densities[] = {sim::Density::kSparse, sim::Density::kMedium, sim::Density::kDense};
+    // Scene i is the same scene in every shard (its seed is seed + i); shard K takes i = K, K + N,
+    // ...
+    const sim::Density densities[] = {sim::Density::kSparse, sim::Density::kMedium,
+                                      sim::Density::kDense};
     std::vector<int> indices;
     std::vector<sim::Scene> scenes;
     for (int i = shard->first; i < options.scenes; i += shard->second) {
@@ -146,13 +166,15 @@ int run_bench_nav(const BenchNavOptions& options) {
     io::ProgressBar bar("bench nav", scenes.size() * methods.size());
     std::mutex mutex;
     std::size_t done = 0;
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                              static_cast<std::size_t>(options.threads));
     tbb::parallel_for(std::size_t{0}, scenes.size() * methods.size(), [&](std::size_t job) {
         const std::size_t s = job / methods.size(), m = job % methods.size();
         eval::NavParams params = nav_params(cfg);
         params.seed = options.seed + static_cast<std::uint64_t>(indices[s]);
         params.time_limit_s = options.time_limit_s;
-        eval::NavRunResult r = run_nav_method(scenes[s], methods[m], params, detector ? &*detector : nullptr, prior.get());
+        eval::NavRunResult r = run_nav_method(scenes[s], methods[m], params,
+                                              detector ? &*detector : nullptr, prior.get());
         std::lock_guard<std::mutex> lock(mutex);
         results[s].resize(methods.size());
         results[s][m] = std::move(r);
@@ -173,28 +195,34 @@ int run_bench_nav(const BenchNavOptions& options) {
             t["scene"] = scenes[s].name;
             t["scene_index"] = indices[s];
             timing.push_back(t);
-            paths.push_back({r.method + (r.success ? "" : " (failed: " + r.failure + ")") + ": risk " +
-                                 std::to_string(r.risk_time_s).substr(0, 4) + " s, time " + std::to_string(r.time_s).substr(0, 5) + " s",
+            paths.push_back({r.method + (r.success ? "" : " (failed: " + r.failure + ")") +
+                                 ": risk " + std::to_string(r.risk_time_s).substr(0, 4) +
+                                 " s, time " + std::to_string(r.time_s).substr(0, 5) + " s",
                              r.trajectory});
         }
-        io::write_nav_png(out / "routes" / (scenes[s].name + ".png"), scenes[s], Costmap{}, paths, {},
-                          scenes[s].name + ": every method", cfg.affordance);
+        io::write_nav_png(out / "routes" / (scenes[s].name + ".png"), scenes[s], Costmap{}, paths,
+                          {}, scenes[s].name + ": every method", cfg.affordance);
     }
     // What every shard of one benchmark shares; a merge refuses partials that differ in it.
-    const io::Json header = {{"scenes", options.scenes},
-                             {"seed", options.seed},
-                             {"methods", methods},
-                             {"time_limit_s", options.time_limit_s},
-                             {"layout", options.layout},
-                             {"shape_model", options.shape_model},  // ours with learned shapes: a different benchmark
-                             {"config", options.config.empty() ? std::string() : io::read_file(options.config)}};
+    const io::Json header = {
+        {"scenes", options.scenes},
+        {"seed", options.seed},
+        {"methods", methods},
+        {"time_limit_s", options.time_limit_s},
+        {"layout", options.layout},
+        {"shape_model", options.shape_model},  // ours with learned shapes: a different benchmark
+        {"config", options.config.empty() ? std::string() : io::read_file(options.config)}};
     if (partial) {
-        io::Json p = {{"kind", kPartialKind}, {"header", header}, {"shard", {{"index", shard->first}, {"count", shard->second}}},
-                      {"runs", runs}, {"timing", timing}};
+        io::Json p = {{"kind", kPartialKind},
+                      {"header", header},
+                      {"shard", {{"index", shard->first}, {"count", shard->second}}},
+                      {"runs", runs},
+                      {"timing", timing}};
         io::write_json(out / "partial.json", p);
         staged.commit();
-        std::cout << "bench nav shard " << shard->first << "/" << shard->second << ": " << scenes.size() << " scenes, "
-                  << runs.size() << " runs in " << (std::filesystem::path(options.out_dir) / "partial.json").string()
+        std::cout << "bench nav shard " << shard->first << "/" << shard->second << ": "
+                  << scenes.size() << " scenes, " << runs.size() << " runs in "
+                  << (std::filesystem::path(options.out_dir) / "partial.json").string()
                   << " (join with `makeway bench merge`)\n";
         return 0;
     }
@@ -213,8 +241,8 @@ int run_bench_merge(const BenchMergeOptions& options) {
     for (const std::string& d : options.dirs) {
         const std::filesystem::path file = std::filesystem::path(d) / "partial.json";
         io::Json j = io::read_json(file);
-        if (!j.is_object() || j.value("kind", "") != kPartialKind || !j.contains("header") || !j.contains("shard") ||
-            !j.contains("runs") || !j.contains("timing")) {
+        if (!j.is_object() || j.value("kind", "") != kPartialKind || !j.contains("header") ||
+            !j.contains("shard") || !j.contains("runs") || !j.contains("timing")) {
             throw io::FileError(file.string(), "not a `makeway bench nav --shard` partial result");
         }
         parts.push_back({d, std::move(j)});
@@ -225,14 +253,24 @@ int run_bench_merge(const BenchMergeOptions& options) {
     std::vector<int> seen(static_cast<std::size_t>(count), 0);
     for (const Part& p : parts) {
         const std::string name = (p.dir / "partial.json").string();
-        if (p.json["header"] != header) throw io::FileError(name, "a different benchmark (scenes, seed, methods, time limit, shape model or configuration) than " + (parts.front().dir / "partial.json").string());
-        if (p.json["shard"]["count"].get<int>() != count) throw io::FileError(name, "shard count differs from the first partial's");
+        if (p.json["header"] != header)
+            throw io::FileError(name,
+                                "a different benchmark (scenes, seed, methods, time limit, shape "
+                                "model or configuration) than " +
+                                    (parts.front().dir / "partial.json").string());
+        if (p.json["shard"]["count"].get<int>() != count)
+            throw io::FileError(name, "shard count differs from the first partial's");
         const int k = p.json["shard"]["index"].get<int>();
         if (k < 0 || k >= count) throw io::FileError(name, "shard index out of range");
-        if (seen[k]++) throw io::FileError(name, "shard " + std::to_string(k) + "/" + std::to_string(count) + " given twice");
+        if (seen[k]++)
+            throw io::FileError(
+                name, "shard " + std::to_string(k) + "/" + std::to_string(count) + " given twice");
     }
     for (int k = 0; k < count; ++k) {
-        if (!seen[k]) throw io::FileError((parts.front().dir / "partial.json").string(), "shard " + std::to_string(k) + "/" + std::to_string(count) + " is missing from the folders given");
+        if (!seen[k])
+            throw io::FileError((parts.front().dir / "partial.json").string(),
+                                "shard " + std::to_string(k) + "/" + std::to_string(count) +
+                                    " is missing from the folders given");
     }
     // Runs in the order one unsharded run writes them: scene index, then method order.
     const auto methods = header["methods"].get<std::vector<std::string>>();
@@ -245,11 +283,16 @@ int run_bench_merge(const BenchMergeOptions& options) {
         for (const io::Json& r : p.json["runs"]) runs.push_back(r);
         for (const io::Json& t : p.json["timing"]) timing.push_back(t);
     }
-    std::stable_sort(runs.begin(), runs.end(), [&](const io::Json& a, const io::Json& b) { return rank(a) < rank(b); });
-    std::stable_sort(timing.begin(), timing.end(), [&](const io::Json& a, const io::Json& b) { return rank(a) < rank(b); });
-    const std::size_t expected = static_cast<std::size_t>(header["scenes"].get<int>()) * methods.size();
+    std::stable_sort(runs.begin(), runs.end(),
+                     [&](const io::Json& a, const io::Json& b) { return rank(a) < rank(b); });
+    std::stable_sort(timing.begin(), timing.end(),
+                     [&](const io::Json& a, const io::Json& b) { return rank(a) < rank(b); });
+    const std::size_t expected =
+        static_cast<std::size_t>(header["scenes"].get<int>()) * methods.size();
     if (runs.size() != expected) {
-        throw io::FileError((parts.front().dir / "partial.json").string(), "the partials hold " + std::to_string(runs.size()) + " runs, the benchmark " + std::to_string(expected));
+        throw io::FileError((parts.front().dir / "partial.json").string(),
+                            "the partials hold " + std::to_string(runs.size()) +
+                                " runs, the benchmark " + std::to_string(expected));
     }
     io::StagedOutput staged(options.out_dir);
     const std::filesystem::path out = staged.staging();
@@ -258,7 +301,8 @@ int run_bench_merge(const BenchMergeOptions& options) {
             if (!std::filesystem::is_directory(p.dir / sub)) continue;
             std::filesystem::create_directories(out / sub);
             for (const auto& e : std::filesystem::directory_iterator(p.dir / sub)) {
-                std::filesystem::copy_file(e.path(), out / sub / e.path().filename(), std::filesystem::copy_options::overwrite_existing);
+                std::filesystem::copy_file(e.path(), out / sub / e.path().filename(),
+                                           std::filesystem::copy_options::overwrite_existing);
             }
         }
     }

@@ -12,9 +12,7 @@
 #include "apps/commands.hpp"
 #include "apps/model_path.hpp"
 #include "apps/nav_report.hpp"
-#include "ros/sweep_source.hpp"
 #include "io/cad_folder.hpp"
-#include "makeway/shape/learned_prior.hpp"
 #include "io/canvas.hpp"
 #include "io/config_reader.hpp"
 #include "io/error.hpp"
@@ -27,7 +25,9 @@
 #include "io/staged_output.hpp"
 #include "io/tracking_io.hpp"
 #include "makeway/pipeline/online_system.hpp"
+#include "makeway/shape/learned_prior.hpp"
 #include "ros/bag_io.hpp"
+#include "ros/sweep_source.hpp"
 
 namespace makeway::apps {
 namespace fs = std::filesystem;
@@ -48,14 +48,20 @@ struct Timings {
 };
 
 // Where the pictures look: what was driven and mapped, plus a margin, within the costmap.
-void view_bounds(const std::vector<Pose2>& trajectory, const std::vector<ObjectEstimate>& objects, const Costmap& map,
-                 Eigen::Vector2d& lo, Eigen::Vector2d& hi) {
+void view_bounds(const std::vector<Pose2>& trajectory, const std::vector<ObjectEstimate>& objects,
+                 const Costmap& map, Eigen::Vector2d& lo, Eigen::Vector2d& hi) {
     lo = Eigen::Vector2d::Constant(1e18), hi = -lo;
-    for (const Pose2& p : trajectory) lo = lo.cwiseMin(Eigen::Vector2d(p.x_m, p.y_m)), hi = hi.cwiseMax(Eigen::Vector2d(p.x_m, p.y_m));
-    for (const ObjectEstimate& o : objects) lo = lo.cwiseMin(o.box_world.centre_m.head<2>()), hi = hi.cwiseMax(o.box_world.centre_m.head<2>());
+    for (const Pose2& p : trajectory)
+        lo = lo.cwiseMin(Eigen::Vector2d(p.x_m, p.y_m)),
+        hi = hi.cwiseMax(Eigen::Vector2d(p.x_m, p.y_m));
+    for (const ObjectEstimate& o : objects)
+        lo = lo.cwiseMin(o.box_world.centre_m.head<2>()),
+        hi = hi.cwiseMax(o.box_world.centre_m.head<2>());
     lo -= Eigen::Vector2d::Constant(4.0), hi += Eigen::Vector2d::Constant(4.0);
-    const Eigen::Vector2d map_hi = map.origin_m + map.resolution_m * Eigen::Vector2d(map.width, map.height);
-    lo = lo.cwiseMax(map.origin_m), hi = hi.cwiseMin(map_hi).cwiseMax(lo + Eigen::Vector2d::Constant(1.0));
+    const Eigen::Vector2d map_hi =
+        map.origin_m + map.resolution_m * Eigen::Vector2d(map.width, map.height);
+    lo = lo.cwiseMax(map.origin_m),
+    hi = hi.cwiseMin(map_hi).cwiseMax(lo + Eigen::Vector2d::Constant(1.0));
 }
 
 }  // namespace
@@ -63,15 +69,20 @@ void view_bounds(const std::vector<Pose2>& trajectory, const std::vector<ObjectE
 int run_run(const RunOptions& o) {
     const io::Config cfg = io::load_config(o.config);
     std::optional<Isometry3> extrinsics;
-    if (const std::string p = o.extrinsics.empty() ? "" : io::extrinsics_problem(o.extrinsics); !p.empty()) throw io::FileError("--extrinsics", p);
-    if (const std::string p = o.start.empty() ? "" : io::start_problem(o.start); !p.empty()) throw io::FileError("--start", p);
+    if (const std::string p = o.extrinsics.empty() ? "" : io::extrinsics_problem(o.extrinsics);
+        !p.empty())
+        throw io::FileError("--extrinsics", p);
+    if (const std::string p = o.start.empty() ? "" : io::start_problem(o.start); !p.empty())
+        throw io::FileError("--start", p);
     if (!o.extrinsics.empty()) {
         const std::vector<double>& e = o.extrinsics;
         extrinsics = make_T_xyz_rpy({e[0], e[1], e[2]}, e[3], e[4], e[5]);
     }
-    pipeline::SystemParams params = io::online_system_params(cfg, extrinsics ? &*extrinsics : nullptr);
+    pipeline::SystemParams params =
+        io::online_system_params(cfg, extrinsics ? &*extrinsics : nullptr);
     const bool external = !o.poses.empty();
-    if (external) params.lidar_odometry_enabled = false;  // the given poses are the pose: no odometry runs
+    if (external)
+        params.lidar_odometry_enabled = false;  // the given poses are the pose: no odometry runs
 
     rosio::SourceOptions so;
     so.clouds = o.clouds;
@@ -80,17 +91,20 @@ int run_run(const RunOptions& o) {
     so.poses = o.poses;
     so.topics = {o.cloud_topic, o.odom_topic};
     so.rate_hz = o.rate_hz;
-    so.non_finite = o.non_finite == "drop" ? io::NonFinitePolicy::kDrop : io::NonFinitePolicy::kReject;
+    so.non_finite =
+        o.non_finite == "drop" ? io::NonFinitePolicy::kDrop : io::NonFinitePolicy::kReject;
     so.T_base_sensor = params.T_base_sensor;
     so.skip_bad_messages = o.skip_bad_messages;
     const std::unique_ptr<rosio::SweepSource> source = rosio::open_sweep_source(so);
     const perception::Detector detector = load_detector(o.model);
     std::optional<verification::CadLibrary> library;
     if (!o.cad.empty()) library = io::read_cad_folder(o.cad);
-    const Pose2 start = !o.start.empty() ? Pose2{o.start[0], o.start[1], o.start[2]} : source->first_pose().value_or(Pose2{});
+    const Pose2 start = !o.start.empty() ? Pose2{o.start[0], o.start[1], o.start[2]}
+                                         : source->first_pose().value_or(Pose2{});
     std::unique_ptr<shape::LearnedShapePrior> prior;
     if (!o.shape_model.empty()) {
-        prior = std::make_unique<shape::LearnedShapePrior>(std::make_shared<const shape::ShapeModel>(load_shape_model(o.shape_model)));
+        prior = std::make_unique<shape::LearnedShapePrior>(
+            std::make_shared<const shape::ShapeModel>(load_shape_model(o.shape_model)));
     }
     pipeline::OnlineSystemSetup setup;
     setup.params = params;
@@ -109,9 +123,14 @@ int run_run(const RunOptions& o) {
     std::optional<rosio::BagWriter> bag;
     if (!o.out_bag.empty()) bag.emplace(o.out_bag);
     std::cout << "run: " << source->describe()
-              << (library ? ", " + std::to_string(library->models().size()) + " CAD models" : prior ? ", no CAD models" : ", no CAD models (verification skipped)")
+              << (library ? ", " + std::to_string(library->models().size()) + " CAD models"
+                  : prior ? ", no CAD models"
+                          : ", no CAD models (verification skipped)")
               << (prior ? ", shape networks" : "")
-              << (external ? ", external poses (no odometry)" : params.lidar_odometry_enabled ? ", LiDAR odometry" : ", wheel odometry alone") << "\n";
+              << (external                        ? ", external poses (no odometry)"
+                  : params.lidar_odometry_enabled ? ", LiDAR odometry"
+                                                  : ", wheel odometry alone")
+              << "\n";
 
     Timings timings;
     std::vector<Pose2> trajectory;
@@ -123,13 +142,16 @@ int run_run(const RunOptions& o) {
     while (std::optional<rosio::SourceSweep> s = source->next()) {
         if (o.max_sweeps > 0 && sweeps >= static_cast<std::size_t>(o.max_sweeps)) break;
         if (!s->timed && !o.instantaneous) {
-            throw io::FileError(s->file, (s->item.empty() ? "" : s->item + ": ") +
-                                             "no per-point time field (time, t or timestamp): the sweep cannot be de-skewed "
-                                             "(--instantaneous takes each sweep as taken at once)");
+            throw io::FileError(
+                s->file,
+                (s->item.empty() ? "" : s->item + ": ") +
+                    "no per-point time field (time, t or timestamp): the sweep cannot be de-skewed "
+                    "(--instantaneous takes each sweep as taken at once)");
         }
         points += s->points.size();
         const double stamp = s->stamp_s;
-        const pipeline::OnlineStep step = system.process({std::move(s->points), stamp, s->duration_s, s->pose_start, s->pose_end});
+        const pipeline::OnlineStep step = system.process(
+            {std::move(s->points), stamp, s->duration_s, s->pose_start, s->pose_end});
         ++sweeps;
         const pipeline::SweepResult& r = step.sweep;
         trajectory.push_back(r.pose);
@@ -152,7 +174,8 @@ int run_run(const RunOptions& o) {
             if (library || prior) timings.add("verify_ms", r.timing.verify_ms);
             timings.add("track_ms", r.timing.track_ms);
             detections += k.detections.size();
-            accepted += std::count_if(k.verified.begin(), k.verified.end(), [](const auto& v) { return v.accepted; });
+            accepted += std::count_if(k.verified.begin(), k.verified.end(),
+                                      [](const auto& v) { return v.accepted; });
             const std::string name = io::frame_name(keyframes);
             io::Json frame = io::objects_to_json(static_cast<int>(keyframes), k.stamp_s, r.objects);
             frame["T_world_sensor"] = io::pose_to_json(k.T_world_keyframe);
@@ -162,60 +185,81 @@ int run_run(const RunOptions& o) {
                 Eigen::Vector2d lo, hi;
                 view_bounds(trajectory, r.objects, system.costmap(), lo, hi);
                 char title[128];
-                std::snprintf(title, sizeof(title), "keyframe %zu, t = %.1f s: %zu objects", keyframes, k.stamp_s - sensor_poses.front().stamp_s,
+                std::snprintf(title, sizeof(title), "keyframe %zu, t = %.1f s: %zu objects",
+                              keyframes, k.stamp_s - sensor_poses.front().stamp_s,
                               r.objects.size());
                 pictures.push_back(out / "keyframes" / (name + ".png"));
-                io::write_map_png(pictures.back(), system.costmap(), r.objects, params.navigator.affordance, trajectory, lo, hi, title);
-                captions.push_back("keyframe " + std::to_string(keyframes) + ": " + std::to_string(r.objects.size()) + " objects");
+                io::write_map_png(pictures.back(), system.costmap(), r.objects,
+                                  params.navigator.affordance, trajectory, lo, hi, title);
+                captions.push_back("keyframe " + std::to_string(keyframes) + ": " +
+                                   std::to_string(r.objects.size()) + " objects");
             }
             if (bag) {
                 bag->write_costmap("/makeway/costmap", system.costmap(), end, "map");
-                bag->write_markers("/makeway/objects", r.objects, params.navigator.affordance, end, "map");
+                bag->write_markers("/makeway/objects", r.objects, params.navigator.affordance, end,
+                                   "map");
                 bag->write_text("/makeway/object_map", io::dump_json(frame), end);
             }
             ++keyframes;
         }
-        bar.update(sweeps, std::to_string(keyframes) + " keyframes, " + std::to_string(system.objects().size()) + " objects");
+        bar.update(sweeps, std::to_string(keyframes) + " keyframes, " +
+                               std::to_string(system.objects().size()) + " objects");
     }
     bar.finish();
     if (sweeps == 0) throw io::FileError(o.bag.empty() ? o.clouds : o.bag, "no sweeps");
 
     const std::vector<ObjectEstimate>& objects = system.objects();
-    io::write_json(out / "objects.json", io::objects_to_json(static_cast<int>(keyframes), sensor_poses.back().stamp_s, objects));
+    io::write_json(out / "objects.json", io::objects_to_json(static_cast<int>(keyframes),
+                                                             sensor_poses.back().stamp_s, objects));
     io::write_map_server(out / "costmap.yaml", system.costmap());
     io::write_tum(out / "poses.txt", sensor_poses);
     Eigen::Vector2d lo, hi;
     view_bounds(trajectory, objects, system.costmap(), lo, hi);
-    io::write_map_png(out / "map.png", system.costmap(), objects, params.navigator.affordance, trajectory, lo, hi,
-                      std::to_string(sweeps) + " sweeps, " + std::to_string(keyframes) + " keyframes, " + std::to_string(objects.size()) + " objects");
+    io::write_map_png(out / "map.png", system.costmap(), objects, params.navigator.affordance,
+                      trajectory, lo, hi,
+                      std::to_string(sweeps) + " sweeps, " + std::to_string(keyframes) +
+                          " keyframes, " + std::to_string(objects.size()) + " objects");
     if (!pictures.empty()) io::write_contact_sheet(out / "keyframes.png", pictures, captions);
-    std::size_t chairs = std::count_if(objects.begin(), objects.end(), [](const ObjectEstimate& x) { return x.cls == ObjectClass::kChair; });
-    io::Json summary = {{"input", source->describe()},
-                        {"sweeps", sweeps},
-                        {"skipped_messages", source->skipped()},
-                        {"points", points},
-                        {"keyframes", keyframes},
-                        {"detections", detections},
-                        {"verification", (library ? "on: " + std::to_string(library->models().size()) + " CAD models from " + o.cad
-                                                  : prior ? std::string("on: no CAD models") : std::string("skipped: no --cad")) +
-                                             (prior ? ", shape networks from " + o.shape_model : std::string())},
-                        {"verified_accepted", accepted},
-                        {"pose", external ? "external (--poses)" : params.lidar_odometry_enabled ? "LiDAR odometry" : "wheel odometry"},
-                        {"objects", objects.size()},
-                        {"chairs", chairs},
-                        {"tables", objects.size() - chairs},
-                        {"static_map", o.map.empty() ? "none (a free square of " + io::dump_json(o.costmap_size_m) + " m)" : o.map},
-                        {"timing_ms", timings.to_json()},
-                        {"start_pose", {start.x_m, start.y_m, start.yaw_rad}}};
+    std::size_t chairs = std::count_if(objects.begin(), objects.end(), [](const ObjectEstimate& x) {
+        return x.cls == ObjectClass::kChair;
+    });
+    io::Json summary = {
+        {"input", source->describe()},
+        {"sweeps", sweeps},
+        {"skipped_messages", source->skipped()},
+        {"points", points},
+        {"keyframes", keyframes},
+        {"detections", detections},
+        {"verification",
+         (library ? "on: " + std::to_string(library->models().size()) + " CAD models from " + o.cad
+          : prior ? std::string("on: no CAD models")
+                  : std::string("skipped: no --cad")) +
+             (prior ? ", shape networks from " + o.shape_model : std::string())},
+        {"verified_accepted", accepted},
+        {"pose", external                        ? "external (--poses)"
+                 : params.lidar_odometry_enabled ? "LiDAR odometry"
+                                                 : "wheel odometry"},
+        {"objects", objects.size()},
+        {"chairs", chairs},
+        {"tables", objects.size() - chairs},
+        {"static_map", o.map.empty()
+                           ? "none (a free square of " + io::dump_json(o.costmap_size_m) + " m)"
+                           : o.map},
+        {"timing_ms", timings.to_json()},
+        {"start_pose", {start.x_m, start.y_m, start.yaw_rad}}};
     io::write_json(out / "summary.json", summary);
     if (bag) bag->close();
     staged.commit();
     const auto [sweep_median, sweep_p99] = median_p99(timings.ms["per_sweep_ms"]);
-    const auto [key_median, key_p99] = median_p99(timings.ms.count("keyframe_ms") ? timings.ms["keyframe_ms"] : std::vector<double>{0.0});
+    const auto [key_median, key_p99] = median_p99(
+        timings.ms.count("keyframe_ms") ? timings.ms["keyframe_ms"] : std::vector<double>{0.0});
     char line[256];
-    std::snprintf(line, sizeof(line), "%zu sweeps, %zu keyframes, %zu objects (%zu chairs); per sweep %.1f ms median, per keyframe %.1f ms median",
+    std::snprintf(line, sizeof(line),
+                  "%zu sweeps, %zu keyframes, %zu objects (%zu chairs); per sweep %.1f ms median, "
+                  "per keyframe %.1f ms median",
                   sweeps, keyframes, objects.size(), chairs, sweep_median, key_median);
-    std::cout << line << "\nwrote " << o.out << (o.out_bag.empty() ? "" : " and " + o.out_bag) << "\n";
+    std::cout << line << "\nwrote " << o.out << (o.out_bag.empty() ? "" : " and " + o.out_bag)
+              << "\n";
     return 0;
 }
 

@@ -21,9 +21,9 @@ int run_cad(const CadOptions& options) {
     const sim::FurnitureModel m = sim::make_furniture(*style, options.seed);
     io::write_mesh(options.out, m.mesh_object);
     const Eigen::Vector3d s = m.box_object.size_m;
-    std::cout << "wrote " << options.out << ": " << options.style << " seed " << options.seed << ", "
-              << m.mesh_object.num_triangles() << " triangles, " << s.x() << " x " << s.y() << " x " << s.z()
-              << " m (length x width x height)\n";
+    std::cout << "wrote " << options.out << ": " << options.style << " seed " << options.seed
+              << ", " << m.mesh_object.num_triangles() << " triangles, " << s.x() << " x " << s.y()
+              << " x " << s.z() << " m (length x width x height)\n";
     return 0;
 }
 
@@ -45,12 +45,15 @@ int run_scene(const SceneOptions& options) {
     }
     // Every session's scene and picture, or none of them.
     io::StagedOutput staged(out.parent_path());
-    std::vector<std::string> lines{"wrote " + out.string() + " and its picture (" +
-                                   write_scene_with_picture(staged.staging() / out.filename(), base) + ")"};
+    std::vector<std::string> lines{
+        "wrote " + out.string() + " and its picture (" +
+        write_scene_with_picture(staged.staging() / out.filename(), base) + ")"};
     for (int k = 1; k < options.sessions; ++k) {
-        const std::string name = out.stem().string() + "_session" + std::to_string(k) + out.extension().string();
-        lines.push_back("wrote " + (out.parent_path() / name).string() + " (" +
-                        write_scene_with_picture(staged.staging() / name, sim::make_session(base, k)) + ")");
+        const std::string name =
+            out.stem().string() + "_session" + std::to_string(k) + out.extension().string();
+        lines.push_back(
+            "wrote " + (out.parent_path() / name).string() + " (" +
+            write_scene_with_picture(staged.staging() / name, sim::make_session(base, k)) + ")");
     }
     staged.commit();
     for (const auto& line : lines) std::cout << line << "\n";

@@ -6,10 +6,10 @@
 
 #include "apps/commands.hpp"
 #include "apps/recording.hpp"
-#include "io/sim_config.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
 #include "io/scene_io.hpp"
+#include "io/sim_config.hpp"
 #include "io/text_scan.hpp"
 
 namespace makeway::apps {
@@ -26,8 +26,11 @@ std::vector<Eigen::Vector2d> read_route(const std::string& path) {
         if (words.empty() || words[0].front() == '#') continue;
         double xy[2];
         for (int k = 0; k < 2; ++k) {
-            if (words.size() != 2 || std::sscanf(std::string(words[k]).c_str(), "%lf", &xy[k]) != 1 || !std::isfinite(xy[k])) {
-                throw io::FileError(path, "line " + std::to_string(line_no) + ": expected two numbers 'x y'");
+            if (words.size() != 2 ||
+                std::sscanf(std::string(words[k]).c_str(), "%lf", &xy[k]) != 1 ||
+                !std::isfinite(xy[k])) {
+                throw io::FileError(
+                    path, "line " + std::to_string(line_no) + ": expected two numbers 'x y'");
             }
         }
         route.emplace_back(xy[0], xy[1]);
@@ -40,7 +43,8 @@ std::vector<Eigen::Vector2d> read_route(const std::string& path) {
 
 int run_simulate(const SimulateOptions& options) {
     const io::SimConfig cfg = io::load_sim_config(options.config);
-    const sim::Scene scene = io::read_scene(options.scene, {.allow_outside_paths = options.allow_outside_paths});
+    const sim::Scene scene =
+        io::read_scene(options.scene, {.allow_outside_paths = options.allow_outside_paths});
     sim::SequenceParams params;
     params.lidar = cfg.lidar;
     params.robot = cfg.robot;
@@ -55,11 +59,11 @@ int run_simulate(const SimulateOptions& options) {
         route.insert(route.begin(), Eigen::Vector2d(scene.start.x_m, scene.start.y_m));
     }
     const RecordingSummary s =
-        record_sequence(scene, route, params, {.frames = options.frames, .format = options.format}, options.out_dir,
-                        options.scene);
-    std::cout << "wrote " << s.frames << " frames to " << options.out_dir << " (distance " << s.distance_m
-              << " m, goal " << (s.reached_goal ? "reached" : "not reached") << ", " << s.ms_per_frame
-              << " ms per frame)\n";
+        record_sequence(scene, route, params, {.frames = options.frames, .format = options.format},
+                        options.out_dir, options.scene);
+    std::cout << "wrote " << s.frames << " frames to " << options.out_dir << " (distance "
+              << s.distance_m << " m, goal " << (s.reached_goal ? "reached" : "not reached") << ", "
+              << s.ms_per_frame << " ms per frame)\n";
     return 0;
 }
 

@@ -12,13 +12,13 @@
 #include <unordered_map>
 
 #include "apps/commands.hpp"
+#include "io/config_reader.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
 #include "io/pose_io.hpp"
 #include "io/progress.hpp"
 #include "io/staged_output.hpp"
 #include "io/tracking_io.hpp"
-#include "io/config_reader.hpp"
 #include "makeway/common/angles.hpp"
 #include "makeway/eval/kitti_tracking_eval.hpp"
 #include "makeway/eval/track_bench.hpp"
@@ -38,45 +38,59 @@ std::vector<fs::path> kitti_sequences(const std::string& path) {
     return io::frame_files(path, "txt");
 }
 
-std::string_view name_of(tracking::ScoreTransform t) { return t == tracking::ScoreTransform::kSigmoid ? "sigmoid" : "none"; }
+std::string_view name_of(tracking::ScoreTransform t) {
+    return t == tracking::ScoreTransform::kSigmoid ? "sigmoid" : "none";
+}
 
-// The tracker's settings: the configuration (or the format's preset for `type`), then the command line.
+// The tracker's settings: the configuration (or the format's preset for `type`), then the command
+// line.
 tracking::TrackerParams tracker_params(const TrackOptions& o, const std::string& type = "car") {
-    tracking::TrackerParams p = o.format == "kitti" ? tracking::traffic_preset(type) : tracking::TrackerParams{};
+    tracking::TrackerParams p =
+        o.format == "kitti" ? tracking::traffic_preset(type) : tracking::TrackerParams{};
     if (!o.config.empty()) p = io::load_config(o.config).system.tracker;
     // KITTI types are chosen by --classes; each type's map tracks its own boxes (as index 0, whose
     // motion prior applies), whatever chair/table selection the configuration makes.
     if (o.format == "kitti") p.tracked_classes.fill(true);
     if (o.range_m) p.sensor_range_m = *o.range_m;
     if (o.min_score) p.min_score = *o.min_score;
-    if (!o.out_of_range.empty()) p.out_of_range = o.out_of_range == "drop" ? tracking::OutOfRange::kDrop : tracking::OutOfRange::kFreeze;
+    if (!o.out_of_range.empty())
+        p.out_of_range =
+            o.out_of_range == "drop" ? tracking::OutOfRange::kDrop : tracking::OutOfRange::kFreeze;
     if (o.format == "makeway" && !o.classes.empty()) {
         p.tracked_classes.fill(false);
         for (const std::string& c : o.classes) {
             const auto cls = parse_object_class(to_lower(c));
-            if (!cls) throw io::FileError("--classes", "unknown class '" + c + "' (makeway detections are chair or table)");
+            if (!cls)
+                throw io::FileError("--classes", "unknown class '" + c +
+                                                     "' (makeway detections are chair or table)");
             p.tracked_classes[static_cast<std::size_t>(*cls)] = true;
         }
     }
-    if (const auto problems = p.validate(); !problems.empty()) throw io::FileError(o.config.empty() ? "track options" : o.config, problems.front());
+    if (const auto problems = p.validate(); !problems.empty())
+        throw io::FileError(o.config.empty() ? "track options" : o.config, problems.front());
     return p;
 }
 
 // sigmoid: as asked. none: a score outside [0, 1] is an error (never clamped). auto: the
 // configuration's transform, or the sigmoid when any score lies outside [0, 1] (raw logits).
-tracking::ScoreTransform resolve_score_transform(const TrackOptions& o, tracking::ScoreTransform configured,
-                                                 const std::vector<std::pair<std::string, double>>& scores) {
+tracking::ScoreTransform resolve_score_transform(
+    const TrackOptions& o, tracking::ScoreTransform configured,
+    const std::vector<std::pair<std::string, double>>& scores) {
     if (o.score_transform == "sigmoid") return tracking::ScoreTransform::kSigmoid;
-    const auto outside = std::find_if(scores.begin(), scores.end(), [](const auto& s) { return !(s.second >= 0.0 && s.second <= 1.0); });
+    const auto outside = std::find_if(scores.begin(), scores.end(), [](const auto& s) {
+        return !(s.second >= 0.0 && s.second <= 1.0);
+    });
     if (o.score_transform == "none") {
         if (outside != scores.end()) {
             std::ostringstream what;
-            what << "score " << outside->second << " is not in [0, 1]; raw logits need --score-transform sigmoid";
+            what << "score " << outside->second
+                 << " is not in [0, 1]; raw logits need --score-transform sigmoid";
             throw io::FileError(outside->first, what.str());
         }
         return tracking::ScoreTransform::kNone;
     }
-    if (configured == tracking::ScoreTransform::kSigmoid || outside == scores.end()) return configured;
+    if (configured == tracking::ScoreTransform::kSigmoid || outside == scores.end())
+        return configured;
     std::cout << "scores outside [0, 1] (" << outside->first << ": " << outside->second
               << "): read as logits through the sigmoid (--score-transform none refuses them)\n";
     return tracking::ScoreTransform::kSigmoid;
@@ -89,7 +103,7 @@ struct KittiSequenceInput {
 
 struct TrackRun {
     std::size_t frames = 0;  // frames the tracker processed
-    double update_s = 0.0;  // tracker updates only: reading and writing excluded
+    double update_s = 0.0;   // tracker updates only: reading and writing excluded
     std::map<std::string, std::size_t> tracks_per_class;
 };
 
@@ -108,37 +122,45 @@ int coasting_frames_for(const TrackOptions& o, const std::string& type) {
 
 // One sequence, one object map per class (as AB3DMOT): every frame, also those without
 // detections; each output box carries its last detection's 2D box, truncation and occlusion.
-std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInput& in, const std::vector<std::string>& types,
-                                                          const std::map<std::string, tracking::TrackerParams>& params_of,
-                                                          const TrackOptions& o, TrackRun& run) {
+std::vector<io::KittiTrackingRecord> track_kitti_sequence(
+    const KittiSequenceInput& in, const std::vector<std::string>& types,
+    const std::map<std::string, tracking::TrackerParams>& params_of, const TrackOptions& o,
+    TrackRun& run) {
     int last = -1;
     for (const auto& r : in.records) last = std::max(last, r.frame);
-    std::set<int> updated;  // frames at which a map was updated (empty stretches with no objects are skipped)
-    std::map<std::pair<std::string, std::uint32_t>, int> out_id;  // (type, map id) -> id in the output
+    std::set<int>
+        updated;  // frames at which a map was updated (empty stretches with no objects are skipped)
+    std::map<std::pair<std::string, std::uint32_t>, int>
+        out_id;  // (type, map id) -> id in the output
     std::vector<io::KittiTrackingRecord> out;
     const double half_fov = deg_to_rad(o.fov_deg) / 2;
     for (const std::string& type : types) {
         std::map<int, std::vector<std::size_t>> frames;  // frame -> record indices of this type
         for (std::size_t i = 0; i < in.records.size(); ++i) {
-            if (to_lower(in.records[i].type) == to_lower(type)) frames[in.records[i].frame].push_back(i);
+            if (to_lower(in.records[i].type) == to_lower(type))
+                frames[in.records[i].frame].push_back(i);
         }
         if (frames.empty()) continue;
         const tracking::TrackerParams& params = params_of.at(type);
         const int coasting_frames = coasting_frames_for(o, type);
         tracking::ObjectMap map(params);
         std::unordered_map<std::uint32_t, std::size_t> last_record;  // map id -> its last detection
-        std::unordered_map<std::uint32_t, std::vector<io::KittiTrackingRecord>> pending;  // unconfirmed tracks' boxes
-        std::unordered_map<std::uint32_t, std::pair<double, int>> score_sums;            // detections' scores per track
+        std::unordered_map<std::uint32_t, std::vector<io::KittiTrackingRecord>>
+            pending;  // unconfirmed tracks' boxes
+        std::unordered_map<std::uint32_t, std::pair<double, int>>
+            score_sums;  // detections' scores per track
         for (int f = 0; f <= last; ++f) {
             const auto it = frames.find(f);
-            if (it == frames.end() && map.tracks().empty()) {  // nothing to predict or judge: skip to the next detections
+            if (it == frames.end() &&
+                map.tracks().empty()) {  // nothing to predict or judge: skip to the next detections
                 const auto next = frames.upper_bound(f);
                 if (next == frames.end()) break;
                 f = next->first - 1;
                 continue;
             }
             std::vector<Detection> dets;
-            const std::vector<std::size_t> idx = it == frames.end() ? std::vector<std::size_t>{} : it->second;
+            const std::vector<std::size_t> idx =
+                it == frames.end() ? std::vector<std::size_t>{} : it->second;
             for (std::size_t i : idx) {
                 Detection d;
                 d.cls = ObjectClass::kChair;  // one class per map: its index 0
@@ -148,13 +170,16 @@ std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInp
                 dets.push_back(d);
             }
             const Clock::time_point t0 = Clock::now();
-            const tracking::TrackerFrameResult r = map.update(dets, Isometry3::Identity(), f / o.rate_hz);
+            const tracking::TrackerFrameResult r =
+                map.update(dets, Isometry3::Identity(), f / o.rate_hz);
             run.update_s += std::chrono::duration<double>(Clock::now() - t0).count();
             updated.insert(f);
             // Output: boxes updated by a detection this frame (and the predicted boxes of confirmed
-            // tracks without one, as coasting_frames_for allows); a track's boxes from before it was
-            // confirmed wait in `pending` and go out when it is (--no-backfill: they are dropped).
-            std::unordered_map<std::uint32_t, std::size_t> detection_of;  // map id -> record index matched now
+            // tracks without one, as coasting_frames_for allows); a track's boxes from before it
+            // was confirmed wait in `pending` and go out when it is (--no-backfill: they are
+            // dropped).
+            std::unordered_map<std::uint32_t, std::size_t>
+                detection_of;  // map id -> record index matched now
             for (std::size_t k = 0; k < idx.size(); ++k) {
                 if (r.track_of_detection[k] < 0) continue;
                 const auto id = static_cast<std::uint32_t>(r.track_of_detection[k]);
@@ -168,18 +193,21 @@ std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInp
                 const auto det = detection_of.find(id);
                 const bool detected = det != detection_of.end();
                 const bool confirmed = t.confirmed(params.min_hits);
-                const bool coasts =
-                    confirmed && coasting_frames >= 0 && (coasting_frames == 0 || t.misses <= coasting_frames);
+                const bool coasts = confirmed && coasting_frames >= 0 &&
+                                    (coasting_frames == 0 || t.misses <= coasting_frames);
                 if (!detected && !coasts) continue;
                 const Eigen::Vector3d& c = t.filter.box().centre_m;
-                if (o.fov_deg > 0.0 && (c.x() <= 0.0 || std::abs(std::atan2(c.y(), c.x())) > half_fov)) continue;
+                if (o.fov_deg > 0.0 &&
+                    (c.x() <= 0.0 || std::abs(std::atan2(c.y(), c.x())) > half_fov))
+                    continue;
                 const std::size_t rec_index = detected ? det->second : last_record.at(id);
                 const io::KittiTrackingRecord& d = in.records[rec_index];
                 double score = t.existence();
                 if (o.output_score != "existence") {
                     auto& [sum, n] = score_sums[id];
                     if (detected) sum += d.score.value_or(1.0), ++n;
-                    score = o.output_score == "detection" ? d.score.value_or(1.0) : sum / std::max(n, 1);
+                    score = o.output_score == "detection" ? d.score.value_or(1.0)
+                                                          : sum / std::max(n, 1);
                 }
                 io::KittiTrackingRecord rec = io::to_kitti(t.filter.box(), type, f, -1, score);
                 rec.bbox_px = d.bbox_px, rec.truncated = d.truncated, rec.occluded = d.occluded;
@@ -187,7 +215,8 @@ std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInp
                     if (o.backfill) pending[id].push_back(rec);
                     continue;
                 }
-                const auto [id_it, fresh] = out_id.try_emplace({type, id}, static_cast<int>(out_id.size()));
+                const auto [id_it, fresh] =
+                    out_id.try_emplace({type, id}, static_cast<int>(out_id.size()));
                 if (fresh) ++run.tracks_per_class[type];
                 if (const auto p = pending.find(id); p != pending.end()) {
                     for (io::KittiTrackingRecord& early : p->second) {
@@ -199,28 +228,35 @@ std::vector<io::KittiTrackingRecord> track_kitti_sequence(const KittiSequenceInp
                 rec.track_id = id_it->second;
                 out.push_back(rec);
             }
-            for (auto pit = pending.begin(); pit != pending.end();) {  // tracks removed before confirmation
+            for (auto pit = pending.begin();
+                 pit != pending.end();) {  // tracks removed before confirmation
                 pit = map.tracks().count(pit->first) ? std::next(pit) : pending.erase(pit);
             }
         }
     }
     run.frames += updated.size();
-    std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.frame < b.frame; });
+    std::stable_sort(out.begin(), out.end(),
+                     [](const auto& a, const auto& b) { return a.frame < b.frame; });
     return out;
 }
 
 // The classes to track: the requested ones, or every type in the input but DontCare.
-std::vector<std::string> kitti_types(const std::vector<KittiSequenceInput>& inputs, const TrackOptions& o) {
+std::vector<std::string> kitti_types(const std::vector<KittiSequenceInput>& inputs,
+                                     const TrackOptions& o) {
     std::vector<std::string> present;
     for (const auto& in : inputs) {
         for (const auto& r : in.records) {
-            if (!r.is_dont_care() && std::find(present.begin(), present.end(), r.type) == present.end()) present.push_back(r.type);
+            if (!r.is_dont_care() &&
+                std::find(present.begin(), present.end(), r.type) == present.end())
+                present.push_back(r.type);
         }
     }
     if (o.classes.empty()) return present;
     std::vector<std::string> out;
     for (const std::string& c : o.classes) {
-        const auto it = std::find_if(present.begin(), present.end(), [&](const std::string& t) { return to_lower(t) == to_lower(c); });
+        const auto it = std::find_if(present.begin(), present.end(), [&](const std::string& t) {
+            return to_lower(t) == to_lower(c);
+        });
         if (it == present.end()) std::cout << "class " << c << ": no detections in the input\n";
         out.push_back(it == present.end() ? c : *it);
     }
@@ -228,20 +264,31 @@ std::vector<std::string> kitti_types(const std::vector<KittiSequenceInput>& inpu
 }
 
 io::Json settings_json(const tracking::TrackerParams& p) {
-    return {{"sensor_range_m", p.sensor_range_m}, {"min_score", p.min_score}, {"score_transform", name_of(p.score_transform)},
-            {"out_of_range", p.out_of_range == tracking::OutOfRange::kDrop ? "drop" : "freeze"}, {"min_hits", p.min_hits},
-            {"max_misses", p.max_misses}, {"min_giou", p.min_giou}, {"max_centre_distance_m", p.max_centre_distance_m}, {"min_existence", p.min_existence}, {"merge_iou", p.merge_iou},
-            {"accel_sigma_mps2", p.kalman.accel_sigma_mps2}, {"position_sigma_mps", p.kalman.position_sigma_mps},
+    return {{"sensor_range_m", p.sensor_range_m},
+            {"min_score", p.min_score},
+            {"score_transform", name_of(p.score_transform)},
+            {"out_of_range", p.out_of_range == tracking::OutOfRange::kDrop ? "drop" : "freeze"},
+            {"min_hits", p.min_hits},
+            {"max_misses", p.max_misses},
+            {"min_giou", p.min_giou},
+            {"max_centre_distance_m", p.max_centre_distance_m},
+            {"min_existence", p.min_existence},
+            {"merge_iou", p.merge_iou},
+            {"accel_sigma_mps2", p.kalman.accel_sigma_mps2},
+            {"position_sigma_mps", p.kalman.position_sigma_mps},
             {"initial_velocity_sigma_mps", p.kalman.initial_velocity_sigma_mps},
             {"meas_position_sigma_m", p.kalman.meas_position_sigma_m}};
 }
 
 // `per_type` (kitti): each type's settings; else `p` for all.
-void write_summary(const fs::path& file, const TrackOptions& o, const tracking::TrackerParams& p, const TrackRun& run, std::size_t sequences,
+void write_summary(const fs::path& file, const TrackOptions& o, const tracking::TrackerParams& p,
+                   const TrackRun& run, std::size_t sequences,
                    const std::map<std::string, tracking::TrackerParams>* per_type = nullptr) {
     const double fps = run.update_s > 0.0 ? static_cast<double>(run.frames) / run.update_s : 0.0;
-    io::Json j{{"format", o.format}, {"sequences", sequences}, {"frames", run.frames}, {"tracker_seconds", run.update_s},
-               {"frames_per_second", fps}, {"tracks_per_class", run.tracks_per_class}, {"tracker", settings_json(p)}};
+    io::Json j{{"format", o.format},         {"sequences", sequences},
+               {"frames", run.frames},       {"tracker_seconds", run.update_s},
+               {"frames_per_second", fps},   {"tracks_per_class", run.tracks_per_class},
+               {"tracker", settings_json(p)}};
     if (per_type) {
         io::Json t = io::Json::object();
         io::Json coasting = io::Json::object();
@@ -254,16 +301,20 @@ void write_summary(const fs::path& file, const TrackOptions& o, const tracking::
     }
     if (o.format == "kitti") {
         j["rate_hz"] = o.rate_hz, j["fov_deg"] = o.fov_deg;
-        j["output_score"] = o.output_score, j["coasting"] = o.coasting, j["coasting_frames"] = o.coasting_frames;
+        j["output_score"] = o.output_score, j["coasting"] = o.coasting,
+        j["coasting_frames"] = o.coasting_frames;
         j["backfill"] = o.backfill;
     }
     io::write_json(file, j);
-    std::cout << std::fixed << std::setprecision(1) << "tracked " << run.frames << " frames in " << std::setprecision(3) << run.update_s
-              << " s of tracker updates: " << std::setprecision(0) << fps << " frames per second (one core)\n";
+    std::cout << std::fixed << std::setprecision(1) << "tracked " << run.frames << " frames in "
+              << std::setprecision(3) << run.update_s
+              << " s of tracker updates: " << std::setprecision(0) << fps
+              << " frames per second (one core)\n";
 }
 
 int run_track_kitti(const TrackOptions& o) {
-    const tracking::TrackerParams checked = tracker_params(o);  // the configuration and options checked before any file is read
+    const tracking::TrackerParams checked =
+        tracker_params(o);  // the configuration and options checked before any file is read
     std::vector<KittiSequenceInput> inputs;
     std::vector<std::pair<std::string, double>> scores;
     for (const auto& f : kitti_sequences(o.detections)) {
@@ -273,8 +324,10 @@ int run_track_kitti(const TrackOptions& o) {
         }
     }
     const std::vector<std::string> types = kitti_types(inputs, o);
-    const tracking::ScoreTransform transform = resolve_score_transform(o, checked.score_transform, scores);
-    std::map<std::string, tracking::TrackerParams> params_of;  // the preset per type (or the configuration)
+    const tracking::ScoreTransform transform =
+        resolve_score_transform(o, checked.score_transform, scores);
+    std::map<std::string, tracking::TrackerParams>
+        params_of;  // the preset per type (or the configuration)
     for (const std::string& type : types) {
         // A configuration replaces the presets for every type alike: read once, in `checked`.
         tracking::TrackerParams p = o.config.empty() ? tracker_params(o, type) : checked;
@@ -292,12 +345,14 @@ int run_track_kitti(const TrackOptions& o) {
     bar.finish();
     io::StagedOutput staged(o.out);
     for (std::size_t k = 0; k < inputs.size(); ++k) {
-        io::write_kitti_tracking(staged.staging() / inputs[k].file.filename(), tracks[k]);  // empty: an empty file
+        io::write_kitti_tracking(staged.staging() / inputs[k].file.filename(),
+                                 tracks[k]);  // empty: an empty file
     }
     write_summary(staged.staging() / "summary.json", o, checked, run, inputs.size(), &params_of);
     staged.commit();
     std::cout << "classes:";
-    for (const auto& t : types) std::cout << " " << t << " (" << run.tracks_per_class[t] << " tracks)";
+    for (const auto& t : types)
+        std::cout << " " << t << " (" << run.tracks_per_class[t] << " tracks)";
     std::cout << "\nwrote " << inputs.size() << " sequence(s) to " << o.out << "\n";
     return 0;
 }
@@ -315,22 +370,27 @@ int run_track(const TrackOptions& o) {
     std::vector<std::pair<std::string, double>> scores;
     for (const auto& f : files) {
         frames.push_back(io::read_detection_frame(f, /*any_score=*/true));
-        for (const Detection& d : frames.back().detections_sensor) scores.emplace_back(f.string(), d.score);
+        for (const Detection& d : frames.back().detections_sensor)
+            scores.emplace_back(f.string(), d.score);
     }
     params.score_transform = resolve_score_transform(o, params.score_transform, scores);
     if (!o.poses.empty()) {
         const auto poses = io::read_tum(o.poses);
         if (poses.size() < frames.size()) {
-            throw io::FileError(o.poses, "holds " + std::to_string(poses.size()) + " poses for " + std::to_string(frames.size()) + " frames");
+            throw io::FileError(o.poses, "holds " + std::to_string(poses.size()) + " poses for " +
+                                             std::to_string(frames.size()) + " frames");
         }
-        for (std::size_t k = 0; k < frames.size(); ++k) frames[k].T_world_sensor = poses[k].T_world_sensor;
+        for (std::size_t k = 0; k < frames.size(); ++k)
+            frames[k].T_world_sensor = poses[k].T_world_sensor;
     }
     // Stamps checked before the progress bar starts: one error, one line. Frames without stamps are
     // taken at 10 Hz.
     std::vector<double> stamps;
     for (std::size_t k = 0; k < frames.size(); ++k) {
-        stamps.push_back(frames[k].stamp_s != 0.0 || k == 0 ? frames[k].stamp_s : static_cast<double>(k) / 10.0);
-        if (k > 0 && stamps[k] < stamps[k - 1]) throw io::FileError(files[k].string(), "stamp_s goes back in time");
+        stamps.push_back(frames[k].stamp_s != 0.0 || k == 0 ? frames[k].stamp_s
+                                                            : static_cast<double>(k) / 10.0);
+        if (k > 0 && stamps[k] < stamps[k - 1])
+            throw io::FileError(files[k].string(), "stamp_s goes back in time");
     }
     tracking::ObjectMap map(params);
     std::vector<io::Json> results;
@@ -339,19 +399,23 @@ int run_track(const TrackOptions& o) {
     for (std::size_t k = 0; k < frames.size(); ++k) {
         const double stamp = stamps[k];
         const Clock::time_point t0 = Clock::now();
-        const auto r = map.update(frames[k].detections_sensor, frames[k].T_world_sensor.value_or(Isometry3::Identity()), stamp);
+        const auto r = map.update(frames[k].detections_sensor,
+                                  frames[k].T_world_sensor.value_or(Isometry3::Identity()), stamp);
         run.update_s += std::chrono::duration<double>(Clock::now() - t0).count();
-        for (std::uint32_t id : r.born) ++run.tracks_per_class[std::string(to_string(map.tracks().at(id).cls()))];
+        for (std::uint32_t id : r.born)
+            ++run.tracks_per_class[std::string(to_string(map.tracks().at(id).cls()))];
         results.push_back(io::objects_to_json(static_cast<int>(k), stamp, r.objects_world));
         bar.update(k + 1);
     }
     bar.finish();
     run.frames = frames.size();
     io::StagedOutput staged(o.out);
-    for (std::size_t k = 0; k < frames.size(); ++k) io::write_json(staged.staging() / files[k].filename(), results[k]);
+    for (std::size_t k = 0; k < frames.size(); ++k)
+        io::write_json(staged.staging() / files[k].filename(), results[k]);
     write_summary(staged.staging() / "summary.json", o, params, run, 1);
     staged.commit();
-    std::cout << "tracked " << frames.size() << " frames: " << map.objects().size() << " objects in the map; wrote " << o.out << "\n";
+    std::cout << "tracked " << frames.size() << " frames: " << map.objects().size()
+              << " objects in the map; wrote " << o.out << "\n";
     return 0;
 }
 
@@ -362,7 +426,8 @@ eval::KittiSequence kitti_boxes(const fs::path& file, bool tracker) {
     eval::KittiSequence seq;
     std::set<std::pair<int, int>> seen;
     for (const auto& r : io::read_kitti_tracking(file)) {
-        if (seq.size() <= static_cast<std::size_t>(r.frame)) seq.resize(static_cast<std::size_t>(r.frame) + 1);
+        if (seq.size() <= static_cast<std::size_t>(r.frame))
+            seq.resize(static_cast<std::size_t>(r.frame) + 1);
         eval::KittiBox b;
         b.track_id = r.track_id;
         b.type = to_lower(r.type);
@@ -372,9 +437,13 @@ eval::KittiSequence kitti_boxes(const fs::path& file, bool tracker) {
         if (!r.is_dont_care()) b.box = io::box_from_kitti(r);
         b.score = r.score.value_or(-1.0);  // the devkit's value for a missing score
         if (tracker && !r.is_dont_care()) {
-            if (r.track_id < 0) throw io::FileError(file.string(), "frame " + std::to_string(r.frame) + ": a track line without a track id");
+            if (r.track_id < 0)
+                throw io::FileError(file.string(), "frame " + std::to_string(r.frame) +
+                                                       ": a track line without a track id");
             if (!seen.insert({r.frame, r.track_id}).second) {
-                throw io::FileError(file.string(), "frame " + std::to_string(r.frame) + ": track id " + std::to_string(r.track_id) + " twice");
+                throw io::FileError(file.string(), "frame " + std::to_string(r.frame) +
+                                                       ": track id " + std::to_string(r.track_id) +
+                                                       " twice");
             }
         }
         seq[static_cast<std::size_t>(r.frame)].push_back(b);
@@ -383,18 +452,37 @@ eval::KittiSequence kitti_boxes(const fs::path& file, bool tracker) {
 }
 
 io::Json kitti_clear_json(const eval::KittiClear& m) {
-    return {{"threshold", m.threshold}, {"recall_target", m.recall_target}, {"mota", m.mota}, {"motp", m.motp}, {"moda", m.moda},
-            {"smota", m.smota}, {"recall", m.recall}, {"precision", m.precision}, {"f1", m.f1}, {"mt", m.mostly_tracked},
-            {"pt", m.partly_tracked}, {"ml", m.mostly_lost}, {"tp", m.tp}, {"fp", m.fp}, {"fn", m.fn}, {"ignored_tp", m.ignored_tp},
-            {"ignored_fn", m.ignored_fn}, {"ignored_tracker", m.ignored_tracker}, {"id_switches", m.id_switches},
-            {"fragmentations", m.fragmentations}, {"gt", m.gt}};
+    return {{"threshold", m.threshold},
+            {"recall_target", m.recall_target},
+            {"mota", m.mota},
+            {"motp", m.motp},
+            {"moda", m.moda},
+            {"smota", m.smota},
+            {"recall", m.recall},
+            {"precision", m.precision},
+            {"f1", m.f1},
+            {"mt", m.mostly_tracked},
+            {"pt", m.partly_tracked},
+            {"ml", m.mostly_lost},
+            {"tp", m.tp},
+            {"fp", m.fp},
+            {"fn", m.fn},
+            {"ignored_tp", m.ignored_tp},
+            {"ignored_fn", m.ignored_fn},
+            {"ignored_tracker", m.ignored_tracker},
+            {"id_switches", m.id_switches},
+            {"fragmentations", m.fragmentations},
+            {"gt", m.gt}};
 }
 
 int run_eval_tracking_kitti(const EvalTrackingOptions& o) {
     std::vector<eval::KittiSequence> gt, tracks;
     for (const auto& g : kitti_sequences(o.gt)) {
-        const fs::path t = fs::is_regular_file(o.tracks) ? fs::path(o.tracks) : fs::path(o.tracks) / g.filename();
-        if (!fs::exists(t)) throw io::FileError(t.string(), "no tracks for ground-truth sequence " + g.filename().string());
+        const fs::path t =
+            fs::is_regular_file(o.tracks) ? fs::path(o.tracks) : fs::path(o.tracks) / g.filename();
+        if (!fs::exists(t))
+            throw io::FileError(t.string(),
+                                "no tracks for ground-truth sequence " + g.filename().string());
         gt.push_back(kitti_boxes(g, false));
         tracks.push_back(kitti_boxes(t, true));
     }
@@ -402,14 +490,19 @@ int run_eval_tracking_kitti(const EvalTrackingOptions& o) {
     for (const std::string& c : o.classes) classes.push_back(to_lower(c));
     if (classes.empty()) {  // those in the tracks; a neighbouring class is scored with its main one
         std::set<std::string> present;
-        for (const auto& seq : tracks) for (const auto& f : seq) for (const auto& b : f) present.insert(b.type);
+        for (const auto& seq : tracks)
+            for (const auto& f : seq)
+                for (const auto& b : f) present.insert(b.type);
         for (const std::string& c : present) {
-            if ((c == "van" && present.count("car")) || (c == "person_sitting" && present.count("pedestrian")) || c == "dontcare") continue;
+            if ((c == "van" && present.count("car")) ||
+                (c == "person_sitting" && present.count("pedestrian")) || c == "dontcare")
+                continue;
             classes.push_back(c);
         }
     }
     io::Json j;
-    std::cout << "| class | sAMOTA | AMOTA | AMOTP | MOTA | MOTP | IDS | FRAG | MT | ML | TP | FP | FN | GT boxes |\n"
+    std::cout << "| class | sAMOTA | AMOTA | AMOTP | MOTA | MOTP | IDS | FRAG | MT | ML | TP | FP "
+                 "| FN | GT boxes |\n"
                  "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const std::string& c : classes) {
         eval::KittiEvalParams p;
@@ -419,38 +512,66 @@ int run_eval_tracking_kitti(const EvalTrackingOptions& o) {
         p.devkit_rounding = o.devkit_rounding;
         const eval::KittiEvalResult r = eval::evaluate_kitti(gt, tracks, p);
         const eval::KittiClear& b = r.best;
-        std::cout << std::fixed << std::setprecision(4) << "| " << c << " | " << r.samota << " | " << r.amota << " | " << r.amotp << " | "
-                  << b.mota << " | " << b.motp << " | " << b.id_switches << " | " << b.fragmentations << " | " << b.mostly_tracked << " | "
-                  << b.mostly_lost << " | " << b.tp << " | " << b.fp << " | " << b.fn << " | " << r.gt_boxes << " |\n";
+        std::cout << std::fixed << std::setprecision(4) << "| " << c << " | " << r.samota << " | "
+                  << r.amota << " | " << r.amotp << " | " << b.mota << " | " << b.motp << " | "
+                  << b.id_switches << " | " << b.fragmentations << " | " << b.mostly_tracked
+                  << " | " << b.mostly_lost << " | " << b.tp << " | " << b.fp << " | " << b.fn
+                  << " | " << r.gt_boxes << " |\n";
         io::Json curve = io::Json::array();
         for (const auto& m : r.curve) curve.push_back(kitti_clear_json(m));
-        j["classes"][c] = {{"samota", r.samota}, {"amota", r.amota}, {"amotp", r.amotp}, {"best_threshold", kitti_clear_json(b)},
-                           {"all_boxes", kitti_clear_json(r.all)}, {"curve", curve}, {"gt_boxes", r.gt_boxes},
+        j["classes"][c] = {{"samota", r.samota},
+                           {"amota", r.amota},
+                           {"amotp", r.amotp},
+                           {"best_threshold", kitti_clear_json(b)},
+                           {"all_boxes", kitti_clear_json(r.all)},
+                           {"curve", curve},
+                           {"gt_boxes", r.gt_boxes},
                            {"tracker_boxes", r.tracker_boxes}};
     }
     std::cout << "MOTA..FN at the score threshold of best MOTA; 3D IoU >= " << o.min_iou
-              << (o.fov_deg > 0 ? ", field of view " + std::to_string(o.fov_deg).substr(0, 5) + " deg" : std::string())
-              << (o.devkit_rounding ? "; AB3DMOT's evaluate.py's re-averaged scores (--devkit-rounding)" : "") << "\n";
+              << (o.fov_deg > 0
+                      ? ", field of view " + std::to_string(o.fov_deg).substr(0, 5) + " deg"
+                      : std::string())
+              << (o.devkit_rounding
+                      ? "; AB3DMOT's evaluate.py's re-averaged scores (--devkit-rounding)"
+                      : "")
+              << "\n";
     if (!o.out.empty()) {
-        j["protocol"] = {{"min_iou_3d", o.min_iou}, {"fov_deg", o.fov_deg}, {"recall_steps", 40}, {"max_truncation", 0},
-                         {"max_occlusion", 2}, {"min_height_px", 25}, {"devkit_rounding", o.devkit_rounding}};
+        j["protocol"] = {{"min_iou_3d", o.min_iou},
+                         {"fov_deg", o.fov_deg},
+                         {"recall_steps", 40},
+                         {"max_truncation", 0},
+                         {"max_occlusion", 2},
+                         {"min_height_px", 25},
+                         {"devkit_rounding", o.devkit_rounding}};
         io::write_json(o.out, j);
     }
     return 0;
 }
 
 io::Json metrics_json(const eval::TrackingMetrics& m) {
-    return {{"mota", m.clear.mota}, {"motp", m.clear.motp}, {"id_switches", m.clear.id_switches},
-            {"fragmentations", m.clear.fragmentations}, {"tp", m.clear.tp}, {"fp", m.clear.fp}, {"fn", m.clear.fn},
-            {"gt", m.clear.gt}, {"hota", m.hota.hota}, {"deta", m.hota.deta}, {"assa", m.hota.assa}};
+    return {{"mota", m.clear.mota},
+            {"motp", m.clear.motp},
+            {"id_switches", m.clear.id_switches},
+            {"fragmentations", m.clear.fragmentations},
+            {"tp", m.clear.tp},
+            {"fp", m.clear.fp},
+            {"fn", m.clear.fn},
+            {"gt", m.clear.gt},
+            {"hota", m.hota.hota},
+            {"deta", m.hota.deta},
+            {"assa", m.hota.assa}};
 }
 
-void print_table(const eval::TrackingMetrics& all, const std::map<ObjectClass, eval::TrackingMetrics>& per) {
-    std::cout << "| class | HOTA | DetA | AssA | MOTA | MOTP | ID switches | fragmentations | GT |\n|---|---|---|---|---|---|---|---|---|\n";
+void print_table(const eval::TrackingMetrics& all,
+                 const std::map<ObjectClass, eval::TrackingMetrics>& per) {
+    std::cout << "| class | HOTA | DetA | AssA | MOTA | MOTP | ID switches | fragmentations | GT "
+                 "|\n|---|---|---|---|---|---|---|---|---|\n";
     auto row = [](const std::string& name, const eval::TrackingMetrics& m) {
-        std::cout << std::fixed << std::setprecision(3) << "| " << name << " | " << m.hota.hota << " | " << m.hota.deta << " | "
-                  << m.hota.assa << " | " << m.clear.mota << " | " << m.clear.motp << " | " << m.clear.id_switches << " | "
-                  << m.clear.fragmentations << " | " << m.clear.gt << " |\n";
+        std::cout << std::fixed << std::setprecision(3) << "| " << name << " | " << m.hota.hota
+                  << " | " << m.hota.deta << " | " << m.hota.assa << " | " << m.clear.mota << " | "
+                  << m.clear.motp << " | " << m.clear.id_switches << " | " << m.clear.fragmentations
+                  << " | " << m.clear.gt << " |\n";
     };
     for (const auto& [cls, m] : per) row(std::string(to_string(cls)), m);
     row("all", all);
@@ -471,20 +592,25 @@ int run_eval_tracking(const EvalTrackingOptions& o) {
     const auto gt_files = json_frames(o.gt);
     const auto tr_files = json_frames(o.tracks);
     if (gt_files.size() != tr_files.size()) {
-        throw io::FileError(o.tracks, "holds " + std::to_string(tr_files.size()) + " frames, the ground truth " + std::to_string(gt_files.size()));
+        throw io::FileError(o.tracks, "holds " + std::to_string(tr_files.size()) +
+                                          " frames, the ground truth " +
+                                          std::to_string(gt_files.size()));
     }
     auto frame = [](const fs::path& f) {
         eval::TrackingFrame out;
-        for (const ObjectEstimate& e : io::read_object_frame(f)) out.push_back({e.id, e.cls, e.box_world});
+        for (const ObjectEstimate& e : io::read_object_frame(f))
+            out.push_back({e.id, e.cls, e.box_world});
         return out;
     };
-    for (std::size_t k = 0; k < gt_files.size(); ++k) gt.push_back(frame(gt_files[k])), tracks.push_back(frame(tr_files[k]));
+    for (std::size_t k = 0; k < gt_files.size(); ++k)
+        gt.push_back(frame(gt_files[k])), tracks.push_back(frame(tr_files[k]));
     const auto all = eval::evaluate_tracking(gt, tracks);
     const auto per = eval::evaluate_tracking_per_class(gt, tracks);
     print_table(all, per);
     if (!o.out.empty()) {
         io::Json j = metrics_json(all);
-        for (const auto& [cls, m] : per) j["per_class"][std::string(to_string(cls))] = metrics_json(m);
+        for (const auto& [cls, m] : per)
+            j["per_class"][std::string(to_string(cls))] = metrics_json(m);
         io::write_json(o.out, j);
     }
     return 0;
@@ -497,7 +623,8 @@ int run_bench_track(const BenchTrackOptions& o) {
     p.use_scan_occlusion = o.scan_occlusion;
     if (!o.config.empty()) p.tracker = io::load_config(o.config).system.tracker;
     io::ProgressBar bar("bench track", static_cast<std::size_t>(p.scenes));
-    const eval::TrackBenchResult r = eval::run_track_bench(p, [&](int done, int) { bar.update(static_cast<std::size_t>(done)); });
+    const eval::TrackBenchResult r = eval::run_track_bench(
+        p, [&](int done, int) { bar.update(static_cast<std::size_t>(done)); });
     bar.finish();
     io::Json j = metrics_json(r.overall);
     j["fps"] = r.fps;
@@ -514,18 +641,28 @@ int run_bench_track(const BenchTrackOptions& o) {
     j["false_positives"] = r.false_positives;
     j["false_positive_track_frames_in_map"] = r.false_positive_tracks_output;
     j["false_positive_tracks_after_3_frames"] = r.false_positive_tracks_lingering;
-    j["map_sanity"] = {{"object_frames", r.map_sanity.object_frames}, {"outside_room", r.map_sanity.outside_room},
-                       {"above_floor_0_3m", r.map_sanity.above_floor}, {"fast_unpushed_0_5mps", r.map_sanity.fast_unpushed},
-                       {"max_speed_mps", r.map_sanity.max_speed_mps}, {"max_bottom_m", r.map_sanity.max_bottom_m}};
-    j["rates"] = {{"miss", p.p_miss}, {"false_positive", p.false_positive_rate}, {"flip_90_each", p.p_flip_90}, {"flip_180", p.p_flip_180}};
-    for (const auto& [cls, m] : r.per_class) j["per_class"][std::string(to_string(cls))] = metrics_json(m);
+    j["map_sanity"] = {{"object_frames", r.map_sanity.object_frames},
+                       {"outside_room", r.map_sanity.outside_room},
+                       {"above_floor_0_3m", r.map_sanity.above_floor},
+                       {"fast_unpushed_0_5mps", r.map_sanity.fast_unpushed},
+                       {"max_speed_mps", r.map_sanity.max_speed_mps},
+                       {"max_bottom_m", r.map_sanity.max_bottom_m}};
+    j["rates"] = {{"miss", p.p_miss},
+                  {"false_positive", p.false_positive_rate},
+                  {"flip_90_each", p.p_flip_90},
+                  {"flip_180", p.p_flip_180}};
+    for (const auto& [cls, m] : r.per_class)
+        j["per_class"][std::string(to_string(cls))] = metrics_json(m);
     fs::create_directories(o.out_dir);
     io::write_json(fs::path(o.out_dir) / "summary.json", j);
     print_table(r.overall, r.per_class);
-    std::cout << "map objects outside the room " << r.map_sanity.outside_room << ", above the floor " << r.map_sanity.above_floor
-              << ", fast and not pushed " << r.map_sanity.fast_unpushed << " (of " << r.map_sanity.object_frames << " object-frames)\n";
-    std::cout << std::setprecision(1) << "fps " << r.fps << ", yaw within 10 deg: detections " << 100 * r.yaw_within_10deg_detections
-              << " %, map " << 100 * r.yaw_within_10deg_map << " %; wrote " << (fs::path(o.out_dir) / "summary.json").string() << "\n";
+    std::cout << "map objects outside the room " << r.map_sanity.outside_room
+              << ", above the floor " << r.map_sanity.above_floor << ", fast and not pushed "
+              << r.map_sanity.fast_unpushed << " (of " << r.map_sanity.object_frames
+              << " object-frames)\n";
+    std::cout << std::setprecision(1) << "fps " << r.fps << ", yaw within 10 deg: detections "
+              << 100 * r.yaw_within_10deg_detections << " %, map " << 100 * r.yaw_within_10deg_map
+              << " %; wrote " << (fs::path(o.out_dir) / "summary.json").string() << "\n";
     return 0;
 }
 

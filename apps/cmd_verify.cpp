@@ -5,13 +5,13 @@
 
 #include "apps/commands.hpp"
 #include "io/cad_folder.hpp"
-#include "io/json_io.hpp"
-#include "io/tracking_io.hpp"
-#include "io/progress.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
+#include "io/json_io.hpp"
 #include "io/mesh_io.hpp"
 #include "io/point_cloud_io.hpp"
+#include "io/progress.hpp"
+#include "io/tracking_io.hpp"
 #include "makeway/common/angles.hpp"
 #include "makeway/eval/verify_bench.hpp"
 #include "makeway/pipeline/keyframe.hpp"
@@ -40,9 +40,11 @@ io::Json to_json(const eval::VerifyBenchArm& a) {
 }  // namespace
 
 int run_verify(const VerifyOptions& options) {
-    const auto policy = options.non_finite == "drop" ? io::NonFinitePolicy::kDrop : io::NonFinitePolicy::kReject;
+    const auto policy =
+        options.non_finite == "drop" ? io::NonFinitePolicy::kDrop : io::NonFinitePolicy::kReject;
     const PointCloud raw = io::read_point_cloud(options.cloud, {.non_finite = policy}).cloud;
-    const std::vector<Detection> detections = io::read_detection_frame(options.detections).detections_sensor;
+    const std::vector<Detection> detections =
+        io::read_detection_frame(options.detections).detections_sensor;
     const verification::CadLibrary library = io::read_cad_folder(options.cad_dir);
     // The floor under each object from the ground plane, when the cloud still holds the ground;
     // ground and ceiling points are then removed, as the pipeline does before detection.
@@ -51,26 +53,34 @@ int run_verify(const VerifyOptions& options) {
     io::Json results = io::Json::array();
     std::size_t accepted = 0;
     for (const Detection& det : detections) {
-        const std::optional<double> floor_z = keyframe.floor_z_at(det.box_sensor.centre_m.x(), det.box_sensor.centre_m.y());
-        const verification::VerifiedDetection v = verification::verify_detection(cloud, det, library, {}, floor_z);
+        const std::optional<double> floor_z =
+            keyframe.floor_z_at(det.box_sensor.centre_m.x(), det.box_sensor.centre_m.y());
+        const verification::VerifiedDetection v =
+            verification::verify_detection(cloud, det, library, {}, floor_z);
         accepted += v.accepted;
-        results.push_back({{"class", std::string(to_string(det.cls))},
-                           {"accepted", v.accepted},
-                           {"reason", v.reason},
-                           {"model", v.model},
-                           {"residual_m", v.residual_m},
-                           {"p_exist", v.p_exist},
-                           {"iterations", v.iterations},
-                           {"converged", v.converged},
-                           {"segment_points", v.segment_points},
-                           {"input_box", io::to_json(det.box_sensor)},
-                           {"box", io::to_json(v.box_sensor)},
-                           {"T_sensor_object", {{"t_m", {v.T_sensor_object.translation().x(), v.T_sensor_object.translation().y(),
-                                                          v.T_sensor_object.translation().z()}},
-                                                {"yaw_rad", yaw_of(v.T_sensor_object)}}}});
+        results.push_back(
+            {{"class", std::string(to_string(det.cls))},
+             {"accepted", v.accepted},
+             {"reason", v.reason},
+             {"model", v.model},
+             {"residual_m", v.residual_m},
+             {"p_exist", v.p_exist},
+             {"iterations", v.iterations},
+             {"converged", v.converged},
+             {"segment_points", v.segment_points},
+             {"input_box", io::to_json(det.box_sensor)},
+             {"box", io::to_json(v.box_sensor)},
+             {"T_sensor_object",
+              {{"t_m",
+                {v.T_sensor_object.translation().x(), v.T_sensor_object.translation().y(),
+                 v.T_sensor_object.translation().z()}},
+               {"yaw_rad", yaw_of(v.T_sensor_object)}}}});
     }
-    io::write_json(options.out, {{"cloud", options.cloud}, {"ground_found", keyframe.ground.found}, {"verified", results}});
-    std::cout << "verified " << detections.size() << " detections: " << accepted << " accepted; wrote " << options.out << "\n";
+    io::write_json(
+        options.out,
+        {{"cloud", options.cloud}, {"ground_found", keyframe.ground.found}, {"verified", results}});
+    std::cout << "verified " << detections.size() << " detections: " << accepted
+              << " accepted; wrote " << options.out << "\n";
     return 0;
 }
 
@@ -80,9 +90,11 @@ int run_bench_verify(const BenchVerifyOptions& options) {
     p.seed = options.seed;
     p.verify.min_yaw_margin = options.min_yaw_margin;
     p.verify.approx_e_max_m = options.approx_e_max_m;
-    if (const auto problems = p.verify.validate(); !problems.empty()) throw io::FileError("--approx-e-max", problems.front());
+    if (const auto problems = p.verify.validate(); !problems.empty())
+        throw io::FileError("--approx-e-max", problems.front());
     io::ProgressBar bar("bench verify", static_cast<std::size_t>(p.scenes));
-    const eval::VerifyBenchResult r = eval::run_verify_bench(p, [&](int done, int) { bar.update(static_cast<std::size_t>(done)); });
+    const eval::VerifyBenchResult r = eval::run_verify_bench(
+        p, [&](int done, int) { bar.update(static_cast<std::size_t>(done)); });
     bar.finish();
     const io::Json j = {{"scenes", p.scenes},
                         {"seed", p.seed},

@@ -88,7 +88,7 @@ struct NavigateOptions {
     std::string config;  ///< lidar, robot and affordance sections; empty: built-in defaults
     std::string scene;
     std::string method = "gt-perc";
-    std::string map;  ///< optional map_server YAML for the static layer
+    std::string map;    ///< optional map_server YAML for the static layer
     std::string model;  ///< detector weights for `ours`; empty: the default ones
     std::string out_dir;
     std::uint64_t seed = 0;
@@ -106,9 +106,12 @@ struct BenchNavOptions {
     int threads = 2;
     double time_limit_s = 180.0;
     std::vector<std::string> methods;  ///< empty: every method (ours when weights are there)
-    std::string shard;  ///< "K/N": run scenes K, K + N, ... and write partial.json (empty: every scene, the results)
-    std::string layout = "random";  ///< random (densities cycle) or study_space (the paper's room, seeded)
-    std::string shape_model;  ///< `ours` verifies against these learned shapes instead of the scenes' CAD models
+    std::string shard;  ///< "K/N": run scenes K, K + N, ... and write partial.json (empty: every
+                        ///< scene, the results)
+    std::string layout =
+        "random";  ///< random (densities cycle) or study_space (the paper's room, seeded)
+    std::string shape_model;  ///< `ours` verifies against these learned shapes instead of the
+                              ///< scenes' CAD models
 };
 int run_bench_nav(const BenchNavOptions& options);
 /// "K/N" with 0 <= K < N, or nullopt.
@@ -152,21 +155,24 @@ int run_verify(const VerifyOptions& options);
 namespace makeway::apps {
 
 struct TrackOptions {
-    std::string detections;      ///< folder of per-frame JSON (makeway) or KITTI file / folder of files
+    std::string detections;  ///< folder of per-frame JSON (makeway) or KITTI file / folder of files
     std::string format = "makeway";
-    std::string poses;           ///< TUM sensor poses per frame (makeway format, optional)
-    std::string config;          ///< YAML; its tracking section (default: built-in, KITTI preset for kitti)
-    double rate_hz = 10.0;       ///< frame rate for KITTI files (stamps = frame / rate)
+    std::string poses;   ///< TUM sensor poses per frame (makeway format, optional)
+    std::string config;  ///< YAML; its tracking section (default: built-in, KITTI preset for kitti)
+    double rate_hz = 10.0;  ///< frame rate for KITTI files (stamps = frame / rate)
     std::optional<double> range_m, min_score;
-    std::vector<std::string> classes;    ///< empty: every class in the input (kitti), chair and table (makeway)
+    std::vector<std::string>
+        classes;  ///< empty: every class in the input (kitti), chair and table (makeway)
     std::string score_transform = "auto";  ///< auto, none or sigmoid
-    std::string out_of_range;    ///< freeze or drop; empty: the configuration's
-    double fov_deg = 0.0;        ///< > 0: KITTI output only within this horizontal field of view
+    std::string out_of_range;              ///< freeze or drop; empty: the configuration's
+    double fov_deg = 0.0;  ///< > 0: KITTI output only within this horizontal field of view
     std::string output_score = "detection";  ///< kitti: detection, existence or track-mean
-    bool coasting = false;       ///< kitti: boxes of confirmed tracks not detected in the frame, every type (default: the type's preset)
-    int coasting_frames = 0;     ///< kitti, with coasting: at most this many frames after the last detection (0: until dropped)
-    bool no_coasting = false;    ///< kitti: no such boxes for any type
-    bool backfill = true;        ///< kitti: a confirmed track's output starts at its first detection
+    bool coasting = false;    ///< kitti: boxes of confirmed tracks not detected in the frame, every
+                              ///< type (default: the type's preset)
+    int coasting_frames = 0;  ///< kitti, with coasting: at most this many frames after the last
+                              ///< detection (0: until dropped)
+    bool no_coasting = false;  ///< kitti: no such boxes for any type
+    bool backfill = true;      ///< kitti: a confirmed track's output starts at its first detection
     std::string out;
 };
 int run_track(const TrackOptions& options);
@@ -179,7 +185,7 @@ struct EvalTrackingOptions {
     double min_iou = 0.25;             ///< kitti: 3D IoU of a match
     double fov_deg = 0.0;              ///< kitti: > 0 scores only this horizontal field of view
     bool devkit_rounding = false;      ///< kitti: AB3DMOT's script's re-averaged scores, to the bit
-    std::string out;             ///< optional JSON
+    std::string out;                   ///< optional JSON
 };
 int run_eval_tracking(const EvalTrackingOptions& options);
 
@@ -193,34 +199,37 @@ struct BenchTrackOptions {
 int run_bench_track(const BenchTrackOptions& options);
 
 struct OdometryOptions {
-    std::string clouds;     ///< folder of sweeps (.pcd/.ply/.bin), in name order
-    std::string odometry;   ///< optional TUM wheel odometry, one pose per sweep start
-    std::string config;     ///< lidar_odometry and robot (mount) sections
+    std::string clouds;    ///< folder of sweeps (.pcd/.ply/.bin), in name order
+    std::string odometry;  ///< optional TUM wheel odometry, one pose per sweep start
+    std::string config;    ///< lidar_odometry and robot (mount) sections
     std::vector<double> start{0.0, 0.0, 0.0};  ///< x, y, yaw of the base at the first sweep
-    double rate_hz = 10.0;  ///< sweep rate without odometry stamps
+    double rate_hz = 10.0;                     ///< sweep rate without odometry stamps
     std::string out;
 };
 int run_odometry(const OdometryOptions& options);
 
 struct RunOptions {
-    std::string clouds, bag;            ///< one of them: a folder of sweeps, or a ROS 1 bag
-    std::string odometry;               ///< folders: TUM wheel odometry of the base, line k at sweep k
-    std::string poses;                  ///< TUM T_world_sensor per sweep start: external poses, no odometry
+    std::string clouds, bag;  ///< one of them: a folder of sweeps, or a ROS 1 bag
+    std::string odometry;     ///< folders: TUM wheel odometry of the base, line k at sweep k
+    std::string poses;        ///< TUM T_world_sensor per sweep start: external poses, no odometry
     std::string cloud_topic = "/velodyne_points", odom_topic = "/odom";
-    std::string map;                    ///< map_server YAML: the static layer (optional)
-    std::string cad;                    ///< CAD folder for verification (optional: skipped without)
-    std::string shape_model;            ///< shape networks for what no CAD model fits (optional)
-    std::vector<double> extrinsics;     ///< x y z roll pitch yaw of the sensor on the base (default: the config's robot)
-    std::vector<double> start;          ///< x y yaw of the base at the first sweep (default: the first pose)
+    std::string map;                 ///< map_server YAML: the static layer (optional)
+    std::string cad;                 ///< CAD folder for verification (optional: skipped without)
+    std::string shape_model;         ///< shape networks for what no CAD model fits (optional)
+    std::vector<double> extrinsics;  ///< x y z roll pitch yaw of the sensor on the base (default:
+                                     ///< the config's robot)
+    std::vector<double>
+        start;  ///< x y yaw of the base at the first sweep (default: the first pose)
     std::string config, model;
     std::string out = "out/run", out_bag;
     double rate_hz = 10.0;
-    double costmap_size_m = 40.0, resolution_m = 0.05;  ///< without --map: a free square around the start
-    int png_every = 1;                  ///< a picture every n-th keyframe (0: none)
-    int max_sweeps = 0;                 ///< 0: all
+    double costmap_size_m = 40.0,
+           resolution_m = 0.05;  ///< without --map: a free square around the start
+    int png_every = 1;           ///< a picture every n-th keyframe (0: none)
+    int max_sweeps = 0;          ///< 0: all
     std::string non_finite = "reject";
-    bool instantaneous = false;         ///< accept sweeps without per-point time (not de-skewed)
-    bool skip_bad_messages = false;     ///< bags: skip and count damaged messages instead of stopping
+    bool instantaneous = false;      ///< accept sweeps without per-point time (not de-skewed)
+    bool skip_bad_messages = false;  ///< bags: skip and count damaged messages instead of stopping
 };
 int run_run(const RunOptions& options);
 
@@ -243,8 +252,9 @@ struct DatasetOptions {
     std::vector<std::string> exclude_styles{"armchair", "round_table"};
     int keyframe_every = 10;
     int max_keyframes = 30;
-    bool all_styles = false;        ///< every style of the simulator, not only the seven scenes draw from
-    std::string furniture;          ///< a folder of the user's own furniture meshes (io/furniture_folder.hpp)
+    bool all_styles = false;  ///< every style of the simulator, not only the seven scenes draw from
+    std::string
+        furniture;  ///< a folder of the user's own furniture meshes (io/furniture_folder.hpp)
     double furniture_share = 0.5;
     std::string out;
 };
@@ -267,7 +277,8 @@ int run_train_detector(const TrainDetectorOptions& options);
 struct DetectOptions {
     std::string model;  ///< empty: the default weights
     std::string cloud;
-    std::string non_finite = "reject";  ///< points with NaN/inf coordinates: reject the file or drop them
+    std::string non_finite =
+        "reject";  ///< points with NaN/inf coordinates: reject the file or drop them
     std::string out;
 };
 int run_detect(const DetectOptions& options);
@@ -277,9 +288,10 @@ struct EvalDetectionOptions {
     int scenes = 6;
     std::uint64_t seed = 1000000;
     std::string out_dir = "out/eval_detection";
-    bool default_cad = false;  ///< verify against default-dimension models instead of the scene's own
-    bool no_cad = false;       ///< no CAD models at all
-    std::string shape_model;   ///< learned shapes for what no CAD model fits
+    bool default_cad =
+        false;            ///< verify against default-dimension models instead of the scene's own
+    bool no_cad = false;  ///< no CAD models at all
+    std::string shape_model;     ///< learned shapes for what no CAD model fits
     double shape_e_max = 0.035;  ///< verification's residual bound for completed shapes [m]
 };
 int run_eval_detection(const EvalDetectionOptions& options);
@@ -289,14 +301,16 @@ int run_eval_detection(const EvalDetectionOptions& options);
 namespace makeway::apps {
 
 struct LabelOptions {
-    std::vector<std::string> sessions;  ///< one folder per session (makeway simulate output or recorded sweeps)
-    std::string cad;                    ///< CAD folder; empty: PCA boxes only
-    std::string model;                  ///< the previous round's detector: classes of model-less clusters
+    std::vector<std::string>
+        sessions;       ///< one folder per session (makeway simulate output or recorded sweeps)
+    std::string cad;    ///< CAD folder; empty: PCA boxes only
+    std::string model;  ///< the previous round's detector: classes of model-less clusters
     std::string config;
     std::string odometry_name = "odometry.txt";
-    std::string poses_name;             ///< external poses (TUM T_world_sensor) in every session folder; the odometry does not run
+    std::string poses_name;  ///< external poses (TUM T_world_sensor) in every session folder; the
+                             ///< odometry does not run
     std::string out;
-    int max_sweeps = 0;                 ///< per session; 0: all
+    int max_sweeps = 0;  ///< per session; 0: all
 };
 int run_label(const LabelOptions& options);
 
@@ -321,7 +335,8 @@ struct BenchSessionsOptions {
     int replay_scenes = 16;
     int threads = 2;
     std::uint64_t seed = 0;
-    std::vector<std::string> left_out_styles{"armchair", "round_table", "lounge_chair", "pedestal_table"};
+    std::vector<std::string> left_out_styles{"armchair", "round_table", "lounge_chair",
+                                             "pedestal_table"};
     std::string out_dir = "out/bench_sessions";
 };
 int run_bench_sessions(const BenchSessionsOptions& options);
@@ -347,7 +362,7 @@ struct BenchShapeOptions {
     std::vector<std::string> left_out{"armchair", "round_table"};
     int threads = 1;
     double inlier_distance = 0.05;  ///< the robust solve's inlier residual [m]
-    int hypotheses = 0;             ///< the robust solve's minimal samples (0: the weighted solve alone)
+    int hypotheses = 0;  ///< the robust solve's minimal samples (0: the weighted solve alone)
     bool pose_only = false;
     std::string out_dir = "out/bench_shape";
 };
@@ -356,7 +371,7 @@ int run_bench_shape(const BenchShapeOptions& options);
 struct CompleteOptions {
     std::string model;  ///< empty: models/shape.pt
     std::string cloud;
-    std::string box;    ///< "cx,cy,cz,length,width,height,yaw" in the cloud's frame
+    std::string box;  ///< "cx,cy,cz,length,width,height,yaw" in the cloud's frame
     std::string cls;
     std::string sensor = "0,0,0";  ///< where the returns were seen from, in the cloud's frame
     std::string out;

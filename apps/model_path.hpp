@@ -13,7 +13,8 @@
 
 namespace makeway::apps {
 
-inline std::optional<std::filesystem::path> default_model_path(const std::string& name = "detector.pt") {
+inline std::optional<std::filesystem::path> default_model_path(
+    const std::string& name = "detector.pt") {
     namespace fs = std::filesystem;
     const fs::path local = fs::path("models") / name;
     if (fs::exists(local)) return local;
@@ -29,8 +30,10 @@ inline std::optional<std::filesystem::path> default_model_path(const std::string
 /// The given model file, else the default weights; throws io::FileError naming the file when it is
 /// missing or not a detector.
 inline perception::Detector load_detector(const std::string& given) {
-    const std::filesystem::path path = !given.empty() ? std::filesystem::path(given)
-                                                      : default_model_path().value_or(std::filesystem::path("models") / "detector.pt");
+    const std::filesystem::path path =
+        !given.empty()
+            ? std::filesystem::path(given)
+            : default_model_path().value_or(std::filesystem::path("models") / "detector.pt");
     try {
         return perception::Detector::load(path);
     } catch (const std::runtime_error& e) {
@@ -40,8 +43,10 @@ inline perception::Detector load_detector(const std::string& given) {
 
 /// The given shape model file, else models/shape.pt; throws io::FileError naming the file.
 inline shape::ShapeModel load_shape_model(const std::string& given) {
-    const std::filesystem::path path = !given.empty() ? std::filesystem::path(given)
-                                                      : default_model_path("shape.pt").value_or(std::filesystem::path("models") / "shape.pt");
+    const std::filesystem::path path =
+        !given.empty()
+            ? std::filesystem::path(given)
+            : default_model_path("shape.pt").value_or(std::filesystem::path("models") / "shape.pt");
     try {
         return shape::ShapeModel::load(path);
     } catch (const std::runtime_error& e) {

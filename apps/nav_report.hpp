@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "io/sim_config.hpp"
 #include "io/json_io.hpp"
+#include "io/sim_config.hpp"
 #include "makeway/eval/navigation.hpp"
 
 namespace makeway::apps {
@@ -34,7 +34,8 @@ io::Json summarise_timing(const io::Json& timing, const std::vector<std::string>
 
 /// table.md: the paper's Table II columns plus intervals, then the paired differences.
 std::string nav_table_markdown(const io::Json& summary);
-/// risk_time.png: each method's runs as points, total time (x) against risk time (y), successful runs.
+/// risk_time.png: each method's runs as points, total time (x) against risk time (y), successful
+/// runs.
 void write_risk_time_plot(const std::filesystem::path& path, const io::Json& summary);
 
 }  // namespace makeway::apps

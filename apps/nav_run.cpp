@@ -7,13 +7,16 @@
 
 namespace makeway::apps {
 
-eval::NavRunResult run_nav_method(const sim::Scene& scene, const std::string& name, const eval::NavParams& params,
-                                  const perception::Detector* detector, const verification::ShapePrior* shapes) {
+eval::NavRunResult run_nav_method(const sim::Scene& scene, const std::string& name,
+                                  const eval::NavParams& params,
+                                  const perception::Detector* detector,
+                                  const verification::ShapePrior* shapes) {
     const std::optional<eval::NavMethod> method = eval::nav_method(name, params.robot);
     if (!method) throw std::invalid_argument("unknown navigation method '" + name + "'");
     if (method->online) {
         if (!detector) throw std::invalid_argument("the full system 'ours' needs detector weights");
-        if (shapes) return eval::run_navigation_online(scene, *method, *detector, nullptr, params, shapes);
+        if (shapes)
+            return eval::run_navigation_online(scene, *method, *detector, nullptr, params, shapes);
         // The room's furniture models, as in the paper: a deployment's CAD files.
         const verification::CadLibrary cad = eval::scene_cad_library(scene);
         return eval::run_navigation_online(scene, *method, *detector, &cad, params);

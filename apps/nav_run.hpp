@@ -10,8 +10,11 @@
 namespace makeway::apps {
 
 /// `detector` is needed by `ours` only (std::invalid_argument without it). With `shapes`, `ours`
-/// verifies against the learned shapes instead of the scene's CAD models (furniture without models).
-eval::NavRunResult run_nav_method(const sim::Scene& scene, const std::string& method, const eval::NavParams& params,
-                                  const perception::Detector* detector, const verification::ShapePrior* shapes = nullptr);
+/// verifies against the learned shapes instead of the scene's CAD models (furniture without
+/// models).
+eval::NavRunResult run_nav_method(const sim::Scene& scene, const std::string& method,
+                                  const eval::NavParams& params,
+                                  const perception::Detector* detector,
+                                  const verification::ShapePrior* shapes = nullptr);
 
 }  // namespace makeway::apps

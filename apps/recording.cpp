@@ -45,9 +45,14 @@ io::Json frame_json(const sim::SimFrame& f) {
     }
     io::Json people = io::Json::array();
     for (std::size_t k = 0; k < f.people_m.size(); ++k) {
-        people.push_back({{"id", sim::kPersonInstanceBase + k}, {"position_m", {f.people_m[k].x(), f.people_m[k].y()}}});
+        people.push_back({{"id", sim::kPersonInstanceBase + k},
+                          {"position_m", {f.people_m[k].x(), f.people_m[k].y()}}});
     }
-    return {{"frame", f.index}, {"stamp_s", f.stamp_s}, {"collided", f.collided}, {"objects", objects}, {"people", people}};
+    return {{"frame", f.index},
+            {"stamp_s", f.stamp_s},
+            {"collided", f.collided},
+            {"objects", objects},
+            {"people", people}};
 }
 
 }  // namespace
@@ -60,9 +65,9 @@ std::string write_scene_with_picture(const std::filesystem::path& path, const si
     if (auto route = sim::drive_route(scene, checker, sim::RobotParams{})) pic.route_m = *route;
     int chairs = 0, tables = 0;
     for (const auto& o : scene.objects) (o.cls == ObjectClass::kChair ? chairs : tables)++;
-    pic.title = scene.name + ": " + std::to_string(tables) + " tables, " + std::to_string(chairs) + " chairs, " +
-                std::to_string(scene.walkers.size()) + " walkers, " + std::to_string(scene.pushers.size()) +
-                " chair pushers";
+    pic.title = scene.name + ": " + std::to_string(tables) + " tables, " + std::to_string(chairs) +
+                " chairs, " + std::to_string(scene.walkers.size()) + " walkers, " +
+                std::to_string(scene.pushers.size()) + " chair pushers";
     auto png = path;
     io::write_scene_png(png.replace_extension(".png"), scene, models, pic);
     return pic.title;
@@ -73,21 +78,30 @@ std::vector<Eigen::Vector2d> auto_route(const sim::Scene& scene, const sim::Robo
     const auto models = models_of(scene);
     const sim::CollisionChecker checker(scene, models, robot);
     auto route = sim::drive_route(scene, checker, robot);
-    if (!route) throw io::FileError(scene_name, "no collision-free route from start through waypoint to goal");
+    if (!route)
+        throw io::FileError(scene_name,
+                            "no collision-free route from start through waypoint to goal");
     return *route;
 }
 
-std::uintmax_t recording_bytes_upper_bound(const sim::LidarParams& lidar, const RecordingOptions& options) {
+std::uintmax_t recording_bytes_upper_bound(const sim::LidarParams& lidar,
+                                           const RecordingOptions& options) {
     // Every ray returning, in the chosen format, plus a frame's ground-truth JSON (generous).
     PointCloud one, many;
     one.resize(1, PointFields::all());
     many.resize(1001, PointFields::all());
-    const std::size_t per_point = options.format == "bin"   ? 16 + 4  // .bin xyzi + .label
-                                  : options.format == "bag" ? 22 + 8  // PointCloud2 x y z intensity ring time, bag overhead
-                                                            : (io::serialize_pcd(many, io::PcdEncoding::kBinary).size() -
-                                                             io::serialize_pcd(one, io::PcdEncoding::kBinary).size() + 999) / 1000;
-    const std::uintmax_t rays = static_cast<std::uintmax_t>(lidar.num_beams()) * static_cast<std::uintmax_t>(lidar.num_columns());
-    const std::uintmax_t clouds = (static_cast<std::uintmax_t>(options.frames) + options.cloud_every - 1) / options.cloud_every;
+    const std::size_t per_point =
+        options.format == "bin" ? 16 + 4  // .bin xyzi + .label
+        : options.format == "bag"
+            ? 22 + 8  // PointCloud2 x y z intensity ring time, bag overhead
+            : (io::serialize_pcd(many, io::PcdEncoding::kBinary).size() -
+               io::serialize_pcd(one, io::PcdEncoding::kBinary).size() + 999) /
+                  1000;
+    const std::uintmax_t rays = static_cast<std::uintmax_t>(lidar.num_beams()) *
+                                static_cast<std::uintmax_t>(lidar.num_columns());
+    const std::uintmax_t clouds =
+        (static_cast<std::uintmax_t>(options.frames) + options.cloud_every - 1) /
+        options.cloud_every;
     return clouds * rays * per_point + static_cast<std::uintmax_t>(options.frames) * 16384;
 }
 
@@ -95,8 +109,9 @@ RecordingSummary record_sequence(const sim::Scene& scene, const std::vector<Eige
                                  const sim::SequenceParams& params, const RecordingOptions& options,
                                  const std::filesystem::path& out, const std::string& scene_label) {
     io::check_free_space(out, recording_bytes_upper_bound(params.lidar, options),
-                         std::to_string(options.frames) + " frames of " + std::to_string(params.lidar.num_beams()) +
-                             " beams x " + std::to_string(params.lidar.num_columns()) + " columns");
+                         std::to_string(options.frames) + " frames of " +
+                             std::to_string(params.lidar.num_beams()) + " beams x " +
+                             std::to_string(params.lidar.num_columns()) + " columns");
     io::RecordingFolder folder(out, "simulate");
     const int frames = options.frames;
     const std::string& format = options.format;
@@ -107,7 +122,8 @@ RecordingSummary record_sequence(const sim::Scene& scene, const std::vector<Eige
         const auto& trajectory = simulator.trajectory();
         summary.distance_m = 0.0;
         for (std::size_t i = 1; i < trajectory.size(); ++i) {
-            summary.distance_m += std::hypot(trajectory[i].x_m - trajectory[i - 1].x_m, trajectory[i].y_m - trajectory[i - 1].y_m);
+            summary.distance_m += std::hypot(trajectory[i].x_m - trajectory[i - 1].x_m,
+                                             trajectory[i].y_m - trajectory[i - 1].y_m);
         }
         return io::Json{{"scene", scene_label},
                         {"frames", summary.frames},
@@ -142,16 +158,25 @@ RecordingSummary record_sequence(const sim::Scene& scene, const std::vector<Eige
             if (i % options.cloud_every != 0) {
                 // ground truth only
             } else if (bag) {
-                bag->write_cloud("/velodyne_points", f.points_sensor, epoch + f.stamp_s, "velodyne");
-                bag->write_odometry("/odom", f.odometry_pose, 0.0, 0.0, epoch + f.stamp_s, "odom", "base_link");
-                bag->write_odometry("/odom", f.odometry_end_pose, 0.0, 0.0, epoch + f.stamp_s + params.lidar.sweep_duration_s(), "odom", "base_link");
-                bag->write_odometry("/ground_truth/odom", f.true_pose, 0.0, 0.0, epoch + f.stamp_s, "map", "base_link");
-                bag->write_text("/ground_truth/objects", io::dump_json(frame_json(f)), epoch + f.stamp_s);
+                bag->write_cloud("/velodyne_points", f.points_sensor, epoch + f.stamp_s,
+                                 "velodyne");
+                bag->write_odometry("/odom", f.odometry_pose, 0.0, 0.0, epoch + f.stamp_s, "odom",
+                                    "base_link");
+                bag->write_odometry("/odom", f.odometry_end_pose, 0.0, 0.0,
+                                    epoch + f.stamp_s + params.lidar.sweep_duration_s(), "odom",
+                                    "base_link");
+                bag->write_odometry("/ground_truth/odom", f.true_pose, 0.0, 0.0, epoch + f.stamp_s,
+                                    "map", "base_link");
+                bag->write_text("/ground_truth/objects", io::dump_json(frame_json(f)),
+                                epoch + f.stamp_s);
             } else if (format == "bin") {
-                io::write_point_cloud(out / "clouds" / (std::string(name) + ".bin"), f.points_sensor);
-                io::write_file_atomic(out / "labels" / (std::string(name) + ".label"), semantic_kitti_labels(f.points_sensor));
+                io::write_point_cloud(out / "clouds" / (std::string(name) + ".bin"),
+                                      f.points_sensor);
+                io::write_file_atomic(out / "labels" / (std::string(name) + ".label"),
+                                      semantic_kitti_labels(f.points_sensor));
             } else {
-                io::write_point_cloud(out / "clouds" / (std::string(name) + ".pcd"), f.points_sensor);
+                io::write_point_cloud(out / "clouds" / (std::string(name) + ".pcd"),
+                                      f.points_sensor);
             }
             io::write_json(out / "objects" / (std::string(name) + ".json"), frame_json(f));
             gt.push_back({f.stamp_s, f.T_world_sensor});
@@ -159,7 +184,8 @@ RecordingSummary record_sequence(const sim::Scene& scene, const std::vector<Eige
             ++summary.frames;  // only once everything of the frame is on disk
             writing.clear();
             summary.ms_per_frame = 1e3 * sim_s / summary.frames;
-            bar.update(static_cast<std::size_t>(i + 1), std::to_string(f.points_sensor.size()) + " points");
+            bar.update(static_cast<std::size_t>(i + 1),
+                       std::to_string(f.points_sensor.size()) + " points");
         }
         bar.finish(simulator.reached_goal() ? "goal reached" : "");
         io::write_tum(out / "poses_gt.txt", gt);
@@ -171,9 +197,13 @@ RecordingSummary record_sequence(const sim::Scene& scene, const std::vector<Eige
         io::ScenePicture pic;
         pic.route_m = route;
         pic.trajectory = trajectory;
-        pic.title = scene.name + ": " + std::to_string(summary.frames) + " frames, " + std::to_string(summary.distance_m).substr(0, 5) +
-                    " m" + (summary.reached_goal ? ", goal reached" : "") +
-                    (summary.frames_in_collision ? ", " + std::to_string(summary.frames_in_collision) + " frames in collision" : "");
+        pic.title =
+            scene.name + ": " + std::to_string(summary.frames) + " frames, " +
+            std::to_string(summary.distance_m).substr(0, 5) + " m" +
+            (summary.reached_goal ? ", goal reached" : "") +
+            (summary.frames_in_collision
+                 ? ", " + std::to_string(summary.frames_in_collision) + " frames in collision"
+                 : "");
         io::write_scene_png(out / "scene.png", scene, simulator.world().models(), pic);
         folder.complete(done);
     } catch (const std::exception& e) {
@@ -185,7 +215,8 @@ RecordingSummary record_sequence(const sim::Scene& scene, const std::vector<Eige
             }
         };
         // The frame being written when it stopped is removed: every frame on disk is whole.
-        for (const char* part : {"clouds/%.pcd", "clouds/%.bin", "labels/%.label", "objects/%.json"}) {
+        for (const char* part :
+             {"clouds/%.pcd", "clouds/%.bin", "labels/%.label", "objects/%.json"}) {
             if (writing.empty()) break;
             std::string rel = part;
             rel.replace(rel.find('%'), 1, writing);

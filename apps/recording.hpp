@@ -27,14 +27,16 @@ struct RecordingSummary {
 };
 
 struct RecordingOptions {
-    int frames = 100;            ///< sweeps to simulate (at most, with stop_at_goal)
-    std::string format = "pcd";  ///< "pcd" (binary, labelled), "bin" (KITTI + SemanticKITTI labels) or "bag" (ROS 1)
-    int cloud_every = 1;         ///< write every n-th sweep's cloud (ground truth is written for all)
+    int frames = 100;  ///< sweeps to simulate (at most, with stop_at_goal)
+    std::string format =
+        "pcd";  ///< "pcd" (binary, labelled), "bin" (KITTI + SemanticKITTI labels) or "bag" (ROS 1)
+    int cloud_every = 1;  ///< write every n-th sweep's cloud (ground truth is written for all)
     bool stop_at_goal = false;
 };
 
 /// An upper bound on the bytes a recording writes (every ray returning).
-std::uintmax_t recording_bytes_upper_bound(const sim::LidarParams& lidar, const RecordingOptions& options);
+std::uintmax_t recording_bytes_upper_bound(const sim::LidarParams& lidar,
+                                           const RecordingOptions& options);
 
 /// Records sweeps into out_dir: clouds/NNNNNN.pcd (or .bin + labels/NNNNNN.label),
 /// objects/NNNNNN.json, poses_gt.txt, odometry.txt, scene.png, summary.json. Shows progress.
@@ -43,6 +45,7 @@ std::uintmax_t recording_bytes_upper_bound(const sim::LidarParams& lidar, const 
 /// "complete": false and the frames that are on disk, then rethrows.
 RecordingSummary record_sequence(const sim::Scene& scene, const std::vector<Eigen::Vector2d>& route,
                                  const sim::SequenceParams& params, const RecordingOptions& options,
-                                 const std::filesystem::path& out_dir, const std::string& scene_label);
+                                 const std::filesystem::path& out_dir,
+                                 const std::string& scene_label);
 
 }  // namespace makeway::apps

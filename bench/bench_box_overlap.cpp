@@ -16,9 +16,10 @@ std::vector<std::pair<OrientedBox, OrientedBox>> random_pairs(std::size_t n) {
     std::vector<std::pair<OrientedBox, OrientedBox>> pairs;
     for (std::size_t i = 0; i < n; ++i) {
         auto box = [&] {
-            return OrientedBox{{uniform(rng, -0.5, 0.5), uniform(rng, -0.5, 0.5), 0.4},
-                               {uniform(rng, 0.4, 1.6), uniform(rng, 0.4, 1.0), uniform(rng, 0.7, 1.0)},
-                               uniform(rng, -kPi, kPi)};
+            return OrientedBox{
+                {uniform(rng, -0.5, 0.5), uniform(rng, -0.5, 0.5), 0.4},
+                {uniform(rng, 0.4, 1.6), uniform(rng, 0.4, 1.0), uniform(rng, 0.7, 1.0)},
+                uniform(rng, -kPi, kPi)};
         };
         pairs.emplace_back(box(), box());
     }

@@ -17,9 +17,12 @@ const PointCloud& study_space_keyframe() {
     static const PointCloud keyframe = [] {
         const sim::Scene scene = sim::generate_scene({.layout = sim::Layout::kStudySpace});
         sim::World world(scene, sim::models_of(scene));
-        const Isometry3 T_world_sensor = lift_to_3d(scene.start) * sim::RobotParams{}.T_robot_sensor();
+        const Isometry3 T_world_sensor =
+            lift_to_3d(scene.start) * sim::RobotParams{}.T_robot_sensor();
         PointCloud c;
-        for (int k = 0; k < 5; ++k) c.append(sim::simulate_sweep(world, {}, [&](double) { return T_world_sensor; }, 0.1 * k, 0, k));
+        for (int k = 0; k < 5; ++k)
+            c.append(sim::simulate_sweep(
+                world, {}, [&](double) { return T_world_sensor; }, 0.1 * k, 0, k));
         return c;
     }();
     return keyframe;

@@ -16,7 +16,8 @@ PointCloud sweep(std::size_t n) {
     PointCloud c;
     c.resize(n, PointFields::all());
     for (std::size_t i = 0; i < n; ++i) {
-        c.xyz[i] = Eigen::Vector3f(static_cast<float>(normal(rng, 0, 8)), static_cast<float>(normal(rng, 0, 8)),
+        c.xyz[i] = Eigen::Vector3f(static_cast<float>(normal(rng, 0, 8)),
+                                   static_cast<float>(normal(rng, 0, 8)),
                                    static_cast<float>(uniform(rng, -0.4, 2.5)));
         c.intensity[i] = static_cast<float>(uniform(rng, 0, 100));
         c.ring[i] = static_cast<std::uint16_t>(i % 32);
@@ -42,14 +43,18 @@ void round_trip(benchmark::State& state, Encode encode, Decode decode, bool deco
     state.counters["file_MB"] = static_cast<double>(bytes.size()) / 1e6;
 }
 
-#define MAKEWAY_CODEC_BENCH(NAME, ENCODE, DECODE)                                                  \
-    void BM_Write_##NAME(benchmark::State& s) { round_trip(s, ENCODE, DECODE, false); }            \
-    void BM_Read_##NAME(benchmark::State& s) { round_trip(s, ENCODE, DECODE, true); }             \
-    BENCHMARK(BM_Write_##NAME)->Arg(57600)->Arg(288000)->Unit(benchmark::kMillisecond);           \
+#define MAKEWAY_CODEC_BENCH(NAME, ENCODE, DECODE)                                       \
+    void BM_Write_##NAME(benchmark::State& s) { round_trip(s, ENCODE, DECODE, false); } \
+    void BM_Read_##NAME(benchmark::State& s) { round_trip(s, ENCODE, DECODE, true); }   \
+    BENCHMARK(BM_Write_##NAME)->Arg(57600)->Arg(288000)->Unit(benchmark::kMillisecond); \
     BENCHMARK(BM_Read_##NAME)->Arg(57600)->Arg(288000)->Unit(benchmark::kMillisecond)
 
-auto pcd(io::PcdEncoding e) { return [e](const PointCloud& c) { return io::serialize_pcd(c, e); }; }
-auto ply(io::PlyEncoding e) { return [e](const PointCloud& c) { return io::serialize_ply(c, e); }; }
+auto pcd(io::PcdEncoding e) {
+    return [e](const PointCloud& c) { return io::serialize_pcd(c, e); };
+}
+auto ply(io::PlyEncoding e) {
+    return [e](const PointCloud& c) { return io::serialize_ply(c, e); };
+}
 const auto parse_pcd = [](const std::string& b) { return io::parse_pcd(b); };
 const auto parse_ply = [](const std::string& b) { return io::parse_ply(b); };
 const auto write_bin = [](const PointCloud& c) { return io::serialize_kitti_bin(c); };

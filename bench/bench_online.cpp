@@ -25,7 +25,7 @@ struct Drive {
     std::vector<ObjectEstimate> objects;  // the truth, as the affordance layer's input
     Costmap free_map;
     Eigen::Vector2d goal = Eigen::Vector2d::Zero();  // the scene's goal
-    std::vector<PointCloud> worlds;                  // each sweep de-skewed on the true poses, world frame
+    std::vector<PointCloud> worlds;  // each sweep de-skewed on the true poses, world frame
 };
 
 const Drive& medium_drive() {
@@ -35,7 +35,8 @@ const Drive& medium_drive() {
         g.density = sim::Density::kMedium;
         const sim::Scene scene = sim::generate_scene(g);
         const sim::RobotParams robot;
-        const auto route = sim::drive_route(scene, sim::CollisionChecker(scene, sim::models_of(scene), robot), robot);
+        const auto route = sim::drive_route(
+            scene, sim::CollisionChecker(scene, sim::models_of(scene), robot), robot);
         sim::SequenceSimulator sim(scene, route.value_or(std::vector<Eigen::Vector2d>{}), {});
         Drive d;
         d.start = sim.start_pose();
@@ -47,11 +48,13 @@ const Drive& medium_drive() {
             o.box_world = s.box_world;
             d.objects.push_back(o);
         }
-        d.free_map = Costmap(Eigen::Vector2d(d.start.x_m - 20.0, d.start.y_m - 20.0), 0.05, 800, 800);
+        d.free_map =
+            Costmap(Eigen::Vector2d(d.start.x_m - 20.0, d.start.y_m - 20.0), 0.05, 800, 800);
         d.goal = {scene.goal.x_m, scene.goal.y_m};
         for (const sim::SimFrame& f : d.frames) {
-            d.worlds.push_back(perception::deskew_sweep({f.points_sensor, f.stamp_s, 0.1, f.T_world_sensor, f.T_world_sensor},
-                                                        Isometry3::Identity(), false));
+            d.worlds.push_back(perception::deskew_sweep(
+                {f.points_sensor, f.stamp_s, 0.1, f.T_world_sensor, f.T_world_sensor},
+                Isometry3::Identity(), false));
         }
         return d;
     }();
@@ -78,14 +81,17 @@ void BM_PerSweep(benchmark::State& state) {
         pipeline::ObjectCostmap costmap(d.free_map, navigator_params(robot, true));
         state.ResumeTiming();
         for (const sim::SimFrame& f : d.frames) {
-            const auto r = odo.register_sweep(f.points_sensor, f.stamp_s, 0.1, f.odometry_pose, f.odometry_end_pose);
-            const PointCloud world = perception::deskew_sweep({f.points_sensor, f.stamp_s, 0.1, r.T_world_sensor_start, r.T_world_sensor_end},
-                                                              Isometry3::Identity(), true);
+            const auto r = odo.register_sweep(f.points_sensor, f.stamp_s, 0.1, f.odometry_pose,
+                                              f.odometry_end_pose);
+            const PointCloud world = perception::deskew_sweep(
+                {f.points_sensor, f.stamp_s, 0.1, r.T_world_sensor_start, r.T_world_sensor_end},
+                Isometry3::Identity(), true);
             costmap.update(&world, r.T_world_sensor_end.translation(), d.objects);
             ++sweeps;
         }
     }
-    state.counters["sweeps_per_s"] = benchmark::Counter(static_cast<double>(sweeps), benchmark::Counter::kIsRate);
+    state.counters["sweeps_per_s"] =
+        benchmark::Counter(static_cast<double>(sweeps), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_PerSweep)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -101,13 +107,15 @@ void BM_Odometry(benchmark::State& state) {
         odometry::LidarOdometry odo({}, robot.T_robot_sensor(), d.start);
         state.ResumeTiming();
         for (const sim::SimFrame& f : d.frames) {
-            const auto r = odo.register_sweep(f.points_sensor, f.stamp_s, 0.1, f.odometry_pose, f.odometry_end_pose);
+            const auto r = odo.register_sweep(f.points_sensor, f.stamp_s, 0.1, f.odometry_pose,
+                                              f.odometry_end_pose);
             iterations += r.iterations;
             source += static_cast<double>(r.source_points);
             sweeps += 1.0;
         }
     }
-    state.counters["ms_per_sweep"] = benchmark::Counter(sweeps, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    state.counters["ms_per_sweep"] =
+        benchmark::Counter(sweeps, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
     state.counters["iterations"] = iterations / std::max(sweeps, 1.0);
     state.counters["source_points"] = source / std::max(sweeps, 1.0);
 }
@@ -129,7 +137,12 @@ void BM_CostmapUpdate(benchmark::State& state) {
         ++k;
     }
 }
-BENCHMARK(BM_CostmapUpdate)->Arg(0)->Arg(1)->ArgName("affordance")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_CostmapUpdate)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("affordance")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // The control cycle of bench nav's methods (issue 18's target: at most 10 ms median on one core):
 // Navigator::step = costmap update (obstacles, affordance zones, inflation) + A* when due + DWA
@@ -146,13 +159,19 @@ void BM_ControlCycle(benchmark::State& state) {
     std::size_t k = 0;
     for (auto _ : state) {
         const sim::SimFrame& f = d.frames[k % d.frames.size()];
-        const auto step = nav.step({0.1 * static_cast<double>(k), f.true_pose, 0.5, 0.0, &worlds[k % worlds.size()],
-                                    f.T_world_sensor.translation(), d.objects});
+        const auto step =
+            nav.step({0.1 * static_cast<double>(k), f.true_pose, 0.5, 0.0,
+                      &worlds[k % worlds.size()], f.T_world_sensor.translation(), d.objects});
         benchmark::DoNotOptimize(step.command);
         ++k;
     }
 }
-BENCHMARK(BM_ControlCycle)->Arg(0)->Arg(1)->ArgName("affordance")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ControlCycle)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("affordance")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // The collision monitor's cycle (issue 29's target: at most 1 ms on one core): the sweep's
 // returns the body can hit thinned into its 1 s memory, then the stop, approach and slowdown
@@ -169,8 +188,12 @@ void BM_CollisionMonitor(benchmark::State& state) {
     std::size_t k = 0;
     for (auto _ : state) {
         const sim::SimFrame& f = d.frames[k % d.frames.size()];
-        const auto r = monitor.filter({0.1 * static_cast<double>(k), f.true_pose, &worlds[k % worlds.size()], {robot.max_v_mps, 0.3},
-                                        robot.max_v_mps, 0.3});
+        const auto r = monitor.filter({0.1 * static_cast<double>(k),
+                                       f.true_pose,
+                                       &worlds[k % worlds.size()],
+                                       {robot.max_v_mps, 0.3},
+                                       robot.max_v_mps,
+                                       0.3});
         benchmark::DoNotOptimize(r.command);
         ++k;
     }

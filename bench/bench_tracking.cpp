@@ -16,7 +16,9 @@ void BM_ObjectMapUpdate(benchmark::State& state) {
     Rng rng = make_rng(1);
     std::vector<OrientedBox> objects;
     for (int i = 0; i < n; ++i) {
-        objects.push_back({{uniform(rng, -8, 8), uniform(rng, -8, 8), 0.45}, {0.5, 0.5, 0.9}, uniform(rng, -kPi, kPi)});
+        objects.push_back({{uniform(rng, -8, 8), uniform(rng, -8, 8), 0.45},
+                           {0.5, 0.5, 0.9},
+                           uniform(rng, -kPi, kPi)});
     }
     tracking::ObjectMap map;
     double t = 0;
@@ -26,7 +28,8 @@ void BM_ObjectMapUpdate(benchmark::State& state) {
             if (uniform(rng, 0, 1) < 0.2) continue;
             Detection d;
             d.box_sensor = o;
-            d.box_sensor.centre_m += Eigen::Vector3d(normal(rng, 0, 0.05), normal(rng, 0, 0.05), 0.0);
+            d.box_sensor.centre_m +=
+                Eigen::Vector3d(normal(rng, 0, 0.05), normal(rng, 0, 0.05), 0.0);
             dets.push_back(d);
         }
         for (int i = 0; i < n / 10; ++i) {
@@ -38,7 +41,8 @@ void BM_ObjectMapUpdate(benchmark::State& state) {
         benchmark::DoNotOptimize(map.update(dets, Isometry3::Identity(), t));
         t += 0.1;
     }
-    state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+    state.counters["fps"] =
+        benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_ObjectMapUpdate)->Arg(10)->Arg(30)->Arg(60)->Unit(benchmark::kMicrosecond);
 

@@ -29,7 +29,8 @@ using namespace makeway;
 // `floor_removed`: only points at least min_height_m above the base, the filter makeway's own
 // odometry applies (KISS-ICP registers every point, and indoors the floor's scan rings, which move
 // with the robot, are a large share of a sweep).
-eval::OdometryRun run_kiss_icp(const eval::OdometryDrive& drive, const Isometry3& T_base_sensor, bool floor_removed) {
+eval::OdometryRun run_kiss_icp(const eval::OdometryDrive& drive, const Isometry3& T_base_sensor,
+                               bool floor_removed) {
     const double min_height_m = makeway::odometry::OdometryParams{}.min_height_m;
     kiss_icp::pipeline::KISSConfig config;
     config.max_range = 40.0;
@@ -52,7 +53,9 @@ eval::OdometryRun run_kiss_icp(const eval::OdometryDrive& drive, const Isometry3
         frame.clear();
         stamps.clear();
         for (std::size_t i = 0; i < s.points_sensor.size(); ++i) {
-            if (floor_removed && (T_base_sensor * s.points_sensor.xyz[i].cast<double>()).z() < min_height_m) continue;
+            if (floor_removed &&
+                (T_base_sensor * s.points_sensor.xyz[i].cast<double>()).z() < min_height_m)
+                continue;
             frame.push_back(s.points_sensor.xyz[i].cast<double>());
             stamps.push_back(s.points_sensor.time_s[i]);
         }
@@ -61,7 +64,8 @@ eval::OdometryRun run_kiss_icp(const eval::OdometryDrive& drive, const Isometry3
         run.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         Isometry3 T_first_sensor;
         T_first_sensor.matrix() = kiss.pose().matrix();
-        run.poses.push_back(project_to_plane(T_world_first * T_first_sensor * T_base_sensor.inverse()));
+        run.poses.push_back(
+            project_to_plane(T_world_first * T_first_sensor * T_base_sensor.inverse()));
     }
     return run;
 }
@@ -74,10 +78,14 @@ int main(int argc, char** argv) {
     std::string out = "out/compare_kiss_icp_side_by_side";
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string key = argv[i], value = argv[i + 1];
-        if (key == "--scenes") scenes = std::atoi(value.c_str());
-        else if (key == "--seed") seed = std::strtoull(value.c_str(), nullptr, 10);
-        else if (key == "--max-sweeps") max_sweeps = std::atoi(value.c_str());
-        else if (key == "--out") out = value;
+        if (key == "--scenes")
+            scenes = std::atoi(value.c_str());
+        else if (key == "--seed")
+            seed = std::strtoull(value.c_str(), nullptr, 10);
+        else if (key == "--max-sweeps")
+            max_sweeps = std::atoi(value.c_str());
+        else if (key == "--out")
+            out = value;
         else {
             std::cerr << "compare_kiss_icp: unknown option " << key << "\n";
             return 2;
@@ -98,16 +106,23 @@ int main(int argc, char** argv) {
         const auto kiss = run_kiss_icp(d, seq.robot.T_robot_sensor(), false);
         const auto kiss_nf = run_kiss_icp(d, seq.robot.T_robot_sensor(), true);
         const double n = static_cast<double>(d.sweeps.size());
-        scores.push_back({d.name, "makeway", eval::trajectory_metrics(ours.poses, truth), n / ours.seconds});
-        scores.push_back({d.name, "KISS-ICP", eval::trajectory_metrics(kiss.poses, truth), n / kiss.seconds});
-        scores.push_back({d.name, "KISS-ICP, floor removed", eval::trajectory_metrics(kiss_nf.poses, truth), n / kiss_nf.seconds});
-        scores.push_back({d.name, "wheels", eval::trajectory_metrics(eval::dead_reckoning(d), truth), 0.0});
-        std::cerr << d.name << ": makeway " << scores[scores.size() - 4].metrics.ate_rmse_m << " m, KISS-ICP "
-                  << scores[scores.size() - 3].metrics.ate_rmse_m << " m, floor removed " << scores[scores.size() - 2].metrics.ate_rmse_m << " m\n";
+        scores.push_back(
+            {d.name, "makeway", eval::trajectory_metrics(ours.poses, truth), n / ours.seconds});
+        scores.push_back(
+            {d.name, "KISS-ICP", eval::trajectory_metrics(kiss.poses, truth), n / kiss.seconds});
+        scores.push_back({d.name, "KISS-ICP, floor removed",
+                          eval::trajectory_metrics(kiss_nf.poses, truth), n / kiss_nf.seconds});
+        scores.push_back(
+            {d.name, "wheels", eval::trajectory_metrics(eval::dead_reckoning(d), truth), 0.0});
+        std::cerr << d.name << ": makeway " << scores[scores.size() - 4].metrics.ate_rmse_m
+                  << " m, KISS-ICP " << scores[scores.size() - 3].metrics.ate_rmse_m
+                  << " m, floor removed " << scores[scores.size() - 2].metrics.ate_rmse_m << " m\n";
     }
-    const std::string table = "# Odometry side by side: " + std::to_string(drives.size()) + " drives, seed " + std::to_string(seed) +
-                              " (build/bin/compare_kiss_icp)\n\n" +
-                              eval::odometry_table_markdown(scores, {"makeway", "KISS-ICP", "KISS-ICP, floor removed", "wheels"});
+    const std::string table =
+        "# Odometry side by side: " + std::to_string(drives.size()) + " drives, seed " +
+        std::to_string(seed) + " (build/bin/compare_kiss_icp)\n\n" +
+        eval::odometry_table_markdown(scores,
+                                      {"makeway", "KISS-ICP", "KISS-ICP, floor removed", "wheels"});
     std::filesystem::create_directories(out);
     std::ofstream(std::filesystem::path(out) / "table.md") << table;
     std::cout << table;

@@ -39,7 +39,10 @@ struct Arm {
 };
 
 double share_within(const std::vector<double>& v, double limit) {
-    return v.empty() ? 0.0 : static_cast<double>(std::count_if(v.begin(), v.end(), [&](double x) { return x <= limit; })) / v.size();
+    return v.empty() ? 0.0
+                     : static_cast<double>(std::count_if(v.begin(), v.end(),
+                                                         [&](double x) { return x <= limit; })) /
+                           v.size();
 }
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
@@ -47,8 +50,10 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 }
 
 // Open3D, 3 levels with the same budget as makeway's IcpParams; returns T_sensor_object.
-reg::RegistrationResult open3d_align(const verification::LevelledSegment& seg, const std::vector<open3d::geometry::PointCloud>& targets,
-                                     const Isometry3& T_sensor_object_init, const verification::IcpParams& p,
+reg::RegistrationResult open3d_align(const verification::LevelledSegment& seg,
+                                     const std::vector<open3d::geometry::PointCloud>& targets,
+                                     const Isometry3& T_sensor_object_init,
+                                     const verification::IcpParams& p,
                                      const verification::CadModel& model) {
     Eigen::Matrix4d T_object_sensor = T_sensor_object_init.inverse().matrix();
     reg::RegistrationResult r;
@@ -56,9 +61,10 @@ reg::RegistrationResult open3d_align(const verification::LevelledSegment& seg, c
         open3d::geometry::PointCloud source;
         source.points_ = seg.per_level_sensor[level];
         const double c = std::max(p.cauchy_scale_m, model.levels[level].voxel_m);
-        r = reg::RegistrationICP(source, targets[level], p.max_correspondence_m[level], T_object_sensor,
-                                 reg::TransformationEstimationPointToPlane(std::make_shared<reg::CauchyLoss>(c)),
-                                 reg::ICPConvergenceCriteria(1e-6, 1e-6, p.iterations[level]));
+        r = reg::RegistrationICP(
+            source, targets[level], p.max_correspondence_m[level], T_object_sensor,
+            reg::TransformationEstimationPointToPlane(std::make_shared<reg::CauchyLoss>(c)),
+            reg::ICPConvergenceCriteria(1e-6, 1e-6, p.iterations[level]));
         T_object_sensor = r.transformation_;
     }
     return r;
@@ -80,7 +86,9 @@ int main(int argc, char** argv) {
             const sim::SceneObject& o = kf.scene.objects[i];
             if (points_of[o.id] < 100) continue;
             verification::CadLibrary lib;
-            lib.add(o.style, o.cls, sim::make_furniture(*sim::parse_furniture_style(o.style), o.model_seed).mesh_object);
+            lib.add(o.style, o.cls,
+                    sim::make_furniture(*sim::parse_furniture_style(o.style), o.model_seed)
+                        .mesh_object);
             const verification::CadModel& model = lib.models().front();
             std::vector<open3d::geometry::PointCloud> targets(model.levels.size());
             for (std::size_t l = 0; l < model.levels.size(); ++l) {
@@ -92,7 +100,8 @@ int main(int argc, char** argv) {
             Detection det;
             det.cls = o.cls;
             det.box_sensor = truth;
-            det.box_sensor.centre_m += Eigen::Vector3d(normal(rng, 0, 0.06), normal(rng, 0, 0.06), normal(rng, 0, 0.03));
+            det.box_sensor.centre_m +=
+                Eigen::Vector3d(normal(rng, 0, 0.06), normal(rng, 0, 0.06), normal(rng, 0, 0.03));
             const double noise = normal(rng, 0, deg_to_rad(5.0));
             const int flip = static_cast<int>(uniform_int(rng, 0, 3));
             const double floor_z = kf.floor_z_m(det.box_sensor.centre_m);
@@ -102,11 +111,14 @@ int main(int argc, char** argv) {
                 const OrientedBox b = model.box_object.transformed(T);
                 arm.add(*e, (b.centre_m - truth.centre_m).head<2>().norm(), ms);
             };
-            const std::vector<Eigen::Vector3d> segment = verification::segment_points(kf.cloud_sensor, det.box_sensor, vp.box_margin_m);
+            const std::vector<Eigen::Vector3d> segment =
+                verification::segment_points(kf.cloud_sensor, det.box_sensor, vp.box_margin_m);
             auto initial = [&](double yaw) {
                 verification::Pose4 init;
                 init.yaw_rad = wrap_angle(yaw);
-                init.t_m = det.box_sensor.centre_m - make_T_xyz_yaw({0, 0, 0}, init.yaw_rad).linear() * model.box_object.centre_m;
+                init.t_m =
+                    det.box_sensor.centre_m -
+                    make_T_xyz_yaw({0, 0, 0}, init.yaw_rad).linear() * model.box_object.centre_m;
                 init.t_m.z() = floor_z;
                 return init;
             };
@@ -114,40 +126,53 @@ int main(int argc, char** argv) {
             {
                 const auto init = initial(truth.yaw_rad + noise);
                 auto t0 = std::chrono::steady_clock::now();
-                const verification::LevelledSegment seg = verification::thin_to_levels(segment, model);
+                const verification::LevelledSegment seg =
+                    verification::thin_to_levels(segment, model);
                 const verification::IcpResult r = verification::align(seg, model, init, icp);
                 score(ours_icp, r.pose.matrix(), ms_since(t0));
                 t0 = std::chrono::steady_clock::now();
-                const verification::LevelledSegment seg2 = verification::thin_to_levels(segment, model);
-                const reg::RegistrationResult o3 = open3d_align(seg2, targets, init.matrix(), icp, model);
-                score(o3d_icp, Isometry3(Eigen::Matrix4d(o3.transformation_.inverse())), ms_since(t0));
+                const verification::LevelledSegment seg2 =
+                    verification::thin_to_levels(segment, model);
+                const reg::RegistrationResult o3 =
+                    open3d_align(seg2, targets, init.matrix(), icp, model);
+                score(o3d_icp, Isometry3(Eigen::Matrix4d(o3.transformation_.inverse())),
+                      ms_since(t0));
             }
             // verify: with a yaw flip, from all four candidates.
             {
                 det.box_sensor.yaw_rad = wrap_angle(truth.yaw_rad + noise + flip * kPi / 2);
                 auto t0 = std::chrono::steady_clock::now();
-                const verification::VerifiedDetection v = verification::verify_detection(kf.cloud_sensor, det, lib, vp, floor_z);
+                const verification::VerifiedDetection v =
+                    verification::verify_detection(kf.cloud_sensor, det, lib, vp, floor_z);
                 score(ours_verify, v.T_sensor_object, ms_since(t0));
                 t0 = std::chrono::steady_clock::now();
                 const verification::LevelledSegment seg = verification::thin_to_levels(
-                    verification::segment_points(kf.cloud_sensor, det.box_sensor, vp.box_margin_m), model);
+                    verification::segment_points(kf.cloud_sensor, det.box_sensor, vp.box_margin_m),
+                    model);
                 reg::RegistrationResult best;
                 double best_rmse = 1e9;
                 for (int c = 0; c < 4; ++c) {
-                    const reg::RegistrationResult r = open3d_align(seg, targets, initial(det.box_sensor.yaw_rad + c * kPi / 2).matrix(), icp, model);
-                    if (r.fitness_ > 0 && r.inlier_rmse_ < best_rmse) best_rmse = r.inlier_rmse_, best = r;
+                    const reg::RegistrationResult r = open3d_align(
+                        seg, targets, initial(det.box_sensor.yaw_rad + c * kPi / 2).matrix(), icp,
+                        model);
+                    if (r.fitness_ > 0 && r.inlier_rmse_ < best_rmse)
+                        best_rmse = r.inlier_rmse_, best = r;
                 }
-                score(o3d_verify, Isometry3(Eigen::Matrix4d(best.transformation_.inverse())), ms_since(t0));
+                score(o3d_verify, Isometry3(Eigen::Matrix4d(best.transformation_.inverse())),
+                      ms_since(t0));
             }
         }
         std::fprintf(stderr, "\rscene %d/%d", k + 1, scenes);
     }
     std::fprintf(stderr, "\n");
-    std::printf("| comparison | implementation | objects | yaw within 10 deg | median yaw error [deg] | median centre error [m] | median ms | time ratio |\n");
+    std::printf(
+        "| comparison | implementation | objects | yaw within 10 deg | median yaw error [deg] | "
+        "median centre error [m] | median ms | time ratio |\n");
     std::printf("| --- | --- | --- | --- | --- | --- | --- | --- |\n");
     const auto row = [](const char* what, const char* who, const Arm& a, const Arm& ref) {
-        std::printf("| %s | %s | %zu | %.3f | %.2f | %.3f | %.3f | %.2f |\n", what, who, a.ms.size(), share_within(a.yaw_err_deg, 10.0),
-                    median(a.yaw_err_deg), median(a.centre_err_m), median(a.ms), median(a.ms) / median(ref.ms));
+        std::printf("| %s | %s | %zu | %.3f | %.2f | %.3f | %.3f | %.2f |\n", what, who,
+                    a.ms.size(), share_within(a.yaw_err_deg, 10.0), median(a.yaw_err_deg),
+                    median(a.centre_err_m), median(a.ms), median(a.ms) / median(ref.ms));
     };
     row("icp, own yaw", "makeway (4-DoF)", ours_icp, ours_icp);
     row("icp, own yaw", "Open3D (6-DoF)", o3d_icp, ours_icp);

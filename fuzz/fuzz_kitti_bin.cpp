@@ -1,4 +1,5 @@
-// libFuzzer target: parse_kitti_bin must either parse or throw FormatError; never crash, hang or leak.
+// libFuzzer target: parse_kitti_bin must either parse or throw FormatError; never crash, hang or
+// leak.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>

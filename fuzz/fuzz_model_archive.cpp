@@ -8,6 +8,7 @@
 #include "makeway/perception/model_archive.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    (void)makeway::perception::model_archive_problem(std::string_view(reinterpret_cast<const char*>(data), size));
+    (void)makeway::perception::model_archive_problem(
+        std::string_view(reinterpret_cast<const char*>(data), size));
     return 0;
 }

@@ -12,7 +12,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const auto& dir = makeway::fuzz::private_dir();
     try {
-        makeway::io::write_file_atomic(dir / "000000.json", std::string_view(reinterpret_cast<const char*>(data), size));
+        makeway::io::write_file_atomic(dir / "000000.json",
+                                       std::string_view(reinterpret_cast<const char*>(data), size));
         makeway::io::read_object_frame(dir / "000000.json");
     } catch (const makeway::io::FileError&) {
     }

@@ -13,7 +13,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto [scene, mesh] = makeway::fuzz::split_at_nul(data, size);
     const auto& dir = makeway::fuzz::private_dir();
     try {
-        for (const char* name : {"m.ply", "m.obj", "m.stl", "m.dae"}) makeway::io::write_file_atomic(dir / name, mesh);
+        for (const char* name : {"m.ply", "m.obj", "m.stl", "m.dae"})
+            makeway::io::write_file_atomic(dir / name, mesh);
         makeway::io::write_file_atomic(dir / "scene.yaml", scene);
         makeway::io::read_scene(dir / "scene.yaml");
     } catch (const makeway::io::FileError&) {

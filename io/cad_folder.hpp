@@ -8,9 +8,9 @@
 
 namespace makeway::io {
 
-/// Throws FileError naming the folder or file: not a folder, a mesh not named chair_/table_ (without
-/// an index), a bad index, a mesh that cannot be read, or no mesh at all. A mesh whose size cannot
-/// be furniture of its class is a warning on stderr.
+/// Throws FileError naming the folder or file: not a folder, a mesh not named chair_/table_
+/// (without an index), a bad index, a mesh that cannot be read, or no mesh at all. A mesh whose
+/// size cannot be furniture of its class is a warning on stderr.
 verification::CadLibrary read_cad_folder(const std::filesystem::path& dir);
 
 }  // namespace makeway::io

@@ -28,7 +28,8 @@ Canvas::Canvas(Eigen::Vector2d min_m, Eigen::Vector2d max_m, double pixels_per_m
     origin_m_ = min_m - Eigen::Vector2d::Constant(margin_m);
     const Eigen::Vector2d extent = max_m - min_m + Eigen::Vector2d::Constant(2 * margin_m);
     // Keep the whole extent inside the clamped image.
-    ppm_ = std::min({pixels_per_m, 4096.0 / std::max(extent.x(), 1e-3), 4096.0 / std::max(extent.y(), 1e-3)});
+    ppm_ = std::min(
+        {pixels_per_m, 4096.0 / std::max(extent.x(), 1e-3), 4096.0 / std::max(extent.y(), 1e-3)});
     width_ = std::clamp(static_cast<int>(std::ceil(extent.x() * ppm_)), 64, 4096);
     height_ = std::clamp(static_cast<int>(std::ceil(extent.y() * ppm_)), 64, 4096);
     impl_->surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width_, height_);
@@ -36,7 +37,8 @@ Canvas::Canvas(Eigen::Vector2d min_m, Eigen::Vector2d max_m, double pixels_per_m
     cairo_set_source_rgb(impl_->cr, 1, 1, 1);
     cairo_paint(impl_->cr);
     cairo_set_line_join(impl_->cr, CAIRO_LINE_JOIN_ROUND);
-    cairo_select_font_face(impl_->cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_select_font_face(impl_->cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
+                           CAIRO_FONT_WEIGHT_NORMAL);
 }
 
 Canvas::~Canvas() {
@@ -56,8 +58,8 @@ void Canvas::fill_polygon(const std::vector<Eigen::Vector2d>& pts, const Rgb& c,
     cairo_fill(cr);
 }
 
-void Canvas::stroke_polyline(const std::vector<Eigen::Vector2d>& pts, const Rgb& c, double width_px, bool closed,
-                             bool dashed) {
+void Canvas::stroke_polyline(const std::vector<Eigen::Vector2d>& pts, const Rgb& c, double width_px,
+                             bool closed, bool dashed) {
     if (pts.size() < 2) return;
     cairo_t* cr = impl_->cr;
     cairo_move_to(cr, MAKEWAY_PX(pts[0]));
@@ -73,7 +75,8 @@ void Canvas::stroke_polyline(const std::vector<Eigen::Vector2d>& pts, const Rgb&
 
 void Canvas::cell(const Eigen::Vector2d& corner, double size, const Rgb& c) {
     cairo_t* cr = impl_->cr;
-    const double x = (corner.x() - origin_m_.x()) * ppm_, y = height_ - (corner.y() + size - origin_m_.y()) * ppm_;
+    const double x = (corner.x() - origin_m_.x()) * ppm_,
+                 y = height_ - (corner.y() + size - origin_m_.y()) * ppm_;
     cairo_rectangle(cr, x, y, size * ppm_ + 0.5, size * ppm_ + 0.5);
     cairo_set_source_rgb(cr, c[0], c[1], c[2]);
     cairo_fill(cr);
@@ -96,7 +99,8 @@ void Canvas::dot(const Eigen::Vector2d& p, double size_px, const Rgb& c) {
 }
 
 void Canvas::text(const Eigen::Vector2d& p, const std::string& s, double size_px, const Rgb& c) {
-    text_px((p.x() - origin_m_.x()) * ppm_, height_ - (p.y() - origin_m_.y()) * ppm_, s, size_px, c);
+    text_px((p.x() - origin_m_.x()) * ppm_, height_ - (p.y() - origin_m_.y()) * ppm_, s, size_px,
+            c);
 }
 
 void Canvas::text_px(double x_px, double y_px, const std::string& s, double size_px, const Rgb& c) {
@@ -122,17 +126,21 @@ void Canvas::scale_bar() {
 void Canvas::save_png(const std::filesystem::path& path) {
     std::string png;
     cairo_surface_flush(impl_->surface);
-    const cairo_status_t status = cairo_surface_write_to_png_stream(impl_->surface, append_to_string, &png);
+    const cairo_status_t status =
+        cairo_surface_write_to_png_stream(impl_->surface, append_to_string, &png);
     if (status != CAIRO_STATUS_SUCCESS) {
-        throw FileError(path.string(), std::string("PNG encoding failed: ") + cairo_status_to_string(status));
+        throw FileError(path.string(),
+                        std::string("PNG encoding failed: ") + cairo_status_to_string(status));
     }
     write_file_atomic(path, png);
 }
 
-void write_contact_sheet(const std::filesystem::path& path, const std::vector<std::filesystem::path>& pngs,
+void write_contact_sheet(const std::filesystem::path& path,
+                         const std::vector<std::filesystem::path>& pngs,
                          const std::vector<std::string>& captions, int columns, int thumb_px) {
     constexpr int kCaption_px = 18;
-    columns = std::max(1, std::min<int>(columns, static_cast<int>(std::max<std::size_t>(pngs.size(), 1))));
+    columns = std::max(
+        1, std::min<int>(columns, static_cast<int>(std::max<std::size_t>(pngs.size(), 1))));
     const int rows = static_cast<int>((pngs.size() + columns - 1) / columns);
     // Square cells; each picture scaled to fit its cell, keeping its aspect ratio.
     const int thumb_h = thumb_px;
@@ -157,9 +165,11 @@ void write_contact_sheet(const std::filesystem::path& path, const std::vector<st
     cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
     cairo_set_font_size(cr, 12);
     for (std::size_t i = 0; i < images.size(); ++i) {
-        const int x = static_cast<int>(i % columns) * thumb_px, y = static_cast<int>(i / columns) * (thumb_h + kCaption_px);
-        const double scale = std::min(static_cast<double>(thumb_px) / cairo_image_surface_get_width(images[i]),
-                                      static_cast<double>(thumb_h) / cairo_image_surface_get_height(images[i]));
+        const int x = static_cast<int>(i % columns) * thumb_px,
+                  y = static_cast<int>(i / columns) * (thumb_h + kCaption_px);
+        const double scale =
+            std::min(static_cast<double>(thumb_px) / cairo_image_surface_get_width(images[i]),
+                     static_cast<double>(thumb_h) / cairo_image_surface_get_height(images[i]));
         cairo_save(cr);
         cairo_translate(cr, x + 0.5 * (thumb_px - scale * cairo_image_surface_get_width(images[i])),
                         y + 0.5 * (thumb_h - scale * cairo_image_surface_get_height(images[i])));
@@ -177,7 +187,9 @@ void write_contact_sheet(const std::filesystem::path& path, const std::vector<st
     cairo_surface_flush(sheet);
     const cairo_status_t status = cairo_surface_write_to_png_stream(sheet, append_to_string, &png);
     cairo_surface_destroy(sheet);
-    if (status != CAIRO_STATUS_SUCCESS) throw FileError(path.string(), std::string("PNG encoding failed: ") + cairo_status_to_string(status));
+    if (status != CAIRO_STATUS_SUCCESS)
+        throw FileError(path.string(),
+                        std::string("PNG encoding failed: ") + cairo_status_to_string(status));
     write_file_atomic(path, png);
 }
 

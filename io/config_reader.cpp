@@ -62,7 +62,9 @@ void YamlSection::read_scalar(const char* key, T& value, const char* type_name) 
     }
     if constexpr (std::is_floating_point_v<T>) {
         if (std::isnan(read) || (!allow_infinity_ && !std::isfinite(read))) {
-            problems_.push_back(prefix_ + "." + key + (allow_infinity_ ? ": must be a number or .inf" : ": must be finite"));
+            problems_.push_back(
+                prefix_ + "." + key +
+                (allow_infinity_ ? ": must be a number or .inf" : ": must be finite"));
             return;  // one problem per key: the value's range is not judged again
         }
     }
@@ -114,7 +116,9 @@ YAML::Node YamlSection::take(const char* key) {
     return v ? v : YAML::Node();
 }
 
-void YamlSection::problem(const std::string& message) { problems_.push_back(prefix_ + ": " + message); }
+void YamlSection::problem(const std::string& message) {
+    problems_.push_back(prefix_ + ": " + message);
+}
 
 void YamlSection::add_validation(const std::vector<std::string>& messages) {
     for (const auto& m : messages) problems_.push_back(prefix_ + "." + m);
@@ -137,7 +141,6 @@ void YamlSection::finish() {
     }
 }
 
-
 namespace {
 
 YAML::Node parse_yaml_root(std::string_view yaml_text) {
@@ -154,12 +157,15 @@ YAML::Node parse_yaml_root(std::string_view yaml_text) {
     return root;
 }
 
-void report_unknown_sections(const YAML::Node& root, const std::vector<BoundSection>& known, std::vector<std::string>& problems) {
+void report_unknown_sections(const YAML::Node& root, const std::vector<BoundSection>& known,
+                             std::vector<std::string>& problems) {
     if (!root.IsMap()) return;
     for (const auto& kv : root) {
         const std::string name = kv.first.as<std::string>("");
-        const bool simulator = std::find(kSimulatorSections.begin(), kSimulatorSections.end(), name) != kSimulatorSections.end();
-        const bool ours = std::any_of(known.begin(), known.end(), [&](const BoundSection& s) { return s.name == name; });
+        const bool simulator = std::find(kSimulatorSections.begin(), kSimulatorSections.end(),
+                                         name) != kSimulatorSections.end();
+        const bool ours = std::any_of(known.begin(), known.end(),
+                                      [&](const BoundSection& s) { return s.name == name; });
         if (!simulator && !ours) problems.push_back(name + ": unknown section");
     }
 }
@@ -168,7 +174,8 @@ void report_unknown_sections(const YAML::Node& root, const std::vector<BoundSect
 
 namespace detail {
 
-void parse_into(std::string_view yaml_text, Config& config, const MoreSections& more, std::vector<std::string>* deprecated) {
+void parse_into(std::string_view yaml_text, Config& config, const MoreSections& more,
+                std::vector<std::string>* deprecated) {
     const YAML::Node root = parse_yaml_root(yaml_text);
     std::vector<std::string> problems, old_keys;
     std::vector<BoundSection> sections = config_sections(config);
@@ -177,8 +184,10 @@ void parse_into(std::string_view yaml_text, Config& config, const MoreSections& 
     config.system.navigator.affordance = config.affordance;
     if (more) more(root, problems, old_keys);
     if (!problems.empty()) throw FormatError(join_problems(problems));
-    if (deprecated) *deprecated = old_keys;
-    else for (const std::string& d : old_keys) print_warning(d);
+    if (deprecated)
+        *deprecated = old_keys;
+    else
+        for (const std::string& d : old_keys) print_warning(d);
 }
 
 void load_into(const std::filesystem::path& path, Config& config, const MoreSections& more) {
@@ -189,7 +198,8 @@ void load_into(const std::filesystem::path& path, Config& config, const MoreSect
     } catch (const FormatError& e) {
         throw FileError(path.string(), e.what());
     }
-    for (const std::string& d : deprecated) print_warning(path.string() + ": " + d + " (the old name is read until the next release)");
+    for (const std::string& d : deprecated)
+        print_warning(path.string() + ": " + d + " (the old name is read until the next release)");
 }
 
 }  // namespace detail

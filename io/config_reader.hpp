@@ -1,6 +1,7 @@
 #pragma once
 // YAML configuration mapped onto Params structs. Every problem in a file is collected and reported
 // at once: unknown keys (with a suggestion), wrong types, and each section's validate() messages.
+#include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -8,13 +9,11 @@
 #include <string_view>
 #include <vector>
 
-#include <Eigen/Core>
-
+#include "makeway/common/param_table.hpp"
+#include "makeway/common/robot_description.hpp"
 #include "makeway/costmap/affordance.hpp"
 #include "makeway/labelling/labeller.hpp"
 #include "makeway/pipeline/system_params.hpp"
-#include "makeway/common/param_table.hpp"
-#include "makeway/common/robot_description.hpp"
 
 namespace YAML {
 class Node;
@@ -24,7 +23,7 @@ namespace makeway::io {
 
 /// Reads the keys of one YAML mapping; missing keys keep the struct's defaults.
 class YamlSection {
-public:
+  public:
     YamlSection(const YAML::Node& node, std::string prefix, std::vector<std::string>& problems);
     ~YamlSection();
     YamlSection(const YamlSection&) = delete;
@@ -52,7 +51,7 @@ public:
     /// Reports every key that no read() asked for. Call once, after the reads.
     void finish();
 
-private:
+  private:
     template <typename T>
     void read_scalar(const char* key, T& value, const char* type_name);
 
@@ -64,12 +63,11 @@ private:
     bool allow_infinity_ = false;
 };
 
-
 /// The sections of a makeway configuration file that configure the robot's software (and the robot
 /// it drives); config/default.yaml documents each key. The simulator's sections (scene, lidar,
-/// wheel_noise, simulation) are read by io/sim_config.hpp: this reader accepts and skips them, so one
-/// file configures the benchmark and the robot alike, and the program on the robot never links the
-/// simulator.
+/// wheel_noise, simulation) are read by io/sim_config.hpp: this reader accepts and skips them, so
+/// one file configures the benchmark and the robot alike, and the program on the robot never links
+/// the simulator.
 struct Config {
     RobotDescription robot;                ///< footprint, heights, limits, sensor mount
     costmap::AffordanceParams affordance;  ///< zone shapes and cost profiles per class
@@ -81,14 +79,15 @@ struct Config {
 };
 
 /// Top-level sections that belong to the simulator (io/sim_config.hpp).
-inline const std::vector<std::string> kSimulatorSections{"scene", "lidar", "wheel_noise", "simulation",
-                                                         "odometry" /* wheel_noise's old name */};
+inline const std::vector<std::string> kSimulatorSections{
+    "scene", "lidar", "wheel_noise", "simulation", "odometry" /* wheel_noise's old name */};
 
 /// The online system's parameters as the program runs it on a robot (`ours` in the benchmark,
 /// `makeway run`, makeway_node): the configuration's sections, the affordance zones into the
 /// navigator, and the robot description into every stage (pipeline::apply_robot). `T_base_sensor`:
 /// measured extrinsics (null: the robot section's mount).
-pipeline::SystemParams online_system_params(const Config& config, const Isometry3* T_base_sensor = nullptr);
+pipeline::SystemParams online_system_params(const Config& config,
+                                            const Isometry3* T_base_sensor = nullptr);
 
 /// Throws FormatError listing every problem ("3 problems: a; b; c").
 Config parse_config(std::string_view yaml_text);
@@ -99,8 +98,8 @@ Config load_config(const std::filesystem::path& path);
 namespace detail {
 /// Reads the sections a derived configuration adds (io/sim_config.cpp), appending their problems
 /// and the deprecated keys they read.
-using MoreSections =
-    std::function<void(const YAML::Node& root, std::vector<std::string>& problems, std::vector<std::string>& deprecated)>;
+using MoreSections = std::function<void(const YAML::Node& root, std::vector<std::string>& problems,
+                                        std::vector<std::string>& deprecated)>;
 /// Config's sections of `yaml_text` into `config`, then `more`'s; throws FormatError listing every
 /// problem of every section, or on a syntax error or a top level that is no mapping. Deprecated
 /// keys that were read go to `deprecated`, or (null) one warning each on stderr.

@@ -26,7 +26,9 @@ const ParamTable<SystemParams>& lidar_odometry_section() {
     static const ParamTable<SystemParams> t = [] {
         ParamTable<SystemParams> s;
         s.add("enabled", &SystemParams::lidar_odometry_enabled, "false: the wheel odometry alone")
-            .include("", [](SystemParams& p) -> odometry::OdometryParams& { return p.lidar_odometry; }, odometry::odometry_table());
+            .include(
+                "", [](SystemParams& p) -> odometry::OdometryParams& { return p.lidar_odometry; },
+                odometry::odometry_table());
         return s;
     }();
     return t;
@@ -35,9 +37,14 @@ const ParamTable<SystemParams>& lidar_odometry_section() {
 const ParamTable<SystemParams>& verification_section() {
     static const ParamTable<SystemParams> t = [] {
         ParamTable<SystemParams> s;
-        s.add("enabled", &SystemParams::verification_enabled, "false: detections are not checked against CAD models")
-            .include("", [](SystemParams& p) -> verification::VerifyParams& { return p.verify; }, verification::verify_table())
-            .include("shape_", [](SystemParams& p) -> pipeline::TrackedShapeParams& { return p.shapes; }, pipeline::tracked_shape_table());
+        s.add("enabled", &SystemParams::verification_enabled,
+              "false: detections are not checked against CAD models")
+            .include(
+                "", [](SystemParams& p) -> verification::VerifyParams& { return p.verify; },
+                verification::verify_table())
+            .include(
+                "shape_", [](SystemParams& p) -> pipeline::TrackedShapeParams& { return p.shapes; },
+                pipeline::tracked_shape_table());
         return s;
     }();
     return t;
@@ -46,8 +53,13 @@ const ParamTable<SystemParams>& verification_section() {
 const ParamTable<NavigatorParams>& costmap_section() {
     static const ParamTable<NavigatorParams> t = [] {
         ParamTable<NavigatorParams> s;
-        s.include("", [](NavigatorParams& n) -> costmap::ObstacleLayerParams& { return n.obstacle; }, costmap::obstacle_layer_table())
-            .include("inflation_", [](NavigatorParams& n) -> costmap::InflationParams& { return n.inflation; }, costmap::inflation_table());
+        s.include(
+             "", [](NavigatorParams& n) -> costmap::ObstacleLayerParams& { return n.obstacle; },
+             costmap::obstacle_layer_table())
+            .include(
+                "inflation_",
+                [](NavigatorParams& n) -> costmap::InflationParams& { return n.inflation; },
+                costmap::inflation_table());
         return s;
     }();
     return t;
@@ -56,9 +68,15 @@ const ParamTable<NavigatorParams>& costmap_section() {
 const ParamTable<NavigatorParams>& planning_section() {
     static const ParamTable<NavigatorParams> t = [] {
         ParamTable<NavigatorParams> s;
-        s.include("astar_", [](NavigatorParams& n) -> planning::AStarParams& { return n.astar; }, planning::astar_table())
-            .include("dwa_", [](NavigatorParams& n) -> planning::DwaParams& { return n.dwa; }, planning::dwa_table())
-            .include("", [](NavigatorParams& n) -> NavigatorParams& { return n; }, pipeline::navigator_policy_table());
+        s.include(
+             "astar_", [](NavigatorParams& n) -> planning::AStarParams& { return n.astar; },
+             planning::astar_table())
+            .include(
+                "dwa_", [](NavigatorParams& n) -> planning::DwaParams& { return n.dwa; },
+                planning::dwa_table())
+            .include(
+                "", [](NavigatorParams& n) -> NavigatorParams& { return n; },
+                pipeline::navigator_policy_table());
         return s;
     }();
     return t;
@@ -80,7 +98,8 @@ void read_param(YamlSection& s, const char* key, const BoundParam& p) {
         const YAML::Node v = s.take(key);
         if (!v || v.IsNull()) return;
         std::string list;
-        for (std::size_t k = 0; k < c->names.size(); ++k) list += (k == 0 ? "" : k + 1 == c->names.size() ? " or " : ", ") + c->names[k];
+        for (std::size_t k = 0; k < c->names.size(); ++k)
+            list += (k == 0 ? "" : k + 1 == c->names.size() ? " or " : ", ") + c->names[k];
         std::vector<std::string> chosen;
         bool ok = c->list ? v.IsSequence() && v.size() > 0 : v.IsScalar();
         std::string got;
@@ -96,8 +115,11 @@ void read_param(YamlSection& s, const char* key, const BoundParam& p) {
             }
         }
         if (!ok) {
-            s.add_validation({std::string(key) + (c->list ? ": must be a list of " + list + " (e.g. [" + c->names.front() + "])" : ": must be " + list) +
-                              (got.empty() ? "" : " (got '" + got + "')")});
+            s.add_validation(
+                {std::string(key) +
+                 (c->list ? ": must be a list of " + list + " (e.g. [" + c->names.front() + "])"
+                          : ": must be " + list) +
+                 (got.empty() ? "" : " (got '" + got + "')")});
             return;
         }
         c->set(chosen);
@@ -134,7 +156,8 @@ std::string range_text(const BoundParam& p) {
 // "  key: value" padded to the comment column, then "# doc".
 void write_line(std::ostringstream& out, const std::string& text, const std::string& doc) {
     out << text;
-    if (!doc.empty()) out << std::string(text.size() < 30 ? 30 - text.size() : 1, ' ') << "# " << doc;
+    if (!doc.empty())
+        out << std::string(text.size() < 30 ? 30 - text.size() : 1, ' ') << "# " << doc;
     out << "\n";
 }
 
@@ -144,38 +167,54 @@ std::vector<BoundSection> config_sections(Config& c) {
     SystemParams& sys = c.system;
     std::vector<BoundSection> s;
     s.push_back(bind_section("robot", "Clearpath Jackal", robot_description_table(), c.robot,
-                             "The robot, described once (common/robot_description.hpp): the simulator drives it, and the\n"
-                             "online system's costmap, DWA and collision monitor plan and guard for it (pipeline::apply_robot)."));
-    s.push_back(bind_section("affordance", "object-aware costmap zones (also the risk-time zones of the benchmark)",
-                             costmap::affordance_table(), c.affordance));
-    s.push_back(bind_section("lidar_odometry", "the pose of every sweep: registration against a local voxel map, wheels as prior",
-                             lidar_odometry_section(), sys,
-                             "The online system (src/makeway/pipeline): what `ours` runs in the demo, navigate and bench nav."));
-    s.push_back(bind_section("perception", "front end: keyframes, ground plane, ground and ceiling removal", pipeline::keyframe_table(),
-                             sys.keyframe));
-    s.push_back(bind_section("verification", "4-DoF point-to-plane ICP against the room's CAD models", verification_section(), sys));
+                             "The robot, described once (common/robot_description.hpp): the "
+                             "simulator drives it, and the\n"
+                             "online system's costmap, DWA and collision monitor plan and guard "
+                             "for it (pipeline::apply_robot)."));
+    s.push_back(bind_section(
+        "affordance", "object-aware costmap zones (also the risk-time zones of the benchmark)",
+        costmap::affordance_table(), c.affordance));
+    s.push_back(bind_section(
+        "lidar_odometry",
+        "the pose of every sweep: registration against a local voxel map, wheels as prior",
+        lidar_odometry_section(), sys,
+        "The online system (src/makeway/pipeline): what `ours` runs in the demo, navigate and "
+        "bench nav."));
+    s.push_back(bind_section("perception",
+                             "front end: keyframes, ground plane, ground and ceiling removal",
+                             pipeline::keyframe_table(), sys.keyframe));
+    s.push_back(bind_section("verification",
+                             "4-DoF point-to-plane ICP against the room's CAD models",
+                             verification_section(), sys));
     s.push_back(bind_section("tracking", "the object map", tracking::tracker_table(), sys.tracker));
-    s.push_back(bind_section("costmap", "the obstacle and inflation layers (the robot's body and radii from robot:)", costmap_section(),
+    s.push_back(bind_section(
+        "costmap", "the obstacle and inflation layers (the robot's body and radii from robot:)",
+        costmap_section(), sys.navigator));
+    s.push_back(bind_section("planning", "A*, DWA and the policy around them", planning_section(),
                              sys.navigator));
-    s.push_back(bind_section("planning", "A*, DWA and the policy around them", planning_section(), sys.navigator));
     s.push_back(bind_section("collision_monitor",
-                             "between the navigator and the motors, on the raw sweep (nav2's collision_monitor); footprint, body and "
+                             "between the navigator and the motors, on the raw sweep (nav2's "
+                             "collision_monitor); footprint, body and "
                              "braking from robot:",
                              planning::collision_monitor_table(), sys.navigator.monitor));
-    s.push_back(bind_section("labelling", "makeway label: the automatic annotation of multi-session drives", labelling::label_table(),
-                             c.labelling));
+    s.push_back(bind_section("labelling",
+                             "makeway label: the automatic annotation of multi-session drives",
+                             labelling::label_table(), c.labelling));
     return s;
 }
 
-void read_sections(const YAML::Node& root, std::vector<BoundSection>& sections, std::vector<std::string>& problems,
-                   std::vector<std::string>& deprecated) {
+void read_sections(const YAML::Node& root, std::vector<BoundSection>& sections,
+                   std::vector<std::string>& problems, std::vector<std::string>& deprecated) {
     for (BoundSection& sec : sections) {
         const bool old = !sec.old_name.empty() && root.IsMap() && root[sec.old_name];
         if (old && root[sec.name]) {
-            problems.push_back(sec.old_name + " and " + sec.name + ": both given (" + sec.old_name + " is " + sec.name + "'s old name)");
+            problems.push_back(sec.old_name + " and " + sec.name + ": both given (" + sec.old_name +
+                               " is " + sec.name + "'s old name)");
             continue;
         }
-        if (old) deprecated.push_back(sec.old_name + ": the section is deprecated: it is now " + sec.name);
+        if (old)
+            deprecated.push_back(sec.old_name + ": the section is deprecated: it is now " +
+                                 sec.name);
         YamlSection s(root[old ? sec.old_name : sec.name], old ? sec.old_name : sec.name, problems);
         // Keys "group.key" live in the nested mapping `group`, read after the section's own keys.
         std::vector<std::string> groups;
@@ -190,10 +229,12 @@ void read_sections(const YAML::Node& root, std::vector<BoundSection>& sections, 
             if (!p.old_key.empty() && s.has(p.old_key.c_str())) {
                 if (has_new) {
                     s.take(p.old_key.c_str());  // known, just not with its new name beside it
-                    s.problem(p.old_key + " and " + p.key + " both given (" + p.old_key + " is " + p.key + "'s old name)");
+                    s.problem(p.old_key + " and " + p.key + " both given (" + p.old_key + " is " +
+                              p.key + "'s old name)");
                 } else {
                     read_param(s, p.old_key.c_str(), p);
-                    deprecated.push_back(sec.name + "." + p.old_key + " is deprecated: it is now " + sec.name + "." + p.key);
+                    deprecated.push_back(sec.name + "." + p.old_key + " is deprecated: it is now " +
+                                         sec.name + "." + p.key);
                 }
             }
             read_param(s, p.key.c_str(), p);
@@ -201,7 +242,8 @@ void read_sections(const YAML::Node& root, std::vector<BoundSection>& sections, 
         for (const std::string& g : groups) {
             YamlSection nested(s.take(g.c_str()), sec.name + "." + g, problems);
             for (const BoundParam& p : sec.params) {
-                if (p.key.rfind(g + ".", 0) == 0) read_param(nested, p.key.c_str() + g.size() + 1, p);
+                if (p.key.rfind(g + ".", 0) == 0)
+                    read_param(nested, p.key.c_str() + g.size() + 1, p);
             }
             nested.finish();
         }
@@ -227,7 +269,8 @@ std::string write_sections(const std::vector<BoundSection>& sections, const std:
             if (!g.empty() && g != group) out << "  " << g << ":\n";
             group = g;
             const std::string indent = g.empty() ? "  " : "    ";
-            write_line(out, indent + p.key.substr(g.empty() ? 0 : dot + 1) + ": " + value_text(p), p.doc);
+            write_line(out, indent + p.key.substr(g.empty() ? 0 : dot + 1) + ": " + value_text(p),
+                       p.doc);
         }
     }
     return out.str();

@@ -23,8 +23,8 @@ struct BoundParam {
 /// One top-level section of the file, bound to a configuration object.
 struct BoundSection {
     std::string name;
-    std::string doc;      ///< the comment on the section's line
-    std::string preface;  ///< comment lines written above it (may be empty)
+    std::string doc;       ///< the comment on the section's line
+    std::string preface;   ///< comment lines written above it (may be empty)
     std::string old_name;  ///< the section's former name, still read (with a deprecation warning)
     std::vector<BoundParam> params;
     std::function<std::vector<std::string>()> problems;  ///< each range and rule broken, by key
@@ -32,9 +32,13 @@ struct BoundSection {
 
 /// `table`'s keys bound to `p` (both must outlive the section).
 template <class P>
-BoundSection bind_section(std::string name, std::string doc, const ParamTable<P>& table, P& p, std::string preface = {}) {
-    BoundSection s{std::move(name), std::move(doc), std::move(preface), {}, {}, [&table, &p] { return table.problems(p); }};
-    for (const auto& e : table.entries()) s.params.push_back({e.key, e.ref(p), e.range, e.doc, e.old_key});
+BoundSection bind_section(std::string name, std::string doc, const ParamTable<P>& table, P& p,
+                          std::string preface = {}) {
+    BoundSection s{std::move(name), std::move(doc), std::move(preface), {}, {}, [&table, &p] {
+                       return table.problems(p);
+                   }};
+    for (const auto& e : table.entries())
+        s.params.push_back({e.key, e.ref(p), e.range, e.doc, e.old_key});
     return s;
 }
 
@@ -43,8 +47,8 @@ std::vector<BoundSection> config_sections(Config& c);
 
 /// Reads `root`'s sections into the bound objects; every problem appended (keys prefixed with
 /// their section), every deprecated key read appended to `deprecated`.
-void read_sections(const YAML::Node& root, std::vector<BoundSection>& sections, std::vector<std::string>& problems,
-                   std::vector<std::string>& deprecated);
+void read_sections(const YAML::Node& root, std::vector<BoundSection>& sections,
+                   std::vector<std::string>& problems, std::vector<std::string>& deprecated);
 
 /// The sections as a YAML file: each key with its value and its doc as a comment.
 std::string write_sections(const std::vector<BoundSection>& sections, const std::string& header);

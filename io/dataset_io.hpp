@@ -11,9 +11,11 @@
 
 namespace makeway::io {
 
-void write_labelled_keyframe(const std::filesystem::path& dir, std::size_t index, const LabelledKeyframe& keyframe);
+void write_labelled_keyframe(const std::filesystem::path& dir, std::size_t index,
+                             const LabelledKeyframe& keyframe);
 /// Every keyframe of a dataset folder; throws FileError naming the file on bad input.
-std::vector<LabelledKeyframe> read_detection_dataset(const std::filesystem::path& dir,
-                                                     const std::function<void(std::size_t, std::size_t)>& progress = {});
+std::vector<LabelledKeyframe> read_detection_dataset(
+    const std::filesystem::path& dir,
+    const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 }  // namespace makeway::io

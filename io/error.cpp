@@ -7,8 +7,12 @@
 namespace makeway::io {
 
 FileError::FileError(const std::string& path, const std::string& problem)
-    : std::runtime_error(shown_path(path) + ": " + problem), path_(shown_path(path)), problem_(problem) {}
+    : std::runtime_error(shown_path(path) + ": " + problem),
+      path_(shown_path(path)),
+      problem_(problem) {}
 
-void print_warning(const std::string& message) { std::cerr << "makeway: warning: " << message << "\n"; }
+void print_warning(const std::string& message) {
+    std::cerr << "makeway: warning: " << message << "\n";
+}
 
 }  // namespace makeway::io

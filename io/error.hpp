@@ -7,19 +7,19 @@ namespace makeway::io {
 
 /// A file's content is malformed: what is wrong, without the file name (parsers work on buffers).
 class FormatError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
 /// A named input or output file cannot be used. what() is "FILE: what is wrong".
 class FileError : public std::runtime_error {
-public:
+  public:
     /// A path inside a staging folder (io::StagedOutput) is named as the file it will become.
     FileError(const std::string& path, const std::string& problem);
     const std::string& path() const { return path_; }
     const std::string& problem() const { return problem_; }
 
-private:
+  private:
     std::string path_;
     std::string problem_;
 };

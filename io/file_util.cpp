@@ -23,7 +23,8 @@ std::string read_file(const fs::path& path, bool allow_empty, std::size_t max_by
     if (ec || !fs::exists(status)) throw FileError(path.string(), "no such file");
     if (fs::is_directory(status)) throw FileError(path.string(), "is a folder, not a file");
     // Opening a FIFO blocks until something writes to it, possibly forever.
-    if (!fs::is_regular_file(status)) throw FileError(path.string(), "not a regular file (a FIFO, device or socket)");
+    if (!fs::is_regular_file(status))
+        throw FileError(path.string(), "not a regular file (a FIFO, device or socket)");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw FileError(path.string(), std::string("cannot open: ") + std::strerror(errno));
     in.seekg(0, std::ios::end);
@@ -51,7 +52,8 @@ void write_file_atomic_now(const fs::path& path, std::string_view data) {
     }
     std::string tmpl = path.string() + ".tmp.XXXXXX";
     const int fd = ::mkstemp(tmpl.data());
-    if (fd < 0) throw FileError(path.string(), std::string("cannot write: ") + std::strerror(errno));
+    if (fd < 0)
+        throw FileError(path.string(), std::string("cannot write: ") + std::strerror(errno));
     const char* p = data.data();
     std::size_t left = data.size();
     while (left > 0) {
@@ -90,7 +92,8 @@ void write_file_atomic(const fs::path& path, std::string_view data) {
 }
 
 std::string to_lower(std::string text) {
-    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::transform(text.begin(), text.end(), text.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return text;
 }
 

@@ -1,9 +1,9 @@
 #include "io/furniture_folder.hpp"
 
+#include <yaml-cpp/yaml.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <yaml-cpp/yaml.h>
 
 #include "io/error.hpp"
 #include "io/file_util.hpp"
@@ -25,16 +25,18 @@ std::optional<MeshPlacement> to_placement(const MeshPlacementKeys& k, YamlSectio
     bool ok = true;
     auto problem = [&](const std::string& m) { s.problem(m), ok = false; };
     if (!up) problem("up_axis must be x, y, z, -x, -y or -z (got '" + k.up_axis + "')");
-    if (!forward) problem("forward_axis must be x, y, z, -x, -y or -z (got '" + k.forward_axis + "')");
-    if (up && forward && !placement_rotation(*up, *forward)) problem("up_axis and forward_axis are parallel");
+    if (!forward)
+        problem("forward_axis must be x, y, z, -x, -y or -z (got '" + k.forward_axis + "')");
+    if (up && forward && !placement_rotation(*up, *forward))
+        problem("up_axis and forward_axis are parallel");
     if (!unit) problem("units must be m, cm, mm, in or ft (got '" + k.units + "')");
     if (!(k.scale > 0.0) || !std::isfinite(k.scale)) problem("scale must be > 0");
     if (!ok) return std::nullopt;
     return MeshPlacement{*up, *forward, *unit * k.scale, k.recentre};
 }
 
-TriangleMesh read_placed_mesh(const std::filesystem::path& file, const MeshPlacement& placement, ObjectClass cls,
-                              const std::string& what, const Warn& warn) {
+TriangleMesh read_placed_mesh(const std::filesystem::path& file, const MeshPlacement& placement,
+                              ObjectClass cls, const std::string& what, const Warn& warn) {
     TriangleMesh mesh = place_mesh(read_mesh(file), placement);
     if (const auto warning = implausible_furniture_extent(mesh, cls); warning && warn) {
         warn(what + ": mesh " + file.filename().string() + ": " + *warning);
@@ -49,19 +51,22 @@ bool is_mesh_file(const std::filesystem::path& p) {
     return ext == "obj" || ext == "ply" || ext == "stl" || ext == "dae";
 }
 
-std::vector<FurnitureMesh> read_index(const std::filesystem::path& dir, const std::filesystem::path& index, const Warn& warn) {
+std::vector<FurnitureMesh> read_index(const std::filesystem::path& dir,
+                                      const std::filesystem::path& index, const Warn& warn) {
     YAML::Node root;
     try {
         root = YAML::Load(read_file(index));
     } catch (const YAML::Exception& e) {
-        throw FileError(index.string(), "YAML syntax error at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+        throw FileError(index.string(), "YAML syntax error at line " +
+                                            std::to_string(e.mark.line + 1) + ": " + e.msg);
     }
     std::vector<std::string> problems;
     if (!root.IsMap()) throw FileError(index.string(), "must be a mapping with a 'furniture' list");
     YamlSection top(root, "", problems);
     const YAML::Node list = top.take("furniture");
     top.finish();
-    if (!list || !list.IsSequence() || list.size() == 0) throw FileError(index.string(), "'furniture' must be a non-empty list");
+    if (!list || !list.IsSequence() || list.size() == 0)
+        throw FileError(index.string(), "'furniture' must be a non-empty list");
     std::vector<FurnitureMesh> out;
     const std::filesystem::path root_dir = std::filesystem::weakly_canonical(dir);
     for (std::size_t i = 0; i < list.size(); ++i) {
@@ -88,8 +93,10 @@ std::vector<FurnitureMesh> read_index(const std::filesystem::path& dir, const st
         }
         if (!cls || !placement) continue;
         try {
-            auto mesh = std::make_shared<TriangleMesh>(read_placed_mesh(dir / file, *placement, *cls, index.string() + ": " + name, warn));
-            out.push_back({std::filesystem::path(file).replace_extension().generic_string(), *cls, std::move(mesh)});
+            auto mesh = std::make_shared<TriangleMesh>(
+                read_placed_mesh(dir / file, *placement, *cls, index.string() + ": " + name, warn));
+            out.push_back({std::filesystem::path(file).replace_extension().generic_string(), *cls,
+                           std::move(mesh)});
         } catch (const FileError& e) {
             s.problem(std::string("mesh ") + e.what());
         }
@@ -100,8 +107,10 @@ std::vector<FurnitureMesh> read_index(const std::filesystem::path& dir, const st
 
 }  // namespace
 
-std::vector<FurnitureMesh> read_furniture_folder(const std::filesystem::path& dir, const Warn& warn) {
-    if (!std::filesystem::is_directory(dir)) throw FileError(dir.string(), "not a folder of CAD meshes");
+std::vector<FurnitureMesh> read_furniture_folder(const std::filesystem::path& dir,
+                                                 const Warn& warn) {
+    if (!std::filesystem::is_directory(dir))
+        throw FileError(dir.string(), "not a folder of CAD meshes");
     const std::filesystem::path index = dir / "furniture.yaml";
     if (std::filesystem::exists(index)) return read_index(dir, index, warn);
     std::vector<std::filesystem::path> files;
@@ -113,10 +122,16 @@ std::vector<FurnitureMesh> read_furniture_folder(const std::filesystem::path& di
     for (const auto& f : files) {
         const std::string name = f.stem().string();
         const auto cls = parse_object_class(name.substr(0, name.find('_')));
-        if (!cls) throw FileError(f.string(), "CAD file names must start with chair_ or table_ (or list the files in furniture.yaml)");
-        out.push_back({name, *cls, std::make_shared<TriangleMesh>(read_placed_mesh(f, MeshPlacement{}, *cls, dir.string(), warn))});
+        if (!cls)
+            throw FileError(f.string(),
+                            "CAD file names must start with chair_ or table_ (or list the files in "
+                            "furniture.yaml)");
+        out.push_back({name, *cls,
+                       std::make_shared<TriangleMesh>(
+                           read_placed_mesh(f, MeshPlacement{}, *cls, dir.string(), warn))});
     }
-    if (out.empty()) throw FileError(dir.string(), "no CAD meshes (.obj, .ply, .stl, .dae) in the folder");
+    if (out.empty())
+        throw FileError(dir.string(), "no CAD meshes (.obj, .ply, .stl, .dae) in the folder");
     return out;
 }
 

@@ -38,8 +38,8 @@ using Warn = std::function<void(const std::string&)>;
 
 /// read_mesh + place_mesh, and a warning (`what: mesh FILE: ...`) when the result cannot be a
 /// piece of furniture of `cls`. Throws FileError naming the file.
-TriangleMesh read_placed_mesh(const std::filesystem::path& file, const MeshPlacement& placement, ObjectClass cls,
-                              const std::string& what, const Warn& warn);
+TriangleMesh read_placed_mesh(const std::filesystem::path& file, const MeshPlacement& placement,
+                              ObjectClass cls, const std::string& what, const Warn& warn);
 
 struct FurnitureMesh {
     std::string name;  ///< the file's path in the folder, without extension
@@ -49,6 +49,7 @@ struct FurnitureMesh {
 
 /// Every mesh of the folder (the index's order, or file names sorted). Throws FileError naming the
 /// folder, the index (every problem) or the mesh; an index entry outside the folder is refused.
-std::vector<FurnitureMesh> read_furniture_folder(const std::filesystem::path& dir, const Warn& warn = {});
+std::vector<FurnitureMesh> read_furniture_folder(const std::filesystem::path& dir,
+                                                 const Warn& warn = {});
 
 }  // namespace makeway::io

@@ -31,7 +31,8 @@ extern "C" void on_signal(int sig) {
 }  // namespace
 
 Interrupted::Interrupted(int signal_number)
-    : std::runtime_error(std::string("interrupted by ") + (signal_number == SIGTERM ? "SIGTERM" : "SIGINT")),
+    : std::runtime_error(std::string("interrupted by ") +
+                         (signal_number == SIGTERM ? "SIGTERM" : "SIGINT")),
       signal_(signal_number) {}
 
 void install_interrupt_handlers() {

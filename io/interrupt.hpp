@@ -12,11 +12,11 @@ namespace makeway::io {
 
 /// Thrown at a safe point after SIGINT/SIGTERM. exit_code() is 128 + the signal.
 class Interrupted : public std::runtime_error {
-public:
+  public:
     explicit Interrupted(int signal_number);
     int exit_code() const { return 128 + signal_; }
 
-private:
+  private:
     int signal_;
 };
 
@@ -31,7 +31,7 @@ void throw_if_interrupted();
 
 /// While alive, signals are deferred (nestable, any thread).
 class DeferInterrupts {
-public:
+  public:
     DeferInterrupts();
     ~DeferInterrupts();
     DeferInterrupts(const DeferInterrupts&) = delete;

@@ -14,7 +14,8 @@ Eigen::Vector3d vec3_from(const Json& j, const char* key) {
     }
     Eigen::Vector3d v;
     for (int i = 0; i < 3; ++i) {
-        if (!j[key][i].is_number()) throw FormatError(std::string("'") + key + "' holds a non-number");
+        if (!j[key][i].is_number())
+            throw FormatError(std::string("'") + key + "' holds a non-number");
         v[i] = j[key][i].get<double>();
     }
     return v;
@@ -36,7 +37,8 @@ Json read_json(const std::filesystem::path& path) {
     const std::string text = read_file(path);
     try {
         return Json::parse(text);
-    } catch (const Json::exception& e) {  // parse_error, and out_of_range for a number that overflows
+    } catch (
+        const Json::exception& e) {  // parse_error, and out_of_range for a number that overflows
         throw FileError(path.string(), std::string("invalid JSON: ") + e.what());
     }
 }
@@ -77,7 +79,9 @@ Json pose_to_json(const Isometry3& T) {
 }
 
 Isometry3 pose_from_json(const Json& j, const std::string& name) {
-    const std::string form = "'" + name + "' must be {\"t_m\": [x, y, z], \"q_wxyz\": [w, x, y, z]} or {\"t_m\", \"yaw_rad\"}";
+    const std::string form =
+        "'" + name +
+        "' must be {\"t_m\": [x, y, z], \"q_wxyz\": [w, x, y, z]} or {\"t_m\", \"yaw_rad\"}";
     if (!j.is_object() || !j.contains("t_m")) throw FormatError(form);
     Eigen::Vector3d t;
     try {
@@ -94,15 +98,18 @@ Isometry3 pose_from_json(const Json& j, const std::string& name) {
             if (!a[static_cast<std::size_t>(i)].is_number()) throw FormatError(form);
             c[i] = a[static_cast<std::size_t>(i)].get<double>();
         }
-        if (!c.allFinite() || !t.allFinite()) throw FormatError("'" + name + "' is NaN or infinite");
-        if (std::abs(c.norm() - 1.0) > 1e-3) throw FormatError("'" + name + ".q_wxyz' is not a unit quaternion");
+        if (!c.allFinite() || !t.allFinite())
+            throw FormatError("'" + name + "' is NaN or infinite");
+        if (std::abs(c.norm() - 1.0) > 1e-3)
+            throw FormatError("'" + name + ".q_wxyz' is not a unit quaternion");
         T.linear() = Eigen::Quaterniond(c[0], c[1], c[2], c[3]).normalized().toRotationMatrix();
         T.translation() = t;
         return T;
     }
     if (!j.contains("yaw_rad") || !j["yaw_rad"].is_number()) throw FormatError(form);
     const double yaw = j["yaw_rad"].get<double>();
-    if (!t.allFinite() || !std::isfinite(yaw)) throw FormatError("'" + name + "' is NaN or infinite");
+    if (!t.allFinite() || !std::isfinite(yaw))
+        throw FormatError("'" + name + "' is NaN or infinite");
     return make_T_xyz_yaw(t, yaw);
 }
 

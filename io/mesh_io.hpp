@@ -22,7 +22,8 @@ struct MeshReadLimits {
 
 /// Parses a mesh held in memory; `extension_hint` is e.g. "obj". Throws FormatError, also when
 /// the reader crashes, runs out of its memory or time on the file (it runs in a child process).
-TriangleMesh parse_mesh(std::string_view bytes, const std::string& extension_hint, const MeshReadLimits& limits = {});
+TriangleMesh parse_mesh(std::string_view bytes, const std::string& extension_hint,
+                        const MeshReadLimits& limits = {});
 
 /// Format from the extension (.obj, .ply, .stl). Throws FileError.
 void write_mesh(const std::filesystem::path& path, const TriangleMesh& mesh);

@@ -7,7 +7,8 @@
 
 namespace makeway::io {
 
-/// NavParams from the configuration's lidar, robot, odometry, simulation and online-system sections.
+/// NavParams from the configuration's lidar, robot, odometry, simulation and online-system
+/// sections.
 eval::NavParams nav_params(const SimConfig& config);
 
 }  // namespace makeway::io

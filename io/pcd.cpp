@@ -49,8 +49,9 @@ std::optional<ScalarType> scalar_for(char type, std::size_t size) {
 std::uint64_t header_count(const std::vector<std::string_view>& w, const char* key) {
     if (w.size() != 2) throw FormatError(std::string("header line ") + key + " needs one value");
     const auto v = parse_count(w[1]);
-    if (!v) throw FormatError(std::string("header ") + key + " is not a count: '" +
-                              std::string(w[1].substr(0, 40)) + "'");
+    if (!v)
+        throw FormatError(std::string("header ") + key + " is not a count: '" +
+                          std::string(w[1].substr(0, 40)) + "'");
     return *v;
 }
 
@@ -99,13 +100,16 @@ PcdHeader parse_header(std::string_view bytes) {
         } else if (key == "FIELDS") {
             if (w.size() < 2) throw FormatError("header FIELDS is empty");
             for (std::size_t i = 1; i < w.size(); ++i) {
-                if (!is_header_name(w[i])) throw FormatError("header FIELDS: field " + std::to_string(i) + " is not a printable ASCII name");
+                if (!is_header_name(w[i]))
+                    throw FormatError("header FIELDS: field " + std::to_string(i) +
+                                      " is not a printable ASCII name");
                 PcdField f;
                 f.name = std::string(w[i]);
                 h.fields.push_back(f);
             }
         } else if (key == "SIZE" || key == "TYPE" || key == "COUNT") {
-            if (h.fields.empty()) throw FormatError("header " + std::string(key) + " before FIELDS");
+            if (h.fields.empty())
+                throw FormatError("header " + std::string(key) + " before FIELDS");
             set_field_column(h, w, std::string(key).c_str());
             have_size |= key == "SIZE";
             have_type |= key == "TYPE";
@@ -119,7 +123,8 @@ PcdHeader parse_header(std::string_view bytes) {
             if (w.size() != 2) throw FormatError("header DATA needs one value");
             h.data = std::string(w[1]);
             if (h.data != "ascii" && h.data != "binary" && h.data != "binary_compressed") {
-                throw FormatError("unknown DATA encoding '" + std::string(w[1].substr(0, 32)) + "'");
+                throw FormatError("unknown DATA encoding '" + std::string(w[1].substr(0, 32)) +
+                                  "'");
             }
         } else {
             throw FormatError("unknown header line '" + std::string(key.substr(0, 32)) + "'");
@@ -136,14 +141,16 @@ PcdHeader parse_header(std::string_view bytes) {
         throw FormatError("POINTS " + std::to_string(h.points) + " != WIDTH x HEIGHT " +
                           std::to_string(*width * rows));
     }
-    if (h.points > kMaxPoints) throw FormatError("POINTS " + std::to_string(h.points) + " is too large");
+    if (h.points > kMaxPoints)
+        throw FormatError("POINTS " + std::to_string(h.points) + " is too large");
 
     std::vector<std::string> names;
     std::vector<Channel> channels;
     for (PcdField& f : h.fields) {
         f.scalar = scalar_for(f.type, f.size);
         if (f.type == 'F' && f.size != 4 && f.size != 8) {
-            throw FormatError("field '" + f.name + "' has TYPE F with SIZE " + std::to_string(f.size));
+            throw FormatError("field '" + f.name + "' has TYPE F with SIZE " +
+                              std::to_string(f.size));
         }
         if (f.size != 1 && f.size != 2 && f.size != 4 && f.size != 8) {
             throw FormatError("field '" + f.name + "' has SIZE " + std::to_string(f.size));
@@ -218,9 +225,9 @@ CloudFile parse_pcd(std::string_view bytes) {
     const std::string_view body = bytes.substr(h.data_offset);
     if (h.data == "ascii") {
         // At least two characters per value: guards the allocation against huge POINTS.
-        if (h.points > body.size()) throw FormatError("truncated: POINTS " + std::to_string(h.points) +
-                                                      " but only " + std::to_string(body.size()) +
-                                                      " bytes of data");
+        if (h.points > body.size())
+            throw FormatError("truncated: POINTS " + std::to_string(h.points) + " but only " +
+                              std::to_string(body.size()) + " bytes of data");
         CloudFile out = make_result(h);
         read_ascii(h, body, out.cloud);
         return out;
@@ -236,7 +243,8 @@ CloudFile parse_pcd(std::string_view bytes) {
         return out;
     }
     // binary_compressed: uint32 compressed size, uint32 uncompressed size, LZF data (field-major).
-    if (body.size() < 8) throw FormatError("truncated: binary_compressed data lacks its size words");
+    if (body.size() < 8)
+        throw FormatError("truncated: binary_compressed data lacks its size words");
     std::uint32_t compressed = 0, uncompressed = 0;
     std::memcpy(&compressed, body.data(), 4);
     std::memcpy(&uncompressed, body.data() + 4, 4);
@@ -288,8 +296,9 @@ std::string serialize_pcd(const PointCloud& cloud, PcdEncoding encoding) {
     for (Channel c : channels) {
         const std::size_t size = scalar_size(native_type(c));
         for (std::size_t i = 0; i < n; ++i) {
-            const std::size_t offset = encoding == PcdEncoding::kBinary ? i * point_step + field_start
-                                                                        : field_start * n + i * size;
+            const std::size_t offset = encoding == PcdEncoding::kBinary
+                                           ? i * point_step + field_start
+                                           : field_start * n + i * size;
             load_binary(cloud, c, i, raw.data() + offset);
         }
         field_start += size;

@@ -55,7 +55,8 @@ std::string_view ply_type_name(ScalarType t) {
 
 ScalarType require_type(std::string_view name) {
     const auto t = ply_type(name);
-    if (!t) throw FormatError("unknown PLY property type '" + std::string(name.substr(0, 32)) + "'");
+    if (!t)
+        throw FormatError("unknown PLY property type '" + std::string(name.substr(0, 32)) + "'");
     return *t;
 }
 
@@ -96,10 +97,14 @@ PlyHeader parse_header(std::string_view bytes) {
         if (w[0] == "end_header") break;
         if (w[0] == "format") {
             if (w.size() != 3 || w[2] != "1.0") throw FormatError("malformed format line");
-            if (w[1] == "ascii") h.encoding = Encoding::kAscii;
-            else if (w[1] == "binary_little_endian") h.encoding = Encoding::kLittle;
-            else if (w[1] == "binary_big_endian") h.encoding = Encoding::kBig;
-            else throw FormatError("unknown PLY format '" + std::string(w[1].substr(0, 32)) + "'");
+            if (w[1] == "ascii")
+                h.encoding = Encoding::kAscii;
+            else if (w[1] == "binary_little_endian")
+                h.encoding = Encoding::kLittle;
+            else if (w[1] == "binary_big_endian")
+                h.encoding = Encoding::kBig;
+            else
+                throw FormatError("unknown PLY format '" + std::string(w[1].substr(0, 32)) + "'");
             have_format = true;
         } else if (w[0] == "element") {
             const auto n = w.size() == 3 ? parse_count(w[2]) : std::nullopt;
@@ -119,7 +124,7 @@ PlyHeader parse_header(std::string_view bytes) {
 
 // Bounds-checked reader over the binary body.
 class ByteCursor {
-public:
+  public:
     ByteCursor(std::string_view data, bool big_endian) : data_(data), big_(big_endian) {}
     const char* take(std::size_t n) {
         if (data_.size() - pos_ < n) throw FormatError("truncated: data ends inside an element");
@@ -137,7 +142,7 @@ public:
     std::size_t remaining() const { return data_.size() - pos_; }
     bool big_endian() const { return big_; }
 
-private:
+  private:
     std::string_view data_;
     std::size_t pos_ = 0;
     bool big_;
@@ -148,8 +153,9 @@ void read_binary_element(const PlyElement& e, ByteCursor& cur, PointCloud* cloud
     std::size_t min_bytes = 0;
     for (const auto& p : e.properties) min_bytes += scalar_size(p.is_list ? p.count_type : p.type);
     if (min_bytes > 0 && e.count > cur.remaining() / min_bytes) {
-        throw FormatError("truncated: element '" + e.name + "' declares " + std::to_string(e.count) +
-                          " entries but only " + std::to_string(cur.remaining()) + " bytes remain");
+        throw FormatError("truncated: element '" + e.name + "' declares " +
+                          std::to_string(e.count) + " entries but only " +
+                          std::to_string(cur.remaining()) + " bytes remain");
     }
     if (cloud) cloud->resize(static_cast<std::size_t>(e.count), fields);
     const bool fixed_size = std::none_of(e.properties.begin(), e.properties.end(),
@@ -186,8 +192,9 @@ void read_binary_element(const PlyElement& e, ByteCursor& cur, PointCloud* cloud
 void read_ascii_element(const PlyElement& e, TokenStream& tokens, std::size_t body_size,
                         PointCloud* cloud, PointFields fields) {
     if (e.count > body_size / 2 + 1) {
-        throw FormatError("truncated: element '" + e.name + "' declares " + std::to_string(e.count) +
-                          " entries in " + std::to_string(body_size) + " bytes");
+        throw FormatError("truncated: element '" + e.name + "' declares " +
+                          std::to_string(e.count) + " entries in " + std::to_string(body_size) +
+                          " bytes");
     }
     if (cloud) cloud->resize(static_cast<std::size_t>(e.count), fields);
     auto next = [&]() {
@@ -242,13 +249,17 @@ CloudFile parse_ply(std::string_view bytes) {
     const std::string_view body = bytes.substr(h.data_offset);
     if (h.encoding == Encoding::kAscii) {
         TokenStream tokens(body);
-        for (const auto& e : h.elements) read_ascii_element(e, tokens, body.size(), &e == vertex ? &out.cloud : nullptr, fields);
-        if (!tokens.at_end()) throw FormatError("data continues after the elements the header declares");
+        for (const auto& e : h.elements)
+            read_ascii_element(e, tokens, body.size(), &e == vertex ? &out.cloud : nullptr, fields);
+        if (!tokens.at_end())
+            throw FormatError("data continues after the elements the header declares");
     } else {
         ByteCursor cur(body, h.encoding == Encoding::kBig);
-        for (const auto& e : h.elements) read_binary_element(e, cur, &e == vertex ? &out.cloud : nullptr, fields);
+        for (const auto& e : h.elements)
+            read_binary_element(e, cur, &e == vertex ? &out.cloud : nullptr, fields);
         if (cur.remaining() != 0) {
-            throw FormatError(std::to_string(cur.remaining()) + " bytes after the elements the header declares");
+            throw FormatError(std::to_string(cur.remaining()) +
+                              " bytes after the elements the header declares");
         }
     }
     return out;

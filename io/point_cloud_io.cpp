@@ -19,9 +19,12 @@ std::optional<CloudFormat> cloud_format_from_path(const std::filesystem::path& p
 
 CloudFile parse_point_cloud(std::string_view bytes, CloudFormat format) {
     switch (format) {
-        case CloudFormat::kPcd: return parse_pcd(bytes);
-        case CloudFormat::kPly: return parse_ply(bytes);
-        case CloudFormat::kKittiBin: return parse_kitti_bin(bytes);
+        case CloudFormat::kPcd:
+            return parse_pcd(bytes);
+        case CloudFormat::kPly:
+            return parse_ply(bytes);
+        case CloudFormat::kKittiBin:
+            return parse_kitti_bin(bytes);
     }
     throw FormatError("unknown format");
 }
@@ -29,7 +32,8 @@ CloudFile parse_point_cloud(std::string_view bytes, CloudFormat format) {
 CloudFile read_point_cloud(const std::filesystem::path& path, const CloudReadOptions& options) {
     const auto format = cloud_format_from_path(path);
     if (!format) {
-        throw FileError(path.string(), "unknown point-cloud extension (expected .pcd, .ply or .bin)");
+        throw FileError(path.string(),
+                        "unknown point-cloud extension (expected .pcd, .ply or .bin)");
     }
     const std::string bytes = read_file(path);
     CloudFile file;
@@ -46,7 +50,8 @@ CloudFile read_point_cloud(const std::filesystem::path& path, const CloudReadOpt
         while (file.cloud.xyz[first].allFinite()) ++first;
         throw FileError(path.string(), std::to_string(bad) +
                                            " points have NaN or infinite coordinates (first at "
-                                           "index " + std::to_string(first) + ")");
+                                           "index " +
+                                           std::to_string(first) + ")");
     }
     if (bad > 0 && options.non_finite == NonFinitePolicy::kDrop) {
         file.cloud = remove_non_finite(file.cloud);
@@ -56,11 +61,13 @@ CloudFile read_point_cloud(const std::filesystem::path& path, const CloudReadOpt
 
 std::vector<std::filesystem::path> sweep_files(const std::filesystem::path& dir) {
     std::error_code ec;
-    if (!std::filesystem::is_directory(dir, ec)) throw FileError(dir.string(), "not a folder of sweeps");
+    if (!std::filesystem::is_directory(dir, ec))
+        throw FileError(dir.string(), "not a folder of sweeps");
     std::vector<std::filesystem::path> files;
     for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
         const std::string ext = lower_extension(e.path());
-        if (e.is_regular_file() && (ext == "pcd" || ext == "ply" || ext == "bin")) files.push_back(e.path());
+        if (e.is_regular_file() && (ext == "pcd" || ext == "ply" || ext == "bin"))
+            files.push_back(e.path());
     }
     std::sort(files.begin(), files.end());
     if (files.empty()) throw FileError(dir.string(), "no .pcd, .ply or .bin sweeps");
@@ -72,7 +79,8 @@ std::vector<std::string> write_point_cloud(const std::filesystem::path& path,
                                            const CloudWriteOptions& options) {
     const auto format = cloud_format_from_path(path);
     if (!format) {
-        throw FileError(path.string(), "unknown point-cloud extension (expected .pcd, .ply or .bin)");
+        throw FileError(path.string(),
+                        "unknown point-cloud extension (expected .pcd, .ply or .bin)");
     }
     if (const std::string err = cloud.consistency_error(); !err.empty()) {
         throw FileError(path.string(), "inconsistent cloud: " + err);
@@ -80,8 +88,12 @@ std::vector<std::string> write_point_cloud(const std::filesystem::path& path,
     std::vector<std::string> dropped;
     std::string bytes;
     switch (*format) {
-        case CloudFormat::kPcd: bytes = serialize_pcd(cloud, options.pcd); break;
-        case CloudFormat::kPly: bytes = serialize_ply(cloud, options.ply); break;
+        case CloudFormat::kPcd:
+            bytes = serialize_pcd(cloud, options.pcd);
+            break;
+        case CloudFormat::kPly:
+            bytes = serialize_ply(cloud, options.ply);
+            break;
         case CloudFormat::kKittiBin: {
             const PointFields f = cloud.fields();
             if (f.ring) dropped.push_back("ring");

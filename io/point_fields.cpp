@@ -26,14 +26,22 @@ T read_raw(const char* src, bool big_endian) {
 
 double decode_scalar(const char* src, ScalarType type, bool big_endian) {
     switch (type) {
-        case ScalarType::kInt8: return read_raw<std::int8_t>(src, big_endian);
-        case ScalarType::kUInt8: return read_raw<std::uint8_t>(src, big_endian);
-        case ScalarType::kInt16: return read_raw<std::int16_t>(src, big_endian);
-        case ScalarType::kUInt16: return read_raw<std::uint16_t>(src, big_endian);
-        case ScalarType::kInt32: return read_raw<std::int32_t>(src, big_endian);
-        case ScalarType::kUInt32: return read_raw<std::uint32_t>(src, big_endian);
-        case ScalarType::kFloat32: return read_raw<float>(src, big_endian);
-        case ScalarType::kFloat64: return read_raw<double>(src, big_endian);
+        case ScalarType::kInt8:
+            return read_raw<std::int8_t>(src, big_endian);
+        case ScalarType::kUInt8:
+            return read_raw<std::uint8_t>(src, big_endian);
+        case ScalarType::kInt16:
+            return read_raw<std::int16_t>(src, big_endian);
+        case ScalarType::kUInt16:
+            return read_raw<std::uint16_t>(src, big_endian);
+        case ScalarType::kInt32:
+            return read_raw<std::int32_t>(src, big_endian);
+        case ScalarType::kUInt32:
+            return read_raw<std::uint32_t>(src, big_endian);
+        case ScalarType::kFloat32:
+            return read_raw<float>(src, big_endian);
+        case ScalarType::kFloat64:
+            return read_raw<double>(src, big_endian);
     }
     return 0.0;
 }
@@ -54,40 +62,72 @@ T checked_integer(double v, Channel channel) {
 
 void store_double(PointCloud& c, Channel channel, std::size_t i, double v) {
     switch (channel) {
-        case Channel::kX: c.xyz[i].x() = static_cast<float>(v); break;
-        case Channel::kY: c.xyz[i].y() = static_cast<float>(v); break;
-        case Channel::kZ: c.xyz[i].z() = static_cast<float>(v); break;
-        case Channel::kIntensity: c.intensity[i] = static_cast<float>(v); break;
-        case Channel::kTime: c.time_s[i] = static_cast<float>(v); break;
-        case Channel::kRing: c.ring[i] = checked_integer<std::uint16_t>(v, channel); break;
-        case Channel::kLabel: c.label[i] = checked_integer<std::uint8_t>(v, channel); break;
-        case Channel::kInstance: c.instance[i] = checked_integer<std::uint32_t>(v, channel); break;
-        case Channel::kNone: break;
+        case Channel::kX:
+            c.xyz[i].x() = static_cast<float>(v);
+            break;
+        case Channel::kY:
+            c.xyz[i].y() = static_cast<float>(v);
+            break;
+        case Channel::kZ:
+            c.xyz[i].z() = static_cast<float>(v);
+            break;
+        case Channel::kIntensity:
+            c.intensity[i] = static_cast<float>(v);
+            break;
+        case Channel::kTime:
+            c.time_s[i] = static_cast<float>(v);
+            break;
+        case Channel::kRing:
+            c.ring[i] = checked_integer<std::uint16_t>(v, channel);
+            break;
+        case Channel::kLabel:
+            c.label[i] = checked_integer<std::uint8_t>(v, channel);
+            break;
+        case Channel::kInstance:
+            c.instance[i] = checked_integer<std::uint32_t>(v, channel);
+            break;
+        case Channel::kNone:
+            break;
     }
 }
 
 float* float_slot(PointCloud& c, Channel channel, std::size_t i) {
     switch (channel) {
-        case Channel::kX: return &c.xyz[i].x();
-        case Channel::kY: return &c.xyz[i].y();
-        case Channel::kZ: return &c.xyz[i].z();
-        case Channel::kIntensity: return &c.intensity[i];
-        case Channel::kTime: return &c.time_s[i];
-        default: return nullptr;
+        case Channel::kX:
+            return &c.xyz[i].x();
+        case Channel::kY:
+            return &c.xyz[i].y();
+        case Channel::kZ:
+            return &c.xyz[i].z();
+        case Channel::kIntensity:
+            return &c.intensity[i];
+        case Channel::kTime:
+            return &c.time_s[i];
+        default:
+            return nullptr;
     }
 }
 
 const char* value_bytes(const PointCloud& c, Channel channel, std::size_t i) {
     switch (channel) {
-        case Channel::kX: return reinterpret_cast<const char*>(&c.xyz[i].x());
-        case Channel::kY: return reinterpret_cast<const char*>(&c.xyz[i].y());
-        case Channel::kZ: return reinterpret_cast<const char*>(&c.xyz[i].z());
-        case Channel::kIntensity: return reinterpret_cast<const char*>(&c.intensity[i]);
-        case Channel::kRing: return reinterpret_cast<const char*>(&c.ring[i]);
-        case Channel::kTime: return reinterpret_cast<const char*>(&c.time_s[i]);
-        case Channel::kLabel: return reinterpret_cast<const char*>(&c.label[i]);
-        case Channel::kInstance: return reinterpret_cast<const char*>(&c.instance[i]);
-        case Channel::kNone: break;
+        case Channel::kX:
+            return reinterpret_cast<const char*>(&c.xyz[i].x());
+        case Channel::kY:
+            return reinterpret_cast<const char*>(&c.xyz[i].y());
+        case Channel::kZ:
+            return reinterpret_cast<const char*>(&c.xyz[i].z());
+        case Channel::kIntensity:
+            return reinterpret_cast<const char*>(&c.intensity[i]);
+        case Channel::kRing:
+            return reinterpret_cast<const char*>(&c.ring[i]);
+        case Channel::kTime:
+            return reinterpret_cast<const char*>(&c.time_s[i]);
+        case Channel::kLabel:
+            return reinterpret_cast<const char*>(&c.label[i]);
+        case Channel::kInstance:
+            return reinterpret_cast<const char*>(&c.instance[i]);
+        case Channel::kNone:
+            break;
     }
     return nullptr;
 }
@@ -124,17 +164,21 @@ Channel channel_for_name(std::string_view name) {
 }
 
 std::string_view channel_name(Channel channel) {
-    constexpr std::array<std::string_view, 9> kNames{"x",    "y",     "z",        "intensity", "ring",
-                                                     "time", "label", "instance", "(unused)"};
+    constexpr std::array<std::string_view, 9> kNames{
+        "x", "y", "z", "intensity", "ring", "time", "label", "instance", "(unused)"};
     return kNames[static_cast<std::size_t>(channel)];
 }
 
 ScalarType native_type(Channel channel) {
     switch (channel) {
-        case Channel::kRing: return ScalarType::kUInt16;
-        case Channel::kLabel: return ScalarType::kUInt8;
-        case Channel::kInstance: return ScalarType::kUInt32;
-        default: return ScalarType::kFloat32;
+        case Channel::kRing:
+            return ScalarType::kUInt16;
+        case Channel::kLabel:
+            return ScalarType::kUInt8;
+        case Channel::kInstance:
+            return ScalarType::kUInt32;
+        default:
+            return ScalarType::kFloat32;
     }
 }
 
@@ -170,8 +214,8 @@ void store_binary(PointCloud& cloud, Channel channel, std::size_t i, const char*
     store_double(cloud, channel, i, decode_scalar(src, type, big_endian));
 }
 
-void store_binary_column(PointCloud& cloud, Channel channel, const char* src, std::size_t src_stride,
-                         std::size_t n, ScalarType type, bool big_endian) {
+void store_binary_column(PointCloud& cloud, Channel channel, const char* src,
+                         std::size_t src_stride, std::size_t n, ScalarType type, bool big_endian) {
     if (channel == Channel::kNone || n == 0) return;
     if (type != native_type(channel) || big_endian) {
         for (std::size_t i = 0; i < n; ++i) {
@@ -186,7 +230,8 @@ void store_binary_column(PointCloud& cloud, Channel channel, const char* src, st
             ? sizeof(Eigen::Vector3f)
             : scalar_size(type);
     const std::size_t size = scalar_size(type);
-    for (std::size_t i = 0; i < n; ++i) std::memcpy(dst + i * dst_stride, src + i * src_stride, size);
+    for (std::size_t i = 0; i < n; ++i)
+        std::memcpy(dst + i * dst_stride, src + i * src_stride, size);
 }
 
 void store_text(PointCloud& cloud, Channel channel, std::size_t i, std::string_view token) {
@@ -223,9 +268,15 @@ void append_text(const PointCloud& cloud, Channel channel, std::size_t i, std::s
     char buf[64];
     std::to_chars_result r{};
     switch (channel) {
-        case Channel::kRing: r = std::to_chars(buf, buf + sizeof(buf), cloud.ring[i]); break;
-        case Channel::kLabel: r = std::to_chars(buf, buf + sizeof(buf), +cloud.label[i]); break;
-        case Channel::kInstance: r = std::to_chars(buf, buf + sizeof(buf), cloud.instance[i]); break;
+        case Channel::kRing:
+            r = std::to_chars(buf, buf + sizeof(buf), cloud.ring[i]);
+            break;
+        case Channel::kLabel:
+            r = std::to_chars(buf, buf + sizeof(buf), +cloud.label[i]);
+            break;
+        case Channel::kInstance:
+            r = std::to_chars(buf, buf + sizeof(buf), cloud.instance[i]);
+            break;
         default: {
             float v = 0.0f;
             std::memcpy(&v, value_bytes(cloud, channel, i), sizeof(float));
@@ -239,7 +290,8 @@ void append_text(const PointCloud& cloud, Channel channel, std::size_t i, std::s
     out.append(buf, r.ptr);
 }
 
-void append_ascii_rows(const PointCloud& cloud, const std::vector<Channel>& channels, std::string& out) {
+void append_ascii_rows(const PointCloud& cloud, const std::vector<Channel>& channels,
+                       std::string& out) {
     for (std::size_t i = 0; i < cloud.size(); ++i) {
         for (std::size_t k = 0; k < channels.size(); ++k) {
             if (k > 0) out += ' ';
@@ -254,8 +306,8 @@ void check_field_set(const std::vector<std::string>& names, const std::vector<Ch
         if (channels[a] == Channel::kNone) continue;
         for (std::size_t b = a + 1; b < channels.size(); ++b) {
             if (channels[a] == channels[b]) {
-                throw FormatError("fields '" + names[a] + "' and '" + names[b] +
-                                  "' both give " + std::string(channel_name(channels[a])));
+                throw FormatError("fields '" + names[a] + "' and '" + names[b] + "' both give " +
+                                  std::string(channel_name(channels[a])));
             }
         }
     }

@@ -7,9 +7,9 @@
 #include <string>
 
 #include "io/error.hpp"
-#include "makeway/common/angles.hpp"
 #include "io/file_util.hpp"
 #include "io/text_scan.hpp"
+#include "makeway/common/angles.hpp"
 
 namespace makeway::io {
 namespace {
@@ -19,7 +19,8 @@ constexpr double kUnitTolerance = 1e-3;  // quaternion norm / rotation orthonorm
 constexpr double kMaxStamp_s = 1e10;
 
 template <std::size_t N>
-std::array<double, N> parse_numbers(const std::vector<std::string_view>& words, std::size_t line_no) {
+std::array<double, N> parse_numbers(const std::vector<std::string_view>& words,
+                                    std::size_t line_no) {
     const std::string where = "line " + std::to_string(line_no) + ": ";
     if (words.size() != N) {
         throw FormatError(where + "expected " + std::to_string(N) + " numbers, found " +
@@ -56,7 +57,6 @@ void for_each_data_line(std::string_view text, Fn&& fn) {
     }
 }
 
-
 template <typename T, typename Parse>
 T read_with(const std::filesystem::path& path, Parse parse) {
     const std::string text = read_file(path);
@@ -82,14 +82,17 @@ std::vector<StampedPose> parse_tum(std::string_view text) {
             throw FormatError("line " + std::to_string(line_no) + ": timestamp goes backwards");
         }
         if (!poses.empty() && v[0] == poses.back().stamp_s) {
-            throw FormatError("line " + std::to_string(line_no) + ": timestamp " + shortest(v[0]) + " repeats the line before's");
+            throw FormatError("line " + std::to_string(line_no) + ": timestamp " + shortest(v[0]) +
+                              " repeats the line before's");
         }
         if (v[0] < 0.0 || v[0] > kMaxStamp_s) {
-            throw FormatError("line " + std::to_string(line_no) + ": timestamp " + shortest(v[0]) +
-                              " is not seconds in [0, 1e10] (since the epoch, or since the recording began)");
+            throw FormatError(
+                "line " + std::to_string(line_no) + ": timestamp " + shortest(v[0]) +
+                " is not seconds in [0, 1e10] (since the epoch, or since the recording began)");
         }
         if (Eigen::Vector3d(v[1], v[2], v[3]).norm() > kMaxPosition_m) {
-            throw FormatError("line " + std::to_string(line_no) + ": position " + shortest(Eigen::Vector3d(v[1], v[2], v[3]).norm()) +
+            throw FormatError("line " + std::to_string(line_no) + ": position " +
+                              shortest(Eigen::Vector3d(v[1], v[2], v[3]).norm()) +
                               " m from the origin (more than 100 km)");
         }
         StampedPose p;
@@ -111,7 +114,8 @@ std::vector<Isometry3> parse_kitti_poses(std::string_view text) {
             for (int c = 0; c < 4; ++c) T.matrix()(r, c) = v[static_cast<std::size_t>(4 * r + c)];
         }
         const Eigen::Matrix3d R = T.linear();
-        if ((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > kUnitTolerance ||
+        if ((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() >
+                kUnitTolerance ||
             R.determinant() < 0.0) {
             throw FormatError("line " + std::to_string(line_no) + ": not a rotation matrix");
         }
@@ -158,20 +162,29 @@ void write_kitti_poses(const std::filesystem::path& path, const std::vector<Isom
 }
 
 std::string extrinsics_problem(const std::vector<double>& v) {
-    if (v.size() != 6 || !std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); })) return "expected 6 finite numbers";
-    if (Eigen::Vector3d(v[0], v[1], v[2]).norm() > 10.0) return "the sensor lies " + shortest(Eigen::Vector3d(v[0], v[1], v[2]).norm()) + " m from the base (at most 10 m)";
+    if (v.size() != 6 ||
+        !std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }))
+        return "expected 6 finite numbers";
+    if (Eigen::Vector3d(v[0], v[1], v[2]).norm() > 10.0)
+        return "the sensor lies " + shortest(Eigen::Vector3d(v[0], v[1], v[2]).norm()) +
+               " m from the base (at most 10 m)";
     for (std::size_t i = 3; i < 6; ++i) {
-        if (std::abs(v[i]) > 2 * kPi) return "angle " + shortest(v[i]) + " is beyond +-2 pi (radians, not degrees)";
+        if (std::abs(v[i]) > 2 * kPi)
+            return "angle " + shortest(v[i]) + " is beyond +-2 pi (radians, not degrees)";
     }
     return "";
 }
 
 std::string start_problem(const std::vector<double>& v) {
-    if (v.size() != 3 || !std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); })) return "expected 3 finite numbers";
+    if (v.size() != 3 ||
+        !std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }))
+        return "expected 3 finite numbers";
     if (Eigen::Vector2d(v[0], v[1]).norm() > kMaxPosition_m) {
-        return "the start lies " + shortest(Eigen::Vector2d(v[0], v[1]).norm()) + " m from the origin (at most 100 km)";
+        return "the start lies " + shortest(Eigen::Vector2d(v[0], v[1]).norm()) +
+               " m from the origin (at most 100 km)";
     }
-    if (std::abs(v[2]) > 2 * kPi) return "yaw " + shortest(v[2]) + " is beyond +-2 pi (radians, not degrees)";
+    if (std::abs(v[2]) > 2 * kPi)
+        return "yaw " + shortest(v[2]) + " is beyond +-2 pi (radians, not degrees)";
     return "";
 }
 

@@ -9,7 +9,7 @@
 namespace makeway::io {
 
 class ProgressBar {
-public:
+  public:
     ProgressBar(std::string label, std::size_t total);
     ~ProgressBar();  ///< erases an unfinished terminal line
     ProgressBar(const ProgressBar&) = delete;
@@ -20,7 +20,7 @@ public:
     /// Completes the line.
     void finish(const std::string& note = "");
 
-private:
+  private:
     std::string label_;
     std::size_t total_;
     bool tty_;

@@ -10,16 +10,16 @@
 #include "io/config_reader.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
-#include "io/mesh_io.hpp"
 #include "io/furniture_folder.hpp"
+#include "io/mesh_io.hpp"
 #include "makeway/sim/furniture.hpp"
 #include "makeway/sim/mesh_primitives.hpp"
 
 namespace makeway::io {
 namespace {
 
-void read_pose(YamlSection& parent, const char* key, Pose2& pose, std::vector<std::string>& problems,
-               const std::string& prefix) {
+void read_pose(YamlSection& parent, const char* key, Pose2& pose,
+               std::vector<std::string>& problems, const std::string& prefix) {
     YamlSection s(parent.take(key), prefix + "." + key, problems);
     s.read("x_m", pose.x_m);
     s.read("y_m", pose.y_m);
@@ -28,7 +28,8 @@ void read_pose(YamlSection& parent, const char* key, Pose2& pose, std::vector<st
 }
 
 template <typename Fn>
-void for_each_item(YAML::Node list, const std::string& name, std::vector<std::string>& problems, Fn&& fn) {
+void for_each_item(YAML::Node list, const std::string& name, std::vector<std::string>& problems,
+                   Fn&& fn) {
     if (!list || list.IsNull()) return;
     if (!list.IsSequence()) {
         problems.push_back(name + ": must be a list");
@@ -49,8 +50,10 @@ bool inside_folder(const std::filesystem::path& base, const std::filesystem::pat
     return !rel.empty() && *rel.begin() != "..";
 }
 
-sim::SceneObject read_object(const YAML::Node& node, const std::string& prefix, std::vector<std::string>& problems,
-                             const std::filesystem::path& mesh_base_dir, const SceneReadOptions& options) {
+sim::SceneObject read_object(const YAML::Node& node, const std::string& prefix,
+                             std::vector<std::string>& problems,
+                             const std::filesystem::path& mesh_base_dir,
+                             const SceneReadOptions& options) {
     sim::SceneObject o;
     YamlSection s(node, prefix, problems);
     std::string cls = "chair";
@@ -83,10 +86,12 @@ sim::SceneObject read_object(const YAML::Node& node, const std::string& prefix, 
     const std::optional<MeshPlacement> placement = to_placement(keys, s);
     if (!o.mesh_file.empty() && !mesh_base_dir.empty() && !options.allow_outside_paths &&
         !inside_folder(mesh_base_dir, o.mesh_file)) {
-        s.problem("mesh '" + o.mesh_file + "' is outside the scene's folder (--allow-outside-paths to read it)");
+        s.problem("mesh '" + o.mesh_file +
+                  "' is outside the scene's folder (--allow-outside-paths to read it)");
     } else if (!o.mesh_file.empty() && !mesh_base_dir.empty() && placement) {
         try {
-            o.user_mesh = std::make_shared<TriangleMesh>(read_placed_mesh(mesh_base_dir / o.mesh_file, *placement, o.cls, prefix, options.warn));
+            o.user_mesh = std::make_shared<TriangleMesh>(read_placed_mesh(
+                mesh_base_dir / o.mesh_file, *placement, o.cls, prefix, options.warn));
         } catch (const FileError& e) {
             s.problem(std::string("mesh ") + e.what());
         }
@@ -102,7 +107,8 @@ sim::Scene parse_scene(std::string_view yaml_text, const std::filesystem::path& 
     try {
         root = YAML::Load(std::string(yaml_text));
     } catch (const YAML::Exception& e) {
-        throw FormatError("YAML syntax error at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+        throw FormatError("YAML syntax error at line " + std::to_string(e.mark.line + 1) + ": " +
+                          e.msg);
     }
     if (!root.IsMap()) throw FormatError("a scene must be a mapping (name, walls, objects, ...)");
     std::vector<std::string> problems;
@@ -121,54 +127,61 @@ sim::Scene parse_scene(std::string_view yaml_text, const std::filesystem::path& 
     read_pose(s, "start", scene.start, problems, "scene");
     read_pose(s, "waypoint", scene.waypoint, problems, "scene");
     read_pose(s, "goal", scene.goal, problems, "scene");
-    for_each_item(s.take("walls"), "walls", problems, [&](const YAML::Node& n, const std::string& name) {
-        sim::Wall w;
-        YamlSection ws(n, name, problems);
-        ws.read("a_m", w.a_m);
-        ws.read("b_m", w.b_m);
-        ws.read("thickness_m", w.thickness_m);
-        ws.read("height_m", w.height_m);
-        ws.finish();
-        scene.walls.push_back(w);
-    });
-    for_each_item(s.take("pillars"), "pillars", problems, [&](const YAML::Node& n, const std::string& name) {
-        sim::Pillar p;
-        YamlSection ps(n, name, problems);
-        ps.read("centre_m", p.centre_m);
-        ps.read("size_m", p.size_m);
-        ps.read("height_m", p.height_m);
-        ps.finish();
-        scene.pillars.push_back(p);
-    });
-    for_each_item(s.take("objects"), "objects", problems, [&](const YAML::Node& n, const std::string& name) {
-        scene.objects.push_back(read_object(n, name, problems, mesh_base_dir, options));
-    });
-    for_each_item(s.take("walkers"), "walkers", problems, [&](const YAML::Node& n, const std::string& name) {
-        sim::Walker w;
-        YamlSection ws(n, name, problems);
-        ws.read("speed_mps", w.speed_mps);
-        ws.read("phase_s", w.phase_s);
-        for_each_item(ws.take("route_m"), name + ".route_m", problems, [&](const YAML::Node& p, const std::string& pn) {
-            try {
-                if (!p.IsSequence() || p.size() != 2) throw YAML::Exception(YAML::Mark::null_mark(), "");
-                w.route_m.emplace_back(p[0].as<double>(), p[1].as<double>());
-            } catch (const YAML::Exception&) {
-                problems.push_back(pn + ": must be a pair of numbers [x, y]");
-            }
+    for_each_item(s.take("walls"), "walls", problems,
+                  [&](const YAML::Node& n, const std::string& name) {
+                      sim::Wall w;
+                      YamlSection ws(n, name, problems);
+                      ws.read("a_m", w.a_m);
+                      ws.read("b_m", w.b_m);
+                      ws.read("thickness_m", w.thickness_m);
+                      ws.read("height_m", w.height_m);
+                      ws.finish();
+                      scene.walls.push_back(w);
+                  });
+    for_each_item(s.take("pillars"), "pillars", problems,
+                  [&](const YAML::Node& n, const std::string& name) {
+                      sim::Pillar p;
+                      YamlSection ps(n, name, problems);
+                      ps.read("centre_m", p.centre_m);
+                      ps.read("size_m", p.size_m);
+                      ps.read("height_m", p.height_m);
+                      ps.finish();
+                      scene.pillars.push_back(p);
+                  });
+    for_each_item(
+        s.take("objects"), "objects", problems, [&](const YAML::Node& n, const std::string& name) {
+            scene.objects.push_back(read_object(n, name, problems, mesh_base_dir, options));
         });
-        ws.finish();
-        scene.walkers.push_back(w);
-    });
-    for_each_item(s.take("pushers"), "pushers", problems, [&](const YAML::Node& n, const std::string& name) {
-        sim::ChairPusher p;
-        YamlSection ps(n, name, problems);
-        ps.read("chair_id", p.chair_id);
-        ps.read("period_s", p.period_s);
-        ps.read("pull_m", p.pull_m);
-        ps.read("phase_s", p.phase_s);
-        ps.finish();
-        scene.pushers.push_back(p);
-    });
+    for_each_item(
+        s.take("walkers"), "walkers", problems, [&](const YAML::Node& n, const std::string& name) {
+            sim::Walker w;
+            YamlSection ws(n, name, problems);
+            ws.read("speed_mps", w.speed_mps);
+            ws.read("phase_s", w.phase_s);
+            for_each_item(ws.take("route_m"), name + ".route_m", problems,
+                          [&](const YAML::Node& p, const std::string& pn) {
+                              try {
+                                  if (!p.IsSequence() || p.size() != 2)
+                                      throw YAML::Exception(YAML::Mark::null_mark(), "");
+                                  w.route_m.emplace_back(p[0].as<double>(), p[1].as<double>());
+                              } catch (const YAML::Exception&) {
+                                  problems.push_back(pn + ": must be a pair of numbers [x, y]");
+                              }
+                          });
+            ws.finish();
+            scene.walkers.push_back(w);
+        });
+    for_each_item(s.take("pushers"), "pushers", problems,
+                  [&](const YAML::Node& n, const std::string& name) {
+                      sim::ChairPusher p;
+                      YamlSection ps(n, name, problems);
+                      ps.read("chair_id", p.chair_id);
+                      ps.read("period_s", p.period_s);
+                      ps.read("pull_m", p.pull_m);
+                      ps.read("phase_s", p.phase_s);
+                      ps.finish();
+                      scene.pushers.push_back(p);
+                  });
     s.finish();
     for (const auto& m : scene.validate()) problems.push_back(m);
     if (!problems.empty()) throw FormatError(join_problems(problems));
@@ -190,12 +203,13 @@ std::string scene_to_yaml(const sim::Scene& scene) {
     YAML::Emitter out;
     out.SetDoublePrecision(17);
     auto pose = [&](const char* key, const Pose2& p) {
-        out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "x_m" << YAML::Value
-            << p.x_m << YAML::Key << "y_m" << YAML::Value << p.y_m << YAML::Key << "yaw_rad" << YAML::Value << p.yaw_rad
-            << YAML::EndMap;
+        out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "x_m"
+            << YAML::Value << p.x_m << YAML::Key << "y_m" << YAML::Value << p.y_m << YAML::Key
+            << "yaw_rad" << YAML::Value << p.yaw_rad << YAML::EndMap;
     };
     auto vec2 = [&](const char* key, const Eigen::Vector2d& v) {
-        out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq << v.x() << v.y() << YAML::EndSeq;
+        out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq << v.x() << v.y()
+            << YAML::EndSeq;
     };
     out << YAML::BeginMap;
     out << YAML::Key << "name" << YAML::Value << scene.name;
@@ -214,8 +228,8 @@ std::string scene_to_yaml(const sim::Scene& scene) {
         out << YAML::Flow << YAML::BeginMap;
         vec2("a_m", w.a_m);
         vec2("b_m", w.b_m);
-        out << YAML::Key << "thickness_m" << YAML::Value << w.thickness_m << YAML::Key << "height_m" << YAML::Value
-            << w.height_m << YAML::EndMap;
+        out << YAML::Key << "thickness_m" << YAML::Value << w.thickness_m << YAML::Key << "height_m"
+            << YAML::Value << w.height_m << YAML::EndMap;
     }
     out << YAML::EndSeq << YAML::Key << "pillars" << YAML::Value << YAML::BeginSeq;
     for (const auto& p : scene.pillars) {
@@ -226,14 +240,17 @@ std::string scene_to_yaml(const sim::Scene& scene) {
     }
     out << YAML::EndSeq << YAML::Key << "objects" << YAML::Value << YAML::BeginSeq;
     for (const auto& o : scene.objects) {
-        out << YAML::Flow << YAML::BeginMap << YAML::Key << "id" << YAML::Value << o.id << YAML::Key << "class"
-            << YAML::Value << std::string(to_string(o.cls));
+        out << YAML::Flow << YAML::BeginMap << YAML::Key << "id" << YAML::Value << o.id << YAML::Key
+            << "class" << YAML::Value << std::string(to_string(o.cls));
         if (o.mesh_file.empty()) {
-            out << YAML::Key << "style" << YAML::Value << o.style << YAML::Key << "model_seed" << YAML::Value << o.model_seed;
+            out << YAML::Key << "style" << YAML::Value << o.style << YAML::Key << "model_seed"
+                << YAML::Value << o.model_seed;
         } else {
-            out << YAML::Key << "mesh" << YAML::Value << o.mesh_file << YAML::Key << "scale" << YAML::Value << o.scale << YAML::Key
-                << "units" << YAML::Value << o.units << YAML::Key << "up_axis" << YAML::Value << o.up_axis << YAML::Key << "forward_axis"
-                << YAML::Value << o.forward_axis << YAML::Key << "recentre" << YAML::Value << o.recentre;
+            out << YAML::Key << "mesh" << YAML::Value << o.mesh_file << YAML::Key << "scale"
+                << YAML::Value << o.scale << YAML::Key << "units" << YAML::Value << o.units
+                << YAML::Key << "up_axis" << YAML::Value << o.up_axis << YAML::Key << "forward_axis"
+                << YAML::Value << o.forward_axis << YAML::Key << "recentre" << YAML::Value
+                << o.recentre;
         }
         if (o.table_id) out << YAML::Key << "table_id" << YAML::Value << o.table_id;
         pose("pose", o.pose);
@@ -241,22 +258,27 @@ std::string scene_to_yaml(const sim::Scene& scene) {
     }
     out << YAML::EndSeq << YAML::Key << "walkers" << YAML::Value << YAML::BeginSeq;
     for (const auto& w : scene.walkers) {
-        out << YAML::Flow << YAML::BeginMap << YAML::Key << "speed_mps" << YAML::Value << w.speed_mps << YAML::Key
-            << "phase_s" << YAML::Value << w.phase_s << YAML::Key << "route_m" << YAML::Value << YAML::BeginSeq;
-        for (const auto& p : w.route_m) out << YAML::Flow << YAML::BeginSeq << p.x() << p.y() << YAML::EndSeq;
+        out << YAML::Flow << YAML::BeginMap << YAML::Key << "speed_mps" << YAML::Value
+            << w.speed_mps << YAML::Key << "phase_s" << YAML::Value << w.phase_s << YAML::Key
+            << "route_m" << YAML::Value << YAML::BeginSeq;
+        for (const auto& p : w.route_m)
+            out << YAML::Flow << YAML::BeginSeq << p.x() << p.y() << YAML::EndSeq;
         out << YAML::EndSeq << YAML::EndMap;
     }
     out << YAML::EndSeq << YAML::Key << "pushers" << YAML::Value << YAML::BeginSeq;
     for (const auto& p : scene.pushers) {
-        out << YAML::Flow << YAML::BeginMap << YAML::Key << "chair_id" << YAML::Value << p.chair_id << YAML::Key
-            << "period_s" << YAML::Value << p.period_s << YAML::Key << "pull_m" << YAML::Value << p.pull_m << YAML::Key
-            << "phase_s" << YAML::Value << p.phase_s << YAML::EndMap;
+        out << YAML::Flow << YAML::BeginMap << YAML::Key << "chair_id" << YAML::Value << p.chair_id
+            << YAML::Key << "period_s" << YAML::Value << p.period_s << YAML::Key << "pull_m"
+            << YAML::Value << p.pull_m << YAML::Key << "phase_s" << YAML::Value << p.phase_s
+            << YAML::EndMap;
     }
     out << YAML::EndSeq << YAML::EndMap;
     return "# makeway scene: lengths in metres, angles in radians, poses are T_world_object.\n"
            "# Object styles: four_leg_chair office_chair stool armchair rect_table round_table\n"
-           "# conference_table; or `mesh: FILE` (OBJ/PLY/STL/DAE, relative to this file) with `scale`, `units`\n"
-           "# (m, cm, mm, in, ft), `up_axis` and `forward_axis` (x, y, z, -x, ...) and `recentre`.\n" +
+           "# conference_table; or `mesh: FILE` (OBJ/PLY/STL/DAE, relative to this file) with "
+           "`scale`, `units`\n"
+           "# (m, cm, mm, in, ft), `up_axis` and `forward_axis` (x, y, z, -x, ...) and "
+           "`recentre`.\n" +
            std::string(out.c_str()) + "\n";
 }
 

@@ -21,7 +21,8 @@ void draw_structure(Canvas& canvas, const sim::Scene& scene) {
 void write_scene_png(const std::filesystem::path& path, const sim::Scene& scene,
                      const std::vector<sim::ObjectModel>& models, const ScenePicture& picture) {
     // Extra room above the floor for the title and legend.
-    Canvas canvas(scene.floor_min_m, scene.floor_max_m + Eigen::Vector2d(0.0, 1.0), picture.pixels_per_m, 0.3);
+    Canvas canvas(scene.floor_min_m, scene.floor_max_m + Eigen::Vector2d(0.0, 1.0),
+                  picture.pixels_per_m, 0.3);
     const Eigen::Vector2d lo = scene.floor_min_m, hi = scene.floor_max_m;
     canvas.fill_polygon({lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}}, {0.96, 0.96, 0.93});
     draw_structure(canvas, scene);
@@ -42,13 +43,16 @@ void write_scene_png(const std::filesystem::path& path, const sim::Scene& scene,
         for (const sim::SceneObject& o : scene.objects) {
             if (o.id != p.chair_id) continue;
             const Eigen::Vector2d c(o.pose.x_m, o.pose.y_m);
-            const Eigen::Vector2d back = -Eigen::Vector2d(std::cos(o.pose.yaw_rad), std::sin(o.pose.yaw_rad));
-            canvas.stroke_polyline({c, c + p.pull_m * back}, label_colour(SemanticLabel::kPerson), 3.0);
+            const Eigen::Vector2d back =
+                -Eigen::Vector2d(std::cos(o.pose.yaw_rad), std::sin(o.pose.yaw_rad));
+            canvas.stroke_polyline({c, c + p.pull_m * back}, label_colour(SemanticLabel::kPerson),
+                                   3.0);
         }
     }
     for (const sim::Walker& w : scene.walkers) {
         canvas.stroke_polyline(w.route_m, label_colour(SemanticLabel::kPerson), 1.5, true, true);
-        canvas.fill_circle(sim::walker_position_at(w, 0.0), sim::kPersonRadius_m * picture.pixels_per_m,
+        canvas.fill_circle(sim::walker_position_at(w, 0.0),
+                           sim::kPersonRadius_m * picture.pixels_per_m,
                            label_colour(SemanticLabel::kPerson));
     }
     canvas.stroke_polyline(picture.route_m, {0.4, 0.4, 0.4}, 2.0, false, true);
@@ -69,8 +73,9 @@ void write_scene_png(const std::filesystem::path& path, const sim::Scene& scene,
     }
     canvas.scale_bar();
     canvas.text_px(10, 18, picture.title.empty() ? scene.name : picture.title, 14, {0, 0, 0});
-    canvas.text_px(10, 36, "orange: chairs  blue: tables  magenta: people  dashed: route  black: driven", 12,
-                   {0.2, 0.2, 0.2});
+    canvas.text_px(10, 36,
+                   "orange: chairs  blue: tables  magenta: people  dashed: route  black: driven",
+                   12, {0.2, 0.2, 0.2});
     canvas.save_png(path);
 }
 

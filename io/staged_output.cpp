@@ -7,9 +7,9 @@
 #include <cstdio>
 #include <cstring>
 #include <mutex>
+#include <system_error>
 #include <utility>
 #include <vector>
-#include <system_error>
 
 #include "io/error.hpp"
 #include "io/file_util.hpp"
@@ -22,11 +22,16 @@ namespace {
 std::string human_bytes(std::uintmax_t bytes) {
     const double b = static_cast<double>(bytes);
     char text[32];
-    if (b >= 1e12) std::snprintf(text, sizeof(text), "%.1f TB", b / 1e12);
-    else if (b >= 1e9) std::snprintf(text, sizeof(text), "%.1f GB", b / 1e9);
-    else if (b >= 1e6) std::snprintf(text, sizeof(text), "%.1f MB", b / 1e6);
-    else if (b >= 1e3) std::snprintf(text, sizeof(text), "%.1f kB", b / 1e3);
-    else std::snprintf(text, sizeof(text), "%ju bytes", bytes);
+    if (b >= 1e12)
+        std::snprintf(text, sizeof(text), "%.1f TB", b / 1e12);
+    else if (b >= 1e9)
+        std::snprintf(text, sizeof(text), "%.1f GB", b / 1e9);
+    else if (b >= 1e6)
+        std::snprintf(text, sizeof(text), "%.1f MB", b / 1e6);
+    else if (b >= 1e3)
+        std::snprintf(text, sizeof(text), "%.1f kB", b / 1e3);
+    else
+        std::snprintf(text, sizeof(text), "%ju bytes", bytes);
     return text;
 }
 
@@ -54,12 +59,14 @@ void check_moves(const fs::path& from, const fs::path& to) {
         const fs::file_status st = fs::symlink_status(dest, ec);
         if (!fs::exists(st)) continue;
         if (const auto* input = input_at(dest)) {
-            throw FileError(dest.string(), "is this command's input " + input->first + ": an output would replace it");
+            throw FileError(dest.string(), "is this command's input " + input->first +
+                                               ": an output would replace it");
         }
         if (entry.is_directory() && fs::is_directory(st)) {
             check_moves(entry.path(), dest);
         } else if (entry.is_directory() || fs::is_directory(st)) {
-            throw FileError(dest.string(), "in the way of an output (a folder where a file goes, or the reverse)");
+            throw FileError(dest.string(),
+                            "in the way of an output (a folder where a file goes, or the reverse)");
         }
     }
 }
@@ -94,21 +101,24 @@ std::vector<std::pair<std::string, std::string>> g_stagings;
 std::string shown_path(const std::string& path) {
     const std::lock_guard<std::mutex> lock(g_staging_mutex);
     for (const auto& [staging, target] : g_stagings) {
-        if (path.compare(0, staging.size(), staging) == 0 && (path.size() == staging.size() || path[staging.size()] == '/')) {
+        if (path.compare(0, staging.size(), staging) == 0 &&
+            (path.size() == staging.size() || path[staging.size()] == '/')) {
             return target + path.substr(staging.size());
         }
     }
     return path;
 }
 
-StagedOutput::StagedOutput(fs::path target) : target_(fs::path(std::move(target)).lexically_normal()) {
+StagedOutput::StagedOutput(fs::path target)
+    : target_(fs::path(std::move(target)).lexically_normal()) {
     if (target_.filename().empty()) target_ = target_.parent_path();  // "out/" -> "out"
     if (target_.empty()) target_ = ".";
     std::error_code ec;
     std::string tmpl;
     if (fs::exists(fs::symlink_status(target_, ec)) || fs::exists(target_, ec)) {
         // An existing folder ("." included): stage inside it, so the files move within one folder.
-        if (!fs::is_directory(target_, ec)) throw FileError(target_.string(), "exists and is not a folder");
+        if (!fs::is_directory(target_, ec))
+            throw FileError(target_.string(), "exists and is not a folder");
         tmpl = (target_ / ".makeway-staging.XXXXXX").string();
         inside_ = true;
     } else {
@@ -119,7 +129,8 @@ StagedOutput::StagedOutput(fs::path target) : target_(fs::path(std::move(target)
         tmpl = (parent / ("." + target_.filename().string() + ".staging.XXXXXX")).string();
     }
     if (::mkdtemp(tmpl.data()) == nullptr) {
-        throw FileError(target_.string(), std::string("cannot create a staging folder: ") + std::strerror(errno));
+        throw FileError(target_.string(),
+                        std::string("cannot create a staging folder: ") + std::strerror(errno));
     }
     staging_ = tmpl;
     open_up(staging_);
@@ -149,15 +160,20 @@ void StagedOutput::commit() {
     move_into(staging_, target_);
 }
 
-RecordingFolder::RecordingFolder(fs::path folder, const std::string& command) : folder_(std::move(folder)) {
+RecordingFolder::RecordingFolder(fs::path folder, const std::string& command)
+    : folder_(std::move(folder)) {
     std::error_code ec;
     fs::create_directories(folder_, ec);
     if (ec) throw FileError(folder_.string(), "cannot create folder: " + ec.message());
     fs::remove(folder_ / "summary.json", ec);
-    if (ec) throw FileError((folder_ / "summary.json").string(), "cannot remove the earlier summary: " + ec.message());
-    write_file_atomic(folder_ / "PARTIAL", "makeway " + command +
-                                               " is writing this folder or stopped before the end; summary.json says how "
-                                               "far it got\n");
+    if (ec)
+        throw FileError((folder_ / "summary.json").string(),
+                        "cannot remove the earlier summary: " + ec.message());
+    write_file_atomic(
+        folder_ / "PARTIAL",
+        "makeway " + command +
+            " is writing this folder or stopped before the end; summary.json says how "
+            "far it got\n");
 }
 
 void RecordingFolder::complete(Json summary) {
@@ -177,7 +193,8 @@ void RecordingFolder::stopped(Json summary, const std::string& why) noexcept {
     } catch (...) {
     }
     try {
-        write_file_atomic(folder_ / "PARTIAL", "makeway stopped before the end: " + why + "; summary.json says how far it got\n");
+        write_file_atomic(folder_ / "PARTIAL", "makeway stopped before the end: " + why +
+                                                   "; summary.json says how far it got\n");
     } catch (...) {
     }
 }
@@ -195,9 +212,12 @@ void refuse_outputs_over_inputs(const std::vector<std::pair<std::string, std::st
         if (out.empty() || !fs::exists(out, ec)) continue;
         for (const auto& [in_option, in] : inputs) {
             if (fs::equivalent(out, in, ec)) {
-                throw FileError(out, out_option + " names the input given as " + in_option +
-                                         (fs::path(out).lexically_normal() == fs::path(in).lexically_normal() ? "" : " (the same file through a link)") +
-                                         ": choose another output");
+                throw FileError(
+                    out, out_option + " names the input given as " + in_option +
+                             (fs::path(out).lexically_normal() == fs::path(in).lexically_normal()
+                                  ? ""
+                                  : " (the same file through a link)") +
+                             ": choose another output");
             }
         }
     }
@@ -213,8 +233,8 @@ void check_free_space(const fs::path& path, std::uintmax_t bytes, const std::str
     if (ec) return;  // unknown: nothing to check against
     const std::uintmax_t need = bytes + bytes / 20;
     if (space.available < need) {
-        throw FileError(path.string(), what + " need about " + human_bytes(need) + " but " + human_bytes(space.available) +
-                                           " are free there");
+        throw FileError(path.string(), what + " need about " + human_bytes(need) + " but " +
+                                           human_bytes(space.available) + " are free there");
     }
 }
 

@@ -23,7 +23,7 @@
 namespace makeway::io {
 
 class StagedOutput {
-public:
+  public:
     /// `target`: the folder (or, with a file name, the folder holding the files) being produced.
     explicit StagedOutput(std::filesystem::path target);
     ~StagedOutput();
@@ -38,14 +38,14 @@ public:
     /// (the staging folder is then removed by the destructor).
     void commit();
 
-private:
+  private:
     std::filesystem::path target_, staging_;
     bool inside_ = false;
     DeferInterrupts defer_;
 };
 
 class RecordingFolder {
-public:
+  public:
     /// Creates `folder`, removes an earlier summary.json and writes the PARTIAL marker.
     RecordingFolder(std::filesystem::path folder, const std::string& command);
     RecordingFolder(const RecordingFolder&) = delete;
@@ -54,10 +54,11 @@ public:
     const std::filesystem::path& path() const { return folder_; }
     /// summary.json with "complete": true, then the marker removed.
     void complete(Json summary);
-    /// summary.json with "complete": false and "stopped": why; the marker says why too. Never throws.
+    /// summary.json with "complete": false and "stopped": why; the marker says why too. Never
+    /// throws.
     void stopped(Json summary_so_far, const std::string& why) noexcept;
 
-private:
+  private:
     std::filesystem::path folder_;
     DeferInterrupts defer_;
 };
@@ -77,6 +78,7 @@ std::string shown_path(const std::string& path);
 
 /// Throws FileError(path) when the file system holding `path` has less than `bytes` (plus 5 %)
 /// available; `what` names the work ("100000 frames").
-void check_free_space(const std::filesystem::path& path, std::uintmax_t bytes, const std::string& what);
+void check_free_space(const std::filesystem::path& path, std::uintmax_t bytes,
+                      const std::string& what);
 
 }  // namespace makeway::io

@@ -9,13 +9,16 @@
 
 namespace makeway::io {
 
-inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
+inline bool is_space(char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
+}
 
 /// Splits a line on whitespace.
 /// A header name (PCD field, PLY property): printable ASCII, as both formats define it. Anything
 /// else is an encoding fault of the file, reported as bad input, never carried into JSON output.
 inline bool is_header_name(std::string_view name) {
-    return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) { return c > ' ' && c < 127; });
+    return !name.empty() &&
+           std::all_of(name.begin(), name.end(), [](char c) { return c > ' ' && c < 127; });
 }
 
 inline std::vector<std::string_view> split_words(std::string_view line) {
@@ -50,7 +53,7 @@ inline std::optional<std::uint64_t> parse_count(std::string_view word) {
 
 /// Pulls whitespace-separated tokens from a text body one at a time.
 class TokenStream {
-public:
+  public:
     explicit TokenStream(std::string_view text) : text_(text) {}
     std::optional<std::string_view> next() {
         while (pos_ < text_.size() && is_space(text_[pos_])) ++pos_;
@@ -64,7 +67,7 @@ public:
         return pos_ >= text_.size();
     }
 
-private:
+  private:
     std::string_view text_;
     std::size_t pos_ = 0;
 };

@@ -6,13 +6,20 @@ namespace makeway::io {
 
 Rgb label_colour(SemanticLabel label) {
     switch (label) {
-        case SemanticLabel::kGround: return {0.80, 0.80, 0.80};
-        case SemanticLabel::kCeiling: return {0.90, 0.85, 0.70};
-        case SemanticLabel::kStructure: return {0.25, 0.25, 0.25};
-        case SemanticLabel::kChair: return {0.85, 0.35, 0.10};
-        case SemanticLabel::kTable: return {0.10, 0.45, 0.80};
-        case SemanticLabel::kPerson: return {0.80, 0.10, 0.60};
-        default: return {0.45, 0.60, 0.30};
+        case SemanticLabel::kGround:
+            return {0.80, 0.80, 0.80};
+        case SemanticLabel::kCeiling:
+            return {0.90, 0.85, 0.70};
+        case SemanticLabel::kStructure:
+            return {0.25, 0.25, 0.25};
+        case SemanticLabel::kChair:
+            return {0.85, 0.35, 0.10};
+        case SemanticLabel::kTable:
+            return {0.10, 0.45, 0.80};
+        case SemanticLabel::kPerson:
+            return {0.80, 0.10, 0.60};
+        default:
+            return {0.45, 0.60, 0.30};
     }
 }
 
@@ -26,8 +33,10 @@ void draw_box(Canvas& canvas, const OrientedBox& box, const Rgb& colour) {
 void write_top_down_png(const std::filesystem::path& path, const PointCloud& cloud,
                         const std::vector<ObjectEstimate>& objects, const TopDownStyle& style) {
     PointBounds b = compute_bounds(cloud);
-    Eigen::Vector2d lo = b.valid ? Eigen::Vector2d(b.min_m.head<2>().cast<double>()) : Eigen::Vector2d(0, 0);
-    Eigen::Vector2d hi = b.valid ? Eigen::Vector2d(b.max_m.head<2>().cast<double>()) : Eigen::Vector2d(1, 1);
+    Eigen::Vector2d lo =
+        b.valid ? Eigen::Vector2d(b.min_m.head<2>().cast<double>()) : Eigen::Vector2d(0, 0);
+    Eigen::Vector2d hi =
+        b.valid ? Eigen::Vector2d(b.max_m.head<2>().cast<double>()) : Eigen::Vector2d(1, 1);
     for (const auto& o : objects) {
         for (const auto& c : o.box_world.bev_corners()) {
             lo = lo.cwiseMin(c);
@@ -39,11 +48,13 @@ void write_top_down_png(const std::filesystem::path& path, const PointCloud& clo
     for (std::size_t i = 0; i < cloud.size(); ++i) {
         const auto& p = cloud.xyz[i];
         if (!p.allFinite()) continue;
-        const Rgb c = cloud.label.empty() ? Rgb{0.2, 0.2, 0.3 + 0.7 * (p.z() - z_lo) / z_span}
-                                          : label_colour(static_cast<SemanticLabel>(cloud.label[i]));
+        const Rgb c = cloud.label.empty()
+                          ? Rgb{0.2, 0.2, 0.3 + 0.7 * (p.z() - z_lo) / z_span}
+                          : label_colour(static_cast<SemanticLabel>(cloud.label[i]));
         canvas.dot(p.head<2>().cast<double>(), 2.0, c);
     }
-    for (const auto& o : objects) draw_box(canvas, o.box_world, label_colour(to_semantic_label(o.cls)));
+    for (const auto& o : objects)
+        draw_box(canvas, o.box_world, label_colour(to_semantic_label(o.cls)));
     canvas.scale_bar();
     if (!style.title.empty()) canvas.text_px(10, 18, style.title, 12, {0, 0, 0});
     canvas.save_png(path);

@@ -4,10 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "io/canvas.hpp"
 #include "makeway/common/object_estimate.hpp"
 #include "makeway/common/point_cloud.hpp"
-
-#include "io/canvas.hpp"
 
 namespace makeway::io {
 

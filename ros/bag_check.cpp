@@ -16,8 +16,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // Record kinds of the format (http://wiki.ros.org/Bags/Format/2.0).
-constexpr std::uint8_t kMessageData = 0x02, kBagHeader = 0x03, kIndexData = 0x04, kChunk = 0x05, kChunkInfo = 0x06,
-                       kConnection = 0x07;
+constexpr std::uint8_t kMessageData = 0x02, kBagHeader = 0x03, kIndexData = 0x04, kChunk = 0x05,
+                       kChunkInfo = 0x06, kConnection = 0x07;
 // Record headers hold a few short fields (op, conn, topic, times); connection records carry the
 // message definition in their data, tens of KB. Anything larger is damage, not a bag.
 constexpr std::uint32_t kMaxHeaderBytes = 1u << 20;
@@ -25,13 +25,20 @@ constexpr std::uint32_t kMaxConnectionBytes = 16u << 20;
 
 std::string kind_of(std::uint8_t op) {
     switch (op) {
-        case kMessageData: return "message data";
-        case kBagHeader: return "bag header";
-        case kIndexData: return "index data";
-        case kChunk: return "chunk";
-        case kChunkInfo: return "chunk info";
-        case kConnection: return "connection";
-        default: return "op " + std::to_string(op);
+        case kMessageData:
+            return "message data";
+        case kBagHeader:
+            return "bag header";
+        case kIndexData:
+            return "index data";
+        case kChunk:
+            return "chunk";
+        case kChunkInfo:
+            return "chunk info";
+        case kConnection:
+            return "connection";
+        default:
+            return "op " + std::to_string(op);
     }
 }
 
@@ -51,25 +58,33 @@ struct Record {
 };
 
 class Walker {
-public:
-    Walker(const fs::path& path, std::uint64_t size) : path_(path), size_(size), in_(path, std::ios::binary) {
+  public:
+    Walker(const fs::path& path, std::uint64_t size)
+        : path_(path), size_(size), in_(path, std::ios::binary) {
         if (!in_) fail("cannot open for reading");
     }
 
-    [[noreturn]] void fail(const std::string& problem) const { throw io::FileError(path_.string(), problem); }
+    [[noreturn]] void fail(const std::string& problem) const {
+        throw io::FileError(path_.string(), problem);
+    }
     [[noreturn]] void fail_at(const Record& r, const std::string& problem) const {
         fail("record at byte " + std::to_string(r.pos) + " (" + kind_of(r.op) + "): " + problem);
     }
 
     // `n` bytes at `pos`, which must lie before `end` (the file's or an enclosing chunk's end).
-    std::string bytes(std::uint64_t pos, std::uint64_t n, std::uint64_t end, const std::string& what) {
+    std::string bytes(std::uint64_t pos, std::uint64_t n, std::uint64_t end,
+                      const std::string& what) {
         if (pos > end || n > end - pos) {
-            fail("at byte " + std::to_string(pos) + ": " + what + " of " + std::to_string(n) + " bytes runs past " +
-                 (end == size_ ? "the end of the file (" + std::to_string(size_) + " bytes; cut short?)" : "the end of its chunk"));
+            fail("at byte " + std::to_string(pos) + ": " + what + " of " + std::to_string(n) +
+                 " bytes runs past " +
+                 (end == size_
+                      ? "the end of the file (" + std::to_string(size_) + " bytes; cut short?)"
+                      : "the end of its chunk"));
         }
         std::string out(static_cast<std::size_t>(n), '\0');
         in_.seekg(static_cast<std::streamoff>(pos));
-        if (!in_.read(out.data(), static_cast<std::streamsize>(n))) fail("read error at byte " + std::to_string(pos));
+        if (!in_.read(out.data(), static_cast<std::streamsize>(n)))
+            fail("read error at byte " + std::to_string(pos));
         return out;
     }
 
@@ -78,17 +93,20 @@ public:
         std::map<std::string, std::string> out;
         std::size_t at = 0;
         while (at < text.size()) {
-            if (text.size() - at < 4) fail("record at byte " + std::to_string(pos) + ": a header field's length is cut short");
+            if (text.size() - at < 4)
+                fail("record at byte " + std::to_string(pos) +
+                     ": a header field's length is cut short");
             const auto len = little<std::uint32_t>(text.substr(at, 4));
             at += 4;
             if (len > text.size() - at) {
-                fail("record at byte " + std::to_string(pos) + ": a header field declares " + std::to_string(len) +
-                     " bytes, more than its header holds");
+                fail("record at byte " + std::to_string(pos) + ": a header field declares " +
+                     std::to_string(len) + " bytes, more than its header holds");
             }
             const std::string field = text.substr(at, len);
             at += len;
             const std::size_t eq = field.find('=');
-            if (eq == std::string::npos) fail("record at byte " + std::to_string(pos) + ": a header field has no '='");
+            if (eq == std::string::npos)
+                fail("record at byte " + std::to_string(pos) + ": a header field has no '='");
             out[field.substr(0, eq)] = field.substr(eq + 1);
         }
         return out;
@@ -99,18 +117,21 @@ public:
         r.pos = pos;
         const auto header_len = little<std::uint32_t>(bytes(pos, 4, end, "the header length"));
         if (header_len > kMaxHeaderBytes) {
-            fail("record at byte " + std::to_string(pos) + ": declares a header of " + std::to_string(header_len) +
-                 " bytes (record headers are small; damaged?)");
+            fail("record at byte " + std::to_string(pos) + ": declares a header of " +
+                 std::to_string(header_len) + " bytes (record headers are small; damaged?)");
         }
         r.fields = fields(bytes(pos + 4, header_len, end, "the header"), pos);
         const auto op = r.fields.find("op");
-        if (op == r.fields.end() || op->second.size() != 1) fail("record at byte " + std::to_string(pos) + ": no one-byte 'op' field");
+        if (op == r.fields.end() || op->second.size() != 1)
+            fail("record at byte " + std::to_string(pos) + ": no one-byte 'op' field");
         r.op = static_cast<std::uint8_t>(op->second[0]);
         r.data_pos = pos + 4 + header_len + 4;
         r.data_len = little<std::uint32_t>(bytes(pos + 4 + header_len, 4, end, "the data length"));
         if (r.data_len > end - std::min(end, r.data_pos)) {
-            fail_at(r, "declares " + std::to_string(r.data_len) + " bytes of data, past the end of " +
-                           (end == size_ ? "the file (" + std::to_string(size_) + " bytes; cut short?)" : "its chunk"));
+            fail_at(r,
+                    "declares " + std::to_string(r.data_len) + " bytes of data, past the end of " +
+                        (end == size_ ? "the file (" + std::to_string(size_) + " bytes; cut short?)"
+                                      : "its chunk"));
         }
         return r;
     }
@@ -120,14 +141,15 @@ public:
         const auto it = r.fields.find(name);
         if (it == r.fields.end()) fail_at(r, "no '" + name + "' field");
         if (it->second.size() != sizeof(T)) {
-            fail_at(r, "field '" + name + "' holds " + std::to_string(it->second.size()) + " bytes, not " + std::to_string(sizeof(T)));
+            fail_at(r, "field '" + name + "' holds " + std::to_string(it->second.size()) +
+                           " bytes, not " + std::to_string(sizeof(T)));
         }
         return little<T>(it->second);
     }
 
     std::uint64_t size() const { return size_; }
 
-private:
+  private:
     fs::path path_;
     std::uint64_t size_;
     std::ifstream in_;
@@ -135,11 +157,12 @@ private:
 
 // Serialized ROS message bytes, read against the lengths they declare.
 class Cursor {
-public:
+  public:
     Cursor(const std::uint8_t* data, std::size_t size) : left_(size), p_(data) {}
     void skip(std::uint64_t n, const std::string& what) {
         if (n > left_) {
-            throw io::FormatError(what + " needs " + std::to_string(n) + " bytes, the message has " + std::to_string(left_) + " left");
+            throw io::FormatError(what + " needs " + std::to_string(n) +
+                                  " bytes, the message has " + std::to_string(left_) + " left");
         }
         p_ += n;
         left_ -= static_cast<std::size_t>(n);
@@ -157,10 +180,11 @@ public:
         string("header.frame_id");
     }
     void end(const std::string& type) const {
-        if (left_ != 0) throw io::FormatError(std::to_string(left_) + " bytes after the end of a " + type);
+        if (left_ != 0)
+            throw io::FormatError(std::to_string(left_) + " bytes after the end of a " + type);
     }
 
-private:
+  private:
     std::size_t left_;
     const std::uint8_t* p_;
 };
@@ -195,17 +219,23 @@ BagCheckResult check_bag_structure(const fs::path& path, const BagCheckParams& p
     const fs::file_status st = fs::status(path, ec);
     if (!fs::exists(st)) throw io::FileError(path.string(), "no such bag file");
     if (!fs::is_regular_file(st)) {
-        throw io::FileError(path.string(), fs::is_directory(st) ? "is a folder, not a bag file" : "is not a regular file (a bag is read by seeking)");
+        throw io::FileError(path.string(),
+                            fs::is_directory(st)
+                                ? "is a folder, not a bag file"
+                                : "is not a regular file (a bag is read by seeking)");
     }
     const std::uint64_t size = fs::file_size(path, ec);
     if (ec) throw io::FileError(path.string(), "cannot read its size: " + ec.message());
     Walker w(path, size);
     const std::string magic = "#ROSBAG V2.0\n";
-    if (size < magic.size()) throw io::FileError(path.string(), "not a ROS 1 bag (" + std::to_string(size) + " bytes, no version line)");
+    if (size < magic.size())
+        throw io::FileError(
+            path.string(), "not a ROS 1 bag (" + std::to_string(size) + " bytes, no version line)");
     const std::string head = w.bytes(0, magic.size(), size, "the version line");
     if (head != magic) {
         if (head.rfind("#ROSBAG V", 0) == 0) {
-            throw io::FileError(path.string(), "bag format " + head.substr(9, head.find('\n') - 9) + " is not supported (2.0 only)");
+            throw io::FileError(path.string(), "bag format " + head.substr(9, head.find('\n') - 9) +
+                                                   " is not supported (2.0 only)");
         }
         throw io::FileError(path.string(), "not a ROS 1 bag (no #ROSBAG V2.0 line)");
     }
@@ -230,13 +260,15 @@ BagCheckResult check_bag_structure(const fs::path& path, const BagCheckParams& p
         } else if (r.op == kBagHeader) {
             w.fail_at(r, "a second bag header");
         } else if (r.op == kChunk) {
-            const auto compression = r.fields.count("compression") ? r.fields.at("compression") : std::string();
+            const auto compression =
+                r.fields.count("compression") ? r.fields.at("compression") : std::string();
             if (compression != "none" && compression != "bz2" && compression != "lz4") {
                 w.fail_at(r, "unknown compression '" + compression + "' (none, bz2 or lz4)");
             }
             chunk_size = w.field<std::uint32_t>(r, "size");
             if (chunk_size > params.max_chunk_bytes) {
-                w.fail_at(r, "declares " + std::to_string(chunk_size) + " bytes uncompressed, more than the " +
+                w.fail_at(r, "declares " + std::to_string(chunk_size) +
+                                 " bytes uncompressed, more than the " +
                                  std::to_string(params.max_chunk_bytes) + " a chunk can hold here");
             }
             chunk_seen = true;
@@ -246,12 +278,14 @@ BagCheckResult check_bag_structure(const fs::path& path, const BagCheckParams& p
             ++out.chunks;
             if (!chunk_compressed) {
                 if (chunk_size != r.data_len) {
-                    w.fail_at(r, "uncompressed, holds " + std::to_string(r.data_len) + " bytes but declares " + std::to_string(chunk_size));
+                    w.fail_at(r, "uncompressed, holds " + std::to_string(r.data_len) +
+                                     " bytes but declares " + std::to_string(chunk_size));
                 }
                 const std::uint64_t end = r.data_pos + r.data_len;
                 for (std::uint64_t inner = r.data_pos; inner < end;) {
                     const Record m = w.record(inner, end);
-                    if (m.op != kMessageData && m.op != kConnection) w.fail_at(m, "not a message or connection inside a chunk");
+                    if (m.op != kMessageData && m.op != kConnection)
+                        w.fail_at(m, "not a message or connection inside a chunk");
                     chunk_inner.insert(static_cast<std::uint32_t>(inner - r.data_pos));
                     inner = m.data_pos + m.data_len;
                 }
@@ -262,30 +296,38 @@ BagCheckResult check_bag_structure(const fs::path& path, const BagCheckParams& p
             (void)w.field<std::uint32_t>(r, "conn");
             const std::uint64_t count = w.field<std::uint32_t>(r, "count");
             if (count * 12 != r.data_len) {
-                w.fail_at(r, std::to_string(count) + " entries need " + std::to_string(count * 12) + " bytes, the data holds " +
-                                 std::to_string(r.data_len));
+                w.fail_at(r, std::to_string(count) + " entries need " + std::to_string(count * 12) +
+                                 " bytes, the data holds " + std::to_string(r.data_len));
             }
             const std::string entries = w.bytes(r.data_pos, r.data_len, size, "the index");
             for (std::uint64_t k = 0; k < count; ++k) {
-                const auto offset = little<std::uint32_t>(entries.substr(static_cast<std::size_t>(k * 12 + 8), 4));
+                const auto offset =
+                    little<std::uint32_t>(entries.substr(static_cast<std::size_t>(k * 12 + 8), 4));
                 if (offset >= chunk_size || (!chunk_compressed && !chunk_inner.count(offset))) {
-                    w.fail_at(r, "entry " + std::to_string(k) + " points to byte " + std::to_string(offset) +
+                    w.fail_at(r, "entry " + std::to_string(k) + " points to byte " +
+                                     std::to_string(offset) +
                                      " of its chunk, where no message starts");
                 }
             }
         } else if (r.op == kChunkInfo) {
             if (w.field<std::uint32_t>(r, "ver") != 1) w.fail_at(r, "chunk info version is not 1");
             const auto chunk_pos = w.field<std::uint64_t>(r, "chunk_pos");
-            if (!chunk_starts.count(chunk_pos)) w.fail_at(r, "chunk_pos " + std::to_string(chunk_pos) + " is not the start of a chunk");
+            if (!chunk_starts.count(chunk_pos))
+                w.fail_at(
+                    r, "chunk_pos " + std::to_string(chunk_pos) + " is not the start of a chunk");
             const std::uint64_t count = w.field<std::uint32_t>(r, "count");
-            if (count * 8 != r.data_len) w.fail_at(r, std::to_string(count) + " connection counts do not fill its data");
+            if (count * 8 != r.data_len)
+                w.fail_at(r, std::to_string(count) + " connection counts do not fill its data");
         } else if (r.op == kConnection) {
             (void)w.field<std::uint32_t>(r, "conn");
             if (!r.fields.count("topic")) w.fail_at(r, "no 'topic' field");
-            if (r.data_len > kMaxConnectionBytes) w.fail_at(r, "a connection header of " + std::to_string(r.data_len) + " bytes");
-            const auto header = w.fields(w.bytes(r.data_pos, r.data_len, size, "the connection header"), pos);
+            if (r.data_len > kMaxConnectionBytes)
+                w.fail_at(r, "a connection header of " + std::to_string(r.data_len) + " bytes");
+            const auto header =
+                w.fields(w.bytes(r.data_pos, r.data_len, size, "the connection header"), pos);
             for (const char* key : {"type", "md5sum"}) {
-                if (!header.count(key)) w.fail_at(r, std::string("its connection header has no '") + key + "'");
+                if (!header.count(key))
+                    w.fail_at(r, std::string("its connection header has no '") + key + "'");
             }
             ++out.connections;
         } else if (r.op != kMessageData) {
@@ -293,20 +335,24 @@ BagCheckResult check_bag_structure(const fs::path& path, const BagCheckParams& p
         }
         pos = r.data_pos + r.data_len;
     }
-    if (out.records == 0) throw io::FileError(path.string(), "not a ROS 1 bag (no bag header record)");
+    if (out.records == 0)
+        throw io::FileError(path.string(), "not a ROS 1 bag (no bag header record)");
     if (index_pos == 0) return out;  // unindexed (a recording that was not closed): rosbag says so
     // rosbag reads conn_count connection records from index_pos, then chunk_count chunk infos.
     auto it = op_at.find(index_pos);
     if (it == op_at.end()) {
-        throw io::FileError(path.string(), "the bag header's index_pos " + std::to_string(index_pos) +
-                                               " is not the start of a record (damaged or cut short)");
+        throw io::FileError(path.string(),
+                            "the bag header's index_pos " + std::to_string(index_pos) +
+                                " is not the start of a record (damaged or cut short)");
     }
     for (std::uint64_t k = 0; k < std::uint64_t{conn_count} + chunk_count; ++k, ++it) {
         const std::uint8_t want = k < conn_count ? kConnection : kChunkInfo;
         if (it == op_at.end() || it->second != want) {
-            throw io::FileError(path.string(), "the index at byte " + std::to_string(index_pos) + " does not hold the " +
-                                                   std::to_string(conn_count) + " connections and " + std::to_string(chunk_count) +
-                                                   " chunk infos the bag header declares");
+            throw io::FileError(path.string(),
+                                "the index at byte " + std::to_string(index_pos) +
+                                    " does not hold the " + std::to_string(conn_count) +
+                                    " connections and " + std::to_string(chunk_count) +
+                                    " chunk infos the bag header declares");
         }
     }
     return out;

@@ -29,7 +29,8 @@ struct BagCheckResult {
 
 /// Throws io::FileError("PATH: record at byte N (KIND): problem") for the first length, offset or
 /// field that does not fit the file; "not a regular file" for folders, FIFOs and devices.
-BagCheckResult check_bag_structure(const std::filesystem::path& path, const BagCheckParams& params = {});
+BagCheckResult check_bag_structure(const std::filesystem::path& path,
+                                   const BagCheckParams& params = {});
 
 /// The serialized bytes of a sensor_msgs/PointCloud2 or a nav_msgs/Odometry walked against the
 /// lengths they declare (strings, the field list, the data), before ROS's deserialiser sees them:

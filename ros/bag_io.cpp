@@ -29,7 +29,8 @@ std::map<std::string, std::string> topic_types(rosbag::Bag& bag) {
     return out;
 }
 
-std::string topics_of_type(const std::map<std::string, std::string>& types, const std::string& type) {
+std::string topics_of_type(const std::map<std::string, std::string>& types,
+                           const std::string& type) {
     std::string list;
     for (const auto& [topic, t] : types) {
         if (t == type) list += (list.empty() ? "" : ", ") + topic;
@@ -37,21 +38,24 @@ std::string topics_of_type(const std::map<std::string, std::string>& types, cons
     return list.empty() ? "none" : list;
 }
 
-void check_topic(const std::filesystem::path& path, const std::map<std::string, std::string>& types, const std::string& topic,
-                 const std::string& type, const std::string& option) {
+void check_topic(const std::filesystem::path& path, const std::map<std::string, std::string>& types,
+                 const std::string& topic, const std::string& type, const std::string& option) {
     const auto it = types.find(topic);
     if (it == types.end()) {
-        throw io::FileError(path.string(), "no topic " + topic + " (" + type + " topics in the bag: " +
-                                               topics_of_type(types, type) + "; choose one with " + option + ")");
+        throw io::FileError(path.string(),
+                            "no topic " + topic + " (" + type + " topics in the bag: " +
+                                topics_of_type(types, type) + "; choose one with " + option + ")");
     }
-    if (it->second != type) throw io::FileError(path.string(), "topic " + topic + " holds " + it->second + ", not " + type);
+    if (it->second != type)
+        throw io::FileError(path.string(),
+                            "topic " + topic + " holds " + it->second + ", not " + type);
 }
 
 // rosbag and ros::Header report through console_bridge, straight to the terminal ("Received an
 // invalid TCPROS header ...", one "Index entry ... contains invalid time" per message): that text
 // is kept here instead, and a reader turns it into one warning of its own.
 class CapturedConsole : public console_bridge::OutputHandler {
-public:
+  public:
     void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
         if (level < console_bridge::CONSOLE_BRIDGE_LOG_WARN) return;
         const std::lock_guard<std::mutex> lock(mutex_);
@@ -66,7 +70,7 @@ public:
         return out;
     }
 
-private:
+  private:
     std::mutex mutex_;
     std::string first_;
     std::size_t count_ = 0;
@@ -74,7 +78,8 @@ private:
 
 CapturedConsole& captured_console() {
     static CapturedConsole* handler = [] {
-        auto* h = new CapturedConsole;  // lives as long as the process: console_bridge keeps the pointer
+        auto* h =
+            new CapturedConsole;  // lives as long as the process: console_bridge keeps the pointer
         console_bridge::useOutputHandler(h);
         return h;
     }();
@@ -87,18 +92,24 @@ void warn_captured(const std::filesystem::path& path) {
     if (count == 0) return;
     std::string text = first;
     while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-    io::print_warning(path.string() + ": rosbag: " + text + (count > 1 ? " (" + std::to_string(count) + " such messages)" : ""));
+    io::print_warning(path.string() + ": rosbag: " + text +
+                      (count > 1 ? " (" + std::to_string(count) + " such messages)" : ""));
 }
 
-void check_bytes(const std::vector<std::uint8_t>& b, const sensor_msgs::PointCloud2*) { check_cloud_message(b.data(), b.size()); }
-void check_bytes(const std::vector<std::uint8_t>& b, const nav_msgs::Odometry*) { check_odometry_message(b.data(), b.size()); }
+void check_bytes(const std::vector<std::uint8_t>& b, const sensor_msgs::PointCloud2*) {
+    check_cloud_message(b.data(), b.size());
+}
+void check_bytes(const std::vector<std::uint8_t>& b, const nav_msgs::Odometry*) {
+    check_odometry_message(b.data(), b.size());
+}
 
 // The message, or io::FormatError saying why it is not one.
 template <typename M>
 M deserialise(const rosbag::MessageInstance& m) {
     const std::string want = ros::message_traits::md5sum<M>();
     if (m.getMD5Sum() != want && m.getMD5Sum() != "*") {
-        throw io::FormatError("its md5sum " + m.getMD5Sum() + " is not " + ros::message_traits::datatype<M>() + "'s " + want +
+        throw io::FormatError("its md5sum " + m.getMD5Sum() + " is not " +
+                              ros::message_traits::datatype<M>() + "'s " + want +
                               " (another definition of the message)");
     }
     std::vector<std::uint8_t> bytes(m.size());
@@ -123,7 +134,8 @@ std::string sweep_span_problem(double span_s) {
     if (span_s <= kMaxSweepSpan_s) return "";
     char bound[16];
     std::snprintf(bound, sizeof(bound), "%.1f", kMaxSweepSpan_s);
-    return std::to_string(span_s) + " s, more than " + bound + " s (a sweep lasts 0.05-0.2 s; wrong unit?)";
+    return std::to_string(span_s) + " s, more than " + bound +
+           " s (a sweep lasts 0.05-0.2 s; wrong unit?)";
 }
 
 struct BagReader::Impl {
@@ -139,13 +151,19 @@ struct BagReader::Impl {
     // A message that cannot be used: an error naming it, or with skip_bad a warning (the first
     // only: a damaged stretch can hold thousands) and a count.
     void bad(const std::string& topic, std::size_t k, double stamp_s, const std::string& problem) {
-        const std::string what = topic + " message " + std::to_string(k) + " (bag time " + seconds_text(stamp_s) + " s): " + problem;
-        if (!skip_bad) throw io::FileError(path.string(), what + " (--skip-bad-messages to skip such messages)");
-        if (skipped++ == 0) io::print_warning(path.string() + ": " + what + "; skipped (more are counted in the summary)");
+        const std::string what = topic + " message " + std::to_string(k) + " (bag time " +
+                                 seconds_text(stamp_s) + " s): " + problem;
+        if (!skip_bad)
+            throw io::FileError(path.string(),
+                                what + " (--skip-bad-messages to skip such messages)");
+        if (skipped++ == 0)
+            io::print_warning(path.string() + ": " + what +
+                              "; skipped (more are counted in the summary)");
     }
 };
 
-BagReader::BagReader(const std::filesystem::path& path, const BagTopics& topics, bool require_odometry, bool skip_bad_messages)
+BagReader::BagReader(const std::filesystem::path& path, const BagTopics& topics,
+                     bool require_odometry, bool skip_bad_messages)
     : impl_(std::make_unique<Impl>()) {
     impl_->path = path;
     impl_->skip_bad = skip_bad_messages;
@@ -156,24 +174,28 @@ BagReader::BagReader(const std::filesystem::path& path, const BagTopics& topics,
         impl_->bag.open(path.string(), rosbag::bagmode::Read);
         const auto types = topic_types(impl_->bag);
         check_topic(path, types, topics.cloud, kCloudType, "--cloud-topic");
-        if (require_odometry || types.count(topics.odometry)) check_topic(path, types, topics.odometry, kOdometryType, "--odom-topic");
+        if (require_odometry || types.count(topics.odometry))
+            check_topic(path, types, topics.odometry, kOdometryType, "--odom-topic");
         if (types.count(topics.odometry)) {
             rosbag::View odom(impl_->bag, rosbag::TopicQuery(topics.odometry));
             std::size_t k = 0;
             for (const rosbag::MessageInstance& m : odom) {
                 try {
                     const auto msg = deserialise<nav_msgs::Odometry>(m);
-                    const double stamp = msg.header.stamp.isZero() ? m.getTime().toSec() : msg.header.stamp.toSec();
+                    const double stamp =
+                        msg.header.stamp.isZero() ? m.getTime().toSec() : msg.header.stamp.toSec();
                     impl_->odometry.push_back({stamp, pose_from_odometry(msg)});
                 } catch (const io::FormatError& e) {
                     impl_->bad(topics.odometry, k, m.getTime().toSec(), e.what());
                 } catch (const ros::Exception& e) {
-                    impl_->bad(topics.odometry, k, m.getTime().toSec(), std::string("does not deserialise: ") + e.what());
+                    impl_->bad(topics.odometry, k, m.getTime().toSec(),
+                               std::string("does not deserialise: ") + e.what());
                 }
                 ++k;
             }
-            std::stable_sort(impl_->odometry.begin(), impl_->odometry.end(),
-                             [](const StampedPose2& a, const StampedPose2& b) { return a.stamp_s < b.stamp_s; });
+            std::stable_sort(
+                impl_->odometry.begin(), impl_->odometry.end(),
+                [](const StampedPose2& a, const StampedPose2& b) { return a.stamp_s < b.stamp_s; });
         }
         impl_->view = std::make_unique<rosbag::View>(impl_->bag, rosbag::TopicQuery(topics.cloud));
         impl_->sweeps = impl_->view->size();
@@ -269,27 +291,33 @@ BagWriter::~BagWriter() {
     std::filesystem::remove(impl_->active, ec);
 }
 
-void BagWriter::write_cloud(const std::string& topic, const PointCloud& cloud, double stamp_s, const std::string& frame_id) {
+void BagWriter::write_cloud(const std::string& topic, const PointCloud& cloud, double stamp_s,
+                            const std::string& frame_id) {
     impl_->write(topic, stamp_s, to_point_cloud2(cloud, stamp_s, frame_id));
 }
 
-void BagWriter::write_odometry(const std::string& topic, const Pose2& pose, double v_mps, double w_radps, double stamp_s,
-                               const std::string& frame_id, const std::string& child_frame_id) {
-    impl_->write(topic, stamp_s, to_odometry(pose, v_mps, w_radps, stamp_s, frame_id, child_frame_id));
+void BagWriter::write_odometry(const std::string& topic, const Pose2& pose, double v_mps,
+                               double w_radps, double stamp_s, const std::string& frame_id,
+                               const std::string& child_frame_id) {
+    impl_->write(topic, stamp_s,
+                 to_odometry(pose, v_mps, w_radps, stamp_s, frame_id, child_frame_id));
 }
 
-void BagWriter::write_costmap(const std::string& topic, const Costmap& costmap, double stamp_s, const std::string& frame_id) {
+void BagWriter::write_costmap(const std::string& topic, const Costmap& costmap, double stamp_s,
+                              const std::string& frame_id) {
     impl_->write(topic, stamp_s, to_occupancy_grid(costmap, stamp_s, frame_id));
 }
 
 void BagWriter::write_markers(const std::string& topic, const std::vector<ObjectEstimate>& objects,
-                              const costmap::AffordanceParams& zones, double stamp_s, const std::string& frame_id) {
+                              const costmap::AffordanceParams& zones, double stamp_s,
+                              const std::string& frame_id) {
     impl_->write(topic, stamp_s, to_markers(objects, zones, stamp_s, frame_id));
 }
 
-void BagWriter::write_tf(const Isometry3& T_parent_child, double stamp_s, const std::string& parent, const std::string& child,
-                         bool is_static) {
-    impl_->write(is_static ? "/tf_static" : "/tf", stamp_s, to_tf(T_parent_child, stamp_s, parent, child));
+void BagWriter::write_tf(const Isometry3& T_parent_child, double stamp_s, const std::string& parent,
+                         const std::string& child, bool is_static) {
+    impl_->write(is_static ? "/tf_static" : "/tf", stamp_s,
+                 to_tf(T_parent_child, stamp_s, parent, child));
 }
 
 void BagWriter::write_text(const std::string& topic, const std::string& text, double stamp_s) {

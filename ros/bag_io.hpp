@@ -30,12 +30,13 @@ std::string seconds_text(double t_s);
 /// A sweep read from a PointCloud2: points in the message's frame, time since the first point.
 struct CloudSweep {
     PointCloud points;
-    double stamp_s = 0.0;     ///< the sweep's start: the header stamp, or the first point when times run before it
+    double stamp_s =
+        0.0;  ///< the sweep's start: the header stamp, or the first point when times run before it
     double duration_s = 0.0;  ///< last point's time - stamp_s (0 without a time field)
     bool timed = false;       ///< a per-point time field was found
-    std::string time_field;   ///< its name: time (Velodyne), t (Ouster), timestamp (Hesai), or empty
+    std::string time_field;  ///< its name: time (Velodyne), t (Ouster), timestamp (Hesai), or empty
     std::string frame_id;
-    std::size_t index = 0;    ///< the message's index on its topic (bags; skipped messages count)
+    std::size_t index = 0;  ///< the message's index on its topic (bags; skipped messages count)
 };
 
 struct StampedPose2 {
@@ -50,7 +51,7 @@ struct BagTopics {
 
 /// A bag's sweeps, one at a time in time order (bags are large), and its odometry, read whole.
 class BagReader {
-public:
+  public:
     /// Throws io::FileError naming the bag: not a readable bag; no PointCloud2 messages on the
     /// cloud topic (the message lists the PointCloud2 topics it has); a topic of another type; with
     /// `require_odometry`, the same for the odometry topic.
@@ -58,7 +59,8 @@ public:
     /// deserialise or holds nonsense (from_point_cloud2, pose_from_odometry) is an io::FileError
     /// "BAG: TOPIC message K (bag time T s): problem", or with `skip_bad_messages` skipped and
     /// counted (skipped()); odometry is read whole here, so its bad messages are counted at once.
-    BagReader(const std::filesystem::path& path, const BagTopics& topics, bool require_odometry, bool skip_bad_messages = false);
+    BagReader(const std::filesystem::path& path, const BagTopics& topics, bool require_odometry,
+              bool skip_bad_messages = false);
     ~BagReader();
     BagReader(const BagReader&) = delete;
     BagReader& operator=(const BagReader&) = delete;
@@ -70,7 +72,7 @@ public:
     /// for a malformed cloud.
     std::optional<CloudSweep> next();
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
@@ -85,26 +87,30 @@ std::map<std::string, BagTopic> bag_topics(const std::filesystem::path& path);
 /// Writes a bag (atomically: into PATH.active, renamed on close(); removed when destroyed
 /// without close()). Stamps are seconds since the epoch (see kSimulatedEpoch_s for simulated time).
 class BagWriter {
-public:
+  public:
     explicit BagWriter(const std::filesystem::path& path);  ///< throws io::FileError
     ~BagWriter();
     BagWriter(const BagWriter&) = delete;
     BagWriter& operator=(const BagWriter&) = delete;
 
-    void write_cloud(const std::string& topic, const PointCloud& cloud, double stamp_s, const std::string& frame_id);
-    void write_odometry(const std::string& topic, const Pose2& pose, double v_mps, double w_radps, double stamp_s,
-                        const std::string& frame_id, const std::string& child_frame_id);
-    void write_costmap(const std::string& topic, const Costmap& costmap, double stamp_s, const std::string& frame_id);
+    void write_cloud(const std::string& topic, const PointCloud& cloud, double stamp_s,
+                     const std::string& frame_id);
+    void write_odometry(const std::string& topic, const Pose2& pose, double v_mps, double w_radps,
+                        double stamp_s, const std::string& frame_id,
+                        const std::string& child_frame_id);
+    void write_costmap(const std::string& topic, const Costmap& costmap, double stamp_s,
+                       const std::string& frame_id);
     void write_markers(const std::string& topic, const std::vector<ObjectEstimate>& objects,
-                       const costmap::AffordanceParams& zones, double stamp_s, const std::string& frame_id);
+                       const costmap::AffordanceParams& zones, double stamp_s,
+                       const std::string& frame_id);
     /// On /tf, or /tf_static when `is_static`.
-    void write_tf(const Isometry3& T_parent_child, double stamp_s, const std::string& parent, const std::string& child,
-                  bool is_static = false);
+    void write_tf(const Isometry3& T_parent_child, double stamp_s, const std::string& parent,
+                  const std::string& child, bool is_static = false);
     /// std_msgs/String (the object map as JSON).
     void write_text(const std::string& topic, const std::string& text, double stamp_s);
     void close();
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -16,16 +16,17 @@
 // Goals: /move_base_simple/goal (geometry_msgs/PoseStamped in ~frame_id; RViz's "2D Nav Goal");
 // ~cancel (std_msgs/Empty).
 // Parameters (private): config, model, cad, map (paths; the program's formats), cloud_topic
-// (/velodyne_points), odom_topic (/odom), frame_id (map), base_frame (base_link), odom_frame (odom),
-// costmap_size (40 m), queue (600 sweeps), start ("x y yaw"; default: the first odometry pose), extrinsics
+// (/velodyne_points), odom_topic (/odom), frame_id (map), base_frame (base_link), odom_frame
+// (odom), costmap_size (40 m), queue (600 sweeps), start ("x y yaw"; default: the first odometry
+// pose), extrinsics
 // ("x y z roll pitch yaw": the sensor on the base; default: the configuration's robot),
 // control_rate (10 Hz), sensor_timeout (0.3 s), odom_timeout (0.3 s), async_perception (true: the
 // keyframe chain on its own thread, so a keyframe never delays a command; the costmap is
 // published on the sweeps that form keyframes, objects and object_map when perception ends),
 // perception_nice (10: that thread yields the cores to the control path), perception_threads
 // (0: every core but one). The
-// system runs on the engine's worker thread; the callbacks only convert and enqueue. C++17: ROS 1's message headers
-// do not compile as C++20.
+// system runs on the engine's worker thread; the callbacks only convert and enqueue. C++17: ROS 1's
+// message headers do not compile as C++20.
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/Twist.h>
 #include <nav_msgs/Path.h>
@@ -36,19 +37,19 @@
 
 #include <algorithm>
 #include <atomic>
-#include <mutex>
-#include <vector>
 #include <cmath>
 #include <cstdio>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "io/error.hpp"
 #include "io/pose_io.hpp"
 #include "ros/msg_conversions.hpp"
-#include "ros/node_util.hpp"
 #include "ros/node_engine.hpp"
+#include "ros/node_util.hpp"
 
 namespace {
 
@@ -76,7 +77,8 @@ geometry_msgs::Twist twist_of(const VelocityCommand& c) {
     return t;
 }
 
-nav_msgs::Path path_of(const std::vector<Eigen::Vector2d>& plan, double stamp_s, const std::string& frame) {
+nav_msgs::Path path_of(const std::vector<Eigen::Vector2d>& plan, double stamp_s,
+                       const std::string& frame) {
     nav_msgs::Path path;
     path.header.stamp = rosio::to_ros_time(stamp_s);
     path.header.frame_id = frame;
@@ -119,7 +121,8 @@ int main(int argc, char** argv) {
     const std::string start = param<std::string>(pnh, "start", "");
     if (!start.empty()) {
         if (!numbers(start, 3, v)) {
-            ROS_FATAL("makeway_node: ~start: expected \"x y yaw\" (3 finite numbers), got \"%s\"", start.c_str());
+            ROS_FATAL("makeway_node: ~start: expected \"x y yaw\" (3 finite numbers), got \"%s\"",
+                      start.c_str());
             return 2;
         }
         if (const std::string p = io::start_problem(v); !p.empty()) {
@@ -131,7 +134,10 @@ int main(int argc, char** argv) {
     const std::string extrinsics = param<std::string>(pnh, "extrinsics", "");
     if (!extrinsics.empty()) {
         if (!numbers(extrinsics, 6, v)) {
-            ROS_FATAL("makeway_node: ~extrinsics: expected \"x y z roll pitch yaw\" (6 finite numbers), got \"%s\"", extrinsics.c_str());
+            ROS_FATAL(
+                "makeway_node: ~extrinsics: expected \"x y z roll pitch yaw\" (6 finite numbers), "
+                "got \"%s\"",
+                extrinsics.c_str());
             return 2;
         }
         if (const std::string p = io::extrinsics_problem(v); !p.empty()) {
@@ -140,8 +146,11 @@ int main(int argc, char** argv) {
         }
         settings.T_base_sensor = make_T_xyz_rpy({v[0], v[1], v[2]}, v[3], v[4], v[5]);
     }
-    if (!(control_rate > 0.0 && control_rate <= 1000.0) || !(settings.sensor_timeout_s > 0.0) || !(settings.odometry_timeout_s > 0.0)) {
-        ROS_FATAL("makeway_node: ~control_rate must be in (0, 1000] Hz, ~sensor_timeout and ~odom_timeout > 0 s");
+    if (!(control_rate > 0.0 && control_rate <= 1000.0) || !(settings.sensor_timeout_s > 0.0) ||
+        !(settings.odometry_timeout_s > 0.0)) {
+        ROS_FATAL(
+            "makeway_node: ~control_rate must be in (0, 1000] Hz, ~sensor_timeout and "
+            "~odom_timeout > 0 s");
         return 2;
     }
 
@@ -167,7 +176,8 @@ int main(int argc, char** argv) {
     try {
         engine = std::make_unique<rosio::NodeEngine>(settings, [&](const rosio::NodeOutput& out) {
             // The command went first (settings.send_command, under the engine's lock).
-            if (!out.object_map_json.empty()) {  // a finished keyframe (in line, or from the perception thread)
+            if (!out.object_map_json
+                     .empty()) {  // a finished keyframe (in line, or from the perception thread)
                 objects_pub.publish(rosio::to_markers(out.objects, zones, out.stamp_s, frame));
                 std_msgs::String text;
                 text.data = out.object_map_json;
@@ -182,7 +192,8 @@ int main(int argc, char** argv) {
                 std::lock_guard<std::mutex> lock(stats_mutex);
                 latencies.push_back(out.latency_ms);
                 waits.push_back(out.queue_wait_ms);
-                (out.keyframe && !settings.async_perception ? keyframe_works : works).push_back(out.latency_ms - out.queue_wait_ms);
+                (out.keyframe && !settings.async_perception ? keyframe_works : works)
+                    .push_back(out.latency_ms - out.queue_wait_ms);
                 front_ends.push_back(out.front_end_ms);
                 navigations.push_back(out.navigation_ms);
             }
@@ -191,7 +202,8 @@ int main(int argc, char** argv) {
             // map -> odom (the estimate times the inverse of the wheels); map -> base_link only
             // without wheel odometry.
             if (out.wheel_pose) {
-                const Pose2 map_odom = to_pose2(to_isometry(out.pose) * to_isometry(*out.wheel_pose).inverse());
+                const Pose2 map_odom =
+                    to_pose2(to_isometry(out.pose) * to_isometry(*out.wheel_pose).inverse());
                 tf_pub.publish(rosio::to_tf(lift_to_3d(map_odom), out.stamp_s, frame, odom_frame));
             } else {
                 tf_pub.publish(rosio::to_tf(lift_to_3d(out.pose), out.stamp_s, frame, base));
@@ -200,7 +212,8 @@ int main(int argc, char** argv) {
             std_msgs::String status;
             status.data = rosio::to_json(out.status);
             status_pub.publish(status);
-            if (out.keyframe) costmap_pub.publish(rosio::to_occupancy_grid(*out.costmap, out.stamp_s, frame));
+            if (out.keyframe)
+                costmap_pub.publish(rosio::to_occupancy_grid(*out.costmap, out.stamp_s, frame));
         });
     } catch (const std::exception& e) {
         ROS_FATAL("makeway_node: %s", e.what());
@@ -209,11 +222,13 @@ int main(int argc, char** argv) {
     zones = engine->zones();  // before any sweep can arrive (the subscribers come next)
     // Callbacks convert and enqueue only (a slow keyframe never blocks them).
     ros::Subscriber clouds = nh.subscribe<sensor_msgs::PointCloud2>(
-        cloud_topic, 100, [&](const sensor_msgs::PointCloud2ConstPtr& msg) {
+        cloud_topic, 100,
+        [&](const sensor_msgs::PointCloud2ConstPtr& msg) {
             try {
                 engine->push_sweep(rosio::from_point_cloud2(*msg));
             } catch (const io::FormatError& e) {
-                ROS_ERROR_THROTTLE(5.0, "makeway_node: %s: %s (sweep skipped)", cloud_topic.c_str(), e.what());
+                ROS_ERROR_THROTTLE(5.0, "makeway_node: %s: %s (sweep skipped)", cloud_topic.c_str(),
+                                   e.what());
             }
         },
         ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
@@ -225,39 +240,50 @@ int main(int argc, char** argv) {
             try {
                 engine->push_odometry({msg->header.stamp.toSec(), rosio::pose_from_odometry(*msg)});
             } catch (const io::FormatError& e) {
-                ROS_ERROR_THROTTLE(5.0, "makeway_node: %s: %s (message skipped)", odom_topic.c_str(), e.what());
+                ROS_ERROR_THROTTLE(5.0, "makeway_node: %s: %s (message skipped)",
+                                   odom_topic.c_str(), e.what());
             }
         },
         ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
-    ros::Subscriber goals = nh.subscribe<geometry_msgs::PoseStamped>("/move_base_simple/goal", 5, [&](const geometry_msgs::PoseStampedConstPtr& msg) {
-        if (!msg->header.frame_id.empty() && msg->header.frame_id != frame) {
-            ROS_WARN("makeway_node: goal in frame \"%s\" ignored: goals are in \"%s\"", msg->header.frame_id.c_str(), frame.c_str());
-            return;
-        }
-        const Eigen::Vector2d goal(msg->pose.position.x, msg->pose.position.y);
-        if (!goal.allFinite()) ROS_WARN("makeway_node: goal is not finite: the robot stays still");
-        engine->set_goal(goal);
-    });
-    ros::Subscriber cancels = pnh.subscribe<std_msgs::Empty>("cancel", 5, [&](const std_msgs::EmptyConstPtr&) {
-        engine->cancel();  // sends zero at once, not at the next cycle
-    });
+    ros::Subscriber goals = nh.subscribe<geometry_msgs::PoseStamped>(
+        "/move_base_simple/goal", 5, [&](const geometry_msgs::PoseStampedConstPtr& msg) {
+            if (!msg->header.frame_id.empty() && msg->header.frame_id != frame) {
+                ROS_WARN("makeway_node: goal in frame \"%s\" ignored: goals are in \"%s\"",
+                         msg->header.frame_id.c_str(), frame.c_str());
+                return;
+            }
+            const Eigen::Vector2d goal(msg->pose.position.x, msg->pose.position.y);
+            if (!goal.allFinite())
+                ROS_WARN("makeway_node: goal is not finite: the robot stays still");
+            engine->set_goal(goal);
+        });
+    ros::Subscriber cancels =
+        pnh.subscribe<std_msgs::Empty>("cancel", 5, [&](const std_msgs::EmptyConstPtr&) {
+            engine->cancel();  // sends zero at once, not at the next cycle
+        });
     // The control rate: the last command while the data are fresh, zero otherwise.
     std::string last_why;
-    ros::Timer control = nh.createTimer(ros::Duration(1.0 / control_rate), [&](const ros::TimerEvent& e) {
-        {
-            std::lock_guard<std::mutex> lock(stats_mutex);
-            ++cycles;
-            late_cycles += !e.last_real.isZero() && (e.current_real - e.last_real).toSec() > 1.5 / control_rate;
-        }
-        const rosio::GatedCommand gated = engine->send_command_at(ros::Time::now().toSec());
-        if (!gated.why.empty() && gated.why != last_why) ROS_WARN_THROTTLE(5.0, "makeway_node: zero velocity: %s", gated.why.c_str());
-        last_why = gated.why;
-    });
-    ROS_INFO("makeway_node: %s + %s + /move_base_simple/goal -> /cmd_vel, %s/{plan,status,odometry,costmap,objects,object_map}",
-             cloud_topic.c_str(), odom_topic.c_str(), pnh.getNamespace().c_str());
+    ros::Timer control =
+        nh.createTimer(ros::Duration(1.0 / control_rate), [&](const ros::TimerEvent& e) {
+            {
+                std::lock_guard<std::mutex> lock(stats_mutex);
+                ++cycles;
+                late_cycles += !e.last_real.isZero() &&
+                               (e.current_real - e.last_real).toSec() > 1.5 / control_rate;
+            }
+            const rosio::GatedCommand gated = engine->send_command_at(ros::Time::now().toSec());
+            if (!gated.why.empty() && gated.why != last_why)
+                ROS_WARN_THROTTLE(5.0, "makeway_node: zero velocity: %s", gated.why.c_str());
+            last_why = gated.why;
+        });
+    ROS_INFO(
+        "makeway_node: %s + %s + /move_base_simple/goal -> /cmd_vel, "
+        "%s/{plan,status,odometry,costmap,objects,object_map}",
+        cloud_topic.c_str(), odom_topic.c_str(), pnh.getNamespace().c_str());
     ros::AsyncSpinner spinner(3);  // clouds, odometry and the control timer on their own threads
     spinner.start();
-    while (!rosio::stop_requested() && ros::ok()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    while (!rosio::stop_requested() && ros::ok())
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
     // Safe on the way out: the motors get zero before anything stops.
     engine->cancel();
     for (int i = 0; i < 3; ++i) {
@@ -267,25 +293,32 @@ int main(int argc, char** argv) {
     control.stop();
     spinner.stop();
     engine->drain();  // what is queued, perceived and published while ROS is up
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // roscpp sends from its own threads
+    std::this_thread::sleep_for(
+        std::chrono::milliseconds(200));  // roscpp sends from its own threads
     const rosio::NodeStats s = engine->stats();
     engine.reset();
     ros::shutdown();
-    std::printf("makeway_node: %zu sweeps received, %zu processed, %zu dropped, %zu keyframes, queue at most %zu\n", s.received,
-                s.processed, s.dropped, s.keyframes, s.max_queue);
+    std::printf(
+        "makeway_node: %zu sweeps received, %zu processed, %zu dropped, %zu keyframes, queue at "
+        "most %zu\n",
+        s.received, s.processed, s.dropped, s.keyframes, s.max_queue);
     if (!latencies.empty()) {
         const auto at = [](std::vector<double> sample, double q) {
             if (sample.empty()) return 0.0;
             std::sort(sample.begin(), sample.end());
             return sample[static_cast<std::size_t>(q * static_cast<double>(sample.size() - 1))];
         };
-        std::printf("makeway_node: sweep to /cmd_vel: median %.1f ms, p99 %.1f ms, max %.1f ms (queued %.1f ms median, p99 %.1f; "
-                    "processing %.1f ms median, p99 %.1f: front end %.1f / %.1f, navigation %.1f / %.1f; keyframe chain %.1f ms median, %s); "
-                    "control cycles %zu, late (> 1.5 periods) %zu\n",
-                    at(latencies, 0.5), at(latencies, 0.99), at(latencies, 1.0), at(waits, 0.5), at(waits, 0.99), at(works, 0.5), at(works, 0.99),
-                    at(front_ends, 0.5), at(front_ends, 0.99), at(navigations, 0.5), at(navigations, 0.99), at(keyframe_works, 0.5),
-                    settings.async_perception ? "on its own thread" : "in line", cycles,
-                    late_cycles);
+        std::printf(
+            "makeway_node: sweep to /cmd_vel: median %.1f ms, p99 %.1f ms, max %.1f ms (queued "
+            "%.1f ms median, p99 %.1f; "
+            "processing %.1f ms median, p99 %.1f: front end %.1f / %.1f, navigation %.1f / %.1f; "
+            "keyframe chain %.1f ms median, %s); "
+            "control cycles %zu, late (> 1.5 periods) %zu\n",
+            at(latencies, 0.5), at(latencies, 0.99), at(latencies, 1.0), at(waits, 0.5),
+            at(waits, 0.99), at(works, 0.5), at(works, 0.99), at(front_ends, 0.5),
+            at(front_ends, 0.99), at(navigations, 0.5), at(navigations, 0.99),
+            at(keyframe_works, 0.5), settings.async_perception ? "on its own thread" : "in line",
+            cycles, late_cycles);
     }
     std::fflush(stdout);
     return 0;

@@ -18,14 +18,19 @@ using sensor_msgs::PointField;
 std::size_t field_size(std::uint8_t datatype) {
     switch (datatype) {
         case PointField::INT8:
-        case PointField::UINT8: return 1;
+        case PointField::UINT8:
+            return 1;
         case PointField::INT16:
-        case PointField::UINT16: return 2;
+        case PointField::UINT16:
+            return 2;
         case PointField::INT32:
         case PointField::UINT32:
-        case PointField::FLOAT32: return 4;
-        case PointField::FLOAT64: return 8;
-        default: return 0;
+        case PointField::FLOAT32:
+            return 4;
+        case PointField::FLOAT64:
+            return 8;
+        default:
+            return 0;
     }
 }
 
@@ -38,14 +43,22 @@ T load(const std::uint8_t* p) {
 
 double read_number(const std::uint8_t* p, std::uint8_t datatype) {
     switch (datatype) {
-        case PointField::INT8: return load<std::int8_t>(p);
-        case PointField::UINT8: return load<std::uint8_t>(p);
-        case PointField::INT16: return load<std::int16_t>(p);
-        case PointField::UINT16: return load<std::uint16_t>(p);
-        case PointField::INT32: return load<std::int32_t>(p);
-        case PointField::UINT32: return load<std::uint32_t>(p);
-        case PointField::FLOAT32: return load<float>(p);
-        default: return load<double>(p);
+        case PointField::INT8:
+            return load<std::int8_t>(p);
+        case PointField::UINT8:
+            return load<std::uint8_t>(p);
+        case PointField::INT16:
+            return load<std::int16_t>(p);
+        case PointField::UINT16:
+            return load<std::uint16_t>(p);
+        case PointField::INT32:
+            return load<std::int32_t>(p);
+        case PointField::UINT32:
+            return load<std::uint32_t>(p);
+        case PointField::FLOAT32:
+            return load<float>(p);
+        default:
+            return load<double>(p);
     }
 }
 
@@ -81,18 +94,24 @@ CloudSweep from_point_cloud2(const sensor_msgs::PointCloud2& msg) {
     const std::size_t n = static_cast<std::size_t>(msg.width) * msg.height;
     if (n > 0 && msg.point_step == 0) throw io::FormatError("point_step is 0");
     if (msg.height > 0 && msg.row_step < static_cast<std::uint64_t>(msg.width) * msg.point_step) {
-        throw io::FormatError("row_step " + std::to_string(msg.row_step) + " is shorter than width x point_step");
+        throw io::FormatError("row_step " + std::to_string(msg.row_step) +
+                              " is shorter than width x point_step");
     }
     if (static_cast<std::uint64_t>(msg.row_step) * msg.height > msg.data.size()) {
-        throw io::FormatError("data holds " + std::to_string(msg.data.size()) + " bytes, row_step x height needs " +
-                              std::to_string(static_cast<std::uint64_t>(msg.row_step) * msg.height));
+        throw io::FormatError(
+            "data holds " + std::to_string(msg.data.size()) + " bytes, row_step x height needs " +
+            std::to_string(static_cast<std::uint64_t>(msg.row_step) * msg.height));
     }
     for (const PointField& f : msg.fields) {
         const std::size_t size = field_size(f.datatype);
-        if (size == 0) throw io::FormatError("field '" + f.name + "' has unknown datatype " + std::to_string(f.datatype));
-        if (static_cast<std::uint64_t>(f.offset) + size * std::max<std::uint32_t>(f.count, 1) > msg.point_step) {
-            throw io::FormatError("field '" + f.name + "' lies outside the point (offset " + std::to_string(f.offset) +
-                                  ", point_step " + std::to_string(msg.point_step) + ")");
+        if (size == 0)
+            throw io::FormatError("field '" + f.name + "' has unknown datatype " +
+                                  std::to_string(f.datatype));
+        if (static_cast<std::uint64_t>(f.offset) + size * std::max<std::uint32_t>(f.count, 1) >
+            msg.point_step) {
+            throw io::FormatError("field '" + f.name + "' lies outside the point (offset " +
+                                  std::to_string(f.offset) + ", point_step " +
+                                  std::to_string(msg.point_step) + ")");
         }
     }
     const PointField* fx = find_field(msg, "x");
@@ -112,13 +131,16 @@ CloudSweep from_point_cloud2(const sensor_msgs::PointCloud2& msg) {
             const std::uint64_t a0 = xyz[a]->offset, a1 = a0 + field_size(xyz[a]->datatype);
             const std::uint64_t b0 = xyz[b]->offset, b1 = b0 + field_size(xyz[b]->datatype);
             if (a0 < b1 && b0 < a1) {
-                throw io::FormatError("fields '" + xyz[a]->name + "' and '" + xyz[b]->name + "' overlap (offsets " +
-                                      std::to_string(a0) + " and " + std::to_string(b0) + ", " +
-                                      std::to_string(a1 - a0) + " and " + std::to_string(b1 - b0) + " bytes)");
+                throw io::FormatError("fields '" + xyz[a]->name + "' and '" + xyz[b]->name +
+                                      "' overlap (offsets " + std::to_string(a0) + " and " +
+                                      std::to_string(b0) + ", " + std::to_string(a1 - a0) +
+                                      " and " + std::to_string(b1 - b0) + " bytes)");
             }
         }
     }
-    if (n == 0) throw io::FormatError("the cloud holds no points (width " + std::to_string(msg.width) + ", height " + std::to_string(msg.height) + ")");
+    if (n == 0)
+        throw io::FormatError("the cloud holds no points (width " + std::to_string(msg.width) +
+                              ", height " + std::to_string(msg.height) + ")");
     const PointField* fi = find_field(msg, "intensity");
     const PointField* fr = find_field(msg, "ring");
     // The time field and how to read it: a relative offset from the stamp, or absolute.
@@ -130,7 +152,8 @@ CloudSweep from_point_cloud2(const sensor_msgs::PointCloud2& msg) {
         out.time_field = "time";
     } else if ((ft = find_field(msg, "t"))) {
         out.time_field = "t";
-        if (ft->datatype != PointField::FLOAT32 && ft->datatype != PointField::FLOAT64) scale = 1e-9;  // Ouster: ns
+        if (ft->datatype != PointField::FLOAT32 && ft->datatype != PointField::FLOAT64)
+            scale = 1e-9;  // Ouster: ns
     } else if ((ft = find_field(msg, "timestamp"))) {
         out.time_field = "timestamp";
         absolute = true;
@@ -148,11 +171,16 @@ CloudSweep from_point_cloud2(const sensor_msgs::PointCloud2& msg) {
         const std::uint8_t* base = msg.data.data() + static_cast<std::size_t>(row) * msg.row_step;
         for (std::uint32_t col = 0; col < msg.width; ++col, ++k) {
             const std::uint8_t* p = base + static_cast<std::size_t>(col) * msg.point_step;
-            out.points.xyz[k] = Eigen::Vector3f(static_cast<float>(read_number(p + fx->offset, fx->datatype)),
-                                                static_cast<float>(read_number(p + fy->offset, fy->datatype)),
-                                                static_cast<float>(read_number(p + fz->offset, fz->datatype)));
-            if (fi) out.points.intensity[k] = static_cast<float>(read_number(p + fi->offset, fi->datatype));
-            if (fr) out.points.ring[k] = static_cast<std::uint16_t>(std::clamp(read_number(p + fr->offset, fr->datatype), 0.0, 65535.0));
+            out.points.xyz[k] =
+                Eigen::Vector3f(static_cast<float>(read_number(p + fx->offset, fx->datatype)),
+                                static_cast<float>(read_number(p + fy->offset, fy->datatype)),
+                                static_cast<float>(read_number(p + fz->offset, fz->datatype)));
+            if (fi)
+                out.points.intensity[k] =
+                    static_cast<float>(read_number(p + fi->offset, fi->datatype));
+            if (fr)
+                out.points.ring[k] = static_cast<std::uint16_t>(
+                    std::clamp(read_number(p + fr->offset, fr->datatype), 0.0, 65535.0));
             if (ft) {
                 const double v = read_number(p + ft->offset, ft->datatype) * scale;
                 if (ft->datatype == PointField::FLOAT64 && v > 1e6) absolute = true;
@@ -165,30 +193,37 @@ CloudSweep from_point_cloud2(const sensor_msgs::PointCloud2& msg) {
     if (ft && n > 0) {
         double first = std::numeric_limits<double>::infinity(), last = -first;
         for (double t : t_abs) {
-            if (!std::isfinite(t)) throw io::FormatError("field '" + out.time_field + "' holds a non-finite time");
+            if (!std::isfinite(t))
+                throw io::FormatError("field '" + out.time_field + "' holds a non-finite time");
             first = std::min(first, t), last = std::max(last, t);
         }
         // Relative times that are all >= 0: the stamp is the sweep's start (its first firing may
         // have returned nothing). Negative ones (drivers that stamp the end): the first point.
         if (!absolute && first > stamp) first = stamp;
-        if (const std::string p = sweep_span_problem(last - first); !p.empty()) throw io::FormatError("field '" + out.time_field + "' spans " + p);
+        if (const std::string p = sweep_span_problem(last - first); !p.empty())
+            throw io::FormatError("field '" + out.time_field + "' spans " + p);
         out.timed = true;
         out.stamp_s = first;
         out.duration_s = last - first;
-        for (std::size_t i = 0; i < n; ++i) out.points.time_s[i] = static_cast<float>(t_abs[i] - first);
+        for (std::size_t i = 0; i < n; ++i)
+            out.points.time_s[i] = static_cast<float>(t_abs[i] - first);
     }
     return out;
 }
 
-sensor_msgs::PointCloud2 to_point_cloud2(const PointCloud& cloud, double stamp_s, const std::string& frame_id) {
+sensor_msgs::PointCloud2 to_point_cloud2(const PointCloud& cloud, double stamp_s,
+                                         const std::string& frame_id) {
     sensor_msgs::PointCloud2 msg;
     msg.header.stamp = to_ros_time(stamp_s);
     msg.header.frame_id = frame_id;
     msg.height = 1;
     msg.width = static_cast<std::uint32_t>(cloud.size());
-    msg.fields = {make_field("x", 0, PointField::FLOAT32), make_field("y", 4, PointField::FLOAT32),
-                  make_field("z", 8, PointField::FLOAT32), make_field("intensity", 12, PointField::FLOAT32),
-                  make_field("ring", 16, PointField::UINT16), make_field("time", 18, PointField::FLOAT32)};
+    msg.fields = {make_field("x", 0, PointField::FLOAT32),
+                  make_field("y", 4, PointField::FLOAT32),
+                  make_field("z", 8, PointField::FLOAT32),
+                  make_field("intensity", 12, PointField::FLOAT32),
+                  make_field("ring", 16, PointField::UINT16),
+                  make_field("time", 18, PointField::FLOAT32)};
     msg.point_step = 22;
     msg.row_step = msg.point_step * msg.width;
     msg.is_bigendian = false;
@@ -196,7 +231,8 @@ sensor_msgs::PointCloud2 to_point_cloud2(const PointCloud& cloud, double stamp_s
     msg.data.resize(static_cast<std::size_t>(msg.row_step));
     for (std::size_t i = 0; i < cloud.size(); ++i) {
         std::uint8_t* p = msg.data.data() + i * msg.point_step;
-        const float values[4] = {cloud.xyz[i].x(), cloud.xyz[i].y(), cloud.xyz[i].z(), cloud.intensity.empty() ? 0.0f : cloud.intensity[i]};
+        const float values[4] = {cloud.xyz[i].x(), cloud.xyz[i].y(), cloud.xyz[i].z(),
+                                 cloud.intensity.empty() ? 0.0f : cloud.intensity[i]};
         const std::uint16_t ring = cloud.ring.empty() ? 0 : cloud.ring[i];
         const float time = cloud.time_s.empty() ? 0.0f : cloud.time_s[i];
         std::memcpy(p, values, sizeof(values));
@@ -209,21 +245,26 @@ sensor_msgs::PointCloud2 to_point_cloud2(const PointCloud& cloud, double stamp_s
 
 Pose2 pose_from_odometry(const nav_msgs::Odometry& msg) {
     const auto& t = msg.pose.pose.position;
-    if (!std::isfinite(t.x) || !std::isfinite(t.y) || !std::isfinite(t.z)) throw io::FormatError("the position is not finite");
+    if (!std::isfinite(t.x) || !std::isfinite(t.y) || !std::isfinite(t.z))
+        throw io::FormatError("the position is not finite");
     if (std::hypot(t.x, t.y, t.z) > io::kMaxPosition_m) {
-        throw io::FormatError("the position lies " + std::to_string(std::hypot(t.x, t.y, t.z)) + " m from the origin (more than " +
+        throw io::FormatError("the position lies " + std::to_string(std::hypot(t.x, t.y, t.z)) +
+                              " m from the origin (more than " +
                               std::to_string(static_cast<int>(io::kMaxPosition_m / 1000)) + " km)");
     }
     const auto& o = msg.pose.pose.orientation;
     const double norm = std::sqrt(o.x * o.x + o.y * o.y + o.z * o.z + o.w * o.w);
-    if (!std::isfinite(norm) || norm < 1e-6) throw io::FormatError("the orientation quaternion is zero or not finite");
-    const Eigen::Vector4d q = Eigen::Vector4d(o.x, o.y, o.z, o.w) / norm;  // drivers round; some never normalise
-    const double yaw = std::atan2(2.0 * (q.w() * q.z() + q.x() * q.y()), 1.0 - 2.0 * (q.y() * q.y() + q.z() * q.z()));
+    if (!std::isfinite(norm) || norm < 1e-6)
+        throw io::FormatError("the orientation quaternion is zero or not finite");
+    const Eigen::Vector4d q =
+        Eigen::Vector4d(o.x, o.y, o.z, o.w) / norm;  // drivers round; some never normalise
+    const double yaw = std::atan2(2.0 * (q.w() * q.z() + q.x() * q.y()),
+                                  1.0 - 2.0 * (q.y() * q.y() + q.z() * q.z()));
     return {msg.pose.pose.position.x, msg.pose.pose.position.y, yaw};
 }
 
-nav_msgs::Odometry to_odometry(const Pose2& pose, double v_mps, double w_radps, double stamp_s, const std::string& frame_id,
-                               const std::string& child_frame_id) {
+nav_msgs::Odometry to_odometry(const Pose2& pose, double v_mps, double w_radps, double stamp_s,
+                               const std::string& frame_id, const std::string& child_frame_id) {
     nav_msgs::Odometry msg;
     msg.header.stamp = to_ros_time(stamp_s);
     msg.header.frame_id = frame_id;
@@ -244,7 +285,8 @@ std::int8_t occupancy_of_cost(std::uint8_t cost) {
     return static_cast<std::int8_t>(1 + (97 * (cost - 1)) / 251);
 }
 
-nav_msgs::OccupancyGrid to_occupancy_grid(const Costmap& costmap, double stamp_s, const std::string& frame_id) {
+nav_msgs::OccupancyGrid to_occupancy_grid(const Costmap& costmap, double stamp_s,
+                                          const std::string& frame_id) {
     nav_msgs::OccupancyGrid msg;
     msg.header.stamp = to_ros_time(stamp_s);
     msg.header.frame_id = frame_id;
@@ -260,8 +302,9 @@ nav_msgs::OccupancyGrid to_occupancy_grid(const Costmap& costmap, double stamp_s
     return msg;
 }
 
-visualization_msgs::MarkerArray to_markers(const std::vector<ObjectEstimate>& objects, const costmap::AffordanceParams& zones,
-                                           double stamp_s, const std::string& frame_id) {
+visualization_msgs::MarkerArray to_markers(const std::vector<ObjectEstimate>& objects,
+                                           const costmap::AffordanceParams& zones, double stamp_s,
+                                           const std::string& frame_id) {
     using visualization_msgs::Marker;
     visualization_msgs::MarkerArray array;
     Marker clear;
@@ -297,7 +340,8 @@ visualization_msgs::MarkerArray to_markers(const std::vector<ObjectEstimate>& ob
         label.scale.z = 0.2;
         label.color.r = label.color.g = label.color.b = label.color.a = 1.0f;
         char text[64];
-        std::snprintf(text, sizeof(text), "%s %u p=%.2f", std::string(to_string(o.cls)).c_str(), o.id, o.existence);
+        std::snprintf(text, sizeof(text), "%s %u p=%.2f", std::string(to_string(o.cls)).c_str(),
+                      o.id, o.existence);
         label.text = text;
         array.markers.push_back(label);
 
@@ -324,7 +368,8 @@ visualization_msgs::MarkerArray to_markers(const std::vector<ObjectEstimate>& ob
     return array;
 }
 
-tf2_msgs::TFMessage to_tf(const Isometry3& T, double stamp_s, const std::string& parent, const std::string& child) {
+tf2_msgs::TFMessage to_tf(const Isometry3& T, double stamp_s, const std::string& parent,
+                          const std::string& child) {
     geometry_msgs::TransformStamped t;
     t.header.stamp = to_ros_time(stamp_s);
     t.header.frame_id = parent;

@@ -20,7 +20,6 @@
 
 namespace makeway::rosio {
 
-
 /// A stamp as ros::Time: seconds since the epoch, at least 1 ns (rosbag refuses time 0).
 ros::Time to_ros_time(double stamp_s);
 
@@ -37,7 +36,8 @@ CloudSweep from_point_cloud2(const sensor_msgs::PointCloud2& msg);
 
 /// The Velodyne driver's layout: x y z intensity (float32), ring (uint16), time (float32, seconds
 /// since stamp_s), unorganised (height 1).
-sensor_msgs::PointCloud2 to_point_cloud2(const PointCloud& cloud, double stamp_s, const std::string& frame_id);
+sensor_msgs::PointCloud2 to_point_cloud2(const PointCloud& cloud, double stamp_s,
+                                         const std::string& frame_id);
 
 /// The base's planar pose from an Odometry message (yaw from the quaternion, which need not be
 /// normalised). Throws io::FormatError for a non-finite position or one beyond
@@ -49,14 +49,17 @@ nav_msgs::Odometry to_odometry(const Pose2& pose, double v_mps, double w_radps, 
 /// nav2's / move_base's costmap publication mapping: 0 free -> 0, 1-252 -> 1-98, 253 inscribed
 /// -> 99, 254 lethal -> 100, 255 unknown -> -1.
 std::int8_t occupancy_of_cost(std::uint8_t cost);
-nav_msgs::OccupancyGrid to_occupancy_grid(const Costmap& costmap, double stamp_s, const std::string& frame_id);
+nav_msgs::OccupancyGrid to_occupancy_grid(const Costmap& costmap, double stamp_s,
+                                          const std::string& frame_id);
 
 /// Object boxes (CUBE, coloured by class, alpha by existence), their labels (TEXT: class, id,
 /// existence) and their affordance zones (LINE_STRIP of costmap::zone_outline), after one
 /// DELETEALL so that removed objects disappear.
-visualization_msgs::MarkerArray to_markers(const std::vector<ObjectEstimate>& objects, const costmap::AffordanceParams& zones,
-                                           double stamp_s, const std::string& frame_id);
+visualization_msgs::MarkerArray to_markers(const std::vector<ObjectEstimate>& objects,
+                                           const costmap::AffordanceParams& zones, double stamp_s,
+                                           const std::string& frame_id);
 
-tf2_msgs::TFMessage to_tf(const Isometry3& T_parent_child, double stamp_s, const std::string& parent, const std::string& child);
+tf2_msgs::TFMessage to_tf(const Isometry3& T_parent_child, double stamp_s,
+                          const std::string& parent, const std::string& child);
 
 }  // namespace makeway::rosio

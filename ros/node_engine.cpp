@@ -1,19 +1,19 @@
 #include "ros/node_engine.hpp"
 
-#include <cerrno>
-#include <chrono>
-#include <cstdio>
-#include <cstring>
-#include <condition_variable>
-#include <deque>
-#include <mutex>
-#include <thread>
-#include <utility>
-
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <tbb/task_arena.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <cstring>
+#include <deque>
+#include <mutex>
+#include <thread>
+#include <utility>
 
 #include "io/cad_folder.hpp"
 #include "io/config_reader.hpp"
@@ -32,7 +32,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 perception::Detector load_weights(const std::string& given) {
-    const std::filesystem::path path = given.empty() ? std::filesystem::path("models") / "detector.pt" : std::filesystem::path(given);
+    const std::filesystem::path path = given.empty()
+                                           ? std::filesystem::path("models") / "detector.pt"
+                                           : std::filesystem::path(given);
     try {
         return perception::Detector::load(path);
     } catch (const std::runtime_error& e) {
@@ -62,10 +64,13 @@ std::string to_json(const NavStatus& s) {
     return io::dump_json(j);
 }
 
-GatedCommand gate_command(const VelocityCommand& last, std::optional<double> last_sweep_end_s, std::optional<double> last_odometry_s,
-                          double now_s, double sensor_timeout_s, double odometry_timeout_s) {
-    if (!last_sweep_end_s || now_s - *last_sweep_end_s > sensor_timeout_s) return {{}, "no sweep for " + std::to_string(sensor_timeout_s).substr(0, 4) + " s"};
-    if (!last_odometry_s || now_s - *last_odometry_s > odometry_timeout_s) return {{}, "no odometry for " + std::to_string(odometry_timeout_s).substr(0, 4) + " s"};
+GatedCommand gate_command(const VelocityCommand& last, std::optional<double> last_sweep_end_s,
+                          std::optional<double> last_odometry_s, double now_s,
+                          double sensor_timeout_s, double odometry_timeout_s) {
+    if (!last_sweep_end_s || now_s - *last_sweep_end_s > sensor_timeout_s)
+        return {{}, "no sweep for " + std::to_string(sensor_timeout_s).substr(0, 4) + " s"};
+    if (!last_odometry_s || now_s - *last_odometry_s > odometry_timeout_s)
+        return {{}, "no odometry for " + std::to_string(odometry_timeout_s).substr(0, 4) + " s"};
     return {last, {}};
 }
 
@@ -97,7 +102,10 @@ struct NodeEngine::Impl {
     std::thread perceiver;
 
     Impl(const NodeSettings& s, Publish p)
-        : settings(s), publish(std::move(p)), params(node_system_params(s)), detector(load_weights(s.model)) {
+        : settings(s),
+          publish(std::move(p)),
+          params(node_system_params(s)),
+          detector(load_weights(s.model)) {
         if (!s.cad.empty()) library = io::read_cad_folder(s.cad);
         if (!s.map.empty()) static_map = io::read_map_server(s.map);
         if (settings.async_perception) perception::set_inference_threads(perception_threads());
@@ -108,16 +116,20 @@ struct NodeEngine::Impl {
     // The wheels at t: waits (up to odometry_wait_s) for odometry that covers t; nullopt without.
     // Odometry within kStampSlack_s of t covers it: stamps travel as integer nanoseconds and a
     // sweep's end is its stamp plus its last point's float time, so the odometry message of the
-    // sweep's end can read a few ns early, and waiting for the next one costs a whole message period.
+    // sweep's end can read a few ns early, and waiting for the next one costs a whole message
+    // period.
     static constexpr double kStampSlack_s = 1e-3;
     std::optional<Pose2> wheels_at(double t, std::unique_lock<std::mutex>& lock) {
-        const auto deadline = Clock::now() + std::chrono::duration<double>(settings.odometry_wait_s);
-        while (!odometry.empty() && odometry.back().stamp_s < t - kStampSlack_s && !stopping && Clock::now() < deadline) {
+        const auto deadline =
+            Clock::now() + std::chrono::duration<double>(settings.odometry_wait_s);
+        while (!odometry.empty() && odometry.back().stamp_s < t - kStampSlack_s && !stopping &&
+               Clock::now() < deadline) {
             changed.wait_until(lock, deadline);
         }
         if (odometry.empty()) return std::nullopt;
         if (const auto p = interpolate_at(odometry, t)) return p;
-        return t > odometry.back().stamp_s ? std::optional<Pose2>(odometry.back().pose) : std::nullopt;
+        return t > odometry.back().stamp_s ? std::optional<Pose2>(odometry.back().pose)
+                                           : std::nullopt;
     }
 
     void run() {
@@ -129,11 +141,14 @@ struct NodeEngine::Impl {
             auto [sweep, arrived] = std::move(queue.front());
             queue.pop_front();
             busy = true;
-            const double duration = sweep.timed && sweep.duration_s > 1e-4 ? sweep.duration_s : previous_duration;
+            const double duration =
+                sweep.timed && sweep.duration_s > 1e-4 ? sweep.duration_s : previous_duration;
             previous_duration = duration;
             const std::optional<Pose2> start = wheels_at(sweep.stamp_s, lock);
-            const std::optional<Pose2> end = start ? wheels_at(sweep.stamp_s + duration, lock) : std::nullopt;
-            const double waited_ms = std::chrono::duration<double, std::milli>(Clock::now() - arrived).count();
+            const std::optional<Pose2> end =
+                start ? wheels_at(sweep.stamp_s + duration, lock) : std::nullopt;
+            const double waited_ms =
+                std::chrono::duration<double, std::milli>(Clock::now() - arrived).count();
             lock.unlock();
             process(std::move(sweep), duration, start, end, waited_ms, arrived);
             lock.lock();
@@ -145,8 +160,10 @@ struct NodeEngine::Impl {
 
     // The last command through gate_command at now_s. Under `mutex`.
     GatedCommand gated_at(double now_s) const {
-        const std::optional<double> odometry_s = odometry.empty() ? std::nullopt : std::optional<double>(odometry.back().stamp_s);
-        return gate_command(last_command, last_sweep_end, odometry_s, now_s, settings.sensor_timeout_s, settings.odometry_timeout_s);
+        const std::optional<double> odometry_s =
+            odometry.empty() ? std::nullopt : std::optional<double>(odometry.back().stamp_s);
+        return gate_command(last_command, last_sweep_end, odometry_s, now_s,
+                            settings.sensor_timeout_s, settings.odometry_timeout_s);
     }
 
     int perception_threads() const {
@@ -156,20 +173,26 @@ struct NodeEngine::Impl {
 
     // The keyframe chain, one keyframe at a time, in order (the tracker needs every one).
     void perceive_loop() {
-        // Below the control path: when the cores are short, the keyframe waits, the command does not.
-        // Linux gives each thread its own nice value (PRIO_PROCESS with a thread id).
+        // Below the control path: when the cores are short, the keyframe waits, the command does
+        // not. Linux gives each thread its own nice value (PRIO_PROCESS with a thread id).
         if (settings.perception_nice != 0) {
             errno = 0;
-            if (setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), settings.perception_nice) != 0) {
-                std::fprintf(stderr, "makeway_node: perception keeps the control path's priority (setpriority: %s)\n", std::strerror(errno));
+            if (setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)),
+                            settings.perception_nice) != 0) {
+                std::fprintf(stderr,
+                             "makeway_node: perception keeps the control path's priority "
+                             "(setpriority: %s)\n",
+                             std::strerror(errno));
             }
         }
-        // Its verification's parallel loops use at most perception_threads() threads (with one, only
-        // this niced thread; TBB's workers that join a larger arena keep the default priority).
+        // Its verification's parallel loops use at most perception_threads() threads (with one,
+        // only this niced thread; TBB's workers that join a larger arena keep the default
+        // priority).
         tbb::task_arena arena(perception_threads());
         std::unique_lock<std::mutex> lock(mutex);
         while (true) {
-            changed.wait(lock, [&] { return (stopping && queue.empty() && !busy) || !keyframes.empty(); });
+            changed.wait(
+                lock, [&] { return (stopping && queue.empty() && !busy) || !keyframes.empty(); });
             if (keyframes.empty()) return;  // stopping, the worker is done, nothing left
             pipeline::PendingKeyframe k = std::move(keyframes.front());
             keyframes.pop_front();
@@ -194,8 +217,9 @@ struct NodeEngine::Impl {
         }
     }
 
-    void process(CloudSweep sweep, double duration, const std::optional<Pose2>& wheel_start, const std::optional<Pose2>& wheel_end,
-                 double waited_ms, Clock::time_point arrived) {
+    void process(CloudSweep sweep, double duration, const std::optional<Pose2>& wheel_start,
+                 const std::optional<Pose2>& wheel_end, double waited_ms,
+                 Clock::time_point arrived) {
         if (!system) {
             const Pose2 start = settings.start ? *settings.start : wheel_start.value_or(Pose2{});
             pipeline::OnlineSystemSetup setup;
@@ -231,7 +255,8 @@ struct NodeEngine::Impl {
                     status = {"stopped", problem, -1.0, goal};
                 }
             }
-            const pipeline::Sweep input{std::move(sweep.points), stamp, duration, wheel_start, wheel_end};
+            const pipeline::Sweep input{std::move(sweep.points), stamp, duration, wheel_start,
+                                        wheel_end};
             if (!settings.async_perception) return system->process(input);
             std::optional<pipeline::PendingKeyframe> pending;
             pipeline::OnlineStep s = system->drive(input, &pending);
@@ -271,7 +296,9 @@ struct NodeEngine::Impl {
             last_sweep_end = out.stamp_s;
             if (pending_cancel) out.command = {};
             out.gated = gated_at(settings.clock ? settings.clock() : out.stamp_s);
-            if (settings.send_command) settings.send_command(out.gated.command);  // the command first: the robot waits for it
+            if (settings.send_command)
+                settings.send_command(
+                    out.gated.command);  // the command first: the robot waits for it
         }
         out.latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - arrived).count();
         publish(out);
@@ -287,12 +314,15 @@ struct NodeEngine::Impl {
                 status = {"reached", "", 0.0, status.goal};
                 out.plan.clear();
             } else if (c.nav.gave_up) {
-                status = {"stopped", "gave up: no plan or no progress for " + std::to_string(static_cast<int>(params.navigator.give_up_s)) + " s",
+                status = {"stopped",
+                          "gave up: no plan or no progress for " +
+                              std::to_string(static_cast<int>(params.navigator.give_up_s)) + " s",
                           status.distance_left_m, status.goal};
                 out.plan.clear();
             } else if (c.guard.scale < params.navigator.monitor.min_scale && !c.guard.recovering) {
                 status.state = "blocked";
-                status.why = "collision monitor: " + std::string(planning::to_string(c.guard.action));
+                status.why =
+                    "collision monitor: " + std::string(planning::to_string(c.guard.action));
             } else {
                 status.state = "driving";
                 status.why.clear();
@@ -302,7 +332,8 @@ struct NodeEngine::Impl {
     }
 };
 
-NodeEngine::NodeEngine(const NodeSettings& settings, Publish publish) : impl_(std::make_unique<Impl>(settings, std::move(publish))) {}
+NodeEngine::NodeEngine(const NodeSettings& settings, Publish publish)
+    : impl_(std::make_unique<Impl>(settings, std::move(publish))) {}
 
 NodeEngine::~NodeEngine() {
     {
@@ -362,7 +393,10 @@ GatedCommand NodeEngine::send_command_at(double now_s) {
 
 void NodeEngine::drain() {
     std::unique_lock<std::mutex> lock(impl_->mutex);
-    impl_->changed.wait(lock, [&] { return impl_->queue.empty() && !impl_->busy && impl_->keyframes.empty() && !impl_->perceiving; });
+    impl_->changed.wait(lock, [&] {
+        return impl_->queue.empty() && !impl_->busy && impl_->keyframes.empty() &&
+               !impl_->perceiving;
+    });
 }
 
 NodeStats NodeEngine::stats() const {
@@ -370,6 +404,8 @@ NodeStats NodeEngine::stats() const {
     return impl_->stats;
 }
 
-const costmap::AffordanceParams& NodeEngine::zones() const { return impl_->params.navigator.affordance; }
+const costmap::AffordanceParams& NodeEngine::zones() const {
+    return impl_->params.navigator.affordance;
+}
 
 }  // namespace makeway::rosio

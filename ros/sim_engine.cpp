@@ -2,15 +2,15 @@
 
 #include <cmath>
 #include <filesystem>
-#include <set>
 #include <optional>
+#include <set>
 
-#include "io/sim_config.hpp"
 #include "io/json_io.hpp"
 #include "io/mesh_io.hpp"
 #include "io/scene_io.hpp"
-#include "makeway/pipeline/keyframe.hpp"
+#include "io/sim_config.hpp"
 #include "makeway/costmap/affordance.hpp"
+#include "makeway/pipeline/keyframe.hpp"
 #include "makeway/sim/contact_judge.hpp"
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/robot.hpp"
@@ -56,7 +56,8 @@ struct SimRobot::Impl {
     void judge(double ts, double dt) {
         const Eigen::Vector2d centre(state.pose.x_m, state.pose.y_m);
         bool risky = false;
-        for (const ObjectEstimate& o : sim::object_estimates_at(scene, models, ts)) risky |= costmap::in_affordance_zone(o, config.affordance, centre);
+        for (const ObjectEstimate& o : sim::object_estimates_at(scene, models, ts))
+            risky |= costmap::in_affordance_zone(o, config.affordance, centre);
         if (risky) risk_time_s += dt;
         for (sim::ContactEvent& e : contact_judge.step(state, ts)) contacts.push_back(std::move(e));
     }
@@ -84,7 +85,9 @@ SimTick SimRobot::tick() {
     for (int i = 0; i < Impl::kPhysicsSteps; ++i) {
         const double ts = m.t + i * dt;
         // A robot whose driver hears nothing brakes: a stale command is no command.
-        const VelocityCommand c = ts - m.last_command_t <= m.settings.command_timeout_s ? m.last_command : VelocityCommand{};
+        const VelocityCommand c = ts - m.last_command_t <= m.settings.command_timeout_s
+                                      ? m.last_command
+                                      : VelocityCommand{};
         const Pose2 before = m.state.pose;
         m.state = sim::step_diff_drive(m.state, c, dt, m.config.robot);
         m.odometry.update(before, m.state.pose);
@@ -93,9 +96,12 @@ SimTick SimRobot::tick() {
         m.judge(ts + dt, dt);
         out.odometry.push_back({ts + dt, m.odometry.pose(), m.state.v_mps, m.state.w_radps});
     }
-    const sim::PoseAtTime T_world_sensor_at = sim::sensor_pose_along(std::move(poses), m.t, dt, m.config.robot.T_robot_sensor());
-    out.sweep = sim::simulate_sweep(m.world, m.config.lidar, T_world_sensor_at, m.t, m.settings.seed, m.sweeps++);
-    out.sweep = pipeline::sensor_channels_only(std::move(out.sweep));  // what a driver gives: no labels, no instance ids
+    const sim::PoseAtTime T_world_sensor_at =
+        sim::sensor_pose_along(std::move(poses), m.t, dt, m.config.robot.T_robot_sensor());
+    out.sweep = sim::simulate_sweep(m.world, m.config.lidar, T_world_sensor_at, m.t,
+                                    m.settings.seed, m.sweeps++);
+    out.sweep = pipeline::sensor_channels_only(
+        std::move(out.sweep));  // what a driver gives: no labels, no instance ids
     m.t += period;
     out.t_end_s = m.t;
     out.truth = m.state.pose;
@@ -122,10 +128,12 @@ void SimRobot::write_cad_folder(const std::string& folder) const {
     fs::create_directories(staging);
     std::set<std::string> written;
     for (const sim::SceneObject& o : impl_->scene.objects) {
-        const std::string name = o.style.empty() ? fs::path(o.mesh_file).stem().string() + "_x" + std::to_string(o.scale)
-                                                 : o.style + "_" + std::to_string(o.model_seed);
+        const std::string name =
+            o.style.empty() ? fs::path(o.mesh_file).stem().string() + "_x" + std::to_string(o.scale)
+                            : o.style + "_" + std::to_string(o.model_seed);
         if (!written.insert(name).second) continue;
-        io::write_mesh(staging / (std::string(to_string(o.cls)) + "_" + name + ".obj"), sim::model_of(o).mesh_object);
+        io::write_mesh(staging / (std::string(to_string(o.cls)) + "_" + name + ".obj"),
+                       sim::model_of(o).mesh_object);
     }
     fs::remove_all(final_dir);
     fs::rename(staging, final_dir);
@@ -156,11 +164,16 @@ std::string SimRobot::report_json(const std::string& extra) const {
     j["distance_to_goal_m"] = to_goal;
     j["goal"] = {m.scene.goal.x_m, m.scene.goal.y_m};
     io::Json counts = io::Json::object();
-    for (const char* kind : {"walls", "furniture", "people"}) counts[kind] = {{"robot_caused", 0}, {"other_caused", 0}};
+    for (const char* kind : {"walls", "furniture", "people"})
+        counts[kind] = {{"robot_caused", 0}, {"other_caused", 0}};
     io::Json events = io::Json::array();
     for (const auto& c : m.contacts) {
-        counts[c.kind][c.robot_caused ? "robot_caused" : "other_caused"] = counts[c.kind][c.robot_caused ? "robot_caused" : "other_caused"].get<int>() + 1;
-        events.push_back({{"t_s", c.t_s}, {"kind", c.kind}, {"robot_caused", c.robot_caused}, {"toward_mps", c.toward_mps},
+        counts[c.kind][c.robot_caused ? "robot_caused" : "other_caused"] =
+            counts[c.kind][c.robot_caused ? "robot_caused" : "other_caused"].get<int>() + 1;
+        events.push_back({{"t_s", c.t_s},
+                          {"kind", c.kind},
+                          {"robot_caused", c.robot_caused},
+                          {"toward_mps", c.toward_mps},
                           {"where_m", {c.where_m.x(), c.where_m.y()}}});
     }
     j["contacts"] = counts;

@@ -17,9 +17,10 @@
 namespace makeway::rosio {
 
 struct SimRobotSettings {
-    std::string scene;            ///< scene YAML (required)
-    std::string config;           ///< the program's configuration (lidar, robot, odometry noise); empty: defaults
-    std::uint64_t seed = 0;       ///< sensor noise and odometry drift
+    std::string scene;  ///< scene YAML (required)
+    std::string
+        config;  ///< the program's configuration (lidar, robot, odometry noise); empty: defaults
+    std::uint64_t seed = 0;          ///< sensor noise and odometry drift
     double command_timeout_s = 0.5;  ///< no command this long: the robot brakes to a stop
     int lidar_threads = 1;
 };
@@ -27,19 +28,20 @@ struct SimRobotSettings {
 /// One sweep period of the simulated robot.
 struct SimTick {
     double t_start_s = 0.0, t_end_s = 0.0;
-    PointCloud sweep;                   ///< sensor frame; per-point time since t_start_s
+    PointCloud sweep;  ///< sensor frame; per-point time since t_start_s
     struct Odometry {
         double stamp_s;
-        Pose2 pose;                     ///< wheel odometry (drifting), its own frame
+        Pose2 pose;  ///< wheel odometry (drifting), its own frame
         double v_mps, w_radps;
     };
-    std::vector<Odometry> odometry;     ///< one per physics step (t_start_s excluded, t_end_s included)
-    Pose2 truth;                        ///< the base at t_end_s (ground truth: report and /ground_truth only)
+    std::vector<Odometry>
+        odometry;  ///< one per physics step (t_start_s excluded, t_end_s included)
+    Pose2 truth;   ///< the base at t_end_s (ground truth: report and /ground_truth only)
     double v_mps = 0.0, w_radps = 0.0;  ///< truth
 };
 
 class SimRobot {
-public:
+  public:
     /// Loads the scene and the configuration; throws io::FileError naming a bad file.
     explicit SimRobot(const SimRobotSettings& settings);
     ~SimRobot();
@@ -71,7 +73,7 @@ public:
     bool collided() const;
     int robot_caused_contacts() const;
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -17,14 +17,13 @@
 #include <rosgraph_msgs/Clock.h>
 #include <std_msgs/String.h>
 
-#include <nlohmann/json.hpp>
-
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
 
@@ -64,7 +63,8 @@ int main(int argc, char** argv) {
         return 2;
     }
     if (!(rate_factor >= 0.0) || !(duration >= 0.0) || !(settings.command_timeout_s > 0.0)) {
-        ROS_FATAL("makeway_sim_node: ~rate_factor and ~duration must be >= 0, ~command_timeout > 0");
+        ROS_FATAL(
+            "makeway_sim_node: ~rate_factor and ~duration must be >= 0, ~command_timeout > 0");
         return 2;
     }
     std::unique_ptr<rosio::SimRobot> robot;
@@ -99,21 +99,24 @@ int main(int argc, char** argv) {
             std::lock_guard<std::mutex> lock(mutex);
             robot->command({msg->linear.x, msg->angular.z}, sim_now - kEpoch);
         },
-        ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());  // a command is small: no Nagle delay
-    // The operator of ~mission: the scene's legs one by one, on the system's word that each is reached.
+        ros::VoidConstPtr(),
+        ros::TransportHints().tcpNoDelay());  // a command is small: no Nagle delay
+    // The operator of ~mission: the scene's legs one by one, on the system's word that each is
+    // reached.
     ros::Publisher goal_pub;
     nlohmann::json last_status;
     ros::Subscriber status_sub;
     if (mission) {
         goal_pub = nh.advertise<geometry_msgs::PoseStamped>("/move_base_simple/goal", 5, true);
-        status_sub = nh.subscribe<std_msgs::String>(status_topic, 20, [&](const std_msgs::StringConstPtr& msg) {
-            std::lock_guard<std::mutex> lock(mutex);
-            try {
-                last_status = nlohmann::json::parse(msg->data);
-            } catch (const nlohmann::json::exception&) {
-                ROS_WARN_THROTTLE(5.0, "makeway_sim_node: %s: not JSON", status_topic.c_str());
-            }
-        });
+        status_sub = nh.subscribe<std_msgs::String>(
+            status_topic, 20, [&](const std_msgs::StringConstPtr& msg) {
+                std::lock_guard<std::mutex> lock(mutex);
+                try {
+                    last_status = nlohmann::json::parse(msg->data);
+                } catch (const nlohmann::json::exception&) {
+                    ROS_WARN_THROTTLE(5.0, "makeway_sim_node: %s: not JSON", status_topic.c_str());
+                }
+            });
     }
     const std::vector<Eigen::Vector2d> legs = robot->route();
     std::size_t leg = 0;
@@ -130,10 +133,12 @@ int main(int argc, char** argv) {
         clock_pub.publish(c);
     };
     publish_clock(kEpoch);
-    ROS_INFO("makeway_sim_node: %s -> /velodyne_points, /odom, /tf, /clock; /cmd_vel -> the robot", settings.scene.c_str());
+    ROS_INFO("makeway_sim_node: %s -> /velodyne_points, /odom, /tf, /clock; /cmd_vel -> the robot",
+             settings.scene.c_str());
     // The clock starts when the robot's software listens (it may load a network for seconds first).
-    while (wait_for_consumer && !rosio::stop_requested() && ros::ok() && (cloud_pub.getNumSubscribers() == 0 || odom_pub.getNumSubscribers() == 0 || cmd.getNumPublishers() == 0 ||
-                                                                        (mission && goal_pub.getNumSubscribers() == 0))) {
+    while (wait_for_consumer && !rosio::stop_requested() && ros::ok() &&
+           (cloud_pub.getNumSubscribers() == 0 || odom_pub.getNumSubscribers() == 0 ||
+            cmd.getNumPublishers() == 0 || (mission && goal_pub.getNumSubscribers() == 0))) {
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
     // Where the wheels start: odometry at time 0 (a sweep starting then finds its pose).
@@ -148,14 +153,17 @@ int main(int argc, char** argv) {
         }
         // Hold the pace: the sweep is published when its period has passed (scaled by rate_factor).
         if (rate_factor > 0.0) {
-            const auto due = wall0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                         std::chrono::duration<double>(tick.t_end_s / rate_factor));
+            const auto due =
+                wall0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                            std::chrono::duration<double>(tick.t_end_s / rate_factor));
             std::this_thread::sleep_until(due);
         }
         for (const auto& o : tick.odometry) {
             publish_clock(kEpoch + o.stamp_s);
-            odom_pub.publish(rosio::to_odometry(o.pose, o.v_mps, o.w_radps, kEpoch + o.stamp_s, "odom", "base_link"));
-            tf_pub.publish(rosio::to_tf(lift_to_3d(o.pose), kEpoch + o.stamp_s, "odom", "base_link"));
+            odom_pub.publish(rosio::to_odometry(o.pose, o.v_mps, o.w_radps, kEpoch + o.stamp_s,
+                                                "odom", "base_link"));
+            tf_pub.publish(
+                rosio::to_tf(lift_to_3d(o.pose), kEpoch + o.stamp_s, "odom", "base_link"));
         }
         {
             std::lock_guard<std::mutex> lock(mutex);
@@ -163,15 +171,18 @@ int main(int argc, char** argv) {
         }
         // A sensor that fails (~cloud_until): the clouds stop, everything else goes on.
         if (cloud_until <= 0.0 || tick.t_end_s <= cloud_until) {
-            cloud_pub.publish(rosio::to_point_cloud2(tick.sweep, kEpoch + tick.t_start_s, "velodyne"));
+            cloud_pub.publish(
+                rosio::to_point_cloud2(tick.sweep, kEpoch + tick.t_start_s, "velodyne"));
         }
-        truth_pub.publish(rosio::to_odometry(tick.truth, tick.v_mps, tick.w_radps, kEpoch + tick.t_end_s, "map", "base_link"));
+        truth_pub.publish(rosio::to_odometry(tick.truth, tick.v_mps, tick.w_radps,
+                                             kEpoch + tick.t_end_s, "map", "base_link"));
         truth = tick.truth;
         if (mission) {
             std::lock_guard<std::mutex> lock(mutex);
-            const bool about_this_leg = last_status.contains("goal") && last_status["goal"].is_array() &&
-                                        std::hypot(last_status["goal"][0].get<double>() - legs[leg].x(),
-                                                   last_status["goal"][1].get<double>() - legs[leg].y()) < 1e-6;
+            const bool about_this_leg =
+                last_status.contains("goal") && last_status["goal"].is_array() &&
+                std::hypot(last_status["goal"][0].get<double>() - legs[leg].x(),
+                           last_status["goal"][1].get<double>() - legs[leg].y()) < 1e-6;
             if (!leg_sent) {
                 geometry_msgs::PoseStamped g;
                 g.header.frame_id = "map";
@@ -197,11 +208,14 @@ int main(int argc, char** argv) {
     spinner.stop();
     nlohmann::json extra = nlohmann::json::object();
     if (mission) {
-        const bool reached = mission_end == "reached" && std::hypot(truth.x_m - legs.back().x(), truth.y_m - legs.back().y()) < 0.5;
+        const bool reached =
+            mission_end == "reached" &&
+            std::hypot(truth.x_m - legs.back().x(), truth.y_m - legs.back().y()) < 0.5;
         extra["mission"] = {{"end", mission_end.empty() ? "time limit" : mission_end},
                             {"legs_reached", leg},
                             {"time_s", reached ? mission_time_s : -1.0},
-                            // as the benchmark judges: the goal reached, truly within 0.5 m (arrival_radius_m), no wall or furniture touched
+                            // as the benchmark judges: the goal reached, truly within 0.5 m
+                            // (arrival_radius_m), no wall or furniture touched
                             {"success", reached && !robot->collided()}};
     }
     const std::string json = robot->report_json(extra.dump());

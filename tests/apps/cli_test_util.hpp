@@ -48,6 +48,8 @@ inline std::string slurp(const std::filesystem::path& p) {
 }
 
 /// Lines written to a stream (its newlines).
-inline std::size_t lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
+inline std::size_t lines(const std::string& s) {
+    return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));
+}
 
 }  // namespace makeway::testing_util

@@ -31,15 +31,27 @@ TEST(Cli, LabelTwoSessionsAndTrainOnTheLabels) {
     moved.replace(moved.find(chair), chair.size(), "pose: {x_m: 0.2, y_m: 1.5, yaw_rad: 1.4}");
     std::ofstream(dir / "room2.yaml") << moved;
     for (const char* s : {"room", "room2"}) {
-        const CliRun r = run_makeway("simulate --scene " + (dir / (std::string(s) + ".yaml")).string() + " --frames 50 --out " +
-                                         (dir / s).string(), dir);
+        const CliRun r =
+            run_makeway("simulate --scene " + (dir / (std::string(s) + ".yaml")).string() +
+                            " --frames 50 --out " + (dir / s).string(),
+                        dir);
         ASSERT_EQ(r.exit_code, 0) << r.err;
     }
-    ASSERT_EQ(run_makeway("cad --style four_leg_chair --seed 4 --out " + (dir / "cad" / "chair_a.obj").string(), dir).exit_code, 0);
-    ASSERT_EQ(run_makeway("cad --style rect_table --seed 2 --out " + (dir / "cad" / "table_a.obj").string(), dir).exit_code, 0);
+    ASSERT_EQ(run_makeway("cad --style four_leg_chair --seed 4 --out " +
+                              (dir / "cad" / "chair_a.obj").string(),
+                          dir)
+                  .exit_code,
+              0);
+    ASSERT_EQ(
+        run_makeway(
+            "cad --style rect_table --seed 2 --out " + (dir / "cad" / "table_a.obj").string(), dir)
+            .exit_code,
+        0);
 
-    CliRun r = run_makeway("label --sessions " + (dir / "room").string() + " " + (dir / "room2").string() + " --cad " +
-                               (dir / "cad").string() + " --out " + (dir / "labels").string(), dir);
+    CliRun r =
+        run_makeway("label --sessions " + (dir / "room").string() + " " + (dir / "room2").string() +
+                        " --cad " + (dir / "cad").string() + " --out " + (dir / "labels").string(),
+                    dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("session 2 aligned to session 1"), std::string::npos) << r.out;
     const io::Json meta = io::read_json(dir / "labels" / "meta.json");
@@ -50,7 +62,9 @@ TEST(Cli, LabelTwoSessionsAndTrainOnTheLabels) {
     auto found = [&](int session, const std::string& cls, double x, double y) {
         for (const io::Json& o : objects) {
             const OrientedBox b = io::box_from_json(o["box_world"]);
-            if (o["session"] == session && o["class"] == cls && (b.centre_m.head<2>() - Eigen::Vector2d(x, y)).norm() < 0.1) return true;
+            if (o["session"] == session && o["class"] == cls &&
+                (b.centre_m.head<2>() - Eigen::Vector2d(x, y)).norm() < 0.1)
+                return true;
         }
         return false;
     };
@@ -64,22 +78,30 @@ TEST(Cli, LabelTwoSessionsAndTrainOnTheLabels) {
     std::size_t labelled = 0;
     for (std::size_t k = 0; k < data.size(); ++k) {
         labelled += data[k].objects.size();
-        EXPECT_EQ(fs::file_size(dir / "labels" / "point_labels" / (io::frame_name(k) + ".label")), 4 * data[k].cloud_sensor.size());
+        EXPECT_EQ(fs::file_size(dir / "labels" / "point_labels" / (io::frame_name(k) + ".label")),
+                  4 * data[k].cloud_sensor.size());
     }
     EXPECT_GE(labelled, 20u);
-    r = run_makeway("train-detector --data " + (dir / "labels").string() + " --epochs 1 --batch 2 --width 8 --out " +
-                        (dir / "model.pt").string(), dir);
+    r = run_makeway("train-detector --data " + (dir / "labels").string() +
+                        " --epochs 1 --batch 2 --width 8 --out " + (dir / "model.pt").string(),
+                    dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(fs::exists(dir / "model.pt"));
 
     // Recorded sweeps with poses from elsewhere (here makeway odometry's): the labeller's odometry
     // does not run, and the same furniture comes out.
     for (const char* s : {"room", "room2"}) {
-        ASSERT_EQ(run_makeway("odometry --clouds " + (dir / s / "clouds").string() + " --odometry " + (dir / s / "odometry.txt").string() +
-                                  " --out " + (dir / s / "poses.txt").string(), dir).exit_code, 0);
+        ASSERT_EQ(run_makeway("odometry --clouds " + (dir / s / "clouds").string() +
+                                  " --odometry " + (dir / s / "odometry.txt").string() + " --out " +
+                                  (dir / s / "poses.txt").string(),
+                              dir)
+                      .exit_code,
+                  0);
     }
-    r = run_makeway("label --sessions " + (dir / "room").string() + " " + (dir / "room2").string() + " --poses-name poses.txt --cad " +
-                        (dir / "cad").string() + " --out " + (dir / "labels_poses").string(), dir);
+    r = run_makeway("label --sessions " + (dir / "room").string() + " " + (dir / "room2").string() +
+                        " --poses-name poses.txt --cad " + (dir / "cad").string() + " --out " +
+                        (dir / "labels_poses").string(),
+                    dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const io::Json with_poses = io::read_json(dir / "labels_poses" / "objects.json")["objects"];
     EXPECT_EQ(with_poses.size(), objects.size()) << with_poses.dump();
@@ -87,8 +109,11 @@ TEST(Cli, LabelTwoSessionsAndTrainOnTheLabels) {
     // Without CAD models the moved chair is still an object (Movable), and the previous round's
     // detector (the default weights) names its class; the table never moved and no model says what
     // it is: it stays background.
-    r = run_makeway("label --sessions " + (dir / "room").string() + " " + (dir / "room2").string() + " --model " +
-                        (fs::path(MAKEWAY_SOURCE_DIR) / "models" / "detector.pt").string() + " --out " + (dir / "labels_net").string(), dir);
+    r = run_makeway("label --sessions " + (dir / "room").string() + " " + (dir / "room2").string() +
+                        " --model " +
+                        (fs::path(MAKEWAY_SOURCE_DIR) / "models" / "detector.pt").string() +
+                        " --out " + (dir / "labels_net").string(),
+                    dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const io::Json net = io::read_json(dir / "labels_net" / "objects.json")["objects"];
     bool chair_by_detector = false;
@@ -101,7 +126,9 @@ TEST(Cli, LabelTwoSessionsAndTrainOnTheLabels) {
     EXPECT_TRUE(chair_by_detector) << net.dump();
 
     // Bad input: one line naming the path, exit 2, nothing written.
-    r = run_makeway("label --sessions " + (dir / "room").string() + " " + (dir / "nowhere").string() + " --out " + (dir / "l2").string(), dir);
+    r = run_makeway("label --sessions " + (dir / "room").string() + " " +
+                        (dir / "nowhere").string() + " --out " + (dir / "l2").string(),
+                    dir);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(lines(r.err), 1u) << r.err;
     EXPECT_NE(r.err.find((dir / "nowhere").string()), std::string::npos) << r.err;

@@ -30,7 +30,8 @@ std::vector<std::string> leftovers(const fs::path& dir) {
     std::vector<std::string> out;
     for (const auto& e : fs::recursive_directory_iterator(dir)) {
         const std::string name = e.path().filename().string();
-        if (name.find(".staging") != std::string::npos || name.find(".tmp.") != std::string::npos) out.push_back(e.path().string());
+        if (name.find(".staging") != std::string::npos || name.find(".tmp.") != std::string::npos)
+            out.push_back(e.path().string());
     }
     return out;
 }
@@ -39,7 +40,8 @@ std::vector<std::string> leftovers(const fs::path& dir) {
 std::size_t count_files(const fs::path& dir) {
     std::error_code ec;
     std::size_t n = 0;
-    for (const auto& e : fs::directory_iterator(dir, ec)) n += e.path().filename().string().find(".tmp.") == std::string::npos;
+    for (const auto& e : fs::directory_iterator(dir, ec))
+        n += e.path().filename().string().find(".tmp.") == std::string::npos;
     return n;
 }
 
@@ -63,7 +65,9 @@ pid_t spawn_makeway(const std::vector<std::string>& args, const fs::path& dir) {
 int wait_exit(pid_t pid) {
     int status = 0;
     waitpid(pid, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
+    return WIFEXITED(status)     ? WEXITSTATUS(status)
+           : WIFSIGNALED(status) ? 128 + WTERMSIG(status)
+                                 : -1;
 }
 
 // Waits (at most 120 s) until `done` holds.
@@ -78,10 +82,11 @@ bool eventually(F done) {
 }
 
 class CliOutputs : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         dir_ = testing_util::fresh_dir("outputs");
-        const CliRun r = run_makeway("scene --seed 3 --out " + (dir_ / "scene" / "s.yaml").string(), dir_);
+        const CliRun r =
+            run_makeway("scene --seed 3 --out " + (dir_ / "scene" / "s.yaml").string(), dir_);
         ASSERT_EQ(r.exit_code, 0) << r.err;
         scene_ = (dir_ / "scene" / "s.yaml").string();
     }
@@ -92,11 +97,13 @@ protected:
 TEST_F(CliOutputs, InterruptedRecordingIsMarkedAndEveryFrameOnDiskIsWhole) {
     for (const int sig : {SIGINT, SIGTERM}) {
         const fs::path rec = dir_ / ("rec" + std::to_string(sig));
-        const pid_t pid = spawn_makeway({"simulate", "--scene", scene_, "--frames", "5000", "--out", rec.string()}, dir_);
+        const pid_t pid = spawn_makeway(
+            {"simulate", "--scene", scene_, "--frames", "5000", "--out", rec.string()}, dir_);
         ASSERT_TRUE(eventually([&] { return count_files(rec / "objects") >= 5; }));
         kill(pid, sig);
         EXPECT_EQ(wait_exit(pid), 128 + sig);
-        EXPECT_NE(slurp(dir_ / "spawn_err.txt").find("makeway: interrupted by SIG"), std::string::npos);
+        EXPECT_NE(slurp(dir_ / "spawn_err.txt").find("makeway: interrupted by SIG"),
+                  std::string::npos);
         ASSERT_TRUE(fs::exists(rec / "PARTIAL"));
         const io::Json s = io::Json::parse(slurp(rec / "summary.json"));
         EXPECT_EQ(s["complete"], false);
@@ -105,7 +112,8 @@ TEST_F(CliOutputs, InterruptedRecordingIsMarkedAndEveryFrameOnDiskIsWhole) {
         EXPECT_LT(frames, 5000u);
         EXPECT_EQ(count_files(rec / "clouds"), frames);
         EXPECT_EQ(count_files(rec / "objects"), frames);
-        EXPECT_EQ(lines(slurp(rec / "poses_gt.txt")), frames + 1) << "one header line and a pose per frame";
+        EXPECT_EQ(lines(slurp(rec / "poses_gt.txt")), frames + 1)
+            << "one header line and a pose per frame";
         EXPECT_EQ(lines(slurp(rec / "odometry.txt")), frames + 1);
     }
     EXPECT_TRUE(leftovers(dir_).empty());
@@ -114,7 +122,8 @@ TEST_F(CliOutputs, InterruptedRecordingIsMarkedAndEveryFrameOnDiskIsWhole) {
 TEST_F(CliOutputs, InterruptedNavigationWritesNothing) {
     // In the drive (nothing open yet) the program ends at once; nothing of the run is written.
     const fs::path out = dir_ / "nav";
-    const pid_t pid = spawn_makeway({"navigate", "--scene", scene_, "--method", "con", "--out", out.string()}, dir_);
+    const pid_t pid = spawn_makeway(
+        {"navigate", "--scene", scene_, "--method", "con", "--out", out.string()}, dir_);
     std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // the drive takes about 7 s
     kill(pid, SIGINT);
     EXPECT_EQ(wait_exit(pid), 130);
@@ -123,11 +132,13 @@ TEST_F(CliOutputs, InterruptedNavigationWritesNothing) {
 }
 
 TEST_F(CliOutputs, FullDiskLeavesNoHalfOutput) {
-    // A file-size limit makes every larger write fail as a full disk would (EFBIG instead of ENOSPC).
-    // At most 85 KiB per file (bash counts KiB): gt-perc's run.json (60 KiB) and the costmap (71 KiB)
-    // are written, the picture (89 KiB) is not; a 1.4 MB cloud is not.
+    // A file-size limit makes every larger write fail as a full disk would (EFBIG instead of
+    // ENOSPC). At most 85 KiB per file (bash counts KiB): gt-perc's run.json (60 KiB) and the
+    // costmap (71 KiB) are written, the picture (89 KiB) is not; a 1.4 MB cloud is not.
     const auto limited = [&](const std::string& args) {
-        return testing_util::run_shell("bash -c \"ulimit -f 85; trap '' XFSZ; exec " + std::string(MAKEWAY_BIN) + " " + args + "\"", dir_);
+        return testing_util::run_shell("bash -c \"ulimit -f 85; trap '' XFSZ; exec " +
+                                           std::string(MAKEWAY_BIN) + " " + args + "\"",
+                                       dir_);
     };
     // Recording: the first cloud (1.4 MB) cannot be written.
     const std::string rec = (dir_ / "rec").string();
@@ -140,10 +151,12 @@ TEST_F(CliOutputs, FullDiskLeavesNoHalfOutput) {
     EXPECT_EQ(count_files(fs::path(rec) / "clouds"), 0u);
     // Navigation: run.json and the costmap fit, the picture does not: none of them is delivered,
     // and the error names the file the user asked for, not the staging folder.
-    r = limited("navigate --scene " + scene_ + " --method gt-perc --out " + (dir_ / "nav").string());
+    r = limited("navigate --scene " + scene_ + " --method gt-perc --out " +
+                (dir_ / "nav").string());
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_EQ(lines(r.err), 1u) << r.err;
-    EXPECT_EQ(r.err, "makeway: " + (dir_ / "nav" / "route.png").string() + ": write failed: File too large\n");
+    EXPECT_EQ(r.err, "makeway: " + (dir_ / "nav" / "route.png").string() +
+                         ": write failed: File too large\n");
     EXPECT_FALSE(fs::exists(dir_ / "nav"));
     EXPECT_TRUE(leftovers(dir_).empty());
 }

@@ -8,9 +8,9 @@
 #include "../sim/sim_test_util.hpp"
 #include "cli_test_util.hpp"
 #include "io/json_io.hpp"
-#include "makeway/common/angles.hpp"
 #include "io/mesh_io.hpp"
 #include "io/point_cloud_io.hpp"
+#include "makeway/common/angles.hpp"
 #include "makeway/sim/furniture.hpp"
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/scene_dynamics.hpp"
@@ -43,7 +43,9 @@ Scan write_chair_scan(const std::filesystem::path& dir) {
     sim::World world(s, {model});
     const Isometry3 T_world_sensor = make_T_xyz_yaw({-1.5, 0.0, 0.45}, 0.0);
     PointCloud raw;
-    for (int k = 0; k < 5; ++k) raw.append(sim::simulate_sweep(world, {}, [&](double) { return T_world_sensor; }, 0.1 * k, 4, k));
+    for (int k = 0; k < 5; ++k)
+        raw.append(sim::simulate_sweep(
+            world, {}, [&](double) { return T_world_sensor; }, 0.1 * k, 4, k));
     Scan out;
     out.cloud = dir / "chair.pcd";
     io::write_point_cloud(out.cloud, raw);
@@ -55,7 +57,8 @@ Scan write_chair_scan(const std::filesystem::path& dir) {
 
 std::string box_arg(const OrientedBox& b, double yaw) {
     std::ostringstream s;
-    s << b.centre_m.x() << "," << b.centre_m.y() << "," << b.centre_m.z() << "," << b.size_m.x() << "," << b.size_m.y() << "," << b.size_m.z() << "," << yaw;
+    s << b.centre_m.x() << "," << b.centre_m.y() << "," << b.centre_m.z() << "," << b.size_m.x()
+      << "," << b.size_m.y() << "," << b.size_m.z() << "," << yaw;
     return s.str();
 }
 
@@ -63,9 +66,11 @@ TEST(CliShape, CompleteGivesAMeshWhereTheChairStands) {
     const auto dir = testing_util::fresh_dir("cli_complete");
     const Scan scan = write_chair_scan(dir);
     // The detector's box, its yaw a quarter turn off: F_n decides the yaw, not the box.
-    const auto r = run_makeway("complete --model " + kModel + " --cloud " + scan.cloud.string() + " --box " +
-                                   box_arg(scan.box_sensor, scan.box_sensor.yaw_rad + M_PI / 2) + " --class chair --out " + (dir / "chair.obj").string(),
-                               dir);
+    const auto r =
+        run_makeway("complete --model " + kModel + " --cloud " + scan.cloud.string() + " --box " +
+                        box_arg(scan.box_sensor, scan.box_sensor.yaw_rad + M_PI / 2) +
+                        " --class chair --out " + (dir / "chair.obj").string(),
+                    dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const io::Json j = io::Json::parse(r.out);
     EXPECT_GT(j.at("points").get<int>(), 100);
@@ -78,10 +83,13 @@ TEST(CliShape, CompleteGivesAMeshWhereTheChairStands) {
     const TriangleMesh mesh = io::read_mesh(dir / "chair.obj");
     ASSERT_GT(mesh.triangles.size(), 100u);
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = -lo;
-    for (const auto& v : mesh.vertices_m) lo = lo.cwiseMin(v.cast<double>()), hi = hi.cwiseMax(v.cast<double>());
+    for (const auto& v : mesh.vertices_m)
+        lo = lo.cwiseMin(v.cast<double>()), hi = hi.cwiseMax(v.cast<double>());
     // The completed shape overlaps the true box.
-    const Eigen::Vector3d tlo = scan.box_sensor.centre_m - scan.box_sensor.size_m / 2, thi = scan.box_sensor.centre_m + scan.box_sensor.size_m / 2;
-    EXPECT_TRUE((lo.head<2>().array() < thi.head<2>().array() + 0.3).all() && (hi.head<2>().array() > tlo.head<2>().array() - 0.3).all());
+    const Eigen::Vector3d tlo = scan.box_sensor.centre_m - scan.box_sensor.size_m / 2,
+                          thi = scan.box_sensor.centre_m + scan.box_sensor.size_m / 2;
+    EXPECT_TRUE((lo.head<2>().array() < thi.head<2>().array() + 0.3).all() &&
+                (hi.head<2>().array() > tlo.head<2>().array() - 0.3).all());
     EXPECT_GT(hi.z(), tlo.z());
     EXPECT_LT(lo.z(), thi.z());
 }
@@ -89,15 +97,19 @@ TEST(CliShape, CompleteGivesAMeshWhereTheChairStands) {
 TEST(CliShape, BadInputIsOneLineAndExitTwo) {
     const auto dir = testing_util::fresh_dir("cli_complete_bad");
     const Scan scan = write_chair_scan(dir);
-    const std::string base = "complete --model " + kModel + " --cloud " + scan.cloud.string() + " --out " + (dir / "x.obj").string();
+    const std::string base = "complete --model " + kModel + " --cloud " + scan.cloud.string() +
+                             " --out " + (dir / "x.obj").string();
     const std::vector<std::pair<std::string, std::string>> cases = {
         {base + " --class chair --box 1,2,3", "--box: expected 7 comma-separated numbers, got 3"},
         {base + " --class chair --box 1,2,3,a,1,1,0", "--box: 'a' is not a finite number"},
-        {base + " --class chair --box 1,2,3,0,1,1,0", "--box: length, width and height must be positive"},
-        {base + " --class sofa --box 1,2,3,1,1,1,0", "--class: 'sofa' has no shape networks (chair or table)"},
-        {base + " --class chair --box 30,30,0,1,1,1,0", scan.cloud.string() + ": 0 returns inside the box"},
-        {"complete --model " + (dir / "none.pt").string() + " --cloud " + scan.cloud.string() + " --class chair --box 1,2,3,1,1,1,0 --out " +
-             (dir / "y.obj").string(),
+        {base + " --class chair --box 1,2,3,0,1,1,0",
+         "--box: length, width and height must be positive"},
+        {base + " --class sofa --box 1,2,3,1,1,1,0",
+         "--class: 'sofa' has no shape networks (chair or table)"},
+        {base + " --class chair --box 30,30,0,1,1,1,0",
+         scan.cloud.string() + ": 0 returns inside the box"},
+        {"complete --model " + (dir / "none.pt").string() + " --cloud " + scan.cloud.string() +
+             " --class chair --box 1,2,3,1,1,1,0 --out " + (dir / "y.obj").string(),
          (dir / "none.pt").string() + ": no such shape model file"},
     };
     for (const auto& [args, message] : cases) {

@@ -83,12 +83,12 @@ TEST(BoxOverlap, DegenerateBoxesGiveDefinedValues) {
 TEST(BoxOverlap, SymmetricAndBounded) {
     Rng rng = make_rng(7);
     for (int i = 0; i < 500; ++i) {
-        const OrientedBox a = box(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, 0, 1),
-                                  uniform(rng, 0.2, 2), uniform(rng, 0.2, 2), uniform(rng, 0.2, 2),
-                                  uniform(rng, -kPi, kPi));
-        const OrientedBox b = box(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, 0, 1),
-                                  uniform(rng, 0.2, 2), uniform(rng, 0.2, 2), uniform(rng, 0.2, 2),
-                                  uniform(rng, -kPi, kPi));
+        const OrientedBox a =
+            box(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, 0, 1), uniform(rng, 0.2, 2),
+                uniform(rng, 0.2, 2), uniform(rng, 0.2, 2), uniform(rng, -kPi, kPi));
+        const OrientedBox b =
+            box(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, 0, 1), uniform(rng, 0.2, 2),
+                uniform(rng, 0.2, 2), uniform(rng, 0.2, 2), uniform(rng, -kPi, kPi));
         const BoxOverlap ab = box_overlap_3d(a, b);
         const BoxOverlap ba = box_overlap_3d(b, a);
         EXPECT_NEAR(ab.iou, ba.iou, 1e-9);
@@ -107,10 +107,10 @@ TEST(BoxOverlap, MatchesMonteCarloOnRandomPairs) {
     for (int pair = 0; pair < 12; ++pair) {
         const OrientedBox a = box(0, 0, 0.5, uniform(rng, 0.5, 2), uniform(rng, 0.5, 2),
                                   uniform(rng, 0.5, 1.5), uniform(rng, -kPi, kPi));
-        const OrientedBox b = box(uniform(rng, -0.6, 0.6), uniform(rng, -0.6, 0.6),
-                                  uniform(rng, 0.2, 0.8), uniform(rng, 0.5, 2),
-                                  uniform(rng, 0.5, 2), uniform(rng, 0.5, 1.5),
-                                  uniform(rng, -kPi, kPi));
+        const OrientedBox b =
+            box(uniform(rng, -0.6, 0.6), uniform(rng, -0.6, 0.6), uniform(rng, 0.2, 0.8),
+                uniform(rng, 0.5, 2), uniform(rng, 0.5, 2), uniform(rng, 0.5, 1.5),
+                uniform(rng, -kPi, kPi));
         Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = -lo;
         for (const auto& c : a.corners()) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
         for (const auto& c : b.corners()) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);

@@ -42,9 +42,9 @@ TEST(Inflation, HandComputedCellsAroundOneObstacle) {
     lc.update({});
     const Costmap& m = lc.master();
     EXPECT_EQ(m.at(50, 50), cost::kLethal);
-    EXPECT_EQ(m.at(54, 50), cost::kInscribed);                 // 0.20 m
-    EXPECT_EQ(m.at(55, 50), inflation_cost(0.25, {}));         // 0.25 m
-    EXPECT_EQ(m.at(53, 54), inflation_cost(0.25, {}));         // 3-4-5 triangle: 0.25 m
+    EXPECT_EQ(m.at(54, 50), cost::kInscribed);          // 0.20 m
+    EXPECT_EQ(m.at(55, 50), inflation_cost(0.25, {}));  // 0.25 m
+    EXPECT_EQ(m.at(53, 54), inflation_cost(0.25, {}));  // 3-4-5 triangle: 0.25 m
     EXPECT_EQ(m.at(50, 61), inflation_cost(0.55, {}));
     EXPECT_EQ(m.at(50, 62), cost::kFree);
 }
@@ -54,7 +54,8 @@ TEST(Inflation, DistanceTransformMatchesBruteForce) {
     Rng rng = make_rng(3);
     std::vector<Eigen::Vector2i> lethal;
     for (int i = 0; i < 12; ++i) {
-        const Eigen::Vector2i c(static_cast<int>(uniform_int(rng, 0, 39)), static_cast<int>(uniform_int(rng, 0, 39)));
+        const Eigen::Vector2i c(static_cast<int>(uniform_int(rng, 0, 39)),
+                                static_cast<int>(uniform_int(rng, 0, 39)));
         m.at(c.x(), c.y()) = cost::kLethal;
         lethal.push_back(c);
     }
@@ -63,7 +64,9 @@ TEST(Inflation, DistanceTransformMatchesBruteForce) {
     for (int y = 0; y < 40; ++y) {
         for (int x = 0; x < 40; ++x) {
             double best = 1e30;
-            for (const auto& c : lethal) best = std::min(best, double((c.x() - x) * (c.x() - x) + (c.y() - y) * (c.y() - y)));
+            for (const auto& c : lethal)
+                best =
+                    std::min(best, double((c.x() - x) * (c.x() - x) + (c.y() - y) * (c.y() - y)));
             ASSERT_EQ(d2[y * 40 + x], best) << x << " " << y;
         }
     }
@@ -75,11 +78,13 @@ TEST(Inflation, DistanceTransformMatchesBruteForce) {
 TEST(Inflation, TabledCostsEqualTheFormulaAtEveryCell) {
     Rng rng = make_rng(5);
     for (const double resolution : {0.05, 0.1}) {
-        for (const InflationParams p : {InflationParams{}, InflationParams{0.2, 0.73, 2.0}, InflationParams{0.3, 0.3, 5.0}}) {
+        for (const InflationParams p :
+             {InflationParams{}, InflationParams{0.2, 0.73, 2.0}, InflationParams{0.3, 0.3, 5.0}}) {
             Costmap walls({0, 0}, resolution, 60, 60);
             std::vector<Eigen::Vector2i> lethal;
             for (int i = 0; i < 8; ++i) {
-                lethal.emplace_back(static_cast<int>(uniform_int(rng, 0, 59)), static_cast<int>(uniform_int(rng, 0, 59)));
+                lethal.emplace_back(static_cast<int>(uniform_int(rng, 0, 59)),
+                                    static_cast<int>(uniform_int(rng, 0, 59)));
                 walls.at(lethal.back().x(), lethal.back().y()) = cost::kLethal;
             }
             LayeredCostmap lc(Costmap({0, 0}, resolution, 60, 60));
@@ -89,9 +94,13 @@ TEST(Inflation, TabledCostsEqualTheFormulaAtEveryCell) {
             for (int y = 0; y < 60; ++y) {
                 for (int x = 0; x < 60; ++x) {
                     int best = 1 << 30;
-                    for (const auto& c : lethal) best = std::min(best, (c.x() - x) * (c.x() - x) + (c.y() - y) * (c.y() - y));
-                    ASSERT_EQ(lc.master().at(x, y), inflation_cost(std::sqrt(static_cast<double>(best)) * resolution, p))
-                        << x << " " << y << " resolution " << resolution << " radius " << p.inflation_radius_m;
+                    for (const auto& c : lethal)
+                        best =
+                            std::min(best, (c.x() - x) * (c.x() - x) + (c.y() - y) * (c.y() - y));
+                    ASSERT_EQ(lc.master().at(x, y),
+                              inflation_cost(std::sqrt(static_cast<double>(best)) * resolution, p))
+                        << x << " " << y << " resolution " << resolution << " radius "
+                        << p.inflation_radius_m;
                 }
             }
         }
@@ -103,26 +112,31 @@ TEST(Affordance, ChairZoneIsAnEllipseAlongTheChairAxis) {
     for (double yaw : {0.0, 0.7, kPi / 2}) {
         const ObjectEstimate chair = object(ObjectClass::kChair, {2, 2}, 0.5, 0.5, yaw);
         const Eigen::Vector2d fwd(std::cos(yaw), std::sin(yaw)), side(-fwd.y(), fwd.x());
-        EXPECT_TRUE(in_affordance_zone(chair, p, Eigen::Vector2d(2, 2) + 0.8 * fwd));   // pulled-out path
+        EXPECT_TRUE(
+            in_affordance_zone(chair, p, Eigen::Vector2d(2, 2) + 0.8 * fwd));  // pulled-out path
         EXPECT_TRUE(in_affordance_zone(chair, p, Eigen::Vector2d(2, 2) - 0.8 * fwd));
-        EXPECT_FALSE(in_affordance_zone(chair, p, Eigen::Vector2d(2, 2) + 0.8 * side));  // narrow sideways
+        EXPECT_FALSE(
+            in_affordance_zone(chair, p, Eigen::Vector2d(2, 2) + 0.8 * side));  // narrow sideways
         EXPECT_FALSE(in_affordance_zone(chair, p, Eigen::Vector2d(2, 2) + 0.9 * fwd));
         EXPECT_EQ(zone_cost(chair, p, {2, 2}), 220);  // peak on the chair
-        EXPECT_LT(zone_cost(chair, p, Eigen::Vector2d(2, 2) + 0.8 * fwd), zone_cost(chair, p, Eigen::Vector2d(2, 2) + 0.4 * fwd));
+        EXPECT_LT(zone_cost(chair, p, Eigen::Vector2d(2, 2) + 0.8 * fwd),
+                  zone_cost(chair, p, Eigen::Vector2d(2, 2) + 0.4 * fwd));
     }
 }
 
 TEST(Affordance, TableIsPaddedOnItsSittingSidesOnly) {
     const AffordanceParams p;
-    const ObjectEstimate table = object(ObjectClass::kTable, {0, 0}, 1.6, 0.8, kPi / 2);  // long axis along world y
-    EXPECT_TRUE(in_affordance_zone(table, p, {0.4 + 0.7, 0.0}));    // 0.7 m beside a long side
+    const ObjectEstimate table =
+        object(ObjectClass::kTable, {0, 0}, 1.6, 0.8, kPi / 2);   // long axis along world y
+    EXPECT_TRUE(in_affordance_zone(table, p, {0.4 + 0.7, 0.0}));  // 0.7 m beside a long side
     EXPECT_FALSE(in_affordance_zone(table, p, {0.4 + 0.8, 0.0}));
-    EXPECT_TRUE(in_affordance_zone(table, p, {0.0, 0.8 + 0.1}));    // 0.1 m beyond an end
-    EXPECT_FALSE(in_affordance_zone(table, p, {0.0, 0.8 + 0.3}));   // ends are not sat at
+    EXPECT_TRUE(in_affordance_zone(table, p, {0.0, 0.8 + 0.1}));   // 0.1 m beyond an end
+    EXPECT_FALSE(in_affordance_zone(table, p, {0.0, 0.8 + 0.3}));  // ends are not sat at
     const ObjectEstimate round = object(ObjectClass::kTable, {0, 0}, 1.0, 1.0, 0.3);
     const Eigen::Vector2d x(std::cos(0.3), std::sin(0.3));
     EXPECT_TRUE(in_affordance_zone(round, p, 1.2 * x));  // square tables: sat at all round
-    for (double d = 0.0; d < 2.0; d += 0.05) EXPECT_LE(zone_cost(table, p, {d, 0.0}), cost::kMaxSoft);
+    for (double d = 0.0; d < 2.0; d += 0.05)
+        EXPECT_LE(zone_cost(table, p, {d, 0.0}), cost::kMaxSoft);
 }
 
 TEST(AffordanceLayer, MovedObjectLeavesNoStaleCost) {
@@ -147,7 +161,9 @@ TEST(ObstacleLayer, MarksReturnsAndClearsAlongRays) {
     LayeredCostmap lc(grid());
     lc.add_layer(std::make_unique<ObstacleLayer>(grid(), ObstacleLayerParams{}));
     PointCloud pts;
-    pts.xyz = {{3.0f, 2.5f, 0.3f}, {3.0f, 2.5f, 0.02f} /* floor: no mark */, {1.0f, 1.0f, 2.0f} /* high */};
+    pts.xyz = {{3.0f, 2.5f, 0.3f},
+               {3.0f, 2.5f, 0.02f} /* floor: no mark */,
+               {1.0f, 1.0f, 2.0f} /* high */};
     LayerInput in;
     in.points_world = &pts;
     in.sensor_world_m = {0.5, 2.5, 0.45};
@@ -164,7 +180,8 @@ TEST(ObstacleLayer, MarksReturnsAndClearsAlongRays) {
 // The reference: Zingl's error-term Bresenham loop (the obstacle layer's walk before issue 31).
 std::vector<Eigen::Vector2i> bresenham(int x, int y, int ex, int ey) {
     std::vector<Eigen::Vector2i> out;
-    const int dx = std::abs(ex - x), dy = -std::abs(ey - y), sx = x < ex ? 1 : -1, sy = y < ey ? 1 : -1;
+    const int dx = std::abs(ex - x), dy = -std::abs(ey - y), sx = x < ex ? 1 : -1,
+              sy = y < ey ? 1 : -1;
     int err = dx + dy;
     while (x != ex || y != ey) {
         out.emplace_back(x, y);
@@ -181,14 +198,19 @@ std::vector<Eigen::Vector2i> bresenham(int x, int y, int ex, int ey) {
 TEST(RayWalk, VisitsBresenhamsCellsAndSkipsOnlyEmptyBlocks) {
     Rng rng = make_rng(7);
     for (int k = 0; k < 20020; ++k) {
-        const int span = k < 20000 ? 40 : 40000;  // the last 20: long enough that a jump needs 64-bit arithmetic
-        const int x0 = static_cast<int>(uniform_int(rng, -span, span)), y0 = static_cast<int>(uniform_int(rng, -span, span));
-        const int x1 = static_cast<int>(uniform_int(rng, -span, span)), y1 = static_cast<int>(uniform_int(rng, -span, span));
+        const int span =
+            k < 20000 ? 40 : 40000;  // the last 20: long enough that a jump needs 64-bit arithmetic
+        const int x0 = static_cast<int>(uniform_int(rng, -span, span)),
+                  y0 = static_cast<int>(uniform_int(rng, -span, span));
+        const int x1 = static_cast<int>(uniform_int(rng, -span, span)),
+                  y1 = static_cast<int>(uniform_int(rng, -span, span));
         const int block = static_cast<int>(uniform_int(rng, 1, 9));
         const double p_empty = k % 3 == 0 ? 0.0 : uniform(rng, 0.0, 1.0);
         const std::uint64_t salt = rng();
         auto empty = [&](int bx, int by) {  // a fixed random block map for this ray
-            return p_empty > 0.0 && counter_uniform(salt, static_cast<std::uint64_t>((bx + 1000) * 4096 + (by + 1000))) < p_empty;
+            return p_empty > 0.0 &&
+                   counter_uniform(salt, static_cast<std::uint64_t>((bx + 1000) * 4096 +
+                                                                    (by + 1000))) < p_empty;
         };
         std::vector<Eigen::Vector2i> expected;
         for (const Eigen::Vector2i& c : bresenham(x0, y0, x1, y1)) {
@@ -196,14 +218,15 @@ TEST(RayWalk, VisitsBresenhamsCellsAndSkipsOnlyEmptyBlocks) {
         }
         std::vector<Eigen::Vector2i> got;
         walk_ray(x0, y0, x1, y1, block, empty, [&](int x, int y) { got.emplace_back(x, y); });
-        ASSERT_EQ(got, expected) << "(" << x0 << "," << y0 << ") -> (" << x1 << "," << y1 << ") block " << block;
+        ASSERT_EQ(got, expected) << "(" << x0 << "," << y0 << ") -> (" << x1 << "," << y1
+                                 << ") block " << block;
     }
 }
 
 // A layer that asks for the whole map every update: with it the master is recomposed everywhere,
 // the reference the windowed updates must equal.
 class WholeMapLayer : public Layer {
-public:
+  public:
     std::string name() const override { return "whole_map"; }
     void update_bounds(const Costmap& master, const LayerInput&, GridWindow& window) override {
         window.expand({0, 0, master.width, master.height});
@@ -217,7 +240,8 @@ public:
 // robot that drives; every update the master equals a full recomposition, cell for cell.
 TEST(LayeredCostmap, ChangedWindowsEqualAFullRecomposition) {
     Costmap walls = grid(240);  // 12 m; the room is 8 m across
-    for (int i = 0; i < 160; ++i) walls.at(i, 0) = walls.at(0, i) = walls.at(i, 159) = cost::kLethal;
+    for (int i = 0; i < 160; ++i)
+        walls.at(i, 0) = walls.at(0, i) = walls.at(i, 159) = cost::kLethal;
     for (int i = 40; i < 90; ++i) walls.at(120, i) = cost::kLethal;
     auto make = [&](bool reference) {
         auto lc = std::make_unique<LayeredCostmap>(grid(240));
@@ -250,15 +274,24 @@ TEST(LayeredCostmap, ChangedWindowsEqualAFullRecomposition) {
                 if (dir[axis] < -1e-9) r = std::min(r, (0.05 - robot[axis]) / dir[axis]);
             }
             if (!quiet) r += normal(rng, 0.0, 0.01);
-            for (double z : {0.02, 0.3, 0.9}) pts.xyz.emplace_back(static_cast<float>(robot.x() + r * dir.x()), static_cast<float>(robot.y() + r * dir.y()), static_cast<float>(z));
+            for (double z : {0.02, 0.3, 0.9})
+                pts.xyz.emplace_back(static_cast<float>(robot.x() + r * dir.x()),
+                                     static_cast<float>(robot.y() + r * dir.y()),
+                                     static_cast<float>(z));
         }
         const Eigen::Vector2d walker(3.0 + 0.05 * k, 4.0);
-        for (int a = 0; a < 24 && !quiet; ++a) pts.xyz.emplace_back(static_cast<float>(walker.x() + 0.2 * std::cos(a * 0.26)), static_cast<float>(walker.y() + 0.2 * std::sin(a * 0.26)), 0.8f);
-        if (k % 4 < 2) pts.xyz.emplace_back(4.0f, 5.5f, 0.3f);  // a leg seen every other pair of sweeps
-        if (k % 5 == 2) objects[0].box_world.centre_m.x() += 0.1;           // a chair pulled out
-        if (k % 9 == 5) objects[1].existence = objects[1].existence > 0.5 ? 0.2 : 0.9;  // below min_existence and back
-        if (k == 32) objects.pop_back();                                   // gone
-        if (k == 41) objects.push_back(object(ObjectClass::kChair, {3.0, 2.5}, 0.5, 0.5, 1.0));  // new
+        for (int a = 0; a < 24 && !quiet; ++a)
+            pts.xyz.emplace_back(static_cast<float>(walker.x() + 0.2 * std::cos(a * 0.26)),
+                                 static_cast<float>(walker.y() + 0.2 * std::sin(a * 0.26)), 0.8f);
+        if (k % 4 < 2)
+            pts.xyz.emplace_back(4.0f, 5.5f, 0.3f);  // a leg seen every other pair of sweeps
+        if (k % 5 == 2) objects[0].box_world.centre_m.x() += 0.1;  // a chair pulled out
+        if (k % 9 == 5)
+            objects[1].existence =
+                objects[1].existence > 0.5 ? 0.2 : 0.9;  // below min_existence and back
+        if (k == 32) objects.pop_back();                 // gone
+        if (k == 41)
+            objects.push_back(object(ObjectClass::kChair, {3.0, 2.5}, 0.5, 0.5, 1.0));  // new
         LayerInput in;
         in.points_world = k % 3 == 2 ? nullptr : &pts;  // every third update the objects alone
         in.sensor_world_m = {robot.x(), robot.y(), 0.45};
@@ -267,10 +300,12 @@ TEST(LayeredCostmap, ChangedWindowsEqualAFullRecomposition) {
         const UpdateResult w = windowed->update(in);
         reference->update(in);
         ASSERT_EQ(windowed->master().cost, reference->master().cost) << "update " << k;
-        for (std::size_t i = 0; i < before.cost.size(); ++i) cells_changed += before.cost[i] != windowed->master().cost[i];
-        if (k > 0 && (w.window.x1 - w.window.x0) * (w.window.y1 - w.window.y0) < 240 * 240 / 2) ++updates_with_small_windows;
+        for (std::size_t i = 0; i < before.cost.size(); ++i)
+            cells_changed += before.cost[i] != windowed->master().cost[i];
+        if (k > 0 && (w.window.x1 - w.window.x0) * (w.window.y1 - w.window.y0) < 240 * 240 / 2)
+            ++updates_with_small_windows;
     }
-    EXPECT_GT(cells_changed, 500u);               // the comparison is not of two idle maps
+    EXPECT_GT(cells_changed, 500u);              // the comparison is not of two idle maps
     EXPECT_GT(updates_with_small_windows, 30u);  // and the windows are smaller than the map
 }
 

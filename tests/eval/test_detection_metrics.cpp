@@ -14,10 +14,13 @@ Detection det(double x, double score, ObjectClass cls = ObjectClass::kChair, dou
     return d;
 }
 
-LabelledBox gt(double x, ObjectClass cls = ObjectClass::kChair) { return {cls, {{x, 0.0, 0.5}, {1.0, 1.0, 1.0}, 0.0}}; }
+LabelledBox gt(double x, ObjectClass cls = ObjectClass::kChair) {
+    return {cls, {{x, 0.0, 0.5}, {1.0, 1.0, 1.0}, 0.0}};
+}
 
 TEST(DetectionMetrics, AveragePrecisionByHand) {
-    // TP, FP, TP over 2 positives: precision 1, 1/2, 2/3 at recall 1/2, 1/2, 1; envelope 1, 2/3, 2/3.
+    // TP, FP, TP over 2 positives: precision 1, 1/2, 2/3 at recall 1/2, 1/2, 1; envelope 1, 2/3,
+    // 2/3.
     EXPECT_NEAR(average_precision({true, false, true}, 2), 0.5 * 1.0 + 0.5 * (2.0 / 3.0), 1e-12);
     EXPECT_DOUBLE_EQ(average_precision({true, true}, 2), 1.0);
     EXPECT_DOUBLE_EQ(average_precision({false, true}, 1), 0.5);
@@ -30,12 +33,13 @@ TEST(DetectionMetrics, MatchesAtBothThresholdsAndScoresYaw) {
     const std::vector<std::vector<Detection>> dets{
         {det(0, 0.9, ObjectClass::kChair, kPi), det(5.4, 0.8), det(10, 0.7)},
         {det(20, 0.6, ObjectClass::kTable)}};
-    const std::vector<std::vector<LabelledBox>> truth{{gt(0), gt(5)}, {gt(20, ObjectClass::kTable), gt(30, ObjectClass::kTable)}};
+    const std::vector<std::vector<LabelledBox>> truth{
+        {gt(0), gt(5)}, {gt(20, ObjectClass::kTable), gt(30, ObjectClass::kTable)}};
     const DetectionMetrics m = evaluate_detections(dets, truth);
     const auto& chair = m.per_class.at(ObjectClass::kChair);
-    EXPECT_DOUBLE_EQ(chair.ap_25, 1.0);    // TP, TP, FP
+    EXPECT_DOUBLE_EQ(chair.ap_25, 1.0);  // TP, TP, FP
     EXPECT_DOUBLE_EQ(chair.ar_25, 1.0);
-    EXPECT_DOUBLE_EQ(chair.ap_50, 0.5);    // TP, FP, FP
+    EXPECT_DOUBLE_EQ(chair.ap_50, 0.5);  // TP, FP, FP
     EXPECT_DOUBLE_EQ(chair.ar_50, 0.5);
     EXPECT_DOUBLE_EQ(chair.yaw_within_10deg, 0.5);  // the flipped one is wrong
     const auto& table = m.per_class.at(ObjectClass::kTable);

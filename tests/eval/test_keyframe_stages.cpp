@@ -12,8 +12,12 @@ LabelledKeyframe drive_keyframe(std::uint32_t sequence, int k, bool chair_seen, 
     kf.stamp_s = 0.5 * k;
     kf.T_world_sensor = make_T_xyz_yaw({0.5 * k, 0.0, 0.45}, 0.0);
     const Isometry3 T_sensor_world = kf.T_world_sensor.inverse();
-    const LabelledObject chair{1, ObjectClass::kChair, "office_chair", OrientedBox{{3.0, 1.0, 0.45}, {0.6, 0.6, 0.9}, 0.3}.transformed(T_sensor_world), 80};
-    const LabelledObject table{2, ObjectClass::kTable, "rect_table", OrientedBox{{5.0, -2.0, 0.37}, {1.6, 0.8, 0.74}, 0.0}.transformed(T_sensor_world), 200};
+    const LabelledObject chair{
+        1, ObjectClass::kChair, "office_chair",
+        OrientedBox{{3.0, 1.0, 0.45}, {0.6, 0.6, 0.9}, 0.3}.transformed(T_sensor_world), 80};
+    const LabelledObject table{
+        2, ObjectClass::kTable, "rect_table",
+        OrientedBox{{5.0, -2.0, 0.37}, {1.6, 0.8, 0.74}, 0.0}.transformed(T_sensor_world), 200};
     (chair_seen ? kf.objects : kf.unseen).push_back(chair);
     (table_seen ? kf.objects : kf.unseen).push_back(table);
     return kf;
@@ -22,8 +26,9 @@ LabelledKeyframe drive_keyframe(std::uint32_t sequence, int k, bool chair_seen, 
 TEST(KeyframeStages, MapGroundTruthKeepsWhatTheDriveHasSeen) {
     // Sequence 0: the table is hidden at first, then seen, then hidden again; the chair is seen,
     // then hidden. Sequence 1 starts over: nothing has been seen there.
-    const std::vector<LabelledKeyframe> kfs{drive_keyframe(0, 0, true, false), drive_keyframe(0, 1, false, true),
-                                            drive_keyframe(0, 2, false, false), drive_keyframe(1, 0, false, false)};
+    const std::vector<LabelledKeyframe> kfs{
+        drive_keyframe(0, 0, true, false), drive_keyframe(0, 1, false, true),
+        drive_keyframe(0, 2, false, false), drive_keyframe(1, 0, false, false)};
     const auto gt = map_ground_truth_of(kfs);
     ASSERT_EQ(gt.size(), 4u);
     EXPECT_EQ(gt[0].size(), 1u);  // the chair; the table never seen yet
@@ -62,7 +67,8 @@ TEST(KeyframeStages, TrackedObjectsAppearOnceConfirmedInEachKeyframesFrame) {
     const auto gt = map_ground_truth_of(kfs);
     for (std::size_t k = 1; k < 4; ++k) {
         const DetectionMetrics m = evaluate_detections({tracked[k]}, {gt[k]});
-        EXPECT_DOUBLE_EQ(m.mar_50, 1.0) << "keyframe " << k;  // boxes land in the keyframe's sensor frame
+        EXPECT_DOUBLE_EQ(m.mar_50, 1.0)
+            << "keyframe " << k;  // boxes land in the keyframe's sensor frame
     }
     // Objects beyond the labelling range are left out, as the ground truth leaves them out.
     const auto near = track_keyframes(kfs, dets, {}, 3.0);

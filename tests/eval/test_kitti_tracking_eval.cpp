@@ -8,8 +8,8 @@
 namespace makeway::eval {
 namespace {
 
-KittiBox car(int id, double x, double y, std::array<double, 4> bbox = {100, 100, 200, 200}, double score = 1.0,
-             std::string type = "car") {
+KittiBox car(int id, double x, double y, std::array<double, 4> bbox = {100, 100, 200, 200},
+             double score = 1.0, std::string type = "car") {
     KittiBox b;
     b.track_id = id;
     b.type = std::move(type);
@@ -32,12 +32,17 @@ TEST(KittiEval, DontCareNeighboursAndTruncationAreIgnoredAsTheDevkitDoes) {
     // (50 px tall: a real false positive) and one only 20 px tall (too small: ignored).
     KittiBox truncated = car(3, 30, -5);
     truncated.truncation = 1;
-    const KittiFrame g{car(1, 10, 0), car(2, 20, 5, {100, 100, 200, 200}, 1.0, "van"), truncated, dont_care({500, 100, 600, 200})};
-    const KittiFrame t{car(11, 10, 0), car(12, 20, 5), car(13, 30, -5), car(14, 40, 10, {510, 110, 590, 190}),
-                       car(15, 50, -10, {300, 100, 400, 150}), car(16, 60, 10, {700, 100, 750, 120})};
+    const KittiFrame g{car(1, 10, 0), car(2, 20, 5, {100, 100, 200, 200}, 1.0, "van"), truncated,
+                       dont_care({500, 100, 600, 200})};
+    const KittiFrame t{car(11, 10, 0),
+                       car(12, 20, 5),
+                       car(13, 30, -5),
+                       car(14, 40, 10, {510, 110, 590, 190}),
+                       car(15, 50, -10, {300, 100, 400, 150}),
+                       car(16, 60, 10, {700, 100, 750, 120})};
     const KittiClear m = evaluate_kitti_at({{g}}, {{t}}, {}, -1e9);
-    EXPECT_EQ(m.tp, 3u);          // the devkit's tp counts ignored true positives
-    EXPECT_EQ(m.ignored_tp, 2u);  // the van and the truncated car
+    EXPECT_EQ(m.tp, 3u);               // the devkit's tp counts ignored true positives
+    EXPECT_EQ(m.ignored_tp, 2u);       // the van and the truncated car
     EXPECT_EQ(m.ignored_tracker, 2u);  // in the DontCare area; too small
     EXPECT_EQ(m.fp, 1u);
     EXPECT_EQ(m.fn, 0u);
@@ -46,7 +51,8 @@ TEST(KittiEval, DontCareNeighboursAndTruncationAreIgnoredAsTheDevkitDoes) {
     EXPECT_NEAR(m.motp, 1.0, 1e-9);
     // Without the protocol's ignore rules the same boxes score 3 ground truth, 3 false positives.
     KittiEvalParams raw;
-    raw.use_dont_care = false, raw.ignore_neighbours = false, raw.max_truncation = 2, raw.min_height_px = 0;
+    raw.use_dont_care = false, raw.ignore_neighbours = false, raw.max_truncation = 2,
+    raw.min_height_px = 0;
     const KittiClear r = evaluate_kitti_at({{g}}, {{t}}, raw, -1e9);
     EXPECT_EQ(r.gt, 2u);  // the van is no longer loaded for "car"
     EXPECT_EQ(r.fp, 4u);  // ... and the tracker's box on it is a false positive
@@ -86,7 +92,8 @@ TEST(KittiEval, ThresholdsFollowRecallStepsAndTheSweepAveragesThem) {
     const std::vector<double> scores{0.9, 0.8, 0.7, 0.6};
     for (std::size_t k = 0; k < 4; ++k) {
         gt.push_back({car(static_cast<int>(k + 1), 10.0 + 10 * k, 0)});
-        tr.push_back({car(static_cast<int>(k + 11), 10.0 + 10 * k, 0, {100, 100, 200, 200}, scores[k])});
+        tr.push_back(
+            {car(static_cast<int>(k + 11), 10.0 + 10 * k, 0, {100, 100, 200, 200}, scores[k])});
     }
     tr[0].push_back(car(99, 15, 20, {300, 100, 400, 200}, 0.65));
     KittiEvalParams p;
@@ -95,7 +102,8 @@ TEST(KittiEval, ThresholdsFollowRecallStepsAndTheSweepAveragesThem) {
     EXPECT_EQ(r.all.tp, 4u);
     EXPECT_EQ(r.all.fp, 1u);
     ASSERT_EQ(r.curve.size(), 3u);
-    // Threshold 0.8 (recall step 0.25): 2 tp, 2 fn, 0 fp -> MOTA 0.5, sMOTA 1 - (2 - 0.75*4)/(0.25*4) -> 1 (clamped).
+    // Threshold 0.8 (recall step 0.25): 2 tp, 2 fn, 0 fp -> MOTA 0.5, sMOTA 1 - (2 -
+    // 0.75*4)/(0.25*4) -> 1 (clamped).
     EXPECT_DOUBLE_EQ(r.curve[0].mota, 0.5);
     EXPECT_DOUBLE_EQ(r.curve[0].smota, 1.0);
     // Threshold 0.7 (0.5): 3 tp, 1 fn, 0 fp -> MOTA 0.75, sMOTA 1 - (1 - 2)/2 -> 1.
@@ -141,7 +149,8 @@ TEST(KittiEval, DevkitRoundingDropsATrackWhoseReaveragedScoreFallsUnderItsOwnMea
     ASSERT_LT(again, first);  // the premise: the floating point the script does
     KittiEvalParams clean, devkit;
     devkit.devkit_rounding = true;
-    const KittiEvalResult c = evaluate_kitti({gt}, {tr}, clean), d = evaluate_kitti({gt}, {tr}, devkit);
+    const KittiEvalResult c = evaluate_kitti({gt}, {tr}, clean),
+                          d = evaluate_kitti({gt}, {tr}, devkit);
     ASSERT_FALSE(c.curve.empty());
     ASSERT_EQ(c.curve.size(), d.curve.size());
     for (std::size_t i = 0; i < c.curve.size(); ++i) {
@@ -158,7 +167,8 @@ TEST(KittiEval, DevkitRoundingDropsATrackWhoseReaveragedScoreFallsUnderItsOwnMea
     EXPECT_EQ(d.all.tp, 7u);  // the first pass (no threshold) keeps everything in both
     // A score that survives re-averaging (0.5: sums and divisions exact) scores the same both ways.
     for (auto& f : tr) f[0].score = 0.5;
-    EXPECT_DOUBLE_EQ(evaluate_kitti({gt}, {tr}, devkit).samota, evaluate_kitti({gt}, {tr}, clean).samota);
+    EXPECT_DOUBLE_EQ(evaluate_kitti({gt}, {tr}, devkit).samota,
+                     evaluate_kitti({gt}, {tr}, clean).samota);
 }
 
 TEST(KittiEval, EmptySequencesAreValid) {

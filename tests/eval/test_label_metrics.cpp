@@ -8,7 +8,8 @@ namespace makeway::eval {
 namespace {
 
 TEST(LabelMetrics, ClassIouFromConfusion) {
-    std::array<std::array<std::size_t, labelling::kNumPointClasses>, labelling::kNumPointClasses> c{};
+    std::array<std::array<std::size_t, labelling::kNumPointClasses>, labelling::kNumPointClasses>
+        c{};
     c[0][0] = 8;  // ground right 8, 2 called permanent
     c[0][1] = 2;
     c[1][1] = 10;
@@ -23,12 +24,14 @@ TEST(LabelMetrics, ClassIouFromConfusion) {
 }
 
 TEST(LabelMetrics, PanopticQualityOfConstructedSegments) {
-    // Truth: instance 1 (10 points), instance 2 (10 points), instance 3 (4 points: too small to count).
+    // Truth: instance 1 (10 points), instance 2 (10 points), instance 3 (4 points: too small to
+    // count).
     std::vector<std::uint32_t> truth, pred;
-    for (int i = 0; i < 10; ++i) truth.push_back(1), pred.push_back(7);       // a perfect match
-    for (int i = 0; i < 10; ++i) truth.push_back(2), pred.push_back(i < 6 ? 8 : 0);  // 6 of 10: IoU 0.6
+    for (int i = 0; i < 10; ++i) truth.push_back(1), pred.push_back(7);  // a perfect match
+    for (int i = 0; i < 10; ++i)
+        truth.push_back(2), pred.push_back(i < 6 ? 8 : 0);  // 6 of 10: IoU 0.6
     for (int i = 0; i < 4; ++i) truth.push_back(3), pred.push_back(0);
-    for (int i = 0; i < 10; ++i) truth.push_back(0), pred.push_back(9);       // a false segment
+    for (int i = 0; i < 10; ++i) truth.push_back(0), pred.push_back(9);  // a false segment
     PanopticQuality pq;
     add_panoptic(truth, pred, 5, pq);
     EXPECT_EQ(pq.tp, 2u);

@@ -51,8 +51,11 @@ TEST(Navigation, EveryMethodReachesTheGoalWithoutCollisions) {
         EXPECT_TRUE(r.success) << name << ": " << r.failure;
         EXPECT_EQ(r.collisions, 0) << name;
         EXPECT_GT(r.min_clearance_m, 0.0) << name;
-        EXPECT_GT(r.distance_m, r.shortest_m - fast_params().system.navigator.goal_tolerance_m - 0.05) << name;  // stops within tolerance
-        EXPECT_LT(r.stop_distance_m, fast_params().system.navigator.goal_tolerance_m) << name;  // truth-fed: stops for real
+        EXPECT_GT(r.distance_m,
+                  r.shortest_m - fast_params().system.navigator.goal_tolerance_m - 0.05)
+            << name;  // stops within tolerance
+        EXPECT_LT(r.stop_distance_m, fast_params().system.navigator.goal_tolerance_m)
+            << name;  // truth-fed: stops for real
         EXPECT_LT(r.time_s, 40.0) << name;
         EXPECT_GT(r.spl, 0.5) << name;
         EXPECT_LE(r.spl, 1.0) << name;
@@ -69,9 +72,11 @@ TEST(Navigation, ContactsAreTheRobotsWhenItMovesTowardWhatItTouches) {
     EXPECT_FALSE(robot_caused_contact(pose, 0.0, 0.0, ahead, L, W));   // stopped: walked into
     EXPECT_FALSE(robot_caused_contact(pose, -0.3, 0.0, ahead, L, W));  // backing away from it
     EXPECT_TRUE(robot_caused_contact(pose, -0.3, 0.0, behind, L, W));  // backing into it
-    EXPECT_FALSE(robot_caused_contact(pose, 0.5, 0.0, left, L, W));    // passing alongside: it came in from the side
+    EXPECT_FALSE(robot_caused_contact(pose, 0.5, 0.0, left, L,
+                                      W));  // passing alongside: it came in from the side
     EXPECT_FALSE(robot_caused_contact(pose, 0.04, 0.0, ahead, L, W));  // creeping, below 0.05 m/s
-    // Turning on the spot swings the front into what is on its left front (robot frame (0.2, 0.21)).
+    // Turning on the spot swings the front into what is on its left front (robot frame (0.2,
+    // 0.21)).
     const Eigen::Vector2d left_front = to_isometry(pose) * Eigen::Vector2d(0.2, 0.21);
     EXPECT_TRUE(robot_caused_contact(pose, 0.0, 1.0, left_front, L, W));
     EXPECT_FALSE(robot_caused_contact(pose, 0.0, -1.0, left_front, L, W));
@@ -79,14 +84,18 @@ TEST(Navigation, ContactsAreTheRobotsWhenItMovesTowardWhatItTouches) {
 
 TEST(Navigation, MethodsDifferOnlyInInflationAndObjects) {
     const sim::RobotParams robot;
-    EXPECT_NEAR(nav_method("con", robot)->inflation_radius_m, 3 * robot.circumscribed_radius_m(), 1e-12);
-    EXPECT_NEAR(nav_method("oppo", robot)->inflation_radius_m, robot.circumscribed_radius_m(), 1e-12);
+    EXPECT_NEAR(nav_method("con", robot)->inflation_radius_m, 3 * robot.circumscribed_radius_m(),
+                1e-12);
+    EXPECT_NEAR(nav_method("oppo", robot)->inflation_radius_m, robot.circumscribed_radius_m(),
+                1e-12);
     EXPECT_TRUE(nav_method("gt-perc", robot)->affordance);
     EXPECT_FALSE(nav_method("con", robot)->affordance);
     // ours: gt-perc's planner and zones, objects from the perception chain.
     EXPECT_TRUE(nav_method("ours", robot)->affordance);
-    EXPECT_NEAR(nav_method("ours", robot)->inflation_radius_m, nav_method("gt-perc", robot)->inflation_radius_m, 1e-12);
-    EXPECT_TRUE(nav_method("ours", robot)->online);  // the only method on its own pose and perception
+    EXPECT_NEAR(nav_method("ours", robot)->inflation_radius_m,
+                nav_method("gt-perc", robot)->inflation_radius_m, 1e-12);
+    EXPECT_TRUE(
+        nav_method("ours", robot)->online);  // the only method on its own pose and perception
     EXPECT_FALSE(nav_method("gt-perc", robot)->online);
     EXPECT_FALSE(nav_method("fast").has_value());
 }

@@ -29,7 +29,8 @@ TEST(TrackingMetrics, AnIdSwitchHalvesAssociation) {
     const TrackingMetrics m = evaluate_tracking(gt, tr);
     EXPECT_EQ(m.clear.id_switches, 1u);
     EXPECT_DOUBLE_EQ(m.clear.mota, 0.75);  // 1 - 1/4
-    // HOTA by hand: DetA = 4/4; each of the two pairs has A = 2/(4+2-2) = 0.5; AssA = (2*0.5+2*0.5)/4.
+    // HOTA by hand: DetA = 4/4; each of the two pairs has A = 2/(4+2-2) = 0.5; AssA =
+    // (2*0.5+2*0.5)/4.
     EXPECT_NEAR(m.hota.deta, 1.0, 1e-12);
     EXPECT_NEAR(m.hota.assa, 0.5, 1e-12);
     EXPECT_NEAR(m.hota.hota, std::sqrt(0.5), 1e-12);
@@ -51,7 +52,8 @@ TEST(TrackingMetrics, MissesAndFalsePositives) {
 }
 
 TEST(TrackingMetrics, PartialOverlapCountsForAlphasUpToItsIou) {
-    // Unit boxes shifted by 1/3: IoU = (2/3) / (4/3) = 0.5, a match for alpha 0.05 ... 0.5 (10 of 19).
+    // Unit boxes shifted by 1/3: IoU = (2/3) / (4/3) = 0.5, a match for alpha 0.05 ... 0.5 (10 of
+    // 19).
     const std::vector<TrackingFrame> gt{{at(1, 0)}};
     const std::vector<TrackingFrame> tr{{at(2, 1.0 / 3.0)}};
     const TrackingMetrics m = evaluate_tracking(gt, tr);
@@ -61,9 +63,11 @@ TEST(TrackingMetrics, PartialOverlapCountsForAlphasUpToItsIou) {
 }
 
 TEST(TrackingMetrics, FragmentationAndPerClass) {
-    const std::vector<TrackingFrame> gt{{at(1, 0), at(2, 3, ObjectClass::kTable)}, {at(1, 0), at(2, 3, ObjectClass::kTable)},
+    const std::vector<TrackingFrame> gt{{at(1, 0), at(2, 3, ObjectClass::kTable)},
+                                        {at(1, 0), at(2, 3, ObjectClass::kTable)},
                                         {at(1, 0), at(2, 3, ObjectClass::kTable)}};
-    const std::vector<TrackingFrame> tr{{at(5, 0), at(6, 3, ObjectClass::kTable)}, {at(6, 3, ObjectClass::kTable)},
+    const std::vector<TrackingFrame> tr{{at(5, 0), at(6, 3, ObjectClass::kTable)},
+                                        {at(6, 3, ObjectClass::kTable)},
                                         {at(5, 0), at(6, 3, ObjectClass::kTable)}};
     const TrackingMetrics all = evaluate_tracking(gt, tr);
     EXPECT_EQ(all.clear.fragmentations, 1u);

@@ -23,7 +23,8 @@ sim::NavGrid open_grid(int w, int h, double res = 1.0) {
 }
 
 TEST(UnavoidableRisk, ACorridorThatIsAllZoneCostsItsWidth) {
-    // One row of 10 cells; cells 3, 4, 5 are zone. Steps count half in each cell: 0.5 + 1 + 1 + 0.5.
+    // One row of 10 cells; cells 3, 4, 5 are zone. Steps count half in each cell: 0.5 + 1 + 1 +
+    // 0.5.
     const sim::NavGrid g = open_grid(10, 1);
     std::vector<std::uint8_t> zone(10, 0);
     zone[3] = zone[4] = zone[5] = 1;
@@ -44,7 +45,8 @@ TEST(UnavoidableRisk, TakesTheDetourThatAvoidsTheZoneAndTheShortestSuch) {
     ASSERT_TRUE(r.reachable);
     EXPECT_DOUBLE_EQ(r.zone_length_m, 0.0);
     EXPECT_NEAR(r.length_m, 8 * std::sqrt(2.0) + 2.0, 1e-9);
-    // Closed at the top too (y = 4 blocked): the zone must be crossed, by one straight step's worth.
+    // Closed at the top too (y = 4 blocked): the zone must be crossed, by one straight step's
+    // worth.
     sim::NavGrid closed = g;
     closed.blocked[4 * 11 + 5] = 1;
     const LeastRiskRoute c = least_risk_route(closed, zone, {0.5, 0.5}, {{{10.5, 0.5}, 0.0}});
@@ -59,12 +61,14 @@ TEST(UnavoidableRisk, LegsAndTolerances) {
     const sim::NavGrid g = open_grid(12, 1);
     std::vector<std::uint8_t> zone(12, 0);
     zone[9] = zone[10] = zone[11] = 1;
-    EXPECT_DOUBLE_EQ(least_risk_route(g, zone, {0.5, 0.5}, {{{11.5, 0.5}, 0.0}}).zone_length_m, 2.5);
+    EXPECT_DOUBLE_EQ(least_risk_route(g, zone, {0.5, 0.5}, {{{11.5, 0.5}, 0.0}}).zone_length_m,
+                     2.5);
     const LeastRiskRoute tol = least_risk_route(g, zone, {0.5, 0.5}, {{{11.5, 0.5}, 3.0}});
     EXPECT_DOUBLE_EQ(tol.zone_length_m, 0.0);
     EXPECT_DOUBLE_EQ(tol.length_m, 8.0);
     // Through a waypoint at the far end and back: the zone twice, 2.5 each way.
-    const LeastRiskRoute there_and_back = least_risk_route(g, zone, {0.5, 0.5}, {{{11.5, 0.5}, 0.0}, {{0.5, 0.5}, 0.0}});
+    const LeastRiskRoute there_and_back =
+        least_risk_route(g, zone, {0.5, 0.5}, {{{11.5, 0.5}, 0.0}, {{0.5, 0.5}, 0.0}});
     EXPECT_DOUBLE_EQ(there_and_back.zone_length_m, 5.0);
     EXPECT_DOUBLE_EQ(there_and_back.length_m, 22.0);
     EXPECT_EQ(there_and_back.cells_m.size(), 23u);
@@ -96,9 +100,12 @@ TEST(UnavoidableRisk, MatchesBruteForceOnRandomGrids) {
                         const int x = i % 9 + dx, y = i / 9 + dy;
                         if ((!dx && !dy) || g.is_blocked(x, y)) continue;
                         const double step = (dx && dy) ? std::sqrt(2.0) : 1.0;
-                        const std::pair<double, double> c{best[i].first + 0.5 * step * (zone[i] + zone[y * 9 + x]), best[i].second + step};
+                        const std::pair<double, double> c{
+                            best[i].first + 0.5 * step * (zone[i] + zone[y * 9 + x]),
+                            best[i].second + step};
                         if (c.first < best[y * 9 + x].first - 1e-12 ||
-                            (std::abs(c.first - best[y * 9 + x].first) <= 1e-12 && c.second < best[y * 9 + x].second - 1e-12)) {
+                            (std::abs(c.first - best[y * 9 + x].first) <= 1e-12 &&
+                             c.second < best[y * 9 + x].second - 1e-12)) {
                             best[y * 9 + x] = c;
                             changed = true;
                         }
@@ -121,14 +128,16 @@ sim::Scene empty_room() {
     sim::Scene scene;
     scene.floor_min_m = {-4.0, -4.0};
     scene.floor_max_m = {4.0, 4.0};
-    scene.walls = {{{-3.0, -3.0}, {3.0, -3.0}, 0.2, 3.0}, {{3.0, -3.0}, {3.0, 3.0}, 0.2, 3.0},
-                   {{3.0, 3.0}, {-3.0, 3.0}, 0.2, 3.0}, {{-3.0, 3.0}, {-3.0, -3.0}, 0.2, 3.0}};
+    scene.walls = {{{-3.0, -3.0}, {3.0, -3.0}, 0.2, 3.0},
+                   {{3.0, -3.0}, {3.0, 3.0}, 0.2, 3.0},
+                   {{3.0, 3.0}, {-3.0, 3.0}, 0.2, 3.0},
+                   {{-3.0, 3.0}, {-3.0, -3.0}, 0.2, 3.0}};
     return scene;
 }
 
 // One sweep (world frame, from a sensor standing at T_world_sensor) into the obstacle layer.
-void update_from_sweep(costmap::ObstacleLayer& layer, const Costmap& geometry, const PointCloud& world_points,
-                       const Isometry3& T_world_sensor) {
+void update_from_sweep(costmap::ObstacleLayer& layer, const Costmap& geometry,
+                       const PointCloud& world_points, const Isometry3& T_world_sensor) {
     Costmap master = geometry;
     GridWindow window;
     costmap::LayerInput in;
@@ -149,7 +158,8 @@ TEST(BodyModel, ALowPartTheRobotCanHitIsSeenByTheCostmap) {
     model.box_object = {{0.0, 0.0, 0.015}, {0.5, 0.5, 0.03}, 0.0};
     const sim::RobotParams robot;
     const sim::CollisionChecker checker(scene, {model}, robot);
-    const Pose2 over_plate{1.5 - 0.25 - 0.2, 0.0, 0.0};  // the footprint's front 5 cm over the plate
+    const Pose2 over_plate{1.5 - 0.25 - 0.2, 0.0,
+                           0.0};  // the footprint's front 5 cm over the plate
     EXPECT_TRUE(checker.collides(over_plate, 0.0));
     sim::RobotParams high = robot;
     high.ground_clearance_m = 0.04;  // a robot that rolls over 4 cm
@@ -159,8 +169,10 @@ TEST(BodyModel, ALowPartTheRobotCanHitIsSeenByTheCostmap) {
     sim::World world(scene, {model});
     sim::LidarParams lidar;
     const Isometry3 T_world_sensor = make_T_xyz_yaw({0.2, 0.0, robot.lidar_height_m}, 0.0);
-    const PointCloud sweep = sim::simulate_sweep(world, lidar, [&](double) { return T_world_sensor; }, 0.0, 3, 0);
-    const PointCloud world_points = perception::deskew_to_world({sweep, 0.0, 0.1, T_world_sensor, T_world_sensor});
+    const PointCloud sweep = sim::simulate_sweep(
+        world, lidar, [&](double) { return T_world_sensor; }, 0.0, 3, 0);
+    const PointCloud world_points =
+        perception::deskew_to_world({sweep, 0.0, 0.1, T_world_sensor, T_world_sensor});
     auto marked_on_plate = [&](const BodyHeights& body) {
         const Costmap geometry({-4.0, -4.0}, 0.05, 160, 160);
         costmap::ObstacleLayer layer(geometry, {.body = body});
@@ -171,7 +183,8 @@ TEST(BodyModel, ALowPartTheRobotCanHitIsSeenByTheCostmap) {
                 const Eigen::Vector2d c = geometry.centre_of(x, y);
                 const bool on_plate = std::abs(c.x() - 1.5) < 0.25 && std::abs(c.y()) < 0.25;
                 if (layer.grid().at(x, y) == cost::kLethal) {
-                    EXPECT_TRUE(on_plate || std::abs(c.x()) > 2.8 || std::abs(c.y()) > 2.8) << c.transpose();  // nothing on the bare floor
+                    EXPECT_TRUE(on_plate || std::abs(c.x()) > 2.8 || std::abs(c.y()) > 2.8)
+                        << c.transpose();  // nothing on the bare floor
                     marked += on_plate;
                 }
             }
@@ -197,10 +210,19 @@ TEST(BodyModel, LowMarksNeedTwoReturnsAndSurviveRaysPassingOverThem) {
     pts.xyz = {{2.0f, 2.51f, 0.03f}};  // one low return: floor noise until another joins it
     update();
     EXPECT_EQ(*layer.grid().cost_at({2.0, 2.51}), cost::kFree);
-    pts.xyz = {{2.0f, 2.51f, 0.03f}, {2.01f, 2.52f, 0.025f}, {2.02f, 2.53f, 0.01f}, {2.03f, 2.53f, 0.005f}, {2.04f, 2.52f, 0.003f}};
+    pts.xyz = {{2.0f, 2.51f, 0.03f},
+               {2.01f, 2.52f, 0.025f},
+               {2.02f, 2.53f, 0.01f},
+               {2.03f, 2.53f, 0.005f},
+               {2.04f, 2.52f, 0.003f}};
     update();
-    EXPECT_EQ(*layer.grid().cost_at({2.0, 2.51}), cost::kFree);  // two of five above the clearance: a noisy floor
-    pts.xyz = {{2.0f, 2.51f, 0.03f}, {2.01f, 2.52f, 0.025f}, {2.02f, 2.53f, 0.01f}, {4.0f, 1.0f, 0.03f}, {4.01f, 1.01f, 0.03f}};
+    EXPECT_EQ(*layer.grid().cost_at({2.0, 2.51}),
+              cost::kFree);  // two of five above the clearance: a noisy floor
+    pts.xyz = {{2.0f, 2.51f, 0.03f},
+               {2.01f, 2.52f, 0.025f},
+               {2.02f, 2.53f, 0.01f},
+               {4.0f, 1.0f, 0.03f},
+               {4.01f, 1.01f, 0.03f}};
     update();
     EXPECT_EQ(*layer.grid().cost_at({2.0, 2.51}), cost::kLethal);
     EXPECT_EQ(*layer.grid().cost_at({4.0, 1.0}), cost::kFree);  // low and 3.8 m away: not trusted
@@ -218,20 +240,27 @@ TEST(BodyModel, LowMarksNeedTwoReturnsAndSurviveRaysPassingOverThem) {
 // stands there and cleared by the rays of a later sweep once it has walked on (issue 29).
 TEST(BodyModel, AWalkerIsMarkedWhileThereAndClearedWhenGone) {
     sim::Scene scene = empty_room();
-    scene.walkers = {{{{1.5, -2.0}, {1.5, 2.0}}, 1.0, 0.0}};  // at (1.5, 0) at t = 2 s, at (1.5, 2) at t = 4 s
+    scene.walkers = {
+        {{{1.5, -2.0}, {1.5, 2.0}}, 1.0, 0.0}};  // at (1.5, 0) at t = 2 s, at (1.5, 2) at t = 4 s
     sim::World world(scene, {});
     const sim::RobotParams robot;
     const Isometry3 T_world_sensor = make_T_xyz_yaw({0.0, 0.0, robot.lidar_height_m}, 0.0);
     const Costmap geometry({-4.0, -4.0}, 0.05, 160, 160);
     costmap::ObstacleLayer layer(geometry, {.body = robot.body()});
     auto sweep_at = [&](double t, std::uint64_t k) {
-        const PointCloud sweep = sim::simulate_sweep(world, {}, [&](double) { return T_world_sensor; }, t, 3, k);
-        update_from_sweep(layer, geometry, perception::deskew_to_world({sweep, t, 0.1, T_world_sensor, T_world_sensor}), T_world_sensor);
+        const PointCloud sweep = sim::simulate_sweep(
+            world, {}, [&](double) { return T_world_sensor; }, t, 3, k);
+        update_from_sweep(
+            layer, geometry,
+            perception::deskew_to_world({sweep, t, 0.1, T_world_sensor, T_world_sensor}),
+            T_world_sensor);
     };
     auto marked_near = [&](const Eigen::Vector2d& p) {
         int n = 0;
         for (int y = 0; y < 160; ++y) {
-            for (int x = 0; x < 160; ++x) n += layer.grid().at(x, y) == cost::kLethal && (geometry.centre_of(x, y) - p).norm() < 0.35;
+            for (int x = 0; x < 160; ++x)
+                n += layer.grid().at(x, y) == cost::kLethal &&
+                     (geometry.centre_of(x, y) - p).norm() < 0.35;
         }
         return n;
     };

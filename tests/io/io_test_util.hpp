@@ -16,9 +16,13 @@ namespace makeway::testing_util {
 inline std::filesystem::path fresh_dir(const std::string& name) {
     const ::testing::UnitTest& unit = *::testing::UnitTest::GetInstance();
     const auto* info = unit.current_test_info();
-    const std::string owner = info ? std::string(info->test_suite_name()) + "." + info->name()
-                                   : std::string(unit.current_test_suite() ? unit.current_test_suite()->name() : "suite") + ".suite";
-    const auto dir = std::filesystem::path(::testing::TempDir()) / "makeway_tests" / (owner + "." + name);
+    const std::string owner =
+        info
+            ? std::string(info->test_suite_name()) + "." + info->name()
+            : std::string(unit.current_test_suite() ? unit.current_test_suite()->name() : "suite") +
+                  ".suite";
+    const auto dir =
+        std::filesystem::path(::testing::TempDir()) / "makeway_tests" / (owner + "." + name);
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
@@ -36,11 +40,14 @@ inline PointCloud random_cloud(std::uint64_t seed, std::size_t n, PointFields fi
         if (fields.ring) c.ring[i] = static_cast<std::uint16_t>(uniform_int(rng, 0, 65535));
         if (fields.time) c.time_s[i] = static_cast<float>(uniform(rng, 0, 0.1));
         if (fields.label) c.label[i] = static_cast<std::uint8_t>(uniform_int(rng, 0, 255));
-        if (fields.instance) c.instance[i] = static_cast<std::uint32_t>(uniform_int(rng, 0, 4294967295));
+        if (fields.instance)
+            c.instance[i] = static_cast<std::uint32_t>(uniform_int(rng, 0, 4294967295));
     }
     if (n >= 4) {
-        c.xyz[0] = {-0.0f, std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::max()};
-        c.xyz[1] = {std::numeric_limits<float>::lowest(), std::numeric_limits<float>::min(), 1e-30f};
+        c.xyz[0] = {-0.0f, std::numeric_limits<float>::denorm_min(),
+                    std::numeric_limits<float>::max()};
+        c.xyz[1] = {std::numeric_limits<float>::lowest(), std::numeric_limits<float>::min(),
+                    1e-30f};
         if (fields.ring) c.ring[2] = 65535;
         if (fields.instance) c.instance[3] = 4294967295u;
         if (fields.time) c.time_s[1] = 1.0f / 3.0f;
@@ -50,17 +57,21 @@ inline PointCloud random_cloud(std::uint64_t seed, std::size_t n, PointFields fi
 
 template <typename T>
 bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 inline ::testing::AssertionResult clouds_bit_equal(const PointCloud& a, const PointCloud& b) {
-    if (a.size() != b.size()) return ::testing::AssertionFailure() << "sizes " << a.size() << " vs " << b.size();
+    if (a.size() != b.size())
+        return ::testing::AssertionFailure() << "sizes " << a.size() << " vs " << b.size();
     if (!same_bits(a.xyz, b.xyz)) return ::testing::AssertionFailure() << "xyz differ";
-    if (!same_bits(a.intensity, b.intensity)) return ::testing::AssertionFailure() << "intensity differs";
+    if (!same_bits(a.intensity, b.intensity))
+        return ::testing::AssertionFailure() << "intensity differs";
     if (!same_bits(a.ring, b.ring)) return ::testing::AssertionFailure() << "ring differs";
     if (!same_bits(a.time_s, b.time_s)) return ::testing::AssertionFailure() << "time differs";
     if (!same_bits(a.label, b.label)) return ::testing::AssertionFailure() << "label differs";
-    if (!same_bits(a.instance, b.instance)) return ::testing::AssertionFailure() << "instance differs";
+    if (!same_bits(a.instance, b.instance))
+        return ::testing::AssertionFailure() << "instance differs";
     return ::testing::AssertionSuccess();
 }
 

@@ -18,7 +18,9 @@ const PointFields kXyzI{.intensity = true};
 const PointFields kXyzLabel{.label = true, .instance = true};
 
 std::string pcd_encoding_name(const ::testing::TestParamInfo<PcdEncoding>& p) {
-    return p.param == PcdEncoding::kAscii ? "ascii" : p.param == PcdEncoding::kBinary ? "binary" : "compressed";
+    return p.param == PcdEncoding::kAscii    ? "ascii"
+           : p.param == PcdEncoding::kBinary ? "binary"
+                                             : "compressed";
 }
 
 std::string ply_encoding_name(const ::testing::TestParamInfo<PlyEncoding>& p) {
@@ -128,8 +130,9 @@ TEST(PlyForeign, FacesListsAndBigEndian) {
     EXPECT_EQ(a.cloud.xyz[2], Eigen::Vector3f(0, 1, 0));
     EXPECT_EQ(a.info.ignored_fields, (std::vector<std::string>{"red", "idx"}));
 
-    std::string be = "ply\nformat binary_big_endian 1.0\nelement vertex 1\nproperty float x\n"
-                     "property float y\nproperty float z\nproperty ushort ring\nend_header\n";
+    std::string be =
+        "ply\nformat binary_big_endian 1.0\nelement vertex 1\nproperty float x\n"
+        "property float y\nproperty float z\nproperty ushort ring\nend_header\n";
     const unsigned char data[] = {0x3f, 0x80, 0, 0, 0x40, 0, 0, 0, 0xc0, 0x40, 0, 0, 0x01, 0x02};
     be.append(reinterpret_cast<const char*>(data), sizeof(data));
     const CloudFile b = parse_ply(be);
@@ -143,13 +146,16 @@ TEST(CloudFiles, NonFinitePolicies) {
     c.xyz[4].y() = std::numeric_limits<float>::quiet_NaN();
     c.xyz[7].z() = std::numeric_limits<float>::infinity();
     write_point_cloud(dir / "n.pcd", c);
-    EXPECT_EQ(read_point_cloud(dir / "n.pcd", {.non_finite = NonFinitePolicy::kKeep}).cloud.size(), 10u);
-    EXPECT_EQ(read_point_cloud(dir / "n.pcd", {.non_finite = NonFinitePolicy::kDrop}).cloud.size(), 8u);
+    EXPECT_EQ(read_point_cloud(dir / "n.pcd", {.non_finite = NonFinitePolicy::kKeep}).cloud.size(),
+              10u);
+    EXPECT_EQ(read_point_cloud(dir / "n.pcd", {.non_finite = NonFinitePolicy::kDrop}).cloud.size(),
+              8u);
     try {
         read_point_cloud(dir / "n.pcd");
         FAIL() << "NaN points accepted";
     } catch (const FileError& e) {
-        EXPECT_NE(std::string(e.what()).find("2 points have NaN or infinite coordinates (first at index 4)"),
+        EXPECT_NE(std::string(e.what()).find(
+                      "2 points have NaN or infinite coordinates (first at index 4)"),
                   std::string::npos)
             << e.what();
     }

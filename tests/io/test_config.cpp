@@ -1,11 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <fstream>
 
-#include "io/sim_config.hpp"
 #include "io/error.hpp"
+#include "io/sim_config.hpp"
 #include "io_test_util.hpp"
 
 namespace makeway::io {
@@ -28,13 +27,17 @@ TEST(Config, CollisionMonitorProblemsAreListedWithTheirSection) {
         const std::string what = e.what();
         EXPECT_NE(what.find("collision_monitor"), std::string::npos) << what;
         EXPECT_NE(what.find("slowdown_ratio"), std::string::npos) << what;
-        EXPECT_NE(what.find("stop_paddin_m"), std::string::npos) << what;  // the unknown key, with a suggestion
+        EXPECT_NE(what.find("stop_paddin_m"), std::string::npos)
+            << what;  // the unknown key, with a suggestion
     }
 }
 
 TEST(Config, TrackerIsConfigurable) {
-    const SimConfig c = parse_sim_config("tracking: {classes: [chair], min_score: 0.3, score_transform: sigmoid, sensor_range_m: 25,\n"
-                                  "  out_of_range: drop, max_unobserved_s: .inf, chair_velocity_decay_s: .inf, table_max_speed_mps: 0.5}\n");
+    const SimConfig c = parse_sim_config(
+        "tracking: {classes: [chair], min_score: 0.3, score_transform: sigmoid, sensor_range_m: "
+        "25,\n"
+        "  out_of_range: drop, max_unobserved_s: .inf, chair_velocity_decay_s: .inf, "
+        "table_max_speed_mps: 0.5}\n");
     const auto& t = c.system.tracker;
     EXPECT_TRUE(t.tracked_classes[0]);
     EXPECT_FALSE(t.tracked_classes[1]);
@@ -46,19 +49,27 @@ TEST(Config, TrackerIsConfigurable) {
     EXPECT_TRUE(std::isinf(t.motion[0].velocity_decay_s));
     EXPECT_EQ(t.motion[1].max_speed_mps, 0.5);
     try {
-        parse_sim_config("tracking: {classes: [sofa], score_transform: softmax, out_of_range: sideways, sensor_range_m: .inf}\n");
+        parse_sim_config(
+            "tracking: {classes: [sofa], score_transform: softmax, out_of_range: sideways, "
+            "sensor_range_m: .inf}\n");
         ADD_FAILURE();
     } catch (const FormatError& e) {
         const std::string what = e.what();
-        EXPECT_NE(what.find("classes: must be a list of chair or table (e.g. [chair]) (got 'sofa')"), std::string::npos) << what;
-        EXPECT_NE(what.find("score_transform: must be none or sigmoid (got 'softmax')"), std::string::npos) << what;
+        EXPECT_NE(
+            what.find("classes: must be a list of chair or table (e.g. [chair]) (got 'sofa')"),
+            std::string::npos)
+            << what;
+        EXPECT_NE(what.find("score_transform: must be none or sigmoid (got 'softmax')"),
+                  std::string::npos)
+            << what;
         EXPECT_NE(what.find("out_of_range: must be freeze or drop"), std::string::npos) << what;
         EXPECT_NE(what.find("sensor_range_m: must be finite"), std::string::npos) << what;
     }
 }
 
 TEST(Config, AffordanceZonesArePerClassParameters) {
-    const SimConfig c = parse_sim_config("affordance:\n  chair:\n    forward_back_m: 0.9\n  table:\n    sides_m: 1.0\n");
+    const SimConfig c = parse_sim_config(
+        "affordance:\n  chair:\n    forward_back_m: 0.9\n  table:\n    sides_m: 1.0\n");
     EXPECT_EQ(c.affordance.chair.forward_back_m, 0.9);
     EXPECT_EQ(c.affordance.table.sides_m, 1.0);
     EXPECT_EQ(problem_of("affordance:\n  chair:\n    peak_cost: 300\n"),
@@ -84,8 +95,9 @@ TEST(Config, UnknownKeyGetsASuggestion) {
 TEST(Config, OutOfRangeAndWrongTypes) {
     EXPECT_EQ(problem_of("lidar:\n  rate_hz: -3\n"), "lidar.rate_hz must be in [1, 50] (got -3)");
     EXPECT_EQ(problem_of("simulation:\n  frames: many\n"), "simulation.frames: must be an integer");
-    EXPECT_NE(problem_of("lidar:\n  range_noise_m: .nan\n").find("lidar.range_noise_m: must be finite"),
-              std::string::npos);
+    EXPECT_NE(
+        problem_of("lidar:\n  range_noise_m: .nan\n").find("lidar.range_noise_m: must be finite"),
+        std::string::npos);
     EXPECT_EQ(problem_of("scene:\n  people: perhaps\n"), "scene.people: must be true or false");
     EXPECT_EQ(problem_of("scene:\n  density: crowded\n"),
               "scene.density: must be sparse, medium or dense (got 'crowded')");
@@ -97,15 +109,17 @@ TEST(Config, EveryProblemListedAtOnce) {
     const std::string msg = problem_of(
         "simulation:\n  frames: 0\nlidar:\n  rate_hs: 3\n  dropout: 7\nrobot:\n  max_v_mps: x\n");
     EXPECT_EQ(msg.rfind("4 problems: ", 0), 0u) << msg;
-    for (const char* part : {"lidar.rate_hs: unknown key (did you mean 'rate_hz'?)", "simulation.frames must be in",
-                             "lidar.dropout must be in", "robot.max_v_mps: must be a number"}) {
+    for (const char* part :
+         {"lidar.rate_hs: unknown key (did you mean 'rate_hz'?)", "simulation.frames must be in",
+          "lidar.dropout must be in", "robot.max_v_mps: must be a number"}) {
         EXPECT_NE(msg.find(part), std::string::npos) << part << " missing from: " << msg;
     }
     EXPECT_EQ(msg.find('\n'), std::string::npos);
 }
 
 TEST(Config, SyntaxErrorsAndFiles) {
-    EXPECT_NE(problem_of("scene:\n  seed: [1, 2\n").find("YAML syntax error at line"), std::string::npos);
+    EXPECT_NE(problem_of("scene:\n  seed: [1, 2\n").find("YAML syntax error at line"),
+              std::string::npos);
     EXPECT_EQ(problem_of("- a\n- b\n"), "the top level must be a mapping of section names");
     const auto dir = testing_util::fresh_dir("cfg");
     std::ofstream(dir / "c.yaml") << "simulation:\n  frames: -2\n";
@@ -113,7 +127,9 @@ TEST(Config, SyntaxErrorsAndFiles) {
         load_sim_config(dir / "c.yaml");
         FAIL();
     } catch (const FileError& e) {
-        EXPECT_EQ(std::string(e.what()).rfind((dir / "c.yaml").string() + ": simulation.frames", 0), 0u) << e.what();
+        EXPECT_EQ(std::string(e.what()).rfind((dir / "c.yaml").string() + ": simulation.frames", 0),
+                  0u)
+            << e.what();
     }
     EXPECT_THROW(load_sim_config(dir / "missing.yaml"), FileError);
 }
@@ -121,7 +137,8 @@ TEST(Config, SyntaxErrorsAndFiles) {
 // The robot's program reads the same file without the simulator: the simulator's sections are
 // skipped (a typo in them is the simulator's business), everything else is read and checked alike.
 TEST(Config, TheRobotsReaderSkipsTheSimulatorsSections) {
-    const std::string yaml = "scene:\n  density: crowded\nlidar:\n  rate_hs: 3\nrobot:\n  max_v_mps: 0.5\n";
+    const std::string yaml =
+        "scene:\n  density: crowded\nlidar:\n  rate_hs: 3\nrobot:\n  max_v_mps: 0.5\n";
     const Config robot_side = parse_config(yaml);
     EXPECT_EQ(robot_side.robot.max_v_mps, 0.5);
     EXPECT_NE(problem_of(yaml).find("2 problems"), std::string::npos) << problem_of(yaml);
@@ -132,7 +149,8 @@ TEST(Config, TheRobotsReaderSkipsTheSimulatorsSections) {
         parse_config("robot:\n  max_v_mps: x\ncolour: 1\n");
         FAIL();
     } catch (const FormatError& e) {
-        EXPECT_EQ(std::string(e.what()), "2 problems: colour: unknown section; robot.max_v_mps: must be a number");
+        EXPECT_EQ(std::string(e.what()),
+                  "2 problems: colour: unknown section; robot.max_v_mps: must be a number");
     }
 }
 
@@ -176,7 +194,8 @@ TEST(Config, EveryNumericKeyRefusesNonsense) {
                 continue;
             }
             EXPECT_EQ(problem.find('\n'), std::string::npos) << problem;
-            EXPECT_NE(problem.find(sec), std::string::npos) << sec << "." << key << "=" << bad << ": " << problem;
+            EXPECT_NE(problem.find(sec), std::string::npos)
+                << sec << "." << key << "=" << bad << ": " << problem;
         }
     }
     // Every key is bounded on both sides (its table's range): a damaged file's +-1e308, NaN or

@@ -14,12 +14,16 @@ LabelledKeyframe keyframe(std::uint32_t sequence, double stamp_s) {
     LabelledKeyframe kf;
     kf.cloud_sensor.xyz = {{1.0f, 2.0f, 0.1f}, {3.0f, -1.0f, 0.4f}};
     kf.cloud_sensor.intensity = {5.0f, 9.0f};
-    kf.objects.push_back({7, ObjectClass::kChair, "office_chair", {{2.0, 1.0, -0.1}, {0.6, 0.6, 1.0}, 0.4}, 120});
-    kf.unseen.push_back({9, ObjectClass::kTable, "rect_table", {{-3.0, 4.0, -0.08}, {1.6, 0.8, 0.74}, -1.2}, 3});
+    kf.objects.push_back(
+        {7, ObjectClass::kChair, "office_chair", {{2.0, 1.0, -0.1}, {0.6, 0.6, 1.0}, 0.4}, 120});
+    kf.unseen.push_back(
+        {9, ObjectClass::kTable, "rect_table", {{-3.0, 4.0, -0.08}, {1.6, 0.8, 0.74}, -1.2}, 3});
     kf.sequence = sequence;
     kf.stamp_s = stamp_s;
     Isometry3 T = Isometry3::Identity();
-    T.linear() = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(0.1, 0.2, 1.0).normalized())).toRotationMatrix();
+    T.linear() =
+        Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(0.1, 0.2, 1.0).normalized()))
+            .toRotationMatrix();
     T.translation() = Eigen::Vector3d(4.0, -2.0, 0.45);
     kf.T_world_sensor = T;
     return kf;
@@ -53,7 +57,8 @@ TEST(DatasetIo, LabelsWithoutPosesLoadAsOneSequenceAndBadPosesNameTheFile) {
     write_labelled_keyframe(dir, 0, keyframe(0, 0.0));
     // Only "objects": older datasets and hand labels.
     Json label;
-    label["objects"] = Json::array({Json{{"class", "chair"}, {"box", to_json(OrientedBox{{1, 1, 0}, {0.5, 0.5, 0.9}, 0.0})}}});
+    label["objects"] = Json::array(
+        {Json{{"class", "chair"}, {"box", to_json(OrientedBox{{1, 1, 0}, {0.5, 0.5, 0.9}, 0.0})}}});
     write_json(dir / "labels" / "000000.json", label);
     const auto plain = read_detection_dataset(dir);
     ASSERT_EQ(plain.size(), 1u);
@@ -61,10 +66,11 @@ TEST(DatasetIo, LabelsWithoutPosesLoadAsOneSequenceAndBadPosesNameTheFile) {
     EXPECT_TRUE(plain[0].T_world_sensor.isApprox(Isometry3::Identity()));
     EXPECT_TRUE(plain[0].unseen.empty());
 
-    const char* bad[] = {R"({"objects": [], "T_world_sensor": {"t_m": [0, 0, 0], "q_wxyz": [2, 0, 0, 0]}})",
-                         R"({"objects": [], "T_world_sensor": {"t_m": [0, 0], "yaw_rad": 0}})",
-                         R"({"objects": [], "stamp_s": "soon"})",
-                         R"({"objects": [], "unseen": [{"class": "sofa"}]})"};
+    const char* bad[] = {
+        R"({"objects": [], "T_world_sensor": {"t_m": [0, 0, 0], "q_wxyz": [2, 0, 0, 0]}})",
+        R"({"objects": [], "T_world_sensor": {"t_m": [0, 0], "yaw_rad": 0}})",
+        R"({"objects": [], "stamp_s": "soon"})",
+        R"({"objects": [], "unseen": [{"class": "sofa"}]})"};
     for (const char* text : bad) {
         std::ofstream(dir / "labels" / "000000.json") << text;
         try {

@@ -19,8 +19,9 @@ TEST(JsonIo, BoxRoundTripAndErrors) {
     EXPECT_EQ(back.size_m, b.size_m);
     EXPECT_EQ(back.yaw_rad, b.yaw_rad);
     EXPECT_THROW(box_from_json(Json{{"centre_m", {1, 2}}}), FormatError);
-    EXPECT_THROW(box_from_json(Json{{"centre_m", {1, 2, 3}}, {"size_m", {1, -1, 1}}, {"yaw_rad", 0}}),
-                 FormatError);
+    EXPECT_THROW(
+        box_from_json(Json{{"centre_m", {1, 2, 3}}, {"size_m", {1, -1, 1}}, {"yaw_rad", 0}}),
+        FormatError);
     std::ofstream(dir / "bad.json") << "{\"a\": [1, 2";
     try {
         read_json(dir / "bad.json");
@@ -40,8 +41,10 @@ TEST(TopDownPng, WritesAPngOfTheExpectedSize) {
     in.read(head.data(), 24);
     EXPECT_EQ(head.substr(1, 3), "PNG");
     auto be32 = [&](int off) {
-        return (static_cast<unsigned char>(head[off]) << 24) | (static_cast<unsigned char>(head[off + 1]) << 16) |
-               (static_cast<unsigned char>(head[off + 2]) << 8) | static_cast<unsigned char>(head[off + 3]);
+        return (static_cast<unsigned char>(head[off]) << 24) |
+               (static_cast<unsigned char>(head[off + 1]) << 16) |
+               (static_cast<unsigned char>(head[off + 2]) << 8) |
+               static_cast<unsigned char>(head[off + 3]);
     };
     EXPECT_EQ(be32(16), 64u);  // (4 + 2 margins) * 10 px/m = 60 -> at least 64
     EXPECT_EQ(be32(20), 64u);

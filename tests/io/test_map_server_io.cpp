@@ -14,7 +14,8 @@ TEST(MapServer, RoundTripKeepsLethalFreeAndUnknown) {
     Costmap m({-2.0, 1.5}, 0.1, 30, 20);
     m.at(3, 4) = cost::kLethal;
     m.at(29, 19) = cost::kUnknown;
-    m.at(10, 2) = 100;  // soft: exported in scale mode, read back as free (below free_thresh) or unknown
+    m.at(10, 2) =
+        100;  // soft: exported in scale mode, read back as free (below free_thresh) or unknown
     write_map_server(dir / "map.yaml", m);
     EXPECT_TRUE(std::filesystem::exists(dir / "map.pgm"));
     const Costmap back = read_map_server(dir / "map.yaml");
@@ -35,7 +36,8 @@ TEST(MapServer, BadFilesNameTheFileAndProblem) {
         read_map_server(dir / "a.yaml");
         FAIL();
     } catch (const FileError& e) {
-        EXPECT_NE(std::string(e.what()).find("resolution must be in"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("resolution must be in"), std::string::npos)
+            << e.what();
         EXPECT_NE(std::string(e.what()).find("origin must be"), std::string::npos) << e.what();
     }
     std::ofstream(dir / "b.yaml") << "image: b.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n";
@@ -44,7 +46,9 @@ TEST(MapServer, BadFilesNameTheFileAndProblem) {
         read_map_server(dir / "b.yaml");
         FAIL();
     } catch (const FileError& e) {
-        EXPECT_EQ(std::string(e.what()), (dir / "b.pgm").string() + ": PGM data size mismatch: 4 x 4 needs 16 bytes, found 3");
+        EXPECT_EQ(
+            std::string(e.what()),
+            (dir / "b.pgm").string() + ": PGM data size mismatch: 4 x 4 needs 16 bytes, found 3");
     }
     EXPECT_THROW(parse_pgm("P2\n1 1\n255\n0"), FormatError);
     EXPECT_THROW(parse_pgm("P5\n1 1\n65535\nab"), FormatError);

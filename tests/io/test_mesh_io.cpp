@@ -25,7 +25,8 @@ TriangleMesh unit_cube() {
 std::vector<std::array<float, 9>> triangle_set(const TriangleMesh& m) {
     std::vector<std::array<float, 9>> out;
     for (const auto& t : m.triangles) {
-        std::array<Eigen::Vector3f, 3> c{m.vertices_m[t[0]], m.vertices_m[t[1]], m.vertices_m[t[2]]};
+        std::array<Eigen::Vector3f, 3> c{m.vertices_m[t[0]], m.vertices_m[t[1]],
+                                         m.vertices_m[t[2]]};
         // Rotate so the smallest corner comes first, keeping the winding.
         const auto less = [](const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
             return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
@@ -51,7 +52,9 @@ TEST_P(MeshRoundTrip, WriteThenReadKeepsTriangles) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, MeshRoundTrip, ::testing::Values("obj", "ply", "stl"),
-                         [](const ::testing::TestParamInfo<const char*>& p) { return std::string(p.param); });
+                         [](const ::testing::TestParamInfo<const char*>& p) {
+                             return std::string(p.param);
+                         });
 
 TEST(MeshIo, ReadsTextFormatsOfOtherTools) {
     const std::string obj = "# quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";

@@ -18,7 +18,8 @@ std::vector<StampedPose> random_trajectory(std::size_t n) {
         p.stamp_s = 1700000000.0 + 0.1 * static_cast<double>(i) + uniform(rng, 0, 1e-3);
         const Eigen::Quaterniond q = Eigen::Quaterniond::UnitRandom();
         p.T_world_sensor.linear() = q.toRotationMatrix();
-        p.T_world_sensor.translation() = Eigen::Vector3d(normal(rng, 0, 10), normal(rng, 0, 10), 0.4);
+        p.T_world_sensor.translation() =
+            Eigen::Vector3d(normal(rng, 0, 10), normal(rng, 0, 10), 0.4);
         out.push_back(p);
     }
     return out;
@@ -48,7 +49,8 @@ TEST(PoseIo, KittiRoundTrip) {
 }
 
 TEST(PoseIo, TumAcceptsCommentsAndBlankLines) {
-    const auto poses = parse_tum("# header\n\n0.0 1 2 3 0 0 0 1\n  \n0.1 1 2 3 0 0 0.7071068 0.7071068\n");
+    const auto poses =
+        parse_tum("# header\n\n0.0 1 2 3 0 0 0 1\n  \n0.1 1 2 3 0 0 0.7071068 0.7071068\n");
     ASSERT_EQ(poses.size(), 2u);
     EXPECT_NEAR(yaw_of(poses[1].T_world_sensor), 1.5707963267948966, 1e-6);
 }
@@ -61,7 +63,8 @@ TEST(PoseIo, BadInputSaysWhichLine) {
         {"1 1 2 3 0 0 0 1\n0 1 2 3 0 0 0 1\n", "line 2: timestamp goes backwards"},
         {"0 1 2 x 0 0 0 1\n", "line 1: bad number 'x'"},
         {"# only a comment\n", "no poses"},
-        // Recordings from the wild (issue 34): stamps all alike, ~1e300 or negative; poses of 1e30 m.
+        // Recordings from the wild (issue 34): stamps all alike, ~1e300 or negative; poses of 1e30
+        // m.
         {"0 1 2 3 0 0 0 1\n0 1 2 3 0 0 0 1\n", "line 2: timestamp 0 repeats the line before's"},
         {"1e300 1 2 3 0 0 0 1\n", "line 1: timestamp 1e+300 is not seconds in [0, 1e10]"},
         {"-5 1 2 3 0 0 0 1\n", "line 1: timestamp -5 is not seconds"},
@@ -76,7 +79,7 @@ TEST(PoseIo, BadInputSaysWhichLine) {
         }
     }
     EXPECT_THROW(parse_kitti_poses("1 0 0 0 0 1 0 0 0 0 1\n"), FormatError);
-    EXPECT_THROW(parse_kitti_poses("2 0 0 0 0 1 0 0 0 0 1 0\n"), FormatError);  // not a rotation
+    EXPECT_THROW(parse_kitti_poses("2 0 0 0 0 1 0 0 0 0 1 0\n"), FormatError);   // not a rotation
     EXPECT_THROW(parse_kitti_poses("-1 0 0 0 0 1 0 0 0 0 1 0\n"), FormatError);  // reflection
     const auto dir = testing_util::fresh_dir("bad");
     std::ofstream(dir / "p.txt") << "0 1 2 3 0 0 0\n";
@@ -84,7 +87,8 @@ TEST(PoseIo, BadInputSaysWhichLine) {
         read_tum(dir / "p.txt");
         FAIL();
     } catch (const FileError& e) {
-        EXPECT_EQ(std::string(e.what()), (dir / "p.txt").string() + ": line 1: expected 8 numbers, found 7");
+        EXPECT_EQ(std::string(e.what()),
+                  (dir / "p.txt").string() + ": line 1: expected 8 numbers, found 7");
     }
 }
 

@@ -3,8 +3,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "io/error.hpp"
 #include "io/cad_folder.hpp"
+#include "io/error.hpp"
 #include "io/furniture_folder.hpp"
 #include "io/mesh_io.hpp"
 #include "io/scene_io.hpp"
@@ -47,16 +47,22 @@ TEST(SceneIo, UserMeshIsLoadedScaledAndHitByRays) {
     TriangleMesh cube;
     sim::add_box(cube, {0, 0, 0.5}, {1, 1, 1});
     write_mesh(dir / "crate.stl", cube);
-    std::ofstream(dir / "s.yaml") << "name: crate_room\nfloor: {min_m: [-5, -5], max_m: [5, 5]}\n"
-                                     "objects:\n  - {id: 7, class: table, mesh: crate.stl, scale: 0.8, "
-                                     "pose: {x_m: 2, y_m: 0, yaw_rad: 0}}\n";
+    std::ofstream(dir / "s.yaml")
+        << "name: crate_room\nfloor: {min_m: [-5, -5], max_m: [5, 5]}\n"
+           "objects:\n  - {id: 7, class: table, mesh: crate.stl, scale: 0.8, "
+           "pose: {x_m: 2, y_m: 0, yaw_rad: 0}}\n";
     const sim::Scene s = read_scene(dir / "s.yaml");
     ASSERT_TRUE(s.objects[0].user_mesh);
     const sim::ObjectModel model = sim::model_of(s.objects[0]);
     EXPECT_NEAR(model.box_object.size_m.z(), 0.8, 1e-6);
     sim::World world(s, {model});
     sim::LidarParams lidar;
-    const PointCloud c = sim::simulate_sweep(world, lidar, [](double) { return make_T_xyz_yaw({0, 0, 0.45}, 0); }, 0, 1, 0);
+    const PointCloud c = sim::simulate_sweep(
+        world, lidar,
+        [](double) {
+            return make_T_xyz_yaw({0, 0, 0.45}, 0);
+        },
+        0, 1, 0);
     std::size_t hits = 0;
     for (std::size_t i = 0; i < c.size(); ++i) {
         if (c.instance[i] != 7) continue;
@@ -68,21 +74,26 @@ TEST(SceneIo, UserMeshIsLoadedScaledAndHitByRays) {
 }
 
 TEST(SceneIo, EveryProblemIsListed) {
-    EXPECT_EQ(problem_of("objects:\n  - {id: 1, class: chair, style: throne, pose: {x_m: 0, y_m: 0, yaw_rad: 0}}\n"),
+    EXPECT_EQ(problem_of("objects:\n  - {id: 1, class: chair, style: throne, pose: {x_m: 0, y_m: "
+                         "0, yaw_rad: 0}}\n"),
               "objects[0]: unknown style 'throne'");
     EXPECT_EQ(problem_of("objects:\n  - {id: 1, class: table, style: stool}\n"),
               "objects[0]: style 'stool' is not a table");
     const std::string many = problem_of(
         "floor: {min_m: [0, 0], max_m: [-1, 5]}\nobjects:\n  - {id: 1, class: sofa, style: stool}\n"
-        "  - {id: 1, class: chair, style: stool, colour: red}\npushers:\n  - {chair_id: 9, period_s: 0}\n");
+        "  - {id: 1, class: chair, style: stool, colour: red}\npushers:\n  - {chair_id: 9, "
+        "period_s: 0}\n");
     EXPECT_EQ(many.rfind("6 problems: ", 0), 0u) << many;
-    for (const char* part : {"class must be chair or table (got 'sofa')", "objects[1].colour: unknown key",
-                             "object 1: duplicate id", "pusher: chair 9 does not exist", "period_s must be > 0",
-                             "floor: max must exceed min"}) {
+    for (const char* part :
+         {"class must be chair or table (got 'sofa')", "objects[1].colour: unknown key",
+          "object 1: duplicate id", "pusher: chair 9 does not exist", "period_s must be > 0",
+          "floor: max must exceed min"}) {
         EXPECT_NE(many.find(part), std::string::npos) << part << " missing from " << many;
     }
     EXPECT_EQ(problem_of("walls: 3\n"), "walls: must be a list");
-    EXPECT_NE(problem_of("walls:\n  - {a_m: [0], b_m: [1, 1]}\n").find("walls[0].a_m: must be a pair"), std::string::npos);
+    EXPECT_NE(
+        problem_of("walls:\n  - {a_m: [0], b_m: [1, 1]}\n").find("walls[0].a_m: must be a pair"),
+        std::string::npos);
     EXPECT_EQ(problem_of("[1, 2]\n"), "a scene must be a mapping (name, walls, objects, ...)");
 }
 
@@ -110,18 +121,25 @@ TEST(SceneIo, MeshPathsStayInsideTheScenesFolder) {
     write_mesh(dir / "scene" / "meshes" / "inside.stl", cube);
     std::filesystem::create_symlink(dir / "crate.stl", dir / "scene" / "link.stl");
     const auto scene_with = [&](const std::string& mesh) {
-        std::ofstream(dir / "scene" / "s.yaml") << "objects:\n  - {id: 1, class: table, mesh: '" << mesh << "'}\n";
+        std::ofstream(dir / "scene" / "s.yaml")
+            << "objects:\n  - {id: 1, class: table, mesh: '" << mesh << "'}\n";
         return dir / "scene" / "s.yaml";
     };
-    for (const std::string& mesh : {std::string("../crate.stl"), (dir / "crate.stl").string(), std::string("meshes/../../crate.stl"),
-                                   std::string("link.stl")}) {
+    for (const std::string& mesh :
+         {std::string("../crate.stl"), (dir / "crate.stl").string(),
+          std::string("meshes/../../crate.stl"), std::string("link.stl")}) {
         try {
             read_scene(scene_with(mesh));
             ADD_FAILURE() << mesh << " was read";
         } catch (const FileError& e) {
-            EXPECT_NE(std::string(e.what()).find("mesh '" + mesh + "' is outside the scene's folder"), std::string::npos) << e.what();
+            EXPECT_NE(
+                std::string(e.what()).find("mesh '" + mesh + "' is outside the scene's folder"),
+                std::string::npos)
+                << e.what();
         }
-        EXPECT_TRUE(read_scene(scene_with(mesh), {.allow_outside_paths = true}).objects[0].user_mesh) << mesh;
+        EXPECT_TRUE(
+            read_scene(scene_with(mesh), {.allow_outside_paths = true}).objects[0].user_mesh)
+            << mesh;
     }
     EXPECT_TRUE(read_scene(scene_with("meshes/inside.stl")).objects[0].user_mesh);
     EXPECT_TRUE(read_scene(scene_with("meshes/../meshes/inside.stl")).objects[0].user_mesh);
@@ -135,7 +153,8 @@ namespace {
 
 // A chair-like block 0.5 wide, 0.4 deep, 0.9 tall with a back rest (a thin slab at its rear),
 // written as an author would: in `unit`s, with `up` and `forward` axes, its origin at a corner.
-TriangleMesh authored_chair(const Eigen::Vector3d& up, const Eigen::Vector3d& forward, double unit) {
+TriangleMesh authored_chair(const Eigen::Vector3d& up, const Eigen::Vector3d& forward,
+                            double unit) {
     const Eigen::Vector3d side = up.cross(forward);
     TriangleMesh seat, back;
     sim::add_box(seat, Eigen::Vector3d(0, 0, 0.225), Eigen::Vector3d(0.4, 0.5, 0.45));
@@ -145,7 +164,8 @@ TriangleMesh authored_chair(const Eigen::Vector3d& up, const Eigen::Vector3d& fo
     R.col(0) = forward;
     R.col(1) = side;
     R.col(2) = up;
-    for (auto& v : seat.vertices_m) v = ((R * (v.cast<double>() + Eigen::Vector3d(0.2, 0.25, 0.0))) / unit).cast<float>();
+    for (auto& v : seat.vertices_m)
+        v = ((R * (v.cast<double>() + Eigen::Vector3d(0.2, 0.25, 0.0))) / unit).cast<float>();
     return seat;
 }
 
@@ -157,17 +177,21 @@ std::string collada(const TriangleMesh& m, const char* up_axis) {
     out << R"(<?xml version="1.0" encoding="utf-8"?>
 <COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1"><asset><unit meter="1" name="meter"/>)"
         << (up_axis ? std::string("<up_axis>") + up_axis + "</up_axis>" : "") << R"(</asset>
-<library_geometries><geometry id="g"><mesh><source id="p"><float_array id="pa" count=")" << 3 * m.vertices_m.size() << "\">" << pos.str()
-        << R"(</float_array><technique_common><accessor source="#pa" count=")" << m.vertices_m.size() << R"(" stride="3">
+<library_geometries><geometry id="g"><mesh><source id="p"><float_array id="pa" count=")"
+        << 3 * m.vertices_m.size() << "\">" << pos.str()
+        << R"(</float_array><technique_common><accessor source="#pa" count=")"
+        << m.vertices_m.size() << R"(" stride="3">
 <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
-<vertices id="v"><input semantic="POSITION" source="#p"/></vertices><triangles count=")" << m.triangles.size()
-        << R"("><input semantic="VERTEX" source="#v" offset="0"/><p>)" << idx.str() << R"(</p></triangles></mesh></geometry></library_geometries>
+<vertices id="v"><input semantic="POSITION" source="#p"/></vertices><triangles count=")"
+        << m.triangles.size() << R"("><input semantic="VERTEX" source="#v" offset="0"/><p>)"
+        << idx.str() << R"(</p></triangles></mesh></geometry></library_geometries>
 <library_visual_scenes><visual_scene id="s"><node id="n"><instance_geometry url="#g"/></node></visual_scene></library_visual_scenes>
 <scene><instance_visual_scene url="#s"/></scene></COLLADA>)";
     return out.str();
 }
 
-// The placed mesh is the chair upright, 0.4 deep along x, its back rest at -x, on the floor, centred.
+// The placed mesh is the chair upright, 0.4 deep along x, its back rest at -x, on the floor,
+// centred.
 void expect_upright_facing_x(const TriangleMesh& m, const std::string& what) {
     Eigen::Vector3f lo = m.vertices_m[0], hi = lo;
     for (const auto& v : m.vertices_m) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
@@ -198,11 +222,16 @@ TEST(SceneIo, MeshesOfOtherToolsArePlacedAsTheirFilesAndTheSceneSay) {
     write_mesh(dir / "zup_mm.stl", authored_chair(Z, Y, 0.001));
     std::ofstream(dir / "s.yaml")
         << "floor: {min_m: [-5, -5], max_m: [5, 5]}\nobjects:\n"
-           "  - {id: 1, class: chair, mesh: zup.dae, forward_axis: -y, pose: {x_m: 0, y_m: 0, yaw_rad: 0}}\n"
-           "  - {id: 2, class: chair, mesh: yup.dae, forward_axis: -y, pose: {x_m: 1, y_m: 0, yaw_rad: 0}}\n"
-           "  - {id: 3, class: chair, mesh: noup.dae, forward_axis: -y, pose: {x_m: 2, y_m: 0, yaw_rad: 0}}\n"
-           "  - {id: 4, class: chair, mesh: yup_cm.obj, units: cm, up_axis: y, forward_axis: -z, pose: {x_m: 3, y_m: 0, yaw_rad: 0}}\n"
-           "  - {id: 5, class: chair, mesh: zup_mm.stl, units: mm, forward_axis: y, pose: {x_m: 4, y_m: 0, yaw_rad: 0}}\n";
+           "  - {id: 1, class: chair, mesh: zup.dae, forward_axis: -y, pose: {x_m: 0, y_m: 0, "
+           "yaw_rad: 0}}\n"
+           "  - {id: 2, class: chair, mesh: yup.dae, forward_axis: -y, pose: {x_m: 1, y_m: 0, "
+           "yaw_rad: 0}}\n"
+           "  - {id: 3, class: chair, mesh: noup.dae, forward_axis: -y, pose: {x_m: 2, y_m: 0, "
+           "yaw_rad: 0}}\n"
+           "  - {id: 4, class: chair, mesh: yup_cm.obj, units: cm, up_axis: y, forward_axis: -z, "
+           "pose: {x_m: 3, y_m: 0, yaw_rad: 0}}\n"
+           "  - {id: 5, class: chair, mesh: zup_mm.stl, units: mm, forward_axis: y, pose: {x_m: 4, "
+           "y_m: 0, yaw_rad: 0}}\n";
     // The Y-up Collada files are turned Z-up by the reader (their +z front becomes -y).
     std::vector<std::string> warnings;
     SceneReadOptions options;
@@ -217,22 +246,26 @@ TEST(SceneIo, MeshesOfOtherToolsArePlacedAsTheirFilesAndTheSceneSay) {
     // Written back and read again: the same placement.
     write_scene(dir / "again.yaml", s);
     const sim::Scene again = read_scene(dir / "again.yaml", options);
-    for (const sim::SceneObject& o : again.objects) expect_upright_facing_x(*o.user_mesh, "again " + o.mesh_file);
+    for (const sim::SceneObject& o : again.objects)
+        expect_upright_facing_x(*o.user_mesh, "again " + o.mesh_file);
     // Units forgotten: readable, with a warning naming the object and the file.
-    std::ofstream(dir / "w.yaml") << "objects:\n  - {id: 1, class: chair, mesh: yup_cm.obj, up_axis: y, forward_axis: -z}\n";
+    std::ofstream(dir / "w.yaml")
+        << "objects:\n  - {id: 1, class: chair, mesh: yup_cm.obj, up_axis: y, forward_axis: -z}\n";
     read_scene(dir / "w.yaml", options);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_NE(warnings[0].find("objects[0]: mesh yup_cm.obj: "), std::string::npos) << warnings[0];
     EXPECT_NE(warnings[0].find("wrong units or up axis"), std::string::npos) << warnings[0];
     // Bad axes and units are problems of the scene file.
-    std::ofstream(dir / "bad.yaml") << "objects:\n  - {id: 1, class: chair, mesh: zup.dae, up_axis: y, forward_axis: -y, units: cubits}\n";
+    std::ofstream(dir / "bad.yaml") << "objects:\n  - {id: 1, class: chair, mesh: zup.dae, "
+                                       "up_axis: y, forward_axis: -y, units: cubits}\n";
     try {
         read_scene(dir / "bad.yaml", options);
         ADD_FAILURE() << "no error";
     } catch (const FileError& e) {
         const std::string msg = e.what();
         EXPECT_NE(msg.find("up_axis and forward_axis are parallel"), std::string::npos) << msg;
-        EXPECT_NE(msg.find("units must be m, cm, mm, in or ft (got 'cubits')"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("units must be m, cm, mm, in or ft (got 'cubits')"), std::string::npos)
+            << msg;
     }
 }
 
@@ -243,12 +276,15 @@ TEST(FurnitureFolder, AnIndexSaysHowEachMeshWasDrawn) {
     std::ofstream(dir / "f" / "cafe.dae") << collada(authored_chair(Z, -Y, 1.0), "Z_UP");
     write_mesh(dir / "f" / "chairs" / "stacking.obj", authored_chair(Y, -Z, 0.01));
     write_mesh(dir / "f" / "bench.stl", authored_chair(Z, Y, 0.001));
-    std::ofstream(dir / "f" / "furniture.yaml") << "furniture:\n"
-                                                   "  - {file: cafe.dae, class: table, forward_axis: -y}\n"
-                                                   "  - {file: chairs/stacking.obj, class: chair, units: cm, up_axis: y, forward_axis: -z}\n"
-                                                   "  - {file: bench.stl, class: chair, units: mm, forward_axis: y}\n";
+    std::ofstream(dir / "f" / "furniture.yaml")
+        << "furniture:\n"
+           "  - {file: cafe.dae, class: table, forward_axis: -y}\n"
+           "  - {file: chairs/stacking.obj, class: chair, units: cm, up_axis: y, forward_axis: "
+           "-z}\n"
+           "  - {file: bench.stl, class: chair, units: mm, forward_axis: y}\n";
     std::vector<std::string> warnings;
-    const auto meshes = read_furniture_folder(dir / "f", [&](const std::string& w) { warnings.push_back(w); });
+    const auto meshes =
+        read_furniture_folder(dir / "f", [&](const std::string& w) { warnings.push_back(w); });
     ASSERT_EQ(meshes.size(), 3u);
     EXPECT_EQ(meshes[0].name, "cafe");
     EXPECT_EQ(meshes[0].cls, ObjectClass::kTable);
@@ -258,18 +294,23 @@ TEST(FurnitureFolder, AnIndexSaysHowEachMeshWasDrawn) {
     // The same folder is a CAD library for verify, run and label.
     EXPECT_EQ(read_cad_folder(dir / "f").models().size(), 3u);
     // Every problem of the index at once, naming the index; files outside the folder refused.
-    std::ofstream(dir / "f" / "furniture.yaml") << "furniture:\n"
-                                                   "  - {file: cafe.dae, class: sofa}\n"
-                                                   "  - {file: ../outside.obj, class: chair}\n"
-                                                   "  - {file: bench.stl, class: chair, up_axis: q}\n";
+    std::ofstream(dir / "f" / "furniture.yaml")
+        << "furniture:\n"
+           "  - {file: cafe.dae, class: sofa}\n"
+           "  - {file: ../outside.obj, class: chair}\n"
+           "  - {file: bench.stl, class: chair, up_axis: q}\n";
     try {
         read_furniture_folder(dir / "f");
         ADD_FAILURE() << "no error";
     } catch (const FileError& e) {
         const std::string msg = e.what();
         EXPECT_EQ(msg.rfind((dir / "f" / "furniture.yaml").string(), 0), 0u) << msg;
-        EXPECT_NE(msg.find("furniture[0]: class must be chair or table (got 'sofa')"), std::string::npos) << msg;
-        EXPECT_NE(msg.find("furniture[1]: file '../outside.obj' is outside the folder"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("furniture[0]: class must be chair or table (got 'sofa')"),
+                  std::string::npos)
+            << msg;
+        EXPECT_NE(msg.find("furniture[1]: file '../outside.obj' is outside the folder"),
+                  std::string::npos)
+            << msg;
         EXPECT_NE(msg.find("furniture[2]: up_axis must be"), std::string::npos) << msg;
     }
     // Without an index: names say the class.

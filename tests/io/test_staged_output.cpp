@@ -23,7 +23,8 @@ std::string slurp(const fs::path& p) {
 // Every entry under `dir`, hidden ones included, as sorted relative paths.
 std::vector<std::string> tree(const fs::path& dir) {
     std::vector<std::string> out;
-    for (const auto& e : fs::recursive_directory_iterator(dir)) out.push_back(fs::relative(e.path(), dir).string());
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        out.push_back(fs::relative(e.path(), dir).string());
     std::sort(out.begin(), out.end());
     return out;
 }
@@ -37,7 +38,8 @@ TEST(StagedOutput, NewTargetAppearsWholeOnCommit) {
         EXPECT_FALSE(fs::exists(dir / "out"));  // nothing visible before the commit
         staged.commit();
     }
-    EXPECT_EQ(tree(dir), (std::vector<std::string>{"out", "out/a.txt", "out/sub", "out/sub/b.txt"}));
+    EXPECT_EQ(tree(dir),
+              (std::vector<std::string>{"out", "out/a.txt", "out/sub", "out/sub/b.txt"}));
     EXPECT_EQ(slurp(dir / "out" / "sub" / "b.txt"), "b");
     // Folders get the permissions of any new folder, not mkdtemp's 0700.
     EXPECT_NE(fs::status(dir / "out").permissions() & fs::perms::others_read, fs::perms::none);
@@ -52,7 +54,8 @@ TEST(StagedOutput, ExistingTargetKeepsOtherFilesAndReplacesNamesakes) {
         write_file_atomic(staged.staging() / "sub" / "b.txt", "new");
         staged.commit();
     }
-    EXPECT_EQ(tree(dir), (std::vector<std::string>{"out", "out/keep.txt", "out/sub", "out/sub/b.txt"}));
+    EXPECT_EQ(tree(dir),
+              (std::vector<std::string>{"out", "out/keep.txt", "out/sub", "out/sub/b.txt"}));
     EXPECT_EQ(slurp(dir / "out" / "sub" / "b.txt"), "new");
     EXPECT_EQ(slurp(dir / "out" / "keep.txt"), "keep");
 }
@@ -144,7 +147,8 @@ TEST(FreeSpace, ImpossibleAmountIsRefusedBeforeAnythingIsWritten) {
         check_free_space(dir / "not" / "yet", std::uintmax_t{1} << 62, "4 EB of sweeps");
         FAIL();
     } catch (const FileError& e) {
-        EXPECT_NE(std::string(e.what()).find("4 EB of sweeps need about"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("4 EB of sweeps need about"), std::string::npos)
+            << e.what();
     }
     EXPECT_NO_THROW(check_free_space(dir, 1000, "a small file"));
     EXPECT_FALSE(fs::exists(dir / "not"));

@@ -13,7 +13,8 @@ namespace {
 TEST(KittiTracking, RoundTripsRecordsAndBoxes) {
     const OrientedBox chair{{2.5, -1.0, 0.45}, {0.55, 0.5, 0.9}, 0.7};
     const OrientedBox table{{4.0, 2.0, 0.375}, {1.6, 0.8, 0.75}, -2.9};
-    std::vector<KittiTrackingRecord> recs{to_kitti(chair, ObjectClass::kChair, 0, 3, 0.8), to_kitti(table, ObjectClass::kTable, 1, 7, std::nullopt),
+    std::vector<KittiTrackingRecord> recs{to_kitti(chair, ObjectClass::kChair, 0, 3, 0.8),
+                                          to_kitti(table, ObjectClass::kTable, 1, 7, std::nullopt),
                                           to_kitti(chair, ObjectClass::kChair, 2, -1, 0.5)};
     const auto dir = testing_util::fresh_dir("kitti_tracking");
     write_kitti_tracking(dir / "0000.txt", recs);
@@ -40,11 +41,14 @@ TEST(KittiTracking, RoundTripsRecordsAndBoxes) {
 
 TEST(KittiTracking, MalformedLinesNameTheFileAndLine) {
     const auto dir = testing_util::fresh_dir("kitti_tracking_bad");
-    std::ofstream(dir / "a.txt") << "0 1 Chair 0 0 0 0 0 0 0 0.9 0.5 0.5 1 0.45 2 0.1\n0 2 Chair 0 0 0\n";
+    std::ofstream(dir / "a.txt")
+        << "0 1 Chair 0 0 0 0 0 0 0 0.9 0.5 0.5 1 0.45 2 0.1\n0 2 Chair 0 0 0\n";
     std::ofstream(dir / "b.txt") << "0 1 Chair 0 0 0 0 0 0 0 0.9 nan 0.5 1 0.45 2 0.1\n";
     std::ofstream(dir / "c.txt") << "0 1 Chair 0 0 0 0 0 0 0 0.9 0 0.5 1 0.45 2 0.1\n";
     for (const auto& [file, what] : std::vector<std::pair<std::string, std::string>>{
-             {"a.txt", "line 2: expected 17 or 18 fields"}, {"b.txt", "line 1: value is NaN or infinite"}, {"c.txt", "line 1: box dimensions"}}) {
+             {"a.txt", "line 2: expected 17 or 18 fields"},
+             {"b.txt", "line 1: value is NaN or infinite"},
+             {"c.txt", "line 1: box dimensions"}}) {
         try {
             read_kitti_tracking(dir / file);
             ADD_FAILURE() << file;
@@ -55,8 +59,9 @@ TEST(KittiTracking, MalformedLinesNameTheFileAndLine) {
     }
     EXPECT_EQ(class_of_kitti_type("CHAIR"), ObjectClass::kChair);
     // Published KITTI labels: DontCare regions have no 3D box (size -1); a sequence may be empty.
-    std::ofstream(dir / "labels.txt") << "0 -1 DontCare -1 -1 -10 219.31 188.49 245.50 218.56 -1 -1 -1 -1000 -1000 -1000 -10\n"
-                                         "0 0 Van 0 0 -1.79 296.74 161.75 455.22 292.50 2.00 1.82 4.43 -4.55 1.71 13.41 -2.11\n";
+    std::ofstream(dir / "labels.txt")
+        << "0 -1 DontCare -1 -1 -10 219.31 188.49 245.50 218.56 -1 -1 -1 -1000 -1000 -1000 -10\n"
+           "0 0 Van 0 0 -1.79 296.74 161.75 455.22 292.50 2.00 1.82 4.43 -4.55 1.71 13.41 -2.11\n";
     const auto labels = read_kitti_tracking(dir / "labels.txt");
     ASSERT_EQ(labels.size(), 2u);
     EXPECT_TRUE(labels[0].is_dont_care());
@@ -72,8 +77,9 @@ TEST(KittiTracking, MalformedLinesNameTheFileAndLine) {
 // type as a number, the score a raw logit before h w l.
 TEST(KittiTracking, ReadsAb3dmotDetectionFiles) {
     const auto dir = testing_util::fresh_dir("kitti_ab3dmot");
-    std::ofstream(dir / "0000.txt") << "0,2,296.7,161.8,455.2,292.5,9.4146,2.00,1.82,4.43,-4.55,1.71,13.41,-2.11,-1.79\n"
-                                       "3,1,10,20,30,60,-0.25,1.7,0.6,0.8,1.0,1.6,8.0,0.1,0.0\n";
+    std::ofstream(dir / "0000.txt")
+        << "0,2,296.7,161.8,455.2,292.5,9.4146,2.00,1.82,4.43,-4.55,1.71,13.41,-2.11,-1.79\n"
+           "3,1,10,20,30,60,-0.25,1.7,0.6,0.8,1.0,1.6,8.0,0.1,0.0\n";
     const auto d = read_kitti_tracking(dir / "0000.txt");
     ASSERT_EQ(d.size(), 2u);
     EXPECT_EQ(d[0].type, "Car");
@@ -92,7 +98,10 @@ TEST(KittiTracking, ReadsAb3dmotDetectionFiles) {
         read_kitti_tracking(dir / "bad.txt");
         ADD_FAILURE();
     } catch (const FileError& e) {
-        EXPECT_NE(std::string(e.what()).find("bad.txt: line 1: type 4 is not 1 (Pedestrian), 2 (Car) or 3 (Cyclist)"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(
+                      "bad.txt: line 1: type 4 is not 1 (Pedestrian), 2 (Car) or 3 (Cyclist)"),
+                  std::string::npos)
+            << e.what();
     }
     std::ofstream(dir / "short.txt") << "0,2,1,2\n";
     EXPECT_THROW(read_kitti_tracking(dir / "short.txt"), FileError);
@@ -116,7 +125,8 @@ TEST(DetectionFrames, RoundTripAndRejectBadFields) {
     ASSERT_EQ(g.detections_sensor.size(), 1u);
     EXPECT_DOUBLE_EQ(g.detections_sensor[0].class_probabilities[1], 0.3);
     EXPECT_DOUBLE_EQ(g.detections_sensor[0].score, 0.6);
-    std::ofstream(dir / "bad.json") << R"({"detections": [{"class": "chair", "box": {"centre_m": [0,0,0], "size_m": [1,1,1], "yaw_rad": 0}, "score": 2}]})";
+    std::ofstream(dir / "bad.json")
+        << R"({"detections": [{"class": "chair", "box": {"centre_m": [0,0,0], "size_m": [1,1,1], "yaw_rad": 0}, "score": 2}]})";
     EXPECT_THROW(read_detection_frame(dir / "bad.json"), FileError);
     EXPECT_EQ(frame_files(dir, "json").size(), 2u);
     EXPECT_THROW(frame_files(dir / "nowhere", "json"), FileError);
@@ -130,7 +140,8 @@ namespace {
 
 TEST(DetectionFrames, ANumberThatOverflowsIsBadInputNotACrash) {
     // Found by fuzz_detection_json: nlohmann throws out_of_range, not parse_error, for it.
-    EXPECT_THROW(parse_detection_frame("[{\"class\": \"chair\", \"score\": 5e555555555}]"), FormatError);
+    EXPECT_THROW(parse_detection_frame("[{\"class\": \"chair\", \"score\": 5e555555555}]"),
+                 FormatError);
     const auto dir = testing_util::fresh_dir("json_overflow");
     std::ofstream(dir / "f.json") << "{\"detections\": [], \"stamp_s\": 1e99999}";
     EXPECT_THROW(read_detection_frame(dir / "f.json"), FileError);

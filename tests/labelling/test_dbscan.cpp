@@ -61,7 +61,8 @@ TEST(Dbscan, MatchesTheBruteForceReferenceOnRandomSets) {
             const Eigen::Vector3d c(3 * u(rng), 3 * u(rng), u(rng));
             for (int k = 0; k < 60; ++k) pts.push_back(c + Eigen::Vector3d(g(rng), g(rng), g(rng)));
         }
-        for (int k = 0; k < 100; ++k) pts.push_back(Eigen::Vector3d(3 * u(rng), 3 * u(rng), u(rng)));
+        for (int k = 0; k < 100; ++k)
+            pts.push_back(Eigen::Vector3d(3 * u(rng), 3 * u(rng), u(rng)));
         const DbscanParams p{0.1 + 0.02 * seed, 4 + static_cast<int>(seed % 3)};
         const DbscanResult got = dbscan(pts, p);
         const DbscanResult want = brute_force(pts, p);
@@ -75,7 +76,8 @@ TEST(Dbscan, MatchesTheBruteForceReferenceOnRandomSets) {
                 ASSERT_NE(got.cluster[i], DbscanResult::kNoise);
                 bool touches = false;
                 for (std::size_t j = 0; j < pts.size(); ++j) {
-                    touches |= got.cluster[j] == got.cluster[i] && is_core(pts, j, p) && (pts[i] - pts[j]).norm() <= p.eps_m;
+                    touches |= got.cluster[j] == got.cluster[i] && is_core(pts, j, p) &&
+                               (pts[i] - pts[j]).norm() <= p.eps_m;
                 }
                 EXPECT_TRUE(touches) << "seed " << seed << " point " << i;
             }
@@ -90,7 +92,8 @@ TEST(Dbscan, DegenerateInput) {
     EXPECT_EQ(dbscan({Eigen::Vector3d::Zero()}, {0.1, 1}).clusters, 1);
     EXPECT_EQ(dbscan({Eigen::Vector3d::Zero()}, {0.1, 2}).cluster[0], DbscanResult::kNoise);
     // Identical points are each other's neighbours.
-    const DbscanResult same = dbscan(std::vector<Eigen::Vector3d>(10, Eigen::Vector3d(1, 2, 3)), {0.01, 10});
+    const DbscanResult same =
+        dbscan(std::vector<Eigen::Vector3d>(10, Eigen::Vector3d(1, 2, 3)), {0.01, 10});
     EXPECT_EQ(same.clusters, 1);
     // Two lines 0.5 m apart stay two clusters at eps 0.2, members listed per cluster.
     std::vector<Eigen::Vector3d> lines;

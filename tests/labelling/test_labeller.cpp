@@ -46,10 +46,13 @@ LabelRun label_two_sessions(bool scramble_labels, int frames_per_session) {
         for (int f = 0; f < frames_per_session && !simulator.reached_goal(); ++f) {
             sim::SimFrame frame = simulator.next();
             if (scramble_labels) {
-                for (auto& l : frame.points_sensor.label) l = static_cast<std::uint8_t>(rng() % kNumSemanticLabels);
-                for (auto& i : frame.points_sensor.instance) i = static_cast<std::uint32_t>(rng() % 50);
+                for (auto& l : frame.points_sensor.label)
+                    l = static_cast<std::uint8_t>(rng() % kNumSemanticLabels);
+                for (auto& i : frame.points_sensor.instance)
+                    i = static_cast<std::uint32_t>(rng() % 50);
             }
-            labeller.add_sweep({frame.points_sensor, frame.stamp_s, sp.lidar.sweep_duration_s(), frame.odometry_pose, frame.odometry_end_pose});
+            labeller.add_sweep({frame.points_sensor, frame.stamp_s, sp.lidar.sweep_duration_s(),
+                                frame.odometry_pose, frame.odometry_end_pose});
         }
     }
     const verification::CadLibrary library = eval::scene_cad_library(base);
@@ -71,13 +74,15 @@ TEST(Labeller, FindsTheRoomsFurnitureWithoutTheSimulatorsLabels) {
         double best = 0.0;
         bool same_class = false;
         for (const sim::SceneObject& so : run.scenes[static_cast<std::size_t>(o.session)].objects) {
-            const double iou = iou_3d(sim::model_of(so).box_object.transformed(lift_to_3d(so.pose)), o.box_world);
+            const double iou =
+                iou_3d(sim::model_of(so).box_object.transformed(lift_to_3d(so.pose)), o.box_world);
             if (iou > best) best = iou, same_class = so.cls == *o.cls;
         }
         right += best > 0.5 && same_class;
     }
     EXPECT_GE(fitted, 6u);
-    EXPECT_GE(static_cast<double>(right), 0.8 * static_cast<double>(fitted)) << right << " of " << fitted;
+    EXPECT_GE(static_cast<double>(right), 0.8 * static_cast<double>(fitted))
+        << right << " of " << fitted;
     // Keyframes carry labelled objects and one point label per point.
     std::size_t labelled = 0;
     for (const auto& session : r.sessions) {
@@ -99,7 +104,8 @@ TEST(Labeller, TheSimulatorsLabelsDoNotReachIt) {
     ASSERT_GE(plain.result.objects.size(), 3u);  // something to compare: the claim is not vacuous
     ASSERT_EQ(scrambled.result.objects.size(), plain.result.objects.size());
     for (std::size_t i = 0; i < plain.result.objects.size(); ++i) {
-        EXPECT_EQ(scrambled.result.objects[i].box_world.centre_m, plain.result.objects[i].box_world.centre_m);
+        EXPECT_EQ(scrambled.result.objects[i].box_world.centre_m,
+                  plain.result.objects[i].box_world.centre_m);
         EXPECT_EQ(scrambled.result.objects[i].model, plain.result.objects[i].model);
     }
 }

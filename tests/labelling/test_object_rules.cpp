@@ -25,17 +25,22 @@ struct ChairCluster {
 ChairCluster chair_cluster(double noise_m, std::size_t far = 0, std::uint64_t seed = 3) {
     ChairCluster c;
     verification::CadLibrary library;
-    library.add("chair", ObjectClass::kChair, sim::make_furniture(sim::FurnitureStyle::kFourLegChair, 4).mesh_object);
+    library.add("chair", ObjectClass::kChair,
+                sim::make_furniture(sim::FurnitureStyle::kFourLegChair, 4).mesh_object);
     c.one_model.push_back(library.only(0));
     c.T_world_object = make_T_xyz_yaw({2.0, 1.0, 0.0}, 0.3);
     Rng rng = make_rng(seed);
-    for (const Eigen::Vector3d& p : c.one_model.front().models().front().levels.back().points_object) {
-        c.cluster.points_world.push_back(c.T_world_object * p + Eigen::Vector3d(normal(rng, 0, noise_m), normal(rng, 0, noise_m), normal(rng, 0, noise_m)));
+    for (const Eigen::Vector3d& p :
+         c.one_model.front().models().front().levels.back().points_object) {
+        c.cluster.points_world.push_back(
+            c.T_world_object * p + Eigen::Vector3d(normal(rng, 0, noise_m), normal(rng, 0, noise_m),
+                                                   normal(rng, 0, noise_m)));
     }
     c.chair_points = c.cluster.points_world.size();
     c.box_world = upright_pca_box(c.cluster.points_world, 0.0);
     for (std::size_t i = 0; i < far; ++i) {
-        c.cluster.points_world.emplace_back(4.0 + uniform(rng, 0, 0.3), 1.0 + uniform(rng, 0, 0.3), uniform(rng, 0.1, 0.6));
+        c.cluster.points_world.emplace_back(4.0 + uniform(rng, 0, 0.3), 1.0 + uniform(rng, 0, 0.3),
+                                            uniform(rng, 0.1, 0.6));
     }
     c.cluster.movable.assign(c.cluster.points_world.size(), 1);
     return c;
@@ -50,17 +55,22 @@ TEST(ObjectRules, TheResidualRuleTakesAScanOfTheChairAndRefusesANoisyOne) {
     ASSERT_TRUE(fit.has_value());
     EXPECT_LT(fit->verified.residual_m, params().verify.e_max_m);
     EXPECT_EQ(fit->explained, c.chair_points);
-    EXPECT_LT((fit->verified.T_sensor_object.translation() - c.T_world_object.translation()).head<2>().norm(), 0.03);
+    EXPECT_LT((fit->verified.T_sensor_object.translation() - c.T_world_object.translation())
+                  .head<2>()
+                  .norm(),
+              0.03);
     // 5 cm of noise per axis: no model fits within the labeller's e_max (2.5 cm).
     const ChairCluster noisy = chair_cluster(0.05);
-    EXPECT_FALSE(fit_cad_model(noisy.cluster, noisy.box_world, 0.0, noisy.one_model, {}, params()).has_value());
+    EXPECT_FALSE(fit_cad_model(noisy.cluster, noisy.box_world, 0.0, noisy.one_model, {}, params())
+                     .has_value());
 }
 
 TEST(ObjectRules, TheExplainedShareRuleRefusesAModelThatExplainsTooLittle) {
     // The chair's points and as many again 2 m away: the fit explains half the cluster.
     ChairCluster c = chair_cluster(0.003, 0);
     c = chair_cluster(0.003, c.chair_points);
-    const double share = static_cast<double>(c.chair_points) / static_cast<double>(c.cluster.points_world.size());
+    const double share =
+        static_cast<double>(c.chair_points) / static_cast<double>(c.cluster.points_world.size());
     LabelParams p = params();
     p.min_coverage = share - 0.05;
     const auto fit = fit_cad_model(c.cluster, c.box_world, 0.0, c.one_model, {}, p);
@@ -80,16 +90,21 @@ TEST(ObjectRules, TheFreeSpaceRuleRefusesAModelTheSessionSawThrough) {
         seen_at = T;
         return params().max_seen_through + 0.1;
     };
-    EXPECT_FALSE(fit_cad_model(c.cluster, c.box_world, 0.0, c.one_model, mostly_free, params()).has_value());
-    EXPECT_LT((seen_at.translation() - c.T_world_object.translation()).head<2>().norm(), 0.03);  // asked at the fit's pose
-    const SeenThrough mostly_hit = [](const verification::CadModel&, const Isometry3&) { return 0.1; };
+    EXPECT_FALSE(
+        fit_cad_model(c.cluster, c.box_world, 0.0, c.one_model, mostly_free, params()).has_value());
+    EXPECT_LT((seen_at.translation() - c.T_world_object.translation()).head<2>().norm(),
+              0.03);  // asked at the fit's pose
+    const SeenThrough mostly_hit = [](const verification::CadModel&, const Isometry3&) {
+        return 0.1;
+    };
     const auto fit = fit_cad_model(c.cluster, c.box_world, 0.0, c.one_model, mostly_hit, params());
     ASSERT_TRUE(fit.has_value());
     EXPECT_EQ(fit->seen_through, 0.1);
 }
 
 TEST(ObjectRules, WhatAFitLeavesFarFromItsModelIsClusteredAgain) {
-    // The chair and, 2 m away, half as many points again: a third of the cluster is not the chair's.
+    // The chair and, 2 m away, half as many points again: a third of the cluster is not the
+    // chair's.
     const std::size_t far = chair_cluster(0.003).chair_points / 2;
     const ChairCluster c = chair_cluster(0.003, far);
     LabelParams p = params();
@@ -134,11 +149,14 @@ TEST(ObjectRules, FurnitureSizeMovablePartsAndClusters) {
     EXPECT_FALSE(movable_part(all, p).has_value());
     wall.depth = p.max_splits;
     EXPECT_FALSE(movable_part(wall, p).has_value());
-    // Two blobs 1 m apart and one too small; stacked blobs 0.15 m apart join when heights count less.
+    // Two blobs 1 m apart and one too small; stacked blobs 0.15 m apart join when heights count
+    // less.
     std::vector<Eigen::Vector3d> pts;
     Rng rng = make_rng(8);
     const auto blob = [&](const Eigen::Vector3d& at, int n, double r) {
-        for (int i = 0; i < n; ++i) pts.push_back(at + Eigen::Vector3d(uniform(rng, -r, r), uniform(rng, -r, r), uniform(rng, -r, r)));
+        for (int i = 0; i < n; ++i)
+            pts.push_back(at + Eigen::Vector3d(uniform(rng, -r, r), uniform(rng, -r, r),
+                                               uniform(rng, -r, r)));
     };
     blob({0, 0, 0.5}, 60, 0.1);
     blob({1, 0, 0.5}, 60, 0.1);

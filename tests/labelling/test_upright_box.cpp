@@ -33,10 +33,12 @@ double yaw_error_mod_pi(double a, double b) {
 TEST(UprightPcaBox, RecoversConstructedBoxes) {
     for (int k = 0; k < 12; ++k) {
         OrientedBox truth;
-        truth.size_m = Eigen::Vector3d(1.2 + 0.05 * k, 0.6, 0.75);  // elongated: the yaw is defined mod pi
+        truth.size_m =
+            Eigen::Vector3d(1.2 + 0.05 * k, 0.6, 0.75);  // elongated: the yaw is defined mod pi
         truth.yaw_rad = wrap_angle(-3.0 + 0.5 * k);
         truth.centre_m = Eigen::Vector3d(0.3 * k - 2.0, 1.0 - 0.2 * k, 0.375);
-        const OrientedBox got = upright_pca_box(box_surface(truth, 3000, static_cast<std::uint32_t>(k)));
+        const OrientedBox got =
+            upright_pca_box(box_surface(truth, 3000, static_cast<std::uint32_t>(k)));
         EXPECT_LT(rad_to_deg(yaw_error_mod_pi(got.yaw_rad, truth.yaw_rad)), 2.0) << k;
         EXPECT_GT(got.yaw_rad, -kPi / 2 - 1e-9);
         EXPECT_LE(got.yaw_rad, kPi / 2 + 1e-9);

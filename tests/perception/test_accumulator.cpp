@@ -22,7 +22,9 @@ TEST(Accumulator, StaticObjectLandsInTheSamePlaceFromEverySweep) {
     sim::World world(s, {model});
     TriangleMesh placed = model.mesh_object;
     sim::transform_mesh(placed, lift_to_3d(table.pose));
-    auto pose_at = [](double t) { return make_T_xyz_yaw({-2.0 + 0.75 * t, 0.2 * t, 0.45}, 0.4 * t); };
+    auto pose_at = [](double t) {
+        return make_T_xyz_yaw({-2.0 + 0.75 * t, 0.2 * t, 0.45}, 0.4 * t);
+    };
     sim::LidarParams lidar;
     lidar.range_noise_m = 0.0;
     lidar.azimuth_step_deg = 0.4;
@@ -47,8 +49,10 @@ TEST(Accumulator, StaticObjectLandsInTheSamePlaceFromEverySweep) {
         for (std::size_t i = 0; i < kf.size(); i += 3) {
             if (kf.instance[i] != 9) continue;
             ++n;
-            EXPECT_GE(kf.time_s[i], -0.4f - 1e-6f);  // times relative to the keyframe: 4 sweeps back at most
-            worst = std::max(worst, sim::testing_util::mesh_distance(placed, T_world_kf * kf.xyz[i].cast<double>()));
+            EXPECT_GE(kf.time_s[i],
+                      -0.4f - 1e-6f);  // times relative to the keyframe: 4 sweeps back at most
+            worst = std::max(worst, sim::testing_util::mesh_distance(
+                                        placed, T_world_kf * kf.xyz[i].cast<double>()));
         }
         EXPECT_GT(n, 300u);
         if (deskew) {

@@ -29,11 +29,16 @@ std::vector<TrainingSample> synthetic_set(int n, std::uint64_t seed) {
         TrainingSample s;
         for (int o = 0; o < 3; ++o) {
             const bool chair = o < 2;
-            const Eigen::Vector3d size = chair ? Eigen::Vector3d(0.5, 0.5, 0.9) : Eigen::Vector3d(1.2, 0.7, 0.75);
-            const OrientedBox b{{uniform(rng, -2.2, 2.2), uniform(rng, -2.2, 2.2), -0.45 + size.z() / 2}, size, uniform(rng, -3.1, 3.1)};
+            const Eigen::Vector3d size =
+                chair ? Eigen::Vector3d(0.5, 0.5, 0.9) : Eigen::Vector3d(1.2, 0.7, 0.75);
+            const OrientedBox b{
+                {uniform(rng, -2.2, 2.2), uniform(rng, -2.2, 2.2), -0.45 + size.z() / 2},
+                size,
+                uniform(rng, -3.1, 3.1)};
             for (int i = 0; i < 150; ++i) {
-                const Eigen::Vector3d local(uniform(rng, -0.5, 0.5) * size.x(), uniform(rng, -0.5, 0.5) * size.y(),
-                                            chair ? uniform(rng, -0.5, 0.5) * size.z() : 0.45 * size.z());
+                const Eigen::Vector3d local(
+                    uniform(rng, -0.5, 0.5) * size.x(), uniform(rng, -0.5, 0.5) * size.y(),
+                    chair ? uniform(rng, -0.5, 0.5) * size.z() : 0.45 * size.z());
                 const Eigen::Vector3d p = b.T_frame_box() * local;
                 c.xyz.push_back(p.cast<float>());
                 c.intensity.push_back(0.5f);
@@ -95,7 +100,9 @@ TEST(Detector, SharedByThreadsGivesTheSerialAnswers) {
     for (int t = 0; t < 3; ++t) {
         threads.emplace_back([&, t] {
             for (int round = 0; round < 2; ++round) {
-                for (std::size_t k = 0; k < clouds.size(); ++k) mismatches[static_cast<std::size_t>(t)] += detector.heads(clouds[k]) != serial[k];
+                for (std::size_t k = 0; k < clouds.size(); ++k)
+                    mismatches[static_cast<std::size_t>(t)] +=
+                        detector.heads(clouds[k]) != serial[k];
             }
         });
     }
@@ -125,7 +132,8 @@ TEST(Detector, SaysWhetherItReadsIntensity) {
 
 TEST(Detector, EmptyCloudGivesNoDetections) {
     const Detector det(small_params());
-    EXPECT_TRUE(det.detect(PointCloud{}).empty());  // fresh heatmaps start at 0.1, below the threshold
+    EXPECT_TRUE(
+        det.detect(PointCloud{}).empty());  // fresh heatmaps start at 0.1, below the threshold
 }
 
 }  // namespace

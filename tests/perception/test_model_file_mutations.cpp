@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
-#include <iostream>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <random>
 
@@ -24,16 +24,20 @@ std::string slurp(const std::filesystem::path& p) {
 }
 
 std::string mutate(std::string bytes, std::mt19937& rng) {
-    const auto pick = [&](std::size_t n) { return std::uniform_int_distribution<std::size_t>(0, n - 1)(rng); };
+    const auto pick = [&](std::size_t n) {
+        return std::uniform_int_distribution<std::size_t>(0, n - 1)(rng);
+    };
     switch (pick(5)) {
         case 0:  // truncated
             bytes.resize(pick(bytes.size()));
             break;
         case 1:  // bits flipped
-            for (std::size_t k = 0, n = 1 + pick(16); k < n; ++k) bytes[pick(bytes.size())] ^= static_cast<char>(1u << pick(8));
+            for (std::size_t k = 0, n = 1 + pick(16); k < n; ++k)
+                bytes[pick(bytes.size())] ^= static_cast<char>(1u << pick(8));
             break;
         case 2: {  // a 2/4/8-byte field (a zip size, an offset, a tensor length) set to an extreme
-            const std::uint64_t extremes[] = {0, 0xFFFFFFFFFFFFFFFFull, 0x7FFFFFFFull, 0x80000000ull, 0xFFFFull};
+            const std::uint64_t extremes[] = {0, 0xFFFFFFFFFFFFFFFFull, 0x7FFFFFFFull,
+                                              0x80000000ull, 0xFFFFull};
             const std::uint64_t v = extremes[pick(5)];
             const std::size_t width = std::size_t{2} << pick(3);
             const std::size_t at = pick(bytes.size() - width);
@@ -73,23 +77,28 @@ TEST(ModelFile, DamagedFilesLoadOrAreRefusedByName) {
     int refused = 0, loaded = 0;
     for (int k = 0; k < kMutations; ++k) {
         const std::string bytes = mutate(good, rng);
-        std::ofstream(path, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        std::ofstream(path, std::ios::binary | std::ios::trunc)
+            .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         try {
             const Detector d = Detector::load(path);
             ++loaded;
             // Damage outside the records (padding, a comment) is harmless: the network is intact.
-            EXPECT_EQ(d.heads(cloud), reference) << "mutation " << k << " loaded a different network";
+            EXPECT_EQ(d.heads(cloud), reference)
+                << "mutation " << k << " loaded a different network";
         } catch (const std::runtime_error& e) {
             ++refused;
-            EXPECT_EQ(std::string(e.what()).rfind(path.string() + ": ", 0), 0u) << "mutation " << k << ": " << e.what();
-            EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "mutation " << k << ": one line";
+            EXPECT_EQ(std::string(e.what()).rfind(path.string() + ": ", 0), 0u)
+                << "mutation " << k << ": " << e.what();
+            EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos)
+                << "mutation " << k << ": one line";
         }
     }
     // Every record carries a CRC-32: damage to a record is refused. Before the archive check, 22 %
     // of these loaded (altered weights included) and mutation 430 crashed torch after it asked
     // for 43 GB.
     EXPECT_GT(refused, kMutations * 9 / 10);
-    std::cout << "[          ] " << kMutations << " damaged model files: " << refused << " refused, " << loaded << " loaded\n";
+    std::cout << "[          ] " << kMutations << " damaged model files: " << refused
+              << " refused, " << loaded << " loaded\n";
 }
 
 }  // namespace

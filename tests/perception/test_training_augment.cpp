@@ -13,7 +13,8 @@ void add_box_points(PointCloud& cloud, const OrientedBox& b) {
     for (double u : {-0.5, 0.5}) {
         for (double v : {-0.5, 0.5}) {
             const double x = u * b.size_m.x(), y = v * b.size_m.y();
-            cloud.xyz.emplace_back(static_cast<float>(b.centre_m.x() + c * x - s * y), static_cast<float>(b.centre_m.y() + s * x + c * y),
+            cloud.xyz.emplace_back(static_cast<float>(b.centre_m.x() + c * x - s * y),
+                                   static_cast<float>(b.centre_m.y() + s * x + c * y),
                                    static_cast<float>(b.centre_m.z()));
         }
     }
@@ -42,10 +43,12 @@ TEST(TrainingAugment, BoxesMoveWithTheirPoints) {
     PointCloud cloud;
     for (int j = 0; j < 6; ++j) {
         const OrientedBox b{{uniform(sample_rng, -6, 6), uniform(sample_rng, -6, 6), 0.0},
-                            {uniform(sample_rng, 0.4, 1.6), uniform(sample_rng, 0.4, 0.9), 0.8}, uniform(sample_rng, -3.1, 3.1)};
+                            {uniform(sample_rng, 0.4, 1.6), uniform(sample_rng, 0.4, 0.9), 0.8},
+                            uniform(sample_rng, -3.1, 3.1)};
         original.emplace_back(j % 2 ? ObjectClass::kTable : ObjectClass::kChair, b);
         for (int i = 0; i < 100; ++i) {
-            const Eigen::Vector3d local(uniform(sample_rng, -0.45, 0.45) * b.size_m.x(), uniform(sample_rng, -0.45, 0.45) * b.size_m.y(),
+            const Eigen::Vector3d local(uniform(sample_rng, -0.45, 0.45) * b.size_m.x(),
+                                        uniform(sample_rng, -0.45, 0.45) * b.size_m.y(),
                                         uniform(sample_rng, -0.45, 0.45) * b.size_m.z());
             cloud.xyz.push_back((b.T_frame_box() * local).cast<float>());
             cloud.intensity.push_back(static_cast<float>(j));
@@ -69,9 +72,12 @@ TEST(TrainingAugment, BoxesMoveWithTheirPoints) {
             for (std::size_t i = 0; i < c.size(); ++i) {
                 if (c.intensity[i] != static_cast<float>(j)) continue;
                 const Eigen::Vector3d q = T_box_frame * c.xyz[i].cast<double>();
-                EXPECT_LE(std::abs(q.x()), 0.5 * box.size_m.x() + 1e-4) << "seed " << seed << " box " << j;
-                EXPECT_LE(std::abs(q.y()), 0.5 * box.size_m.y() + 1e-4) << "seed " << seed << " box " << j;
-                EXPECT_LE(std::abs(q.z()), 0.5 * box.size_m.z() + 1e-4) << "seed " << seed << " box " << j;
+                EXPECT_LE(std::abs(q.x()), 0.5 * box.size_m.x() + 1e-4)
+                    << "seed " << seed << " box " << j;
+                EXPECT_LE(std::abs(q.y()), 0.5 * box.size_m.y() + 1e-4)
+                    << "seed " << seed << " box " << j;
+                EXPECT_LE(std::abs(q.z()), 0.5 * box.size_m.z() + 1e-4)
+                    << "seed " << seed << " box " << j;
                 ++checked;
             }
         }

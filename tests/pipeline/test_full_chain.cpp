@@ -31,7 +31,8 @@ TEST(FullChain, FindsTheFurnitureWhereItStands) {
     g.people = false;
     const sim::Scene scene = sim::generate_scene(g);
     const sim::RobotParams robot;
-    const auto route = sim::drive_route(scene, sim::CollisionChecker(scene, sim::models_of(scene), robot), robot);
+    const auto route =
+        sim::drive_route(scene, sim::CollisionChecker(scene, sim::models_of(scene), robot), robot);
     ASSERT_TRUE(route.has_value());
     sim::SequenceParams sp;
     sp.seed = 5;
@@ -43,7 +44,8 @@ TEST(FullChain, FindsTheFurnitureWhereItStands) {
 
     SystemParams params;
     params.T_base_sensor = robot.T_robot_sensor();
-    params.verify.reseed_tolerance_m = 0.005;  // re-verification from the map's fits (off by default)
+    params.verify.reseed_tolerance_m =
+        0.005;  // re-verification from the map's fits (off by default)
     const verification::CadLibrary cad = eval::scene_cad_library(scene);
     Pipeline pipeline(params, drive.start_pose(), &detector, &cad);
     std::vector<ObjectEstimate> objects;
@@ -52,7 +54,9 @@ TEST(FullChain, FindsTheFurnitureWhereItStands) {
     std::size_t detections = 0, accepted = 0, from_seed = 0;
     for (int f = 0; f < 120 && !drive.reached_goal(); ++f) {
         const sim::SimFrame frame = drive.next();
-        const SweepResult r = pipeline.process_sweep({frame.points_sensor, frame.stamp_s, 0.1, frame.odometry_pose, frame.odometry_end_pose});
+        const SweepResult r =
+            pipeline.process_sweep({frame.points_sensor, frame.stamp_s, 0.1, frame.odometry_pose,
+                                    frame.odometry_end_pose});
         if (r.keyframe) {
             detections += r.keyframe->detections.size();
             for (const verification::VerifiedDetection& v : r.keyframe->verified) {
@@ -67,14 +71,16 @@ TEST(FullChain, FindsTheFurnitureWhereItStands) {
     ASSERT_GT(detections, 10u);
     // Objects the map has verified are re-verified from their last fit with one ICP (most of the
     // accepted detections after the first keyframes); the map's precision and recall below hold.
-    EXPECT_GE(static_cast<double>(from_seed), 0.3 * static_cast<double>(accepted)) << from_seed << " of " << accepted << " from seeds";
+    EXPECT_GE(static_cast<double>(from_seed), 0.3 * static_cast<double>(accepted))
+        << from_seed << " of " << accepted << " from seeds";
     RecordProperty("accepted", static_cast<int>(accepted));
     RecordProperty("from_seed", static_cast<int>(from_seed));
     // Precision: every object in the map is a real one of its class, where it stands.
     int correct = 0;
     for (const ObjectEstimate& o : objects) {
         for (const sim::ObjectState& t : truth) {
-            const bool near = (o.box_world.centre_m.head<2>() - t.box_world.centre_m.head<2>()).norm() < 0.3;
+            const bool near =
+                (o.box_world.centre_m.head<2>() - t.box_world.centre_m.head<2>()).norm() < 0.3;
             if (near && o.cls == t.cls) {
                 ++correct;
                 break;
@@ -85,11 +91,13 @@ TEST(FullChain, FindsTheFurnitureWhereItStands) {
     int passed = 0, found = 0;
     for (const sim::ObjectState& t : truth) {
         double closest = 1e9;
-        for (const Eigen::Vector2d& p : path) closest = std::min(closest, (p - t.box_world.centre_m.head<2>()).norm());
+        for (const Eigen::Vector2d& p : path)
+            closest = std::min(closest, (p - t.box_world.centre_m.head<2>()).norm());
         if (closest > 3.0) continue;
         ++passed;
         for (const ObjectEstimate& o : objects) {
-            if ((o.box_world.centre_m.head<2>() - t.box_world.centre_m.head<2>()).norm() < 0.3 && o.cls == t.cls) {
+            if ((o.box_world.centre_m.head<2>() - t.box_world.centre_m.head<2>()).norm() < 0.3 &&
+                o.cls == t.cls) {
                 ++found;
                 break;
             }
@@ -99,7 +107,8 @@ TEST(FullChain, FindsTheFurnitureWhereItStands) {
     ASSERT_FALSE(objects.empty());
     EXPECT_GE(static_cast<double>(correct) / static_cast<double>(objects.size()), 0.8)
         << correct << " of " << objects.size() << " map objects are real";
-    EXPECT_GE(static_cast<double>(found) / static_cast<double>(passed), 0.6) << found << " of " << passed << " passed objects found";
+    EXPECT_GE(static_cast<double>(found) / static_cast<double>(passed), 0.6)
+        << found << " of " << passed << " passed objects found";
     RecordProperty("map_objects", static_cast<int>(objects.size()));
     RecordProperty("correct", correct);
     RecordProperty("passed", passed);

@@ -23,15 +23,17 @@ namespace fs = std::filesystem;
 // or file formats (the CMake configure step refuses such a link too).
 TEST(NoTruthRule, PipelineSourcesReachNoSimulatorEvaluationOrIo) {
     const fs::path dir = fs::path(MAKEWAY_SOURCE_DIR) / "src" / "makeway" / "pipeline";
-    const std::vector<std::string> forbidden{"\"makeway/sim/", "\"makeway/eval/", "\"io/",          "makeway::sim",
-                                             "makeway::eval", "makeway::io",    "makeway_sim", "makeway_eval"};
+    const std::vector<std::string> forbidden{"\"makeway/sim/", "\"makeway/eval/", "\"io/",
+                                             "makeway::sim",   "makeway::eval",   "makeway::io",
+                                             "makeway_sim",    "makeway_eval"};
     int files = 0;
     for (const auto& e : fs::directory_iterator(dir)) {
         std::ifstream in(e.path());
         std::string line;
         for (int n = 1; std::getline(in, line); ++n) {
             for (const std::string& f : forbidden) {
-                EXPECT_EQ(line.find(f), std::string::npos) << e.path().filename() << ":" << n << ": " << line;
+                EXPECT_EQ(line.find(f), std::string::npos)
+                    << e.path().filename() << ":" << n << ": " << line;
             }
         }
         ++files;
@@ -41,7 +43,7 @@ TEST(NoTruthRule, PipelineSourcesReachNoSimulatorEvaluationOrIo) {
 
 // A detector that records what it was given.
 class SpyDetector : public perception::ObjectDetector {
-public:
+  public:
     std::vector<Detection> detect(const PointCloud& cloud) const override {
         seen.push_back(cloud.fields());
         points.push_back(cloud.size());
@@ -57,7 +59,8 @@ PointCloud labelled_sweep(std::size_t n) {
     c.resize(n, PointFields::all());
     for (std::size_t i = 0; i < n; ++i) {
         const double a = 2.0 * kPi * static_cast<double>(i) / static_cast<double>(n);
-        c.xyz[i] = Eigen::Vector3f(static_cast<float>(3.0 * std::cos(a)), static_cast<float>(3.0 * std::sin(a)), 0.3f);
+        c.xyz[i] = Eigen::Vector3f(static_cast<float>(3.0 * std::cos(a)),
+                                   static_cast<float>(3.0 * std::sin(a)), 0.3f);
         c.label[i] = 4;
         c.instance[i] = 7;
         c.time_s[i] = static_cast<float>(0.1 * static_cast<double>(i) / static_cast<double>(n));
@@ -70,7 +73,8 @@ TEST(NoTruthRule, PerceptionNeverSeesLabelsOrInstanceIds) {
     SpyDetector spy;
     Pipeline pipeline({}, {}, &spy, nullptr);
     for (int k = 0; k < 10; ++k) {
-        const SweepResult r = pipeline.process_sweep({labelled_sweep(2000), 0.1 * k, 0.1, Pose2{}, Pose2{}});
+        const SweepResult r =
+            pipeline.process_sweep({labelled_sweep(2000), 0.1 * k, 0.1, Pose2{}, Pose2{}});
         EXPECT_TRUE(r.points_world.label.empty());
         EXPECT_TRUE(r.points_world.instance.empty());
         if (r.keyframe) {
@@ -91,7 +95,8 @@ TEST(Pipeline, KeyframeEveryFifthSweepOnceTheWindowIsFull) {
     Pipeline pipeline({}, {}, &spy, nullptr);
     std::vector<int> keyframes;
     for (int k = 0; k < 16; ++k) {
-        if (pipeline.process_sweep({labelled_sweep(100), 0.1 * k, 0.1, Pose2{}, Pose2{}}).keyframe) keyframes.push_back(k);
+        if (pipeline.process_sweep({labelled_sweep(100), 0.1 * k, 0.1, Pose2{}, Pose2{}}).keyframe)
+            keyframes.push_back(k);
     }
     EXPECT_EQ(keyframes, (std::vector<int>{4, 9, 14}));
     EXPECT_EQ(pipeline.keyframes(), 3u);
@@ -102,7 +107,8 @@ TEST(Pipeline, EmptySweepsGiveDefinedEmptyResults) {
     SpyDetector spy;
     Pipeline pipeline({}, {1.0, 2.0, 0.5}, &spy, nullptr);
     for (int k = 0; k < 6; ++k) {
-        const SweepResult r = pipeline.process_sweep({PointCloud{}, 0.1 * k, 0.1, std::nullopt, std::nullopt});
+        const SweepResult r =
+            pipeline.process_sweep({PointCloud{}, 0.1 * k, 0.1, std::nullopt, std::nullopt});
         EXPECT_TRUE(r.objects.empty());
         EXPECT_NEAR(r.pose.x_m, 1.0, 1e-12);  // no odometry: standing still at the start pose
         if (r.keyframe) {
@@ -122,7 +128,8 @@ TEST(Pipeline, InvalidParamsAreAllListedAtOnce) {
         ADD_FAILURE() << "accepted";
     } catch (const std::invalid_argument& e) {
         const std::string what = e.what();
-        EXPECT_NE(what.find("perception.keyframe_window"), std::string::npos) << what;  // as the file names it
+        EXPECT_NE(what.find("perception.keyframe_window"), std::string::npos)
+            << what;  // as the file names it
         EXPECT_NE(what.find("tracking."), std::string::npos) << what;
         EXPECT_NE(what.find("navigation.stuck_timeout_s"), std::string::npos) << what;
     }
@@ -159,19 +166,24 @@ TEST(Deskew, SweepFromAKnownMotionMatchesTheStaticGeometry) {
     lidar.time_slices = 100;
     const double v = 0.75, w = 1.0, height = 0.45;
     auto T_world_sensor_at = [&](double t) {  // exact arc from (-1, 0.5) heading +x
-        const Eigen::Vector2d p(-1.0 + v / w * std::sin(w * t), 0.5 + v / w * (1.0 - std::cos(w * t)));
+        const Eigen::Vector2d p(-1.0 + v / w * std::sin(w * t),
+                                0.5 + v / w * (1.0 - std::cos(w * t)));
         return make_T_xyz_yaw({p.x(), p.y(), height}, w * t);
     };
     const PointCloud sweep = sim::simulate_sweep(world, lidar, T_world_sensor_at, 0.0, 1, 0);
-    const perception::StampedSweep stamped{sweep, 0.0, 0.1, T_world_sensor_at(0.0), T_world_sensor_at(0.1)};
+    const perception::StampedSweep stamped{sweep, 0.0, 0.1, T_world_sensor_at(0.0),
+                                           T_world_sensor_at(0.1)};
     // Distance to the room's surfaces: inner wall faces at +-half, floor at 0, ceiling at 3 m.
     auto surface_distance = [&](const Eigen::Vector3f& q) {
         const Eigen::Vector3d p = q.cast<double>();
-        return std::min({std::abs(half - std::abs(p.x())), std::abs(half - std::abs(p.y())), std::abs(p.z()), std::abs(ceiling - p.z())});
+        return std::min({std::abs(half - std::abs(p.x())), std::abs(half - std::abs(p.y())),
+                         std::abs(p.z()), std::abs(ceiling - p.z())});
     };
     std::vector<double> deskewed, skewed;
-    for (const Eigen::Vector3f& p : perception::deskew_to_world(stamped, true).xyz) deskewed.push_back(surface_distance(p));
-    for (const Eigen::Vector3f& p : perception::deskew_to_world(stamped, false).xyz) skewed.push_back(surface_distance(p));
+    for (const Eigen::Vector3f& p : perception::deskew_to_world(stamped, true).xyz)
+        deskewed.push_back(surface_distance(p));
+    for (const Eigen::Vector3f& p : perception::deskew_to_world(stamped, false).xyz)
+        skewed.push_back(surface_distance(p));
     ASSERT_EQ(deskewed.size(), 1800u * 32u);
     EXPECT_LT(percentile(deskewed, 0.99), 0.01);
     EXPECT_LT(percentile(deskewed, 1.0), 0.03);
@@ -211,15 +223,18 @@ TEST(Navigator, ReachesTheGoalInAnEmptyRoomAndReportsBlockedGoals) {
     double v = 0, w = 0;
     bool arrived = false;
     for (int k = 0; k < 300 && !arrived; ++k) {
-        const NavigatorStep s = nav.step({0.1 * k, pose, v, w, nullptr, Eigen::Vector3d::Zero(), {}});
+        const NavigatorStep s =
+            nav.step({0.1 * k, pose, v, w, nullptr, Eigen::Vector3d::Zero(), {}});
         arrived = s.arrived;
         v = s.command.v_mps, w = s.command.w_radps;
-        pose = {pose.x_m + 0.1 * v * std::cos(pose.yaw_rad), pose.y_m + 0.1 * v * std::sin(pose.yaw_rad), wrap_angle(pose.yaw_rad + 0.1 * w)};
+        pose = {pose.x_m + 0.1 * v * std::cos(pose.yaw_rad),
+                pose.y_m + 0.1 * v * std::sin(pose.yaw_rad), wrap_angle(pose.yaw_rad + 0.1 * w)};
     }
     EXPECT_TRUE(arrived);
     Navigator blocked(map, params);
     blocked.set_route({{-2.96, 0.0}});  // inside the wall
-    const NavigatorStep s = blocked.step({0.0, {0.0, 0.0, 0.0}, 0, 0, nullptr, Eigen::Vector3d::Zero(), {}});
+    const NavigatorStep s =
+        blocked.step({0.0, {0.0, 0.0, 0.0}, 0, 0, nullptr, Eigen::Vector3d::Zero(), {}});
     EXPECT_EQ(s.plan_status, planning::PlanStatus::kGoalBlocked);
     EXPECT_EQ(s.command.v_mps, 0.0);
 }
@@ -235,17 +250,26 @@ TEST(Navigator, ARobotCirclingWithoutProgressAlongItsPlanGivesUpEarly) {
     Navigator circling(map, params);
     circling.set_route({{3.0, 0.0}});
     int gave_up_at = -1;
-    for (int k = 0; k < 600 && gave_up_at < 0; ++k) {  // 1 m circles at 0.5 m/s around (0, 0), forever
+    for (int k = 0; k < 600 && gave_up_at < 0;
+         ++k) {  // 1 m circles at 0.5 m/s around (0, 0), forever
         const double a = 0.5 * 0.1 * k;
         const Pose2 pose{std::cos(a), std::sin(a), wrap_angle(a + kPi / 2)};
-        if (circling.step({0.1 * k, pose, 0.5, 0.5, nullptr, Eigen::Vector3d::Zero(), {}}).gave_up) gave_up_at = k;
+        if (circling.step({0.1 * k, pose, 0.5, 0.5, nullptr, Eigen::Vector3d::Zero(), {}}).gave_up)
+            gave_up_at = k;
     }
     ASSERT_GE(gave_up_at, 0) << "circled for 60 s without giving up";
-    EXPECT_NEAR(0.1 * gave_up_at, params.give_up_s, 2.0);  // moved all the time, never came closer than at the start
+    EXPECT_NEAR(0.1 * gave_up_at, params.give_up_s,
+                2.0);  // moved all the time, never came closer than at the start
     Navigator creeping(map, params);
     creeping.set_route({{3.0, 0.0}});
     for (int k = 0; k < 800; ++k) {  // 6 m at 8 cm/s: 75 s, always shortening the way left
-        const NavigatorStep s = creeping.step({0.1 * k, {-3.0 + 0.008 * k, 0.0, 0.0}, 0.08, 0.0, nullptr, Eigen::Vector3d::Zero(), {}});
+        const NavigatorStep s = creeping.step({0.1 * k,
+                                               {-3.0 + 0.008 * k, 0.0, 0.0},
+                                               0.08,
+                                               0.0,
+                                               nullptr,
+                                               Eigen::Vector3d::Zero(),
+                                               {}});
         ASSERT_FALSE(s.gave_up) << k;
         if (s.arrived) break;
     }
@@ -277,12 +301,15 @@ HeldDrive drive_held_short_of_the_gap(const NavigatorParams& params) {
     double v = 0, w = 0;
     HeldDrive d;
     for (int k = 0; k < 1200 && !d.arrived && !d.gave_up; ++k) {
-        const NavigatorStep s = nav.step({0.1 * k, pose, v, w, nullptr, Eigen::Vector3d::Zero(), {}});
+        const NavigatorStep s =
+            nav.step({0.1 * k, pose, v, w, nullptr, Eigen::Vector3d::Zero(), {}});
         d.arrived = s.arrived, d.gave_up = s.gave_up;
         v = s.command.v_mps, w = s.command.w_radps;
-        const Pose2 next{pose.x_m + 0.1 * v * std::cos(pose.yaw_rad), pose.y_m + 0.1 * v * std::sin(pose.yaw_rad),
+        const Pose2 next{pose.x_m + 0.1 * v * std::cos(pose.yaw_rad),
+                         pose.y_m + 0.1 * v * std::sin(pose.yaw_rad),
                          wrap_angle(pose.yaw_rad + 0.1 * w)};
-        const bool held = std::hypot(next.x_m, next.y_m) < 0.6 && std::hypot(next.x_m, next.y_m) < std::hypot(pose.x_m, pose.y_m);
+        const bool held = std::hypot(next.x_m, next.y_m) < 0.6 &&
+                          std::hypot(next.x_m, next.y_m) < std::hypot(pose.x_m, pose.y_m);
         pose = held ? Pose2{pose.x_m, pose.y_m, next.yaw_rad} : next;
         d.through_wide |= std::abs(pose.x_m) < 0.1 && pose.y_m > 1.8;
     }
@@ -333,8 +360,9 @@ TEST(Navigator, AStandstillDwaAnswerStartsTheRecoveryEarly) {
     for (int y = 0; y < 120; ++y) {
         for (int x = 0; x < 120; ++x) {
             const Eigen::Vector2d c = map.centre_of(x, y);
-            const bool slot_wall = c.x() > -1.0 && std::abs(c.y()) > 0.3;  // a slot 0.6 m wide from x = -1 ...
-            if (slot_wall || c.x() > 1.0) map.at(x, y) = cost::kLethal;   // ... closed at x = 1
+            const bool slot_wall =
+                c.x() > -1.0 && std::abs(c.y()) > 0.3;  // a slot 0.6 m wide from x = -1 ...
+            if (slot_wall || c.x() > 1.0) map.at(x, y) = cost::kLethal;  // ... closed at x = 1
         }
     }
     NavigatorParams params;
@@ -347,7 +375,8 @@ TEST(Navigator, AStandstillDwaAnswerStartsTheRecoveryEarly) {
     const double front = 0.5 * padded.dwa.footprint_length_m + padded.dwa.footprint_padding_m;
     const Pose2 wedged{1.0 - front - 0.01, 0.0, 0.0};  // 1 cm short of the slot's end
     {
-        const planning::DwaResult r = planning::dwa_step(map, {wedged, 0.0, 0.0}, {{0.0, 0.0}, {-3.0, 0.0}}, padded.dwa);
+        const planning::DwaResult r =
+            planning::dwa_step(map, {wedged, 0.0, 0.0}, {{0.0, 0.0}, {-3.0, 0.0}}, padded.dwa);
         ASSERT_TRUE(r.found);  // the precondition: DWA's only answer is to stand still
         ASSERT_LT(std::abs(r.command.v_mps), params.standstill_v_mps);
         ASSERT_LT(std::abs(r.command.w_radps), params.standstill_w_radps);
@@ -358,7 +387,8 @@ TEST(Navigator, AStandstillDwaAnswerStartsTheRecoveryEarly) {
         nav.set_route({{-3.0, 0.0}});
         double backed_up_at = -1.0;
         for (int k = 0; k < 100 && backed_up_at < 0.0; ++k) {
-            const NavigatorStep s = nav.step({0.1 * k, wedged, 0.0, 0.0, nullptr, Eigen::Vector3d::Zero(), {}});
+            const NavigatorStep s =
+                nav.step({0.1 * k, wedged, 0.0, 0.0, nullptr, Eigen::Vector3d::Zero(), {}});
             ASSERT_TRUE(s.has_plan || s.recovering) << k;
             if (s.recovering) backed_up_at = 0.1 * k;
         }

@@ -31,20 +31,27 @@ CollisionMonitorParams jackal() {
 double footprint_distance(const Pose2& pose, const Eigen::Vector2d& p) {
     const sim::RobotParams r;
     const Eigen::Vector2d q = to_isometry(pose).inverse() * p;
-    return Eigen::Vector2d(std::max(std::abs(q.x()) - 0.5 * r.length_m, 0.0), std::max(std::abs(q.y()) - 0.5 * r.width_m, 0.0)).norm();
+    return Eigen::Vector2d(std::max(std::abs(q.x()) - 0.5 * r.length_m, 0.0),
+                           std::max(std::abs(q.y()) - 0.5 * r.width_m, 0.0))
+        .norm();
 }
 
 // A box's outline (centre, half size), sampled every 2 cm at heights the body can hit.
 std::vector<Eigen::Vector2d> box_outline(const Eigen::Vector2d& c, const Eigen::Vector2d& h) {
     std::vector<Eigen::Vector2d> out;
-    for (double s = -1.0; s <= 1.0 + 1e-9; s += 0.02 / h.x()) out.push_back(c + Eigen::Vector2d(s * h.x(), -h.y())), out.push_back(c + Eigen::Vector2d(s * h.x(), h.y()));
-    for (double s = -1.0; s <= 1.0 + 1e-9; s += 0.02 / h.y()) out.push_back(c + Eigen::Vector2d(-h.x(), s * h.y())), out.push_back(c + Eigen::Vector2d(h.x(), s * h.y()));
+    for (double s = -1.0; s <= 1.0 + 1e-9; s += 0.02 / h.x())
+        out.push_back(c + Eigen::Vector2d(s * h.x(), -h.y())),
+            out.push_back(c + Eigen::Vector2d(s * h.x(), h.y()));
+    for (double s = -1.0; s <= 1.0 + 1e-9; s += 0.02 / h.y())
+        out.push_back(c + Eigen::Vector2d(-h.x(), s * h.y())),
+            out.push_back(c + Eigen::Vector2d(h.x(), s * h.y()));
     return out;
 }
 
 // What a VLP-32C 0.45 m up sees of 2D points at height z: nothing closer than `blind_m` to the
 // sensor (its lowest beam, -25 deg, reaches a 10 cm high part only from ~0.75 m).
-PointCloud sweep_of(const std::vector<Eigen::Vector2d>& pts, const Pose2& sensor, double blind_m, float z = 0.1f) {
+PointCloud sweep_of(const std::vector<Eigen::Vector2d>& pts, const Pose2& sensor, double blind_m,
+                    float z = 0.1f) {
     PointCloud c;
     for (const Eigen::Vector2d& p : pts) {
         if ((p - Eigen::Vector2d(sensor.x_m, sensor.y_m)).norm() < blind_m) continue;
@@ -67,16 +74,20 @@ TEST(CollisionMonitor, ABoxAppearingOneMetreAheadAtFullSpeedIsNeverTouched) {
             const double t = 0.1 * k;
             for (int i = 0; i < 10; ++i) {  // the last command acts for one period
                 state = sim::step_diff_drive(state, cmd, 0.01, robot);
-                for (const auto& p : box) closest = std::min(closest, footprint_distance(state.pose, p));
+                for (const auto& p : box)
+                    closest = std::min(closest, footprint_distance(state.pose, p));
             }
             if (k == 5) {  // the box appears 1 m ahead of the bumper
-                box = box_outline({state.pose.x_m + 0.5 * robot.length_m + 1.0 + 0.2, 0.0}, {0.2, 0.3});
+                box = box_outline({state.pose.x_m + 0.5 * robot.length_m + 1.0 + 0.2, 0.0},
+                                  {0.2, 0.3});
             }
             const PointCloud sweep = sweep_of(box, state.pose, blind_m);
             // The navigator keeps asking for full speed; the monitor alone must stop the robot.
-            const MonitorResult r = monitor.filter({t + 0.1, state.pose, &sweep, {robot.max_v_mps, 0.0}, state.v_mps, state.w_radps});
+            const MonitorResult r = monitor.filter(
+                {t + 0.1, state.pose, &sweep, {robot.max_v_mps, 0.0}, state.v_mps, state.w_radps});
             cmd = r.command;
-            stopped |= r.action == MonitorAction::kStop || (r.action == MonitorAction::kApproach && r.scale == 0.0);
+            stopped |= r.action == MonitorAction::kStop ||
+                       (r.action == MonitorAction::kApproach && r.scale == 0.0);
             if (r.recovering) break;
         }
         EXPECT_TRUE(stopped) << blind_m;
@@ -96,20 +107,25 @@ TEST(CollisionMonitor, SlowdownZoneCapsTheSpeed) {
     EXPECT_EQ(a.action, MonitorAction::kSlowdown);
     EXPECT_NEAR(a.command.v_mps, 0.45, 1e-12);  // 60 % of the top speed, on the same arc
     EXPECT_NEAR(a.command.w_radps, 0.09, 1e-12);
-    EXPECT_EQ(monitor.check({0.3, 0.0}, ahead).command.v_mps, 0.3);  // slow enough: the zone is shorter
+    EXPECT_EQ(monitor.check({0.3, 0.0}, ahead).command.v_mps,
+              0.3);  // slow enough: the zone is shorter
     // Beside the path, 7 cm out from the side: only the slowdown zone's padding reaches it.
-    const std::vector<Eigen::Vector2d> beside{{front + 0.3, side + 0.07}, {front + 0.32, side + 0.07}};
+    const std::vector<Eigen::Vector2d> beside{{front + 0.3, side + 0.07},
+                                              {front + 0.32, side + 0.07}};
     const MonitorResult b = monitor.check({0.6, 0.0}, beside);
     EXPECT_EQ(b.action, MonitorAction::kSlowdown);
     EXPECT_NEAR(b.command.v_mps, 0.45, 1e-12);
-    // Nothing near: the command passes unchanged; beside the robot and behind it, nothing closes in.
+    // Nothing near: the command passes unchanged; beside the robot and behind it, nothing closes
+    // in.
     EXPECT_EQ(monitor.check({0.5, 0.1}, {{5.0, 5.0}, {5.0, 5.02}}).action, MonitorAction::kNone);
-    const std::vector<Eigen::Vector2d> alongside{{0.0, side + 0.05}, {0.02, side + 0.05}, {-front - 0.05, 0.0}, {-front - 0.05, 0.02}};
+    const std::vector<Eigen::Vector2d> alongside{
+        {0.0, side + 0.05}, {0.02, side + 0.05}, {-front - 0.05, 0.0}, {-front - 0.05, 0.02}};
     const MonitorResult c = monitor.check({0.5, 0.0}, alongside);
     EXPECT_EQ(c.action, MonitorAction::kNone);
     EXPECT_NEAR(c.command.v_mps, 0.5, 1e-12);
     // Just ahead, within the braking distance: stop.
-    EXPECT_EQ(monitor.check({0.5, 0.0}, {{front + 0.15, 0.0}, {front + 0.15, 0.02}}).action, MonitorAction::kStop);
+    EXPECT_EQ(monitor.check({0.5, 0.0}, {{front + 0.15, 0.0}, {front + 0.15, 0.02}}).action,
+              MonitorAction::kStop);
     // Touching the bumper: forward is stopped, backing away is not.
     const std::vector<Eigen::Vector2d> touching{{front + 0.01, 0.0}, {front + 0.01, 0.05}};
     EXPECT_EQ(monitor.check({0.3, 0.0}, touching).command.v_mps, 0.0);
@@ -130,13 +146,16 @@ TEST(CollisionMonitor, ApproachKeepsContactAtLeastTimeBeforeCollisionAway) {
     ASSERT_GT(r.scale, 0.0);
     ASSERT_LT(r.scale, 1.0);
     EXPECT_NEAR(r.command.w_radps / r.command.v_mps, 0.3 / 0.75, 1e-12);  // the same arc, slower
-    // Straight ahead: contact (gap less the padding) at the scaled speed takes time_before_collision_s,
-    // to within one step of the arc's sampling.
-    const MonitorResult straight = monitor.check({0.75, 0.0}, {{0.254 + gap, -0.01}, {0.254 + gap, 0.01}});
+    // Straight ahead: contact (gap less the padding) at the scaled speed takes
+    // time_before_collision_s, to within one step of the arc's sampling.
+    const MonitorResult straight =
+        monitor.check({0.75, 0.0}, {{0.254 + gap, -0.01}, {0.254 + gap, 0.01}});
     const double v = straight.command.v_mps;
-    EXPECT_NEAR((gap - p.stop_padding_m) / v, p.time_before_collision_s, p.simulation_time_step_s * 0.75 / v + 1e-9);
+    EXPECT_NEAR((gap - p.stop_padding_m) / v, p.time_before_collision_s,
+                p.simulation_time_step_s * 0.75 / v + 1e-9);
     // Far enough: untouched.
-    EXPECT_EQ(monitor.check({0.75, 0.0}, {{0.254 + 1.0, -0.01}, {0.254 + 1.0, 0.01}}).action, MonitorAction::kNone);
+    EXPECT_EQ(monitor.check({0.75, 0.0}, {{0.254 + 1.0, -0.01}, {0.254 + 1.0, 0.01}}).action,
+              MonitorAction::kNone);
 }
 
 TEST(CollisionMonitor, WaitsForAWalkerCrossingThePathThenPasses) {
@@ -145,24 +164,30 @@ TEST(CollisionMonitor, WaitsForAWalkerCrossingThePathThenPasses) {
     sim::RobotState state;
     VelocityCommand cmd;
     const double crossing_x = 2.0, radius = 0.25;
-    auto walker_at = [&](double t) { return Eigen::Vector2d(crossing_x, 3.0 - 1.0 * t); };  // 1 m/s, left to right
+    auto walker_at = [&](double t) {
+        return Eigen::Vector2d(crossing_x, 3.0 - 1.0 * t);
+    };  // 1 m/s, left to right
     double closest = 1e9;
     bool waited = false;
     for (int k = 0; k < 120; ++k) {
         const double t = 0.1 * k;
         for (int i = 0; i < 10; ++i) {
             state = sim::step_diff_drive(state, cmd, 0.01, robot);
-            closest = std::min(closest, footprint_distance(state.pose, walker_at(t + 0.01 * (i + 1))) - radius);
+            closest = std::min(
+                closest, footprint_distance(state.pose, walker_at(t + 0.01 * (i + 1))) - radius);
         }
         std::vector<Eigen::Vector2d> legs;
-        for (int a = 0; a < 36; ++a) legs.push_back(walker_at(t + 0.1) + radius * Eigen::Vector2d(std::cos(a * kPi / 18), std::sin(a * kPi / 18)));
+        for (int a = 0; a < 36; ++a)
+            legs.push_back(walker_at(t + 0.1) + radius * Eigen::Vector2d(std::cos(a * kPi / 18),
+                                                                         std::sin(a * kPi / 18)));
         const PointCloud sweep = sweep_of(legs, state.pose, 0.0, 0.3f);  // a body, 30 cm up
-        const MonitorResult r = monitor.filter({t + 0.1, state.pose, &sweep, {0.5, 0.0}, state.v_mps, state.w_radps});
+        const MonitorResult r =
+            monitor.filter({t + 0.1, state.pose, &sweep, {0.5, 0.0}, state.v_mps, state.w_radps});
         waited |= r.scale == 0.0 && state.pose.x_m < crossing_x;
         cmd = r.command;
     }
     EXPECT_TRUE(waited);
-    EXPECT_GT(closest, 0.0);                     // never touched
+    EXPECT_GT(closest, 0.0);                      // never touched
     EXPECT_GT(state.pose.x_m, crossing_x + 1.0);  // and went on once the walker had passed
 }
 
@@ -172,8 +197,8 @@ TEST(CollisionMonitor, WaitsForAWalkerCrossingThePathThenPasses) {
 struct WalkerTurn {
     double heading_rad, start_m, turn_s;
 };
-double speed_at_walker_contact(const WalkerTurn& walk, double cluster_m, int min_seen = 1, double memory_s = 0.0,
-                               double memory_range_m = 0.8) {
+double speed_at_walker_contact(const WalkerTurn& walk, double cluster_m, int min_seen = 1,
+                               double memory_s = 0.0, double memory_range_m = 0.8) {
     const sim::RobotParams robot;
     CollisionMonitorParams p = jackal();
     p.dynamic_cluster_m = cluster_m;
@@ -186,7 +211,8 @@ double speed_at_walker_contact(const WalkerTurn& walk, double cluster_m, int min
     const double radius = 0.25;
     const Eigen::Vector2d dir(std::cos(walk.heading_rad), std::sin(walk.heading_rad));
     auto walker_at = [&](double t) -> Eigen::Vector2d {  // 1 m/s out, then back
-        return Eigen::Vector2d(walk.start_m, 0.0) + dir * (t < walk.turn_s ? t : 2.0 * walk.turn_s - t);
+        return Eigen::Vector2d(walk.start_m, 0.0) +
+               dir * (t < walk.turn_s ? t : 2.0 * walk.turn_s - t);
     };
     for (int k = 0; k < 60; ++k) {
         const double t = 0.1 * k;
@@ -196,20 +222,32 @@ double speed_at_walker_contact(const WalkerTurn& walk, double cluster_m, int min
             if (footprint_distance(state.pose, w) <= radius) {
                 // Where they touch: the walker's surface toward the footprint's nearest point.
                 const Eigen::Vector2d q = to_isometry(state.pose).inverse() * w;
-                const Eigen::Vector2d near = to_isometry(state.pose) * Eigen::Vector2d(std::clamp(q.x(), -0.5 * robot.length_m, 0.5 * robot.length_m),
-                                                                                      std::clamp(q.y(), -0.5 * robot.width_m, 0.5 * robot.width_m));
+                const Eigen::Vector2d near =
+                    to_isometry(state.pose) *
+                    Eigen::Vector2d(std::clamp(q.x(), -0.5 * robot.length_m, 0.5 * robot.length_m),
+                                    std::clamp(q.y(), -0.5 * robot.width_m, 0.5 * robot.width_m));
                 const Eigen::Vector2d contact = w + radius * (near - w).normalized();
-                return sim::speed_toward_contact(state.pose, state.v_mps, state.w_radps, contact, robot.length_m, robot.width_m);
+                return sim::speed_toward_contact(state.pose, state.v_mps, state.w_radps, contact,
+                                                 robot.length_m, robot.width_m);
             }
         }
         std::vector<Eigen::Vector2d> body;
-        const Eigen::Vector2d w = walker_at(t + 0.1), toward = (Eigen::Vector2d(state.pose.x_m, state.pose.y_m) - w).normalized();
+        const Eigen::Vector2d w = walker_at(t + 0.1),
+                              toward = (Eigen::Vector2d(state.pose.x_m, state.pose.y_m) - w)
+                                           .normalized();
         for (int a = 0; a < 36; ++a) {
             const Eigen::Vector2d u(std::cos(a * kPi / 18), std::sin(a * kPi / 18));
             if (u.dot(toward) > 0.0) body.push_back(w + radius * u);  // the side the sensor sees
         }
         const PointCloud sweep = sweep_of(body, state.pose, 0.0, 0.3f);
-        cmd = monitor.filter({t + 0.1, state.pose, &sweep, {robot.max_v_mps, 0.0}, state.v_mps, state.w_radps}).command;
+        cmd = monitor
+                  .filter({t + 0.1,
+                           state.pose,
+                           &sweep,
+                           {robot.max_v_mps, 0.0},
+                           state.v_mps,
+                           state.w_radps})
+                  .command;
     }
     return -1.0;
 }
@@ -226,18 +264,25 @@ TEST(CollisionMonitor, AWalkerTurningBackIsStillAMover) {
                 clustered += speed_at_walker_contact({heading, start, turn}, 0.3) > 0.05;
                 once_known += speed_at_walker_contact({heading, start, turn}, 0.0) > 0.05;
                 twice_known += speed_at_walker_contact({heading, start, turn}, 0.0, 2) > 0.05;
-                remembered_near += speed_at_walker_contact({heading, start, turn}, 0.0, 1, 1.0, 0.8) > 0.05;
-                remembered_far += speed_at_walker_contact({heading, start, turn}, 0.0, 1, 1.0, 1.5) > 0.05;
+                remembered_near +=
+                    speed_at_walker_contact({heading, start, turn}, 0.0, 1, 1.0, 0.8) > 0.05;
+                remembered_far +=
+                    speed_at_walker_contact({heading, start, turn}, 0.0, 1, 1.0, 1.5) > 0.05;
             }
         }
     }
-    std::printf("robot-caused contacts in 750 walks: new returns alone %d, clustered movers %d, seen twice to be known %d, "
-                "movers remembered 1 s within 0.8 m %d, within 1.5 m %d\n", once_known, clustered, twice_known, remembered_near, remembered_far);
-    EXPECT_LE(clustered, 2);    // measured: 2 (a walker cutting back across the robot's bow at 0.12 m/s)
-    EXPECT_GE(once_known, 6);   // measured: 6 (new returns alone)
-    EXPECT_LE(twice_known, 2);  // measured: 2 (dynamic_min_seen 2: off by default, README)
+    std::printf(
+        "robot-caused contacts in 750 walks: new returns alone %d, clustered movers %d, seen twice "
+        "to be known %d, "
+        "movers remembered 1 s within 0.8 m %d, within 1.5 m %d\n",
+        once_known, clustered, twice_known, remembered_near, remembered_far);
+    EXPECT_LE(clustered,
+              2);  // measured: 2 (a walker cutting back across the robot's bow at 0.12 m/s)
+    EXPECT_GE(once_known, 6);      // measured: 6 (new returns alone)
+    EXPECT_LE(twice_known, 2);     // measured: 2 (dynamic_min_seen 2: off by default, README)
     EXPECT_LE(remembered_far, 2);  // measured: 2 (dynamic_memory_s 1 within 1.5 m; 0.5 s: 6) ...
-    EXPECT_GE(remembered_near, 6);  // ... 6 within 0.8 m: these walkers turn back 1-3 m out (README)
+    EXPECT_GE(remembered_near,
+              6);  // ... 6 within 0.8 m: these walkers turn back 1-3 m out (README)
 }
 
 // A walker beside the robot's right side, 10 cm from it, while the robot creeps forward: the side
@@ -262,7 +307,9 @@ TEST(CollisionMonitor, PersonalSpaceHoldsTheRobotBesideAWalker) {
     // The same returns standing still (not new) are an obstacle like any other: no hold.
     CollisionMonitorParams p = jackal();
     p.dynamic_personal_space_m = 0.15;
-    EXPECT_NE(CollisionMonitor(p).check(creep, creep, walker, std::vector<char>(walker.size(), 0)).action, MonitorAction::kStop);
+    EXPECT_NE(
+        CollisionMonitor(p).check(creep, creep, walker, std::vector<char>(walker.size(), 0)).action,
+        MonitorAction::kStop);
     p.dynamic_personal_space_m = -0.1;
     EXPECT_FALSE(p.validate().empty());
 }
@@ -273,15 +320,18 @@ TEST(CollisionMonitor, PersonalSpaceHoldsTheRobotBesideAWalker) {
 TEST(CollisionMonitor, PersonalSpaceLeavesAPulledChairToTheStopZone) {
     const auto sweep = [](bool mover) {
         PointCloud c;
-        for (double y = -1.0; y <= 1.0; y += 0.02) c.xyz.emplace_back(3.0f, static_cast<float>(y), 0.5f);  // a wall ahead
+        for (double y = -1.0; y <= 1.0; y += 0.02)
+            c.xyz.emplace_back(3.0f, static_cast<float>(y), 0.5f);  // a wall ahead
         if (mover) {
-            for (double x = -0.1; x <= 0.1 + 1e-9; x += 0.02) c.xyz.emplace_back(static_cast<float>(x), -0.315f, 0.5f);
+            for (double x = -0.1; x <= 0.1 + 1e-9; x += 0.02)
+                c.xyz.emplace_back(static_cast<float>(x), -0.315f, 0.5f);
         }
         return c;
     };
     const PointCloud before = sweep(false), now = sweep(true);
     const VelocityCommand creep{0.2, 0.0};
-    const std::vector<Polygon2> pulled = {{{-0.2, -0.3}, {0.2, -0.3}, {0.2, -0.7}, {-0.2, -0.7}}};  // the returns are its front
+    const std::vector<Polygon2> pulled = {
+        {{-0.2, -0.3}, {0.2, -0.3}, {0.2, -0.7}, {-0.2, -0.7}}};  // the returns are its front
     const std::vector<Polygon2> far = {{{1.0, 1.0}, {1.4, 1.0}, {1.4, 1.4}, {1.0, 1.4}}};
     const auto action = [&](const std::vector<Polygon2>* chairs, double space) {
         CollisionMonitorParams p = jackal();
@@ -291,7 +341,7 @@ TEST(CollisionMonitor, PersonalSpaceLeavesAPulledChairToTheStopZone) {
         return m.filter({0.1, Pose2{}, &now, creep, 0.2, 0.0, nullptr, chairs}).action;
     };
     EXPECT_EQ(action(nullptr, 0.15), MonitorAction::kStop);  // a walker: held
-    EXPECT_EQ(action(&far, 0.15), MonitorAction::kStop);     // a chair elsewhere explains nothing here
+    EXPECT_EQ(action(&far, 0.15), MonitorAction::kStop);  // a chair elsewhere explains nothing here
     EXPECT_NE(action(&pulled, 0.15), MonitorAction::kStop);  // the chair being pulled: driven on
     EXPECT_NE(action(nullptr, 0.0), MonitorAction::kStop);   // personal space off
     CollisionMonitorParams p = jackal();
@@ -306,9 +356,11 @@ TEST(CollisionMonitor, PersonalSpaceLeavesAPulledChairToTheStopZone) {
 TEST(CollisionMonitor, AWalkerInsideTheMinimumRangeIsRememberedAsAMover) {
     const auto sweep = [](bool walker) {
         PointCloud c;
-        for (double y = -1.0; y <= 1.0; y += 0.02) c.xyz.emplace_back(3.0f, static_cast<float>(y), 0.5f);  // a wall ahead
+        for (double y = -1.0; y <= 1.0; y += 0.02)
+            c.xyz.emplace_back(3.0f, static_cast<float>(y), 0.5f);  // a wall ahead
         if (walker) {
-            for (double y = -0.1; y <= 0.1 + 1e-9; y += 0.02) c.xyz.emplace_back(0.55f, static_cast<float>(y), 0.5f);
+            for (double y = -0.1; y <= 0.1 + 1e-9; y += 0.02)
+                c.xyz.emplace_back(0.55f, static_cast<float>(y), 0.5f);
         }
         return c;
     };
@@ -321,7 +373,8 @@ TEST(CollisionMonitor, AWalkerInsideTheMinimumRangeIsRememberedAsAMover) {
         m.filter({0.0, Pose2{}, &wall, {}, 0.0, 0.0});
         m.filter({0.1, Pose2{}, &seen, {}, 0.0, 0.0});  // new: a mover
         MonitorResult r;
-        for (double t = 0.2; t <= t_s + 1e-9; t += 0.1) r = m.filter({t, Pose2{}, &wall, cmd, 0.0, 0.0});  // gone from view
+        for (double t = 0.2; t <= t_s + 1e-9; t += 0.1)
+            r = m.filter({t, Pose2{}, &wall, cmd, 0.0, 0.0});  // gone from view
         return r.action;
     };
     EXPECT_EQ(run(0.0, creep, 0.2), MonitorAction::kNone);  // no memory: driven at the walker
@@ -342,13 +395,16 @@ TEST(CollisionMonitor, ALowFootSeenInOneSweepIsRemembered) {
     auto sweep_from = [&](double x) {
         PointCloud c;
         for (int a = 0; a < 36; ++a) {
-            const Eigen::Vector2d p = table + 0.05 * Eigen::Vector2d(std::cos(a * kPi / 18), std::sin(a * kPi / 18));
+            const Eigen::Vector2d p =
+                table + 0.05 * Eigen::Vector2d(std::cos(a * kPi / 18), std::sin(a * kPi / 18));
             c.xyz.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), 0.3f);
         }
         for (int a = 0; a < 360; ++a) {
-            const Eigen::Vector2d p = table + 0.28 * Eigen::Vector2d(std::cos(a * kPi / 180), std::sin(a * kPi / 180));
+            const Eigen::Vector2d p =
+                table + 0.28 * Eigen::Vector2d(std::cos(a * kPi / 180), std::sin(a * kPi / 180));
             const double r = (p - Eigen::Vector2d(x, 0.0)).norm();
-            if (r >= 0.90 && r <= 0.965) c.xyz.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), 0.03f);
+            if (r >= 0.90 && r <= 0.965)
+                c.xyz.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), 0.03f);
         }
         return c;
     };
@@ -369,7 +425,8 @@ TEST(CollisionMonitor, ALowFootSeenInOneSweepIsRemembered) {
         if (support > 0) {
             EXPECT_EQ(r.action, MonitorAction::kStop);
         } else {
-            EXPECT_NE(r.action, MonitorAction::kStop);  // a foot seen once is forgotten: driven into
+            EXPECT_NE(r.action,
+                      MonitorAction::kStop);  // a foot seen once is forgotten: driven into
         }
     }
 }
@@ -379,7 +436,8 @@ TEST(CollisionMonitor, HeldRobotBacksUpIntoFreeSpaceThenTurnsWhenBoxedIn) {
     CollisionMonitor monitor(p);
     const double front = 0.254;
     PointCloud wall;
-    for (double y = -1.0; y <= 1.0; y += 0.02) wall.xyz.emplace_back(static_cast<float>(front + 0.05), static_cast<float>(y), 0.2f);
+    for (double y = -1.0; y <= 1.0; y += 0.02)
+        wall.xyz.emplace_back(static_cast<float>(front + 0.05), static_cast<float>(y), 0.2f);
     MonitorResult r;
     int t = 0;
     for (; t < 50 && !r.started_recovery; ++t) r = monitor.filter({0.1 * t, {}, &wall, {0.5, 0.0}});
@@ -394,9 +452,11 @@ TEST(CollisionMonitor, HeldRobotBacksUpIntoFreeSpaceThenTurnsWhenBoxedIn) {
     PointCloud both;
     both.xyz.emplace_back(0.31f, 0.23f, 0.2f);
     both.xyz.emplace_back(0.31f, 0.245f, 0.2f);
-    for (double y = -1.0; y <= 1.0; y += 0.02) both.xyz.emplace_back(-0.40f, static_cast<float>(y), 0.2f);
+    for (double y = -1.0; y <= 1.0; y += 0.02)
+        both.xyz.emplace_back(-0.40f, static_cast<float>(y), 0.2f);
     r = {};
-    for (t = 0; t < 50 && !r.started_recovery; ++t) r = boxed.filter({0.1 * t, {}, &both, {0.5, 0.0}});
+    for (t = 0; t < 50 && !r.started_recovery; ++t)
+        r = boxed.filter({0.1 * t, {}, &both, {0.5, 0.0}});
     ASSERT_TRUE(r.started_recovery);
     EXPECT_EQ(r.action, MonitorAction::kRotate);
     EXPECT_EQ(r.command.v_mps, 0.0);
@@ -404,7 +464,9 @@ TEST(CollisionMonitor, HeldRobotBacksUpIntoFreeSpaceThenTurnsWhenBoxedIn) {
     // Closed in on every side: held, and it says so.
     CollisionMonitor closed(p);
     PointCloud ring;
-    for (int k = 0; k < 72; ++k) ring.xyz.emplace_back(0.36f * static_cast<float>(std::cos(k * kPi / 36)), 0.3f * static_cast<float>(std::sin(k * kPi / 36)), 0.2f);
+    for (int k = 0; k < 72; ++k)
+        ring.xyz.emplace_back(0.36f * static_cast<float>(std::cos(k * kPi / 36)),
+                              0.3f * static_cast<float>(std::sin(k * kPi / 36)), 0.2f);
     bool blocked = false, moved = false;
     for (t = 0; t < 40; ++t) {
         r = closed.filter({0.1 * t, {}, &ring, {0.5, 0.0}});
@@ -421,9 +483,11 @@ TEST(CollisionMonitor, ObjectFootprintsCoverAChairBaseTheSensorCannotSee) {
     // from the side of the footprint; the footprint's corners sweep 0.333 m out, into the base.
     const sim::RobotParams robot;
     const Eigen::Vector2d chair(0.0, 0.55);
-    const std::vector<Eigen::Vector2d> base = box_outline(chair, {0.3, 0.3}), seat = box_outline(chair, {0.2, 0.2});
-    const std::vector<Polygon2> footprints = {{chair + Eigen::Vector2d(-0.3, -0.3), chair + Eigen::Vector2d(0.3, -0.3),
-                                               chair + Eigen::Vector2d(0.3, 0.3), chair + Eigen::Vector2d(-0.3, 0.3)}};
+    const std::vector<Eigen::Vector2d> base = box_outline(chair, {0.3, 0.3}),
+                                       seat = box_outline(chair, {0.2, 0.2});
+    const std::vector<Polygon2> footprints = {
+        {chair + Eigen::Vector2d(-0.3, -0.3), chair + Eigen::Vector2d(0.3, -0.3),
+         chair + Eigen::Vector2d(0.3, 0.3), chair + Eigen::Vector2d(-0.3, 0.3)}};
     for (const bool with_footprints : {false, true}) {
         CollisionMonitor monitor(jackal());
         sim::RobotState state;
@@ -432,10 +496,16 @@ TEST(CollisionMonitor, ObjectFootprintsCoverAChairBaseTheSensorCannotSee) {
         for (int k = 0; k < 40; ++k) {
             for (int i = 0; i < 10; ++i) {
                 state = sim::step_diff_drive(state, cmd, 0.01, robot);
-                for (const auto& p : base) closest = std::min(closest, footprint_distance(state.pose, p));
+                for (const auto& p : base)
+                    closest = std::min(closest, footprint_distance(state.pose, p));
             }
             const PointCloud sweep = sweep_of(seat, state.pose, 0.0, 0.45f);
-            const MonitorResult r = monitor.filter({0.1 * (k + 1), state.pose, &sweep, {0.0, 1.0}, state.v_mps, state.w_radps,
+            const MonitorResult r = monitor.filter({0.1 * (k + 1),
+                                                    state.pose,
+                                                    &sweep,
+                                                    {0.0, 1.0},
+                                                    state.v_mps,
+                                                    state.w_radps,
                                                     with_footprints ? &footprints : nullptr});
             cmd = r.command;
         }

@@ -24,8 +24,8 @@ TEST(AStar, DetoursAroundAWallOptimally) {
     for (int y = 0; y < 5; ++y) m.at(5, y) = cost::kLethal;  // gap at y = 5
     const PlanResult r = plan_astar(m, {0.5, 0.5}, {9.5, 0.5});
     ASSERT_EQ(r.status, PlanStatus::kOk);
-    // 8-connected optimum: 4 diagonal steps up to (4,4), a diagonal to (5,5), one down to (6,4)... = 
-    // from (0,0) to (5,5): 5 diagonals; from (5,5) to (9,0): 4 diagonals + 1 straight.
+    // 8-connected optimum: 4 diagonal steps up to (4,4), a diagonal to (5,5), one down to (6,4)...
+    // = from (0,0) to (5,5): 5 diagonals; from (5,5) to (9,0): 4 diagonals + 1 straight.
     EXPECT_NEAR(r.cost, 9 * std::sqrt(2.0) + 1.0, 1e-9);
     m.at(5, 5) = cost::kLethal;
     EXPECT_EQ(plan_astar(m, {0.5, 0.5}, {9.5, 0.5}).status, PlanStatus::kNoPath);
@@ -35,7 +35,8 @@ TEST(AStar, DetoursAroundAWallOptimally) {
 }
 
 TEST(AStar, RespectsSoftCosts) {
-    // A soft band across the direct route: cheap to cross with weight 0, avoided with a high weight.
+    // A soft band across the direct route: cheap to cross with weight 0, avoided with a high
+    // weight.
     Costmap m({0, 0}, 1.0, 11, 9);
     for (int y = 0; y < 4; ++y) m.at(5, y) = 200;
     const PlanResult cross = plan_astar(m, {0.5, 0.5}, {10.5, 0.5}, {.cost_weight = 0.0});
@@ -43,9 +44,11 @@ TEST(AStar, RespectsSoftCosts) {
     const PlanResult around = plan_astar(m, {0.5, 0.5}, {10.5, 0.5}, {.cost_weight = 10.0});
     ASSERT_EQ(around.status, PlanStatus::kOk);
     bool crossed_band = false;
-    for (const auto& p : around.path_m) crossed_band |= (m.cell_of(p).x() == 5 && m.cell_of(p).y() < 4);
+    for (const auto& p : around.path_m)
+        crossed_band |= (m.cell_of(p).x() == 5 && m.cell_of(p).y() < 4);
     EXPECT_FALSE(crossed_band);
-    // Crossing costs 1 + 10 * 200/252 = 8.9 extra; going round via row 4 costs 2 (4 sqrt 2 + 1) in all.
+    // Crossing costs 1 + 10 * 200/252 = 8.9 extra; going round via row 4 costs 2 (4 sqrt 2 + 1) in
+    // all.
     EXPECT_NEAR(around.cost, 8 * std::sqrt(2.0) + 2.0, 1e-9);
 }
 
@@ -56,7 +59,8 @@ TEST(Dwa, NeverSelectsAVelocityThatCollidesWithinItsHorizon) {
     for (int trial = 0; trial < 60; ++trial) {
         Costmap m({0, 0}, 0.05, 80, 80);
         for (int k = 0; k < 8; ++k) {  // random obstacles
-            const int cx = static_cast<int>(uniform_int(rng, 0, 79)), cy = static_cast<int>(uniform_int(rng, 0, 79));
+            const int cx = static_cast<int>(uniform_int(rng, 0, 79)),
+                      cy = static_cast<int>(uniform_int(rng, 0, 79));
             for (int dy = -2; dy <= 2; ++dy) {
                 for (int dx = -2; dx <= 2; ++dx) {
                     if (m.inside(cx + dx, cy + dy)) m.at(cx + dx, cy + dy) = cost::kLethal;
@@ -67,7 +71,8 @@ TEST(Dwa, NeverSelectsAVelocityThatCollidesWithinItsHorizon) {
         st.pose = {uniform(rng, 0.8, 3.2), uniform(rng, 0.8, 3.2), uniform(rng, -3.1, 3.1)};
         st.v_mps = uniform(rng, 0.0, 0.75);
         if (footprint_collides(m, st.pose, p)) continue;
-        const std::vector<Eigen::Vector2d> path{{st.pose.x_m, st.pose.y_m}, {uniform(rng, 0.5, 3.5), uniform(rng, 0.5, 3.5)}};
+        const std::vector<Eigen::Vector2d> path{{st.pose.x_m, st.pose.y_m},
+                                                {uniform(rng, 0.5, 3.5), uniform(rng, 0.5, 3.5)}};
         const DwaResult r = dwa_step(m, st, path, p);
         if (!r.found) continue;
         ++checked;
@@ -101,7 +106,6 @@ TEST(Dwa, HeadsForTheCarrotInFreeSpace) {
     EXPECT_NEAR(r.command.w_radps, 0.0, 0.25);
 }
 
-
 TEST(AStar, AZoneNeverClosesTheOnlyPassage) {
     // A wall across the map with one passage, the passage filled with the highest soft cost a zone
     // can have: the plan still goes through it, at any cost weight.
@@ -110,7 +114,8 @@ TEST(AStar, AZoneNeverClosesTheOnlyPassage) {
         for (int x = 26; x < 35; ++x) m.at(x, y) = cost::kMaxSoft;  // the zone, around the passage
     }
     for (int y = 0; y < 40; ++y) {
-        if (y < 18 || y >= 22) m.at(30, y) = cost::kLethal;  // the wall; the passage is y in [1.8, 2.2)
+        if (y < 18 || y >= 22)
+            m.at(30, y) = cost::kLethal;  // the wall; the passage is y in [1.8, 2.2)
     }
     const PlanResult r = plan_astar(m, {0.5, 2.0}, {5.5, 2.0}, {.cost_weight = 100.0});
     ASSERT_EQ(r.status, PlanStatus::kOk);
@@ -166,10 +171,13 @@ TEST(Dwa, FootprintRefusesWhatTheInscribedCircleAcceptsAndPassesWhatTheCircumscr
     const DwaParams p;
     const double inscribed = 0.5 * std::min(p.footprint_length_m, p.footprint_width_m);
     const double circumscribed = 0.5 * std::hypot(p.footprint_length_m, p.footprint_width_m);
-    auto circle_collides = [](const Costmap& m, const Pose2& pose, double r) {  // brute force over cells
+    auto circle_collides = [](const Costmap& m, const Pose2& pose,
+                              double r) {  // brute force over cells
         for (int y = 0; y < m.height; ++y) {
             for (int x = 0; x < m.width; ++x) {
-                if (m.at(x, y) == cost::kLethal && (m.centre_of(x, y) - Eigen::Vector2d(pose.x_m, pose.y_m)).norm() <= r) return true;
+                if (m.at(x, y) == cost::kLethal &&
+                    (m.centre_of(x, y) - Eigen::Vector2d(pose.x_m, pose.y_m)).norm() <= r)
+                    return true;
             }
         }
         return false;
@@ -210,7 +218,8 @@ TEST(Dwa, FootprintCheckerAnswersAsTheSampledFootprint) {
     p.footprint_padding_m = 0.04;
     Costmap m({-1.0, 2.0}, 0.05, 80, 60);
     for (int k = 0; k < 25; ++k) {  // single cells and short walls
-        const int x = static_cast<int>(uniform(rng, 0.0, 80.0)), y = static_cast<int>(uniform(rng, 0.0, 60.0));
+        const int x = static_cast<int>(uniform(rng, 0.0, 80.0)),
+                  y = static_cast<int>(uniform(rng, 0.0, 60.0));
         const int len = uniform(rng, 0.0, 1.0) < 0.3 ? 6 : 1;
         for (int i = 0; i < len && x + i < m.width; ++i) m.at(x + i, y) = cost::kLethal;
     }
@@ -219,7 +228,8 @@ TEST(Dwa, FootprintCheckerAnswersAsTheSampledFootprint) {
     for (int trial = 0; trial < 20000; ++trial) {
         const Pose2 pose{uniform(rng, -1.3, 3.3), uniform(rng, 1.7, 5.3), uniform(rng, -kPi, kPi)};
         const bool expected = footprint_collides(m, pose, p);
-        ASSERT_EQ(checker.collides(pose), expected) << "trial " << trial << " at " << pose.x_m << " " << pose.y_m << " " << pose.yaw_rad;
+        ASSERT_EQ(checker.collides(pose), expected)
+            << "trial " << trial << " at " << pose.x_m << " " << pose.y_m << " " << pose.yaw_rad;
         (expected ? hit : free) += 1;
     }
     EXPECT_GT(free, 1000);  // both answers are exercised

@@ -1,9 +1,9 @@
 #pragma once
 // A message that claims any type and serialises to any bytes: the damaged or lying messages a
 // recording can hold, written with rosbag itself (tests; C++17, as ROS 1's headers need).
-#include <rosbag/message_instance.h>
 #include <ros/message_traits.h>
 #include <ros/serialization.h>
+#include <rosbag/message_instance.h>
 
 #include <cstdint>
 #include <cstring>
@@ -29,7 +29,9 @@ struct DataType<makeway::testing::LyingMessage> {
 };
 template <>
 struct Definition<makeway::testing::LyingMessage> {
-    static const char* value(const makeway::testing::LyingMessage& m) { return m.definition.c_str(); }
+    static const char* value(const makeway::testing::LyingMessage& m) {
+        return m.definition.c_str();
+    }
 };
 }  // namespace message_traits
 namespace serialization {
@@ -37,9 +39,13 @@ template <>
 struct Serializer<makeway::testing::LyingMessage> {
     template <typename Stream>
     static void write(Stream& stream, const makeway::testing::LyingMessage& m) {
-        if (!m.bytes.empty()) std::memcpy(stream.advance(static_cast<std::uint32_t>(m.bytes.size())), m.bytes.data(), m.bytes.size());
+        if (!m.bytes.empty())
+            std::memcpy(stream.advance(static_cast<std::uint32_t>(m.bytes.size())), m.bytes.data(),
+                        m.bytes.size());
     }
-    static std::uint32_t serializedLength(const makeway::testing::LyingMessage& m) { return static_cast<std::uint32_t>(m.bytes.size()); }
+    static std::uint32_t serializedLength(const makeway::testing::LyingMessage& m) {
+        return static_cast<std::uint32_t>(m.bytes.size());
+    }
 };
 }  // namespace serialization
 }  // namespace ros

@@ -36,12 +36,17 @@ void expect_only(const fs::path& dir, std::vector<std::string> keep) {
 }
 
 class RunOnRecordings : public ::testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() {
-        dir_ = fresh_dir("run_" + std::to_string(::getpid()));  // ctest runs each test in its own process, in parallel
-        fs::copy_file(fs::path(MAKEWAY_SOURCE_DIR) / "tests" / "data" / "room_chair_table.yaml", dir_ / "room.yaml");
-        const CliRun r = run_makeway("simulate --scene " + (dir_ / "room.yaml").string() + " --frames 8 --format bag --out " +
-                                         (dir_ / "sim").string(), dir_);
+        dir_ = fresh_dir(
+            "run_" +
+            std::to_string(::getpid()));  // ctest runs each test in its own process, in parallel
+        fs::copy_file(fs::path(MAKEWAY_SOURCE_DIR) / "tests" / "data" / "room_chair_table.yaml",
+                      dir_ / "room.yaml");
+        const CliRun r =
+            run_makeway("simulate --scene " + (dir_ / "room.yaml").string() +
+                            " --frames 8 --format bag --out " + (dir_ / "sim").string(),
+                        dir_);
         ASSERT_EQ(r.exit_code, 0) << r.err;
     }
     static fs::path bag() { return dir_ / "sim" / "drive.bag"; }
@@ -55,10 +60,13 @@ TEST_F(RunOnRecordings, ADamagedStructureIsOneLineAndLeavesNothing) {
     const std::uint32_t huge = 0xFFFFFFF0u;  // the bag header's length: rosbag would allocate 4 GB
     std::memcpy(bytes.data() + 13, &huge, 4);
     std::ofstream(dir / "in.bag", std::ios::binary) << bytes;
-    const CliRun r = run_makeway("run --bag " + (dir / "in.bag").string() + " --out " + (dir / "out").string(), dir);
+    const CliRun r = run_makeway(
+        "run --bag " + (dir / "in.bag").string() + " --out " + (dir / "out").string(), dir);
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_EQ(lines(r.err), 1u) << r.err;
-    EXPECT_NE(r.err.find("in.bag: record at byte 13: declares a header of 4294967280 bytes"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("in.bag: record at byte 13: declares a header of 4294967280 bytes"),
+              std::string::npos)
+        << r.err;
     expect_only(dir, {"in.bag", "stderr.txt"});
 }
 
@@ -75,15 +83,21 @@ TEST_F(RunOnRecordings, ADamagedMessageIsNamedOrSkippedAndCounted) {
             out.write(m.getTopic(), m.getTime(), copy, m.getConnectionHeader());
         }
     }
-    CliRun r = run_makeway("run --bag " + (dir / "in.bag").string() + " --png-every 0 --out " + (dir / "out").string(), dir);
+    CliRun r = run_makeway(
+        "run --bag " + (dir / "in.bag").string() + " --png-every 0 --out " + (dir / "out").string(),
+        dir);
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_EQ(lines(r.err), 1u) << r.err;
-    EXPECT_NE(r.err.find("in.bag: /velodyne_points message 3 (bag time "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("in.bag: /velodyne_points message 3 (bag time "), std::string::npos)
+        << r.err;
     EXPECT_NE(r.err.find("data needs"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("(--skip-bad-messages to skip such messages)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("(--skip-bad-messages to skip such messages)"), std::string::npos)
+        << r.err;
     EXPECT_FALSE(fs::exists(dir / "out"));
 
-    r = run_makeway("run --bag " + (dir / "in.bag").string() + " --skip-bad-messages --png-every 0 --out " + (dir / "out").string(), dir);
+    r = run_makeway("run --bag " + (dir / "in.bag").string() +
+                        " --skip-bad-messages --png-every 0 --out " + (dir / "out").string(),
+                    dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(lines(r.err), 1u) << r.err;  // one warning for the skipped message
     EXPECT_NE(r.err.find("warning: "), std::string::npos) << r.err;
@@ -99,11 +113,13 @@ TEST_F(RunOnRecordings, AnOutputNamingTheInputIsRefusedAndTheInputKept) {
     fs::create_symlink(dir / "in.bag", dir / "link.bag");
     fs::create_hard_link(dir / "in.bag", dir / "hard.bag");
     for (const char* out : {"in.bag", "link.bag", "hard.bag"}) {
-        const CliRun r = run_makeway("run --bag " + (dir / "in.bag").string() + " --out-bag " + (dir / out).string() + " --out " +
-                                         (dir / "out").string(), dir);
+        const CliRun r = run_makeway("run --bag " + (dir / "in.bag").string() + " --out-bag " +
+                                         (dir / out).string() + " --out " + (dir / "out").string(),
+                                     dir);
         EXPECT_EQ(r.exit_code, 2) << out << "\n" << r.err;
         EXPECT_EQ(lines(r.err), 1u) << r.err;
-        EXPECT_NE(r.err.find("--out-bag names the input given as --bag"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("--out-bag names the input given as --bag"), std::string::npos)
+            << r.err;
     }
     EXPECT_EQ(slurp(dir / "in.bag"), before);  // byte for byte
     expect_only(dir, {"in.bag", "link.bag", "hard.bag", "stderr.txt"});

@@ -17,8 +17,8 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "ros/msg_conversions.hpp"
 #include "process_util.hpp"
+#include "ros/msg_conversions.hpp"
 
 namespace {
 
@@ -33,9 +33,11 @@ TEST(MakewayNode, PlaysABagAtTwiceItsRateAndMapsTheRoom) {
     const fs::path dir = fs::temp_directory_path() / "makeway_test_node";
     fs::remove_all(dir);
     fs::create_directories(dir);
-    fs::copy_file(fs::path(MAKEWAY_SOURCE_DIR) / "tests" / "data" / "room_chair_table.yaml", dir / "room.yaml");
-    const std::string sim = std::string(MAKEWAY_BIN) + " simulate --scene " + (dir / "room.yaml").string() +
-                            " --frames 60 --format bag --out " + (dir / "sim").string() + " > " + (dir / "sim.log").string() + " 2>&1";
+    fs::copy_file(fs::path(MAKEWAY_SOURCE_DIR) / "tests" / "data" / "room_chair_table.yaml",
+                  dir / "room.yaml");
+    const std::string sim = std::string(MAKEWAY_BIN) + " simulate --scene " +
+                            (dir / "room.yaml").string() + " --frames 60 --format bag --out " +
+                            (dir / "sim").string() + " > " + (dir / "sim.log").string() + " 2>&1";
     ASSERT_EQ(std::system(sim.c_str()), 0) << read_text(dir / "sim.log");
 
     // A master of our own on a free port, logs in the test's folder.
@@ -45,15 +47,18 @@ TEST(MakewayNode, PlaysABagAtTwiceItsRateAndMapsTheRoom) {
     setenv("ROS_HOSTNAME", "localhost", 1);
     setenv("ROS_HOME", dir.c_str(), 1);
     setenv("ROS_LOG_DIR", dir.c_str(), 1);
-    const pid_t master = spawn({"rosmaster", "--core", "-p", std::to_string(port)}, dir / "master.log");
+    const pid_t master =
+        spawn({"rosmaster", "--core", "-p", std::to_string(port)}, dir / "master.log");
     ASSERT_GT(master, 0) << "rosmaster not found (scripts/install-deps.sh --ros)";
     int argc = 1;
     char name[] = "makeway_node_test";
     char* argv[] = {name, nullptr};
-    ros::init(argc, argv, "makeway_node_test", ros::init_options::NoSigintHandler | ros::init_options::AnonymousName);
+    ros::init(argc, argv, "makeway_node_test",
+              ros::init_options::NoSigintHandler | ros::init_options::AnonymousName);
     for (int i = 0; i < 100 && !ros::master::check(); ++i) std::this_thread::sleep_for(100ms);
     ASSERT_TRUE(ros::master::check()) << read_text(dir / "master.log");
-    const pid_t node = spawn({MAKEWAY_NODE_BIN, "__name:=makeway", std::string("_model:=") + MAKEWAY_SOURCE_DIR + "/models/detector.pt"},
+    const pid_t node = spawn({MAKEWAY_NODE_BIN, "__name:=makeway",
+                              std::string("_model:=") + MAKEWAY_SOURCE_DIR + "/models/detector.pt"},
                              dir / "node.log");
     ASSERT_GT(node, 0);
 
@@ -63,32 +68,39 @@ TEST(MakewayNode, PlaysABagAtTwiceItsRateAndMapsTheRoom) {
     std::size_t costmaps = 0, markers = 0;
     std::string last_map;
     nav_msgs::OccupancyGrid last_grid;
-    const auto now = [] { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); };
-    ros::Subscriber s1 = nh.subscribe<nav_msgs::Odometry>("/makeway/odometry", 1000, [&](const nav_msgs::OdometryConstPtr& m) {
-        std::lock_guard<std::mutex> lock(mutex);
-        pose_stamps.push_back(m->header.stamp.toSec());
-        pose_arrivals.push_back(now());
-    });
-    ros::Subscriber s2 = nh.subscribe<nav_msgs::OccupancyGrid>("/makeway/costmap", 100, [&](const nav_msgs::OccupancyGridConstPtr& m) {
-        std::lock_guard<std::mutex> lock(mutex);
-        ++costmaps;
-        last_grid = *m;
-    });
-    ros::Subscriber s3 = nh.subscribe<visualization_msgs::MarkerArray>("/makeway/objects", 100, [&](const visualization_msgs::MarkerArrayConstPtr&) {
-        std::lock_guard<std::mutex> lock(mutex);
-        ++markers;
-    });
-    ros::Subscriber s4 = nh.subscribe<std_msgs::String>("/makeway/object_map", 100, [&](const std_msgs::StringConstPtr& m) {
-        std::lock_guard<std::mutex> lock(mutex);
-        last_map = m->data;
-    });
+    const auto now = [] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+            .count();
+    };
+    ros::Subscriber s1 = nh.subscribe<nav_msgs::Odometry>(
+        "/makeway/odometry", 1000, [&](const nav_msgs::OdometryConstPtr& m) {
+            std::lock_guard<std::mutex> lock(mutex);
+            pose_stamps.push_back(m->header.stamp.toSec());
+            pose_arrivals.push_back(now());
+        });
+    ros::Subscriber s2 = nh.subscribe<nav_msgs::OccupancyGrid>(
+        "/makeway/costmap", 100, [&](const nav_msgs::OccupancyGridConstPtr& m) {
+            std::lock_guard<std::mutex> lock(mutex);
+            ++costmaps;
+            last_grid = *m;
+        });
+    ros::Subscriber s3 = nh.subscribe<visualization_msgs::MarkerArray>(
+        "/makeway/objects", 100, [&](const visualization_msgs::MarkerArrayConstPtr&) {
+            std::lock_guard<std::mutex> lock(mutex);
+            ++markers;
+        });
+    ros::Subscriber s4 = nh.subscribe<std_msgs::String>("/makeway/object_map", 100,
+                                                        [&](const std_msgs::StringConstPtr& m) {
+                                                            std::lock_guard<std::mutex> lock(mutex);
+                                                            last_map = m->data;
+                                                        });
     ros::Publisher clouds = nh.advertise<sensor_msgs::PointCloud2>("/velodyne_points", 100);
     ros::Publisher odom = nh.advertise<nav_msgs::Odometry>("/odom", 1000);
     ros::AsyncSpinner spinner(2);
     spinner.start();
     // The node is up when it subscribes and publishes (it loads the detector first).
-    for (int i = 0; i < 300 && (clouds.getNumSubscribers() == 0 || odom.getNumSubscribers() == 0 || s1.getNumPublishers() == 0 ||
-                                s4.getNumPublishers() == 0);
+    for (int i = 0; i < 300 && (clouds.getNumSubscribers() == 0 || odom.getNumSubscribers() == 0 ||
+                                s1.getNumPublishers() == 0 || s4.getNumPublishers() == 0);
          ++i) {
         std::this_thread::sleep_for(100ms);
     }
@@ -97,7 +109,8 @@ TEST(MakewayNode, PlaysABagAtTwiceItsRateAndMapsTheRoom) {
 
     // Play the bag at 2x: each message when its (halved) time comes.
     rosbag::Bag bag((dir / "sim" / "drive.bag").string());
-    rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{"/velodyne_points", "/odom"}));
+    rosbag::View view(bag,
+                      rosbag::TopicQuery(std::vector<std::string>{"/velodyne_points", "/odom"}));
     const double t0 = view.getBeginTime().toSec(), wall0 = now();
     std::vector<double> sweep_ends;
     double last_sweep_published = 0.0;
@@ -130,15 +143,19 @@ TEST(MakewayNode, PlaysABagAtTwiceItsRateAndMapsTheRoom) {
     ASSERT_EQ(sweep_ends.size(), 60u);
     // Every sweep processed (none dropped), each output stamped with its sweep's end.
     ASSERT_EQ(pose_stamps.size(), sweep_ends.size()) << log;
-    for (std::size_t i = 0; i < sweep_ends.size(); ++i) EXPECT_NEAR(pose_stamps[i], sweep_ends[i], 1e-3) << i;
+    for (std::size_t i = 0; i < sweep_ends.size(); ++i)
+        EXPECT_NEAR(pose_stamps[i], sweep_ends[i], 1e-3) << i;
     EXPECT_EQ(costmaps, 12u);
     EXPECT_EQ(markers, 12u);
     EXPECT_EQ(last_grid.header.frame_id, "map");
     // It kept up: the last pose came soon after the last sweep was played (6 s of data in ~3 s).
     const double lag = pose_arrivals.back() - last_sweep_published;
-    std::cout << "[          ] played 60 sweeps in " << played_s << " s; last pose " << lag << " s after the last sweep\n";
+    std::cout << "[          ] played 60 sweeps in " << played_s << " s; last pose " << lag
+              << " s after the last sweep\n";
     EXPECT_LT(lag, 1.0);
-    EXPECT_NE(log.find("60 sweeps received, 60 processed, 0 dropped, 12 keyframes"), std::string::npos) << log;
+    EXPECT_NE(log.find("60 sweeps received, 60 processed, 0 dropped, 12 keyframes"),
+              std::string::npos)
+        << log;
     // The room's chair and table where they stand.
     const nlohmann::json map = nlohmann::json::parse(last_map);
     bool chair = false, table = false;

@@ -37,7 +37,8 @@ using makeway::testing::stop;
 const fs::path& dir() {
     static const fs::path d = [] {
         // One folder per process: ctest runs each test in its own process, side by side.
-        const fs::path p = fs::temp_directory_path() / ("makeway_test_node_drives_" + std::to_string(getpid()));
+        const fs::path p =
+            fs::temp_directory_path() / ("makeway_test_node_drives_" + std::to_string(getpid()));
         fs::remove_all(p);
         fs::create_directories(p);
         return p;
@@ -47,7 +48,7 @@ const fs::path& dir() {
 
 // One master for the whole program (roscpp initialises once per process), on sim time.
 class Master : public ::testing::Environment {
-public:
+  public:
     void SetUp() override {
         const int port = 20000 + static_cast<int>((getpid() + 7919) % 20000);
         const std::string uri = "http://localhost:" + std::to_string(port);
@@ -60,7 +61,8 @@ public:
         int argc = 1;
         char name[] = "makeway_drive_test";
         char* argv[] = {name, nullptr};
-        ros::init(argc, argv, "makeway_drive_test", ros::init_options::NoSigintHandler | ros::init_options::AnonymousName);
+        ros::init(argc, argv, "makeway_drive_test",
+                  ros::init_options::NoSigintHandler | ros::init_options::AnonymousName);
         for (int i = 0; i < 100 && !ros::master::check(); ++i) std::this_thread::sleep_for(100ms);
         ASSERT_TRUE(ros::master::check()) << read_text(dir() / "master.log");
         ros::param::set("/use_sim_time", true);
@@ -73,7 +75,7 @@ public:
         stop(pid_, SIGTERM);
     }
 
-private:
+  private:
     pid_t pid_ = -1;
     std::unique_ptr<ros::AsyncSpinner> spinner_;
 };
@@ -93,35 +95,42 @@ struct Drive {
     bool have_truth = false;
 
     Drive(const std::string& n, const std::vector<std::string>& sim_params) : name(n) {
-        std::vector<std::string> args{MAKEWAY_SIM_NODE_BIN, "__name:=makeway_sim",
-                                      std::string("_scene:=") + MAKEWAY_SOURCE_DIR + "/tests/data/room_chair_table.yaml",
-                                      "_report:=" + (dir() / (name + "_report.json")).string()};
+        std::vector<std::string> args{
+            MAKEWAY_SIM_NODE_BIN, "__name:=makeway_sim",
+            std::string("_scene:=") + MAKEWAY_SOURCE_DIR + "/tests/data/room_chair_table.yaml",
+            "_report:=" + (dir() / (name + "_report.json")).string()};
         args.insert(args.end(), sim_params.begin(), sim_params.end());
         sim = spawn(args, dir() / (name + "_sim.log"));
-        node = spawn({MAKEWAY_NODE_BIN, "__name:=makeway", std::string("_model:=") + MAKEWAY_SOURCE_DIR + "/models/detector.pt"},
+        node = spawn({MAKEWAY_NODE_BIN, "__name:=makeway",
+                      std::string("_model:=") + MAKEWAY_SOURCE_DIR + "/models/detector.pt"},
                      dir() / (name + "_node.log"));
         goal_pub = nh.advertise<geometry_msgs::PoseStamped>("/move_base_simple/goal", 5);
         cancel_pub = nh.advertise<std_msgs::Empty>("/makeway/cancel", 5);
-        status_sub = nh.subscribe<std_msgs::String>("/makeway/status", 100, [this](const std_msgs::StringConstPtr& m) {
-            std::lock_guard<std::mutex> lock(mutex);
-            status = nlohmann::json::parse(m->data);
-            states.emplace_back(ros::Time::now().toSec(), status["state"].get<std::string>());
-        });
-        cmd_sub = nh.subscribe<geometry_msgs::Twist>("/cmd_vel", 100, [this](const geometry_msgs::TwistConstPtr& m) {
-            std::lock_guard<std::mutex> lock(mutex);
-            commands.emplace_back(ros::Time::now().toSec(), std::abs(m->linear.x) + std::abs(m->angular.z));
-        });
-        truth_sub = nh.subscribe<nav_msgs::Odometry>("/ground_truth/odom", 100, [this](const nav_msgs::OdometryConstPtr& m) {
-            std::lock_guard<std::mutex> lock(mutex);
-            truth = *m;
-            have_truth = true;
-        });
+        status_sub = nh.subscribe<std_msgs::String>(
+            "/makeway/status", 100, [this](const std_msgs::StringConstPtr& m) {
+                std::lock_guard<std::mutex> lock(mutex);
+                status = nlohmann::json::parse(m->data);
+                states.emplace_back(ros::Time::now().toSec(), status["state"].get<std::string>());
+            });
+        cmd_sub = nh.subscribe<geometry_msgs::Twist>(
+            "/cmd_vel", 100, [this](const geometry_msgs::TwistConstPtr& m) {
+                std::lock_guard<std::mutex> lock(mutex);
+                commands.emplace_back(ros::Time::now().toSec(),
+                                      std::abs(m->linear.x) + std::abs(m->angular.z));
+            });
+        truth_sub = nh.subscribe<nav_msgs::Odometry>("/ground_truth/odom", 100,
+                                                     [this](const nav_msgs::OdometryConstPtr& m) {
+                                                         std::lock_guard<std::mutex> lock(mutex);
+                                                         truth = *m;
+                                                         have_truth = true;
+                                                     });
     }
     ~Drive() { finish(); }
 
     // Waits (wall time) until `done` holds; false on timeout.
     bool wait_for(const std::function<bool()>& done, double timeout_s) {
-        const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+        const auto end =
+            std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
         while (std::chrono::steady_clock::now() < end) {
             {
                 std::lock_guard<std::mutex> lock(mutex);
@@ -132,8 +141,12 @@ struct Drive {
         return false;
     }
     bool up() {  // the node listens for goals and the robot is moving its clock
-        return wait_for([&] { return goal_pub.getNumSubscribers() > 0 && cancel_pub.getNumSubscribers() > 0 && have_truth && !status.is_null(); },
-                        60.0);
+        return wait_for(
+            [&] {
+                return goal_pub.getNumSubscribers() > 0 && cancel_pub.getNumSubscribers() > 0 &&
+                       have_truth && !status.is_null();
+            },
+            60.0);
     }
     void send_goal(double x, double y) {
         geometry_msgs::PoseStamped g;
@@ -156,7 +169,10 @@ struct Drive {
         const std::string text = read_text(dir() / (name + "_report.json"));
         return text.empty() ? nlohmann::json() : nlohmann::json::parse(text);
     }
-    std::string logs() { return read_text(dir() / (name + "_node.log")) + "\n" + read_text(dir() / (name + "_sim.log")); }
+    std::string logs() {
+        return read_text(dir() / (name + "_node.log")) + "\n" +
+               read_text(dir() / (name + "_sim.log"));
+    }
 };
 
 TEST(MakewayNodeDrives, ReachesAGoalInARoomWithAChairAndATableWithoutTouchingAnything) {
@@ -169,7 +185,8 @@ TEST(MakewayNodeDrives, ReachesAGoalInARoomWithAChairAndATableWithoutTouchingAny
     EXPECT_EQ(d.sim_exit, 0) << d.logs();
     ASSERT_TRUE(reached) << d.status.dump() << "\n" << d.logs();
     ASSERT_FALSE(report.is_null()) << d.logs();
-    std::cout << "[          ] reached in " << report["time_s"] << " s of sim time, " << report["distance_m"] << " m driven\n";
+    std::cout << "[          ] reached in " << report["time_s"] << " s of sim time, "
+              << report["distance_m"] << " m driven\n";
     EXPECT_LT(report["distance_to_goal_m"].get<double>(), 0.5) << report.dump();
     EXPECT_EQ(report["robot_caused_contacts"].get<int>(), 0) << report["contact_events"].dump();
     EXPECT_TRUE(report["contact_events"].empty()) << report["contact_events"].dump();
@@ -183,13 +200,18 @@ TEST(MakewayNodeDrives, BadGoalsLeaveTheRobotStillCancelStopsAndLostCloudsStopIt
     ASSERT_TRUE(d.up()) << d.logs();
     const double x0 = d.truth_xy().first, y0 = d.truth_xy().second;
     // Bad goals: not finite, outside the map, inside a wall: the status says why, nothing moves.
-    const std::pair<double, std::string> bad[] = {{std::numeric_limits<double>::quiet_NaN(), "not finite"},
-                                                  {40.0, "outside the map"},
-                                                  {0.0, "inside an obstacle"}};
+    const std::pair<double, std::string> bad[] = {
+        {std::numeric_limits<double>::quiet_NaN(), "not finite"},
+        {40.0, "outside the map"},
+        {0.0, "inside an obstacle"}};
     for (const auto& [x, why] : bad) {
-        d.send_goal(x, why == "inside an obstacle" ? 2.5 : 0.0);  // (0, 2.5): in the wall the sweeps show
-        ASSERT_TRUE(d.wait_for([&] { return d.status["why"].get<std::string>().find(why) != std::string::npos; }, 10.0))
-            << why << ": " << d.status.dump() << "\n" << d.logs();
+        d.send_goal(
+            x, why == "inside an obstacle" ? 2.5 : 0.0);  // (0, 2.5): in the wall the sweeps show
+        ASSERT_TRUE(d.wait_for(
+            [&] { return d.status["why"].get<std::string>().find(why) != std::string::npos; },
+            10.0))
+            << why << ": " << d.status.dump() << "\n"
+            << d.logs();
         EXPECT_EQ(d.status["state"], "stopped");
     }
     std::this_thread::sleep_for(1s);
@@ -200,7 +222,9 @@ TEST(MakewayNodeDrives, BadGoalsLeaveTheRobotStillCancelStopsAndLostCloudsStopIt
     // A good goal, then a cancel once it drives: zero within one control cycle (0.1 s), and
     // nothing but zero after it (commands in flight when it was sent may still arrive first).
     d.send_goal(3.5, 0.0);
-    ASSERT_TRUE(d.wait_for([&] { return !d.commands.empty() && d.commands.back().second > 0.3; }, 20.0)) << d.logs();
+    ASSERT_TRUE(
+        d.wait_for([&] { return !d.commands.empty() && d.commands.back().second > 0.3; }, 20.0))
+        << d.logs();
     std::size_t sent_at = 0;
     double cancel_t = 0.0;
     {
@@ -216,18 +240,22 @@ TEST(MakewayNodeDrives, BadGoalsLeaveTheRobotStillCancelStopsAndLostCloudsStopIt
         std::size_t first_zero = d.commands.size();
         bool moved_after = false;
         for (std::size_t i = sent_at; i < d.commands.size(); ++i) {
-            trace += std::to_string(d.commands[i].first) + ":" + std::to_string(d.commands[i].second) + " ";
+            trace += std::to_string(d.commands[i].first) + ":" +
+                     std::to_string(d.commands[i].second) + " ";
             if (d.commands[i].second == 0.0 && first_zero == d.commands.size()) first_zero = i;
             moved_after |= first_zero < i && d.commands[i].second != 0.0;
         }
         ASSERT_LT(first_zero, d.commands.size()) << trace;
-        EXPECT_LE(d.commands[first_zero].first - cancel_t, 0.1 + 1e-6) << "cancel at " << cancel_t << ": " << trace;
+        EXPECT_LE(d.commands[first_zero].first - cancel_t, 0.1 + 1e-6)
+            << "cancel at " << cancel_t << ": " << trace;
         EXPECT_FALSE(moved_after) << "cancel at " << cancel_t << ": " << trace;
     }
     // Drive again until the clouds stop at 14 s: zero velocity within the sensor timeout (0.3 s)
     // and no motion command after it.
     d.send_goal(3.5, 0.0);
-    ASSERT_TRUE(d.wait_for([&] { return !d.commands.empty() && d.commands.back().first > 16.0; }, 40.0)) << d.logs();
+    ASSERT_TRUE(
+        d.wait_for([&] { return !d.commands.empty() && d.commands.back().first > 16.0; }, 40.0))
+        << d.logs();
     {
         std::lock_guard<std::mutex> lock(d.mutex);
         double last_moving = -1.0;
@@ -237,7 +265,8 @@ TEST(MakewayNodeDrives, BadGoalsLeaveTheRobotStillCancelStopsAndLostCloudsStopIt
             moving_before |= speed > 0.0 && t > 12.0 && t < 15.0;
         }
         EXPECT_TRUE(moving_before) << "the robot was not driving when the sensor failed";
-        EXPECT_LE(last_moving, 1.0 + 14.0 + 0.5) << "a motion command came " << last_moving - 15.0 << " s after the last cloud";
+        EXPECT_LE(last_moving, 1.0 + 14.0 + 0.5)
+            << "a motion command came " << last_moving - 15.0 << " s after the last cloud";
     }
     const nlohmann::json report = d.finish();
     ASSERT_FALSE(report.is_null()) << d.logs();

@@ -1,18 +1,18 @@
 // The ROS node's engine without ROS: sweeps pushed faster than it processes them are all processed,
-// in order, each output stamped with its sweep's end; odometry arriving after a sweep is waited for;
-// a full queue drops the oldest and counts it.
+// in order, each output stamped with its sweep's end; odometry arriving after a sweep is waited
+// for; a full queue drops the oldest and counts it.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <mutex>
 
-#include "makeway/sim/route.hpp"
-#include "makeway/sim/scene_generator.hpp"
-#include "makeway/sim/sequence.hpp"
 #include "io/config_reader.hpp"
 #include "io/nav_config.hpp"
 #include "makeway/eval/navigation.hpp"
+#include "makeway/sim/route.hpp"
+#include "makeway/sim/scene_generator.hpp"
+#include "makeway/sim/sequence.hpp"
 #include "ros/node_engine.hpp"
 #include "ros/node_engine_params.hpp"
 
@@ -25,7 +25,8 @@ std::vector<sim::SimFrame> drive(int frames) {
     g.density = sim::Density::kMedium;
     const sim::Scene scene = sim::generate_scene(g);
     const sim::RobotParams robot;
-    const auto route = sim::drive_route(scene, sim::CollisionChecker(scene, sim::models_of(scene), robot), robot);
+    const auto route =
+        sim::drive_route(scene, sim::CollisionChecker(scene, sim::models_of(scene), robot), robot);
     sim::SequenceSimulator s(scene, route.value_or(std::vector<Eigen::Vector2d>{}), {});
     std::vector<sim::SimFrame> out;
     for (int k = 0; k < frames; ++k) out.push_back(s.next());
@@ -80,7 +81,8 @@ TEST(NodeEngine, EverySweepInOrderStampedWithItsEnd) {
         EXPECT_GT(s.max_queue, 1u);  // they did queue up
     }
     ASSERT_EQ(stamps.size(), frames.size());
-    for (std::size_t i = 0; i < frames.size(); ++i) EXPECT_NEAR(stamps[i], 100.0 + frames[i].stamp_s + 0.1, 1e-9);
+    for (std::size_t i = 0; i < frames.size(); ++i)
+        EXPECT_NEAR(stamps[i], 100.0 + frames[i].stamp_s + 0.1, 1e-9);
     EXPECT_EQ(keyframes, 5u);
     EXPECT_GT(objects, 0u);  // the committed detector maps something in a medium scene
 }
@@ -120,7 +122,8 @@ TEST(NodeEngine, AsyncPerceptionPerceivesEveryKeyframeOffTheControlPath) {
     EXPECT_EQ(sweep_stamps.size(), frames.size());
     EXPECT_EQ(formed, 5u);
     ASSERT_EQ(keyframe_stamps.size(), 5u);
-    for (std::size_t i = 1; i < keyframe_stamps.size(); ++i) EXPECT_GT(keyframe_stamps[i], keyframe_stamps[i - 1]);  // in order
+    for (std::size_t i = 1; i < keyframe_stamps.size(); ++i)
+        EXPECT_GT(keyframe_stamps[i], keyframe_stamps[i - 1]);  // in order
     EXPECT_GT(objects, 0u);
 }
 
@@ -145,7 +148,8 @@ TEST(NodeEngine, AFullQueueDropsTheOldestAndCountsIt) {
     EXPECT_EQ(stats.processed + stats.dropped, 12u);
     EXPECT_GT(stats.dropped, 0u);
     EXPECT_EQ(stamps.size(), stats.processed);
-    EXPECT_NEAR(stamps.back(), 100.0 + frames.back().stamp_s + 0.1, 1e-9);  // the newest always survives
+    EXPECT_NEAR(stamps.back(), 100.0 + frames.back().stamp_s + 0.1,
+                1e-9);  // the newest always survives
     for (std::size_t i = 1; i < stamps.size(); ++i) EXPECT_GT(stamps[i], stamps[i - 1]);
 }
 
@@ -160,7 +164,8 @@ TEST(NodeEngine, GateGivesZeroWhenTheSweepsOrTheOdometryStopAndSaysWhy) {
     const GatedCommand no_odometry = gate_command(go, 10.3, 10.0, 10.31, 0.3, 0.3);
     EXPECT_EQ(no_odometry.command.v_mps, 0.0);
     EXPECT_NE(no_odometry.why.find("no odometry"), std::string::npos);
-    EXPECT_EQ(gate_command(go, std::nullopt, 10.0, 10.0, 0.3, 0.3).command.v_mps, 0.0);  // nothing yet
+    EXPECT_EQ(gate_command(go, std::nullopt, 10.0, 10.0, 0.3, 0.3).command.v_mps,
+              0.0);  // nothing yet
 }
 
 // The benchmark's `ours`, `makeway run` and the node build the online system from one YAML with
@@ -172,18 +177,23 @@ TEST(OnlineSystem, TheBenchmarkRunAndTheNodeBuildTheSameSystemFromOneYaml) {
     const auto yaml = dir / "robot.yaml";
     {
         std::ofstream out(yaml);
-        out << "robot: {length_m: 0.7, width_m: 0.5, body_height_m: 0.8, ground_clearance_m: 0.03, lidar_height_m: 0.7,\n"
-               "        max_v_mps: 0.5, max_w_radps: 1.5, max_acc_mps2: 0.8, max_ang_acc_radps2: 2.0}\n"
+        out << "robot: {length_m: 0.7, width_m: 0.5, body_height_m: 0.8, ground_clearance_m: 0.03, "
+               "lidar_height_m: 0.7,\n"
+               "        max_v_mps: 0.5, max_w_radps: 1.5, max_acc_mps2: 0.8, max_ang_acc_radps2: "
+               "2.0}\n"
                "collision_monitor: {stop_padding_m: 0.06, latency_s: 0.25}\n";
     }
     NodeSettings node;
     node.config = yaml.string();
     const pipeline::SystemParams from_node = node_system_params(node);
     const io::Config config = io::load_config(yaml);  // what `makeway run` reads (no simulator)
-    const pipeline::SystemParams from_run = io::online_system_params(config);  // cmd_run without --extrinsics
-    const eval::NavParams nav = io::nav_params(io::load_sim_config(yaml));  // the benchmark's reader
+    const pipeline::SystemParams from_run =
+        io::online_system_params(config);  // cmd_run without --extrinsics
+    const eval::NavParams nav =
+        io::nav_params(io::load_sim_config(yaml));  // the benchmark's reader
     const sim::Scene scene = sim::generate_scene({});
-    const pipeline::OnlineSystemSetup from_bench = eval::online_system_setup(scene, *eval::nav_method("ours", nav.robot), nav);
+    const pipeline::OnlineSystemSetup from_bench =
+        eval::online_system_setup(scene, *eval::nav_method("ours", nav.robot), nav);
 
     for (const pipeline::SystemParams* p : {&from_node, &from_run, &from_bench.params}) {
         const pipeline::NavigatorParams& n = p->navigator;

@@ -12,14 +12,13 @@
 #include <iterator>
 
 #include "io/error.hpp"
+#include "lying_message.hpp"
 #include "ros/bag_check.hpp"
 #include "ros/bag_io.hpp"
 #include "ros/msg_conversions.hpp"
-#include "lying_message.hpp"
 
 namespace makeway::rosio {
 namespace {
-
 
 using sensor_msgs::PointField;
 
@@ -87,17 +86,19 @@ TEST(PointCloud2, VelodyneTimesBeforeTheStampStartTheSweepAtTheFirstPoint) {
 
 TEST(PointCloud2, OusterLayoutWithNanosecondsAndPadding) {
     // ouster_ros: x y z (float32) + 4 bytes padding, intensity float32, t uint32 ns, reflectivity
-    // uint16, ring uint8 (older drivers), noise uint16, range uint32; point_step 48; organised 2 x 2.
+    // uint16, ring uint8 (older drivers), noise uint16, range uint32; point_step 48; organised 2
+    // x 2.
     sensor_msgs::PointCloud2 m;
     m.header.stamp = ros::Time(500.0);
     m.header.frame_id = "os_sensor";
     m.height = 2;
     m.width = 2;
-    m.fields = {field("x", 0, PointField::FLOAT32),       field("y", 4, PointField::FLOAT32),
-                field("z", 8, PointField::FLOAT32),       field("intensity", 16, PointField::FLOAT32),
-                field("t", 20, PointField::UINT32),       field("reflectivity", 24, PointField::UINT16),
-                field("ring", 26, PointField::UINT8),     field("noise", 28, PointField::UINT16),
-                field("range", 32, PointField::UINT32)};
+    m.fields = {
+        field("x", 0, PointField::FLOAT32),    field("y", 4, PointField::FLOAT32),
+        field("z", 8, PointField::FLOAT32),    field("intensity", 16, PointField::FLOAT32),
+        field("t", 20, PointField::UINT32),    field("reflectivity", 24, PointField::UINT16),
+        field("ring", 26, PointField::UINT8),  field("noise", 28, PointField::UINT16),
+        field("range", 32, PointField::UINT32)};
     m.point_step = 48;
     m.row_step = 96;
     m.data.assign(192, 0);
@@ -106,7 +107,8 @@ TEST(PointCloud2, OusterLayoutWithNanosecondsAndPadding) {
         put<float>(m, i, 4, 2.0f);
         put<float>(m, i, 8, 0.5f);
         put<float>(m, i, 16, 100.0f);
-        put<std::uint32_t>(m, i, 20, static_cast<std::uint32_t>(25'000'000 * i));  // 0, 25, 50, 75 ms
+        put<std::uint32_t>(m, i, 20,
+                           static_cast<std::uint32_t>(25'000'000 * i));  // 0, 25, 50, 75 ms
         put<std::uint8_t>(m, i, 26, static_cast<std::uint8_t>(60 + i));
     }
     const CloudSweep s = from_point_cloud2(m);
@@ -125,9 +127,10 @@ TEST(PointCloud2, HesaiLayoutWithAbsoluteTimestamps) {
     m.header.stamp = ros::Time(1700000000.5);  // Hesai stamps the sweep's end
     m.height = 1;
     m.width = 3;
-    m.fields = {field("x", 0, PointField::FLOAT32), field("y", 4, PointField::FLOAT32), field("z", 8, PointField::FLOAT32),
-                field("intensity", 12, PointField::FLOAT32), field("timestamp", 16, PointField::FLOAT64),
-                field("ring", 24, PointField::UINT16)};
+    m.fields = {
+        field("x", 0, PointField::FLOAT32),          field("y", 4, PointField::FLOAT32),
+        field("z", 8, PointField::FLOAT32),          field("intensity", 12, PointField::FLOAT32),
+        field("timestamp", 16, PointField::FLOAT64), field("ring", 24, PointField::UINT16)};
     m.point_step = 26;
     m.row_step = 78;
     m.data.assign(78, 0);
@@ -234,7 +237,8 @@ TEST(Bag, CloudsAndOdometryWrittenThenReadBack) {
         BagWriter w(dir / "d.bag");
         for (int k = 0; k < 3; ++k) {
             w.write_cloud("/velodyne_points", sample_cloud(), 100.0 + 0.1 * k, "velodyne");
-            w.write_odometry("/odom", Pose2{0.1 * k, 0.0, 0.01 * k}, 1.0, 0.0, 100.0 + 0.1 * k, "odom", "base_link");
+            w.write_odometry("/odom", Pose2{0.1 * k, 0.0, 0.01 * k}, 1.0, 0.0, 100.0 + 0.1 * k,
+                             "odom", "base_link");
         }
         w.write_text("/notes", "hello", 100.0);
         EXPECT_FALSE(std::filesystem::exists(dir / "d.bag"));  // still .active
@@ -259,11 +263,14 @@ TEST(Bag, CloudsAndOdometryWrittenThenReadBack) {
         BagReader bad(dir / "d.bag", {"/points", "/odom"}, false);
         ADD_FAILURE();
     } catch (const io::FileError& e) {
-        EXPECT_NE(std::string(e.what()).find("no topic /points (sensor_msgs/PointCloud2 topics in the bag: /velodyne_points"),
-                  std::string::npos)
+        EXPECT_NE(
+            std::string(e.what()).find(
+                "no topic /points (sensor_msgs/PointCloud2 topics in the bag: /velodyne_points"),
+            std::string::npos)
             << e.what();
     }
-    EXPECT_THROW(BagReader(dir / "d.bag", {"/notes", "/odom"}, false), io::FileError);  // a String topic
+    EXPECT_THROW(BagReader(dir / "d.bag", {"/notes", "/odom"}, false),
+                 io::FileError);  // a String topic
     EXPECT_THROW(BagReader(dir / "d.bag", {"/velodyne_points", "/wheels"}, true), io::FileError);
     std::ofstream(dir / "not.bag") << "#ROSBAG V2.0\ngarbage";
     EXPECT_THROW(BagReader(dir / "not.bag", {}, false), io::FileError);
@@ -305,7 +312,8 @@ TEST(BagCheck, DamagedStructuresAreRefusedWithTheirByte) {
     const auto dir = fresh_dir("bag_check");
     {
         BagWriter w(dir / "good.bag");
-        for (int k = 0; k < 3; ++k) w.write_cloud("/velodyne_points", sample_cloud(), 100.0 + 0.1 * k, "velodyne");
+        for (int k = 0; k < 3; ++k)
+            w.write_cloud("/velodyne_points", sample_cloud(), 100.0 + 0.1 * k, "velodyne");
         w.close();
     }
     const std::string good = slurp(dir / "good.bag");
@@ -317,41 +325,61 @@ TEST(BagCheck, DamagedStructuresAreRefusedWithTheirByte) {
     const std::size_t chunk = 13 + 4 + header_len + 4 + u32_at(good, 13 + 4 + header_len);
     const std::size_t chunk_header_len = u32_at(good, chunk);
     const std::string chunk_header = good.substr(chunk + 4, chunk_header_len);
-    const auto damaged = [&](const std::string& name, const std::function<void(std::string&)>& damage) {
+    const auto damaged = [&](const std::string& name,
+                             const std::function<void(std::string&)>& damage) {
         std::string b = good;
         damage(b);
         std::ofstream(dir / name, std::ios::binary) << b;
         return dir / name;
     };
-    const auto put32 = [](std::string& b, std::size_t at, std::uint32_t v) { std::memcpy(b.data() + at, &v, 4); };
-    const auto check = [](const std::filesystem::path& p) { return [p] { check_bag_structure(p); }; };
-    expect_file_error(check(damaged("header_len.bag", [&](std::string& b) { put32(b, 13, 0xFFFFFFF0u); })),
-                      "record at byte 13: declares a header of 4294967280 bytes");
+    const auto put32 = [](std::string& b, std::size_t at, std::uint32_t v) {
+        std::memcpy(b.data() + at, &v, 4);
+    };
+    const auto check = [](const std::filesystem::path& p) {
+        return [p] { check_bag_structure(p); };
+    };
+    expect_file_error(
+        check(damaged("header_len.bag", [&](std::string& b) { put32(b, 13, 0xFFFFFFF0u); })),
+        "record at byte 13: declares a header of 4294967280 bytes");
     const std::size_t size_field = chunk + 4 + chunk_header.find("size=") + 5;
-    expect_file_error(check(damaged("chunk_size.bag", [&](std::string& b) { put32(b, size_field, 0xFFFFFFF0u); })),
-                      "record at byte " + std::to_string(chunk) + " (chunk): declares 4294967280 bytes uncompressed");
-    expect_file_error(check(damaged("chunk_data.bag", [&](std::string& b) { put32(b, chunk + 4 + chunk_header_len, 0xFFFFFFF0u); })),
+    expect_file_error(check(damaged("chunk_size.bag",
+                                    [&](std::string& b) { put32(b, size_field, 0xFFFFFFF0u); })),
+                      "record at byte " + std::to_string(chunk) +
+                          " (chunk): declares 4294967280 bytes uncompressed");
+    expect_file_error(check(damaged("chunk_data.bag",
+                                    [&](std::string& b) {
+                                        put32(b, chunk + 4 + chunk_header_len, 0xFFFFFFF0u);
+                                    })),
                       "(chunk): declares 4294967280 bytes of data, past the end of the file");
-    const std::size_t index_pos = 13 + 4 + std::string(good.data() + 17, header_len).find("index_pos=") + 10;
-    expect_file_error(check(damaged("index_pos.bag", [&](std::string& b) {
-                          const std::uint64_t into_chunk = chunk + 100;
-                          std::memcpy(b.data() + index_pos, &into_chunk, 8);
-                      })),
+    const std::size_t index_pos =
+        13 + 4 + std::string(good.data() + 17, header_len).find("index_pos=") + 10;
+    expect_file_error(check(damaged("index_pos.bag",
+                                    [&](std::string& b) {
+                                        const std::uint64_t into_chunk = chunk + 100;
+                                        std::memcpy(b.data() + index_pos, &into_chunk, 8);
+                                    })),
                       "index_pos " + std::to_string(chunk + 100) + " is not the start of a record");
-    expect_file_error(check(damaged("scrambled.bag", [&](std::string& b) {
-                          for (std::size_t i = chunk; i < chunk + 12; ++i) b[i] = static_cast<char>(0xA5 ^ i);
-                      })),
+    expect_file_error(check(damaged("scrambled.bag",
+                                    [&](std::string& b) {
+                                        for (std::size_t i = chunk; i < chunk + 12; ++i)
+                                            b[i] = static_cast<char>(0xA5 ^ i);
+                                    })),
                       "record at byte " + std::to_string(chunk));
-    expect_file_error(check(damaged("cut.bag", [&](std::string& b) { b.resize(chunk + 200); })), "past the end of the file");
-    expect_file_error(check(damaged("v12.bag", [&](std::string& b) { b.replace(0, 13, "#ROSBAG V1.2\n"); })), "bag format 1.2 is not supported");
-    expect_file_error(check(damaged("text.bag", [&](std::string& b) { b = "hello"; })), "not a ROS 1 bag");
+    expect_file_error(check(damaged("cut.bag", [&](std::string& b) { b.resize(chunk + 200); })),
+                      "past the end of the file");
+    expect_file_error(
+        check(damaged("v12.bag", [&](std::string& b) { b.replace(0, 13, "#ROSBAG V1.2\n"); })),
+        "bag format 1.2 is not supported");
+    expect_file_error(check(damaged("text.bag", [&](std::string& b) { b = "hello"; })),
+                      "not a ROS 1 bag");
     std::filesystem::create_directories(dir / "folder.bag");
     expect_file_error(check(dir / "folder.bag"), "is a folder, not a bag file");
     ASSERT_EQ(mkfifo((dir / "fifo.bag").c_str(), 0600), 0);
     expect_file_error(check(dir / "fifo.bag"), "is not a regular file");
     expect_file_error(check(dir / "missing.bag"), "no such bag file");
     // The reader walks first: the same damage is the same one line, not rosbag's abort.
-    expect_file_error([&] { BagReader r(dir / "header_len.bag", {}, false); }, "declares a header of 4294967280 bytes");
+    expect_file_error([&] { BagReader r(dir / "header_len.bag", {}, false); },
+                      "declares a header of 4294967280 bytes");
 }
 
 // Messages that deserialise to nothing sane are named (topic, index, bag time); with
@@ -381,11 +409,14 @@ TEST(Bag, LyingMessagesAreNamedOrSkipped) {
     sensor_msgs::PointCloud2 slow = cloud;
     put(slow, 2, 18, 1e9f);  // a per-point time of 1e9 s
     clouds.emplace_back("time", testing::as_bytes(slow));
-    clouds.emplace_back("good", testing::as_bytes(to_point_cloud2(sample_cloud(), 100.6, "velodyne")));
+    clouds.emplace_back("good",
+                        testing::as_bytes(to_point_cloud2(sample_cloud(), 100.6, "velodyne")));
     {
         rosbag::Bag bag((dir / "clouds.bag").string(), rosbag::bagmode::Write);
-        for (std::size_t k = 0; k < clouds.size(); ++k) bag.write("/velodyne_points", ros::Time(100.0 + 0.1 * k), clouds[k].second);
-        const nav_msgs::Odometry odom = to_odometry(Pose2{1.0, 2.0, 0.3}, 0.0, 0.0, 100.0, "odom", "base_link");
+        for (std::size_t k = 0; k < clouds.size(); ++k)
+            bag.write("/velodyne_points", ros::Time(100.0 + 0.1 * k), clouds[k].second);
+        const nav_msgs::Odometry odom =
+            to_odometry(Pose2{1.0, 2.0, 0.3}, 0.0, 0.0, 100.0, "odom", "base_link");
         bag.write("/odom", ros::Time(100.0), odom);
         nav_msgs::Odometry nan_q = odom;
         nan_q.header.stamp = ros::Time(100.1);
@@ -403,14 +434,16 @@ TEST(Bag, LyingMessagesAreNamedOrSkipped) {
         testing::LyingMessage short_odom = testing::as_bytes(odom);
         short_odom.bytes.resize(30);
         bag.write("/odom", ros::Time(100.4), short_odom);
-        nav_msgs::Odometry unnormalised = to_odometry(Pose2{1.5, 2.0, 0.3}, 0.0, 0.0, 100.5, "odom", "base_link");
+        nav_msgs::Odometry unnormalised =
+            to_odometry(Pose2{1.5, 2.0, 0.3}, 0.0, 0.0, 100.5, "odom", "base_link");
         unnormalised.pose.pose.orientation.z *= 3.0;
         unnormalised.pose.pose.orientation.w *= 3.0;
         bag.write("/odom", ros::Time(100.5), unnormalised);
     }
     // Without skipping: the first bad odometry message ends it, named.
-    expect_file_error([&] { BagReader r(dir / "clouds.bag", {}, true); },
-                      "/odom message 1 (bag time 100.100 s): the orientation quaternion is zero or not finite");
+    expect_file_error(
+        [&] { BagReader r(dir / "clouds.bag", {}, true); },
+        "/odom message 1 (bag time 100.100 s): the orientation quaternion is zero or not finite");
     BagReader r(dir / "clouds.bag", {}, true, true);
     EXPECT_EQ(r.skipped(), 4u);  // NaN and zero quaternions, 1e30 m, 30 bytes
     ASSERT_EQ(r.odometry().size(), 2u);
@@ -422,7 +455,8 @@ TEST(Bag, LyingMessagesAreNamedOrSkipped) {
     EXPECT_EQ(r.skipped(), 4u + 5u);
     // Each bad cloud, after a good one, names its problem.
     const std::vector<std::string> expected = {
-        "/velodyne_points message 1 (bag time 100.100 s): the header needs 12 bytes, the message has 5 left",
+        "/velodyne_points message 1 (bag time 100.100 s): the header needs 12 bytes, the message "
+        "has 5 left",
         "/velodyne_points message 1 (bag time 100.100 s): data needs",
         "data needs 4294967280 bytes",
         "fields 'x' and 'y' overlap (offsets 0 and 4, 8 and 4 bytes)",
@@ -447,8 +481,10 @@ TEST(Bag, LyingMessagesAreNamedOrSkipped) {
         bag.write("/velodyne_points", ros::Time(100.0), lie);
     }
     BagReader other(dir / "md5.bag", {}, false);
-    expect_file_error([&] { other.next(); }, "/velodyne_points message 0 (bag time 100.000 s): its md5sum 0123456789abcdef0123456789abcdef "
-                                             "is not sensor_msgs/PointCloud2's 1158d486dd51d683ce2f1be655c3c181");
+    expect_file_error([&] { other.next(); },
+                      "/velodyne_points message 0 (bag time 100.000 s): its md5sum "
+                      "0123456789abcdef0123456789abcdef "
+                      "is not sensor_msgs/PointCloud2's 1158d486dd51d683ce2f1be655c3c181");
 }
 
 }  // namespace

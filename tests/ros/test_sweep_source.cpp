@@ -31,7 +31,8 @@ struct Outcome {
 };
 
 // The online system as `makeway run` builds it without a map: mapping a free 40 m square.
-pipeline::OnlineSystemSetup mapping_setup(const pipeline::SystemParams& params, const Pose2& start, const perception::Detector& detector) {
+pipeline::OnlineSystemSetup mapping_setup(const pipeline::SystemParams& params, const Pose2& start,
+                                          const perception::Detector& detector) {
     pipeline::OnlineSystemSetup setup;
     setup.params = params;
     setup.start = start;
@@ -41,11 +42,13 @@ pipeline::OnlineSystemSetup mapping_setup(const pipeline::SystemParams& params, 
     return setup;
 }
 
-Outcome run_source(SweepSource& source, const pipeline::SystemParams& params, const Pose2& start, const perception::Detector& detector) {
+Outcome run_source(SweepSource& source, const pipeline::SystemParams& params, const Pose2& start,
+                   const perception::Detector& detector) {
     pipeline::OnlineSystem system(mapping_setup(params, start, detector));
     Outcome out;
     while (auto s = source.next()) {
-        const auto step = system.process({std::move(s->points), s->stamp_s, s->duration_s, s->pose_start, s->pose_end});
+        const auto step = system.process(
+            {std::move(s->points), s->stamp_s, s->duration_s, s->pose_start, s->pose_end});
         out.poses.push_back(step.sweep.pose);
         out.keyframes += step.sweep.keyframe.has_value();
     }
@@ -57,7 +60,8 @@ void expect_same(const Outcome& a, const Outcome& b, const std::string& what) {
     ASSERT_EQ(a.poses.size(), b.poses.size()) << what;
     double worst = 0.0;
     for (std::size_t i = 0; i < a.poses.size(); ++i) {
-        worst = std::max(worst, std::hypot(a.poses[i].x_m - b.poses[i].x_m, a.poses[i].y_m - b.poses[i].y_m));
+        worst = std::max(
+            worst, std::hypot(a.poses[i].x_m - b.poses[i].x_m, a.poses[i].y_m - b.poses[i].y_m));
     }
     EXPECT_LT(worst, 1e-4) << what;
     EXPECT_EQ(a.keyframes, b.keyframes) << what;
@@ -65,18 +69,21 @@ void expect_same(const Outcome& a, const Outcome& b, const std::string& what) {
     for (std::size_t i = 0; i < a.objects.size(); ++i) {
         EXPECT_EQ(a.objects[i].id, b.objects[i].id) << what;
         EXPECT_EQ(a.objects[i].cls, b.objects[i].cls) << what;
-        EXPECT_LT((a.objects[i].box_world.centre_m - b.objects[i].box_world.centre_m).norm(), 1e-3) << what;
+        EXPECT_LT((a.objects[i].box_world.centre_m - b.objects[i].box_world.centre_m).norm(), 1e-3)
+            << what;
     }
 }
 
 TEST(SweepSource, BagsAndFoldersGiveTheSimulatorLoopsObjectMap) {
-    const perception::Detector detector = perception::Detector::load(fs::path(MAKEWAY_SOURCE_DIR) / "models" / "detector.pt");
+    const perception::Detector detector =
+        perception::Detector::load(fs::path(MAKEWAY_SOURCE_DIR) / "models" / "detector.pt");
     sim::SceneGenParams g;
     g.seed = 1000033;  // held out from training
     g.density = sim::Density::kMedium;
     const sim::Scene scene = sim::generate_scene(g);
     const sim::RobotParams robot;
-    const auto route = sim::drive_route(scene, sim::CollisionChecker(scene, sim::models_of(scene), robot), robot);
+    const auto route =
+        sim::drive_route(scene, sim::CollisionChecker(scene, sim::models_of(scene), robot), robot);
     ASSERT_TRUE(route.has_value());
     sim::SequenceParams sp;
     sp.seed = 9;
@@ -93,24 +100,29 @@ TEST(SweepSource, BagsAndFoldersGiveTheSimulatorLoopsObjectMap) {
         BagWriter bag(dir / "drive.bag");
         for (int f = 0; f < 60; ++f) {
             const sim::SimFrame frame = drive.next();
-            const auto step = direct.process({frame.points_sensor, frame.stamp_s, 0.1, frame.odometry_pose, frame.odometry_end_pose});
+            const auto step = direct.process({frame.points_sensor, frame.stamp_s, 0.1,
+                                              frame.odometry_pose, frame.odometry_end_pose});
             expected.poses.push_back(step.sweep.pose);
             expected.keyframes += step.sweep.keyframe.has_value();
             const double t = kSimulatedEpoch_s + frame.stamp_s;
             bag.write_cloud("/velodyne_points", frame.points_sensor, t, "velodyne");
             bag.write_odometry("/odom", frame.odometry_pose, 0.0, 0.0, t, "odom", "base_link");
-            bag.write_odometry("/odom", frame.odometry_end_pose, 0.0, 0.0, t + 0.1, "odom", "base_link");
+            bag.write_odometry("/odom", frame.odometry_end_pose, 0.0, 0.0, t + 0.1, "odom",
+                               "base_link");
             char name[32];
             std::snprintf(name, sizeof(name), "%06d.pcd", f);
             io::write_point_cloud(dir / "clouds" / name, frame.points_sensor);
             wheels.push_back({frame.stamp_s, lift_to_3d(frame.odometry_pose)});
-            if (f == 59) wheels.push_back({frame.stamp_s + 0.1, lift_to_3d(frame.odometry_end_pose)});  // the last sweep's end
+            if (f == 59)
+                wheels.push_back({frame.stamp_s + 0.1,
+                                  lift_to_3d(frame.odometry_end_pose)});  // the last sweep's end
         }
         bag.close();
     }
     expected.objects = direct.objects();
     ASSERT_GE(expected.keyframes, 11u);
-    ASSERT_GE(expected.objects.size(), 3u) << "the drive must map something for the comparison to mean anything";
+    ASSERT_GE(expected.objects.size(), 3u)
+        << "the drive must map something for the comparison to mean anything";
     io::write_tum(dir / "odometry.txt", wheels);
 
     SourceOptions from_bag;
@@ -119,14 +131,17 @@ TEST(SweepSource, BagsAndFoldersGiveTheSimulatorLoopsObjectMap) {
     EXPECT_EQ(bag_source->size(), 60u);
     ASSERT_TRUE(bag_source->first_pose().has_value());
     // The odometry frame starts at the true start pose (the simulator's wheels are told it).
-    EXPECT_LT(std::hypot(bag_source->first_pose()->x_m - drive.start_pose().x_m, bag_source->first_pose()->y_m - drive.start_pose().y_m), 1e-9);
+    EXPECT_LT(std::hypot(bag_source->first_pose()->x_m - drive.start_pose().x_m,
+                         bag_source->first_pose()->y_m - drive.start_pose().y_m),
+              1e-9);
     expect_same(expected, run_source(*bag_source, params, drive.start_pose(), detector), "bag");
 
     SourceOptions from_folder;
     from_folder.clouds = (dir / "clouds").string();
     from_folder.odometry = (dir / "odometry.txt").string();
     const auto folder_source = open_sweep_source(from_folder);
-    expect_same(expected, run_source(*folder_source, params, drive.start_pose(), detector), "folder");
+    expect_same(expected, run_source(*folder_source, params, drive.start_pose(), detector),
+                "folder");
 }
 
 TEST(SweepSource, PosesThatDoNotCoverTheSweepsAreAnError) {
@@ -148,7 +163,10 @@ TEST(SweepSource, PosesThatDoNotCoverTheSweepsAreAnError) {
         source->next();  // 100.1-100.2 s
         ADD_FAILURE();
     } catch (const io::FileError& e) {
-        EXPECT_NE(std::string(e.what()).find("the odometry on /odom spans 100.000-100.150 s; sweep 1 (100.100-100.200 s) lies outside"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("the odometry on /odom spans 100.000-100.150 s; sweep "
+                                             "1 (100.100-100.200 s) lies outside"),
+                  std::string::npos)
+            << e.what();
     }
     // Folders: a TUM file shorter than the sweeps.
     fs::create_directories(dir / "clouds");

@@ -19,13 +19,16 @@ namespace {
 Similarity3 known(bool upright) {
     Similarity3 T;
     T.scale = 0.73;
-    T.rotation = upright ? Eigen::AngleAxisd(2.1, Eigen::Vector3d::UnitZ()).toRotationMatrix()
-                         : Eigen::Matrix3d(Eigen::AngleAxisd(0.9, Eigen::Vector3d(0.3, -0.5, 0.8).normalized()));
+    T.rotation =
+        upright
+            ? Eigen::AngleAxisd(2.1, Eigen::Vector3d::UnitZ()).toRotationMatrix()
+            : Eigen::Matrix3d(Eigen::AngleAxisd(0.9, Eigen::Vector3d(0.3, -0.5, 0.8).normalized()));
     T.translation = Eigen::Vector3d(1.5, -2.25, 0.4);
     return T;
 }
 
-void random_pairs(const Similarity3& T, int n, std::uint64_t seed, std::vector<Eigen::Vector3d>& v, std::vector<Eigen::Vector3d>& p) {
+void random_pairs(const Similarity3& T, int n, std::uint64_t seed, std::vector<Eigen::Vector3d>& v,
+                  std::vector<Eigen::Vector3d>& p) {
     Rng rng = make_rng(seed);
     for (int i = 0; i < n; ++i) {
         v.emplace_back(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
@@ -69,17 +72,17 @@ TEST(Similarity, ZeroWeightsIgnoreOutliersExactly) {
 
 TEST(Similarity, DegenerateInputHasNoAnswer) {
     const std::vector<Eigen::Vector3d> two{{0, 0, 0}, {1, 0, 0}};
-    EXPECT_FALSE(solve_similarity(two, two, {1, 1}, false));                         // 2 pairs, full
-    EXPECT_TRUE(solve_similarity(two, two, {1, 1}, true));                           // 2 pairs upright: enough
+    EXPECT_FALSE(solve_similarity(two, two, {1, 1}, false));  // 2 pairs, full
+    EXPECT_TRUE(solve_similarity(two, two, {1, 1}, true));    // 2 pairs upright: enough
     const std::vector<Eigen::Vector3d> line{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}};
-    EXPECT_FALSE(solve_similarity(line, line, {1, 1, 1, 1}, false));                 // collinear
+    EXPECT_FALSE(solve_similarity(line, line, {1, 1, 1, 1}, false));  // collinear
     const std::vector<Eigen::Vector3d> same(4, Eigen::Vector3d(1, 2, 3));
-    EXPECT_FALSE(solve_similarity(same, same, {1, 1, 1, 1}, true));                  // one point
+    EXPECT_FALSE(solve_similarity(same, same, {1, 1, 1, 1}, true));  // one point
     const std::vector<Eigen::Vector3d> vertical{{0, 0, 0}, {0, 0, 1}, {0, 0, 2}};
-    EXPECT_FALSE(solve_similarity(vertical, vertical, {1, 1, 1}, true));             // no yaw to see
-    EXPECT_FALSE(solve_similarity(two, two, {1, -1}, true));                         // negative weight
+    EXPECT_FALSE(solve_similarity(vertical, vertical, {1, 1, 1}, true));  // no yaw to see
+    EXPECT_FALSE(solve_similarity(two, two, {1, -1}, true));              // negative weight
     EXPECT_FALSE(solve_similarity(two, two, {1, NAN}, true));
-    EXPECT_FALSE(solve_similarity(two, two, {1}, true));                             // sizes differ
+    EXPECT_FALSE(solve_similarity(two, two, {1}, true));  // sizes differ
     EXPECT_FALSE(solve_similarity_robust({}, {}, {}));
 }
 
@@ -116,13 +119,17 @@ double brute_force_distance(const MeshSdf& sdf, const Eigen::Vector3d& q) {
 
 TEST(MeshSdf, DistanceOfAProceduralChairMatchesBruteForce) {
     const sim::FurnitureModel chair = sim::make_furniture(sim::FurnitureStyle::kOfficeChair, 7);
-    const MeshSdf sdf(chair.mesh_object, chair.box_object.centre_m, 2.0 / chair.box_object.size_m.norm());
+    const MeshSdf sdf(chair.mesh_object, chair.box_object.centre_m,
+                      2.0 / chair.box_object.size_m.norm());
     Rng rng = make_rng(8);
     const auto surface = sdf.sample_surface(300, 9);
     for (int i = 0; i < 1200; ++i) {
         // Uniform in the cube, and near the surface where the search is hardest.
-        Eigen::Vector3d q(uniform(rng, -1.2, 1.2), uniform(rng, -1.2, 1.2), uniform(rng, -1.2, 1.2));
-        if (i % 2) q = surface[static_cast<std::size_t>(i % 300)] + Eigen::Vector3d(normal(rng, 0, 0.03), normal(rng, 0, 0.03), normal(rng, 0, 0.03));
+        Eigen::Vector3d q(uniform(rng, -1.2, 1.2), uniform(rng, -1.2, 1.2),
+                          uniform(rng, -1.2, 1.2));
+        if (i % 2)
+            q = surface[static_cast<std::size_t>(i % 300)] +
+                Eigen::Vector3d(normal(rng, 0, 0.03), normal(rng, 0, 0.03), normal(rng, 0, 0.03));
         ASSERT_NEAR(sdf.unsigned_distance(q), brute_force_distance(sdf, q), 1e-12) << q.transpose();
     }
     for (const auto& s : surface) EXPECT_LT(sdf.unsigned_distance(s), 1e-9);
@@ -134,21 +141,25 @@ TEST(MeshSdf, SignedDistanceOfOverlappingBoxesIsTheUnionsAnalyticValue) {
     sim::add_box(mesh, {0, 0, 0}, {2, 1, 1});
     sim::add_box(mesh, {0.8, 0, 0}, {1, 1, 3});
     const MeshSdf sdf(mesh);
-    auto box_sdf = [](const Eigen::Vector3d& q, const Eigen::Vector3d& c, const Eigen::Vector3d& half) {
+    auto box_sdf = [](const Eigen::Vector3d& q, const Eigen::Vector3d& c,
+                      const Eigen::Vector3d& half) {
         const Eigen::Vector3d d = (q - c).cwiseAbs() - half;
         return d.cwiseMax(0.0).norm() + std::min(d.maxCoeff(), 0.0);
     };
     Rng rng = make_rng(10);
     for (int i = 0; i < 2000; ++i) {
-        const Eigen::Vector3d q(uniform(rng, -2, 2), uniform(rng, -1.5, 1.5), uniform(rng, -2.5, 2.5));
-        const double a = box_sdf(q, {0, 0, 0}, {1, 0.5, 0.5}), b = box_sdf(q, {0.8, 0, 0}, {0.5, 0.5, 1.5});
+        const Eigen::Vector3d q(uniform(rng, -2, 2), uniform(rng, -1.5, 1.5),
+                                uniform(rng, -2.5, 2.5));
+        const double a = box_sdf(q, {0, 0, 0}, {1, 0.5, 0.5}),
+                     b = box_sdf(q, {0.8, 0, 0}, {0.5, 0.5, 1.5});
         const bool inside = std::min(a, b) < 0;
         if (std::abs(std::min(a, b)) < 1e-6) continue;  // on a face
         ASSERT_EQ(sdf.inside(q), inside) << q.transpose();
         const double w = sdf.winding_number(q);
         EXPECT_NEAR(w, inside ? (a < 0) + (b < 0) : 0.0, 1e-6);
         if (!inside) {
-            ASSERT_NEAR(sdf.signed_distance(q), std::min(a, b), 1e-6);  // outside a union: the nearer part (float vertices)
+            ASSERT_NEAR(sdf.signed_distance(q), std::min(a, b),
+                        1e-6);  // outside a union: the nearer part (float vertices)
         }
     }
 }
@@ -160,7 +171,9 @@ TEST(Isosurface, SphereIsClosedOutwardAndOfTheRightVolume) {
     std::vector<float> values;
     for (int z = 0; z < 41; ++z)
         for (int y = 0; y < 41; ++y)
-            for (int x = 0; x < 41; ++x) values.push_back(static_cast<float>((origin + h * Eigen::Vector3d(x, y, z)).norm() - r));
+            for (int x = 0; x < 41; ++x)
+                values.push_back(
+                    static_cast<float>((origin + h * Eigen::Vector3d(x, y, z)).norm() - r));
     const TriangleMesh mesh = extract_isosurface(values, dims, origin, h, 0.0, true);
     ASSERT_GT(mesh.triangles.size(), 1000u);
     EXPECT_EQ(mesh.validity_error(), "");
@@ -180,7 +193,9 @@ TEST(Isosurface, SphereIsClosedOutwardAndOfTheRightVolume) {
         ASSERT_EQ(count, 1);
         ASSERT_EQ(directed.count({edge.second, edge.first}), 1u);
     }
-    EXPECT_EQ(static_cast<long>(mesh.vertices_m.size()) - static_cast<long>(directed.size() / 2) + static_cast<long>(mesh.triangles.size()), 2);  // Euler: a sphere
+    EXPECT_EQ(static_cast<long>(mesh.vertices_m.size()) - static_cast<long>(directed.size() / 2) +
+                  static_cast<long>(mesh.triangles.size()),
+              2);  // Euler: a sphere
     EXPECT_NEAR(volume, 4.0 / 3.0 * M_PI * r * r * r, 0.02 * 4.0 / 3.0 * M_PI * r * r * r);
     // An occupancy field (inside above the level) gives the same surface, facing the same way.
     std::vector<float> occ(values.size());

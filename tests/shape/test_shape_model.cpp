@@ -18,14 +18,17 @@ namespace fs = std::filesystem;
 
 TEST(ShapeModel, TorchSolveMatchesTheClosedForm) {
     torch::manual_seed(3);
-    const torch::Tensor v = torch::randn({2, 40, 3}), p = torch::randn({2, 40, 3}), w = torch::rand({2, 40}) + 0.1;
+    const torch::Tensor v = torch::randn({2, 40, 3}), p = torch::randn({2, 40, 3}),
+                        w = torch::rand({2, 40}) + 0.1;
     const TorchSimilarity T = solve_upright_similarity(v, p, w);
     for (int b = 0; b < 2; ++b) {
         std::vector<Eigen::Vector3d> vv, pp;
         std::vector<double> ww;
         for (int i = 0; i < 40; ++i) {
-            vv.emplace_back(v[b][i][0].item<double>(), v[b][i][1].item<double>(), v[b][i][2].item<double>());
-            pp.emplace_back(p[b][i][0].item<double>(), p[b][i][1].item<double>(), p[b][i][2].item<double>());
+            vv.emplace_back(v[b][i][0].item<double>(), v[b][i][1].item<double>(),
+                            v[b][i][2].item<double>());
+            pp.emplace_back(p[b][i][0].item<double>(), p[b][i][1].item<double>(),
+                            p[b][i][2].item<double>());
             ww.push_back(w[b][i].item<double>());
         }
         const auto ref = solve_similarity(vv, pp, ww, true);
@@ -33,7 +36,8 @@ TEST(ShapeModel, TorchSolveMatchesTheClosedForm) {
         EXPECT_NEAR(T.scale[b].item<double>(), ref->scale, 1e-4);
         for (int r = 0; r < 3; ++r) {
             EXPECT_NEAR(T.translation[b][r].item<double>(), ref->translation[r], 1e-4);
-            for (int c = 0; c < 3; ++c) EXPECT_NEAR(T.rotation[b][r][c].item<double>(), ref->rotation(r, c), 1e-4);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(T.rotation[b][r][c].item<double>(), ref->rotation(r, c), 1e-4);
         }
     }
     // And it is differentiable: a gradient reaches the weights.
@@ -64,11 +68,14 @@ TEST(ShapeModel, TheDatasetHoldsBothClassesWithTruthThatFitsThePoints) {
         const ShapeExample& ex = data.shapes[static_cast<std::size_t>(v.shape)];
         ++classes[shape_class_index(ex.cls)];
         // The object's own returns lie on its surface under the true pose (range noise aside).
-        const MeshSdf sdf(data.mesh_object[static_cast<std::size_t>(v.shape)], data.box_object[static_cast<std::size_t>(v.shape)].centre_m,
+        const MeshSdf sdf(data.mesh_object[static_cast<std::size_t>(v.shape)],
+                          data.box_object[static_cast<std::size_t>(v.shape)].centre_m,
                           1.0 / data.scale_m[static_cast<std::size_t>(v.shape)]);
         std::vector<double> d;
         for (std::size_t i = 0; i < v.points.size(); ++i) {
-            if (!v.outlier[i]) d.push_back(sdf.unsigned_distance(v.truth.inverse_apply(v.points[i])) * v.truth.scale);
+            if (!v.outlier[i])
+                d.push_back(sdf.unsigned_distance(v.truth.inverse_apply(v.points[i])) *
+                            v.truth.scale);
         }
         ASSERT_FALSE(d.empty());
         std::sort(d.begin(), d.end());
@@ -121,7 +128,8 @@ TEST(ShapeModel, AFewTrainingStepsLowerEveryLoss) {
     EXPECT_EQ(loaded.parameter_count(), model.parameter_count());
     const ShapeView& view = small_dataset().views.front();
     for (const ObjectClass cls : {ObjectClass::kChair, ObjectClass::kTable}) {
-        const Correspondences a = model.correspond(cls, view.points), b = loaded.correspond(cls, view.points);
+        const Correspondences a = model.correspond(cls, view.points),
+                              b = loaded.correspond(cls, view.points);
         ASSERT_EQ(a.canonical.size(), b.canonical.size());
         for (std::size_t i = 0; i < a.canonical.size(); ++i) {
             EXPECT_EQ(a.canonical[i], b.canonical[i]);
@@ -136,8 +144,10 @@ TEST(ShapeModel, AFewTrainingStepsLowerEveryLoss) {
         for (const auto& p : view.points) canonical.push_back(view.truth.inverse_apply(p));
         tsdf.integrate(canonical, view.truth.inverse_apply(view.origin));
         EXPECT_EQ(model.occupancy(cls, tsdf, z, q), loaded.occupancy(cls, tsdf, z, q));
-        const Completion ca = complete_shape(model, cls, {canonical}, {view.truth.inverse_apply(view.origin)});
-        const Completion cb = complete_shape(loaded, cls, {canonical}, {view.truth.inverse_apply(view.origin)});
+        const Completion ca =
+            complete_shape(model, cls, {canonical}, {view.truth.inverse_apply(view.origin)});
+        const Completion cb =
+            complete_shape(loaded, cls, {canonical}, {view.truth.inverse_apply(view.origin)});
         EXPECT_EQ(ca.code, cb.code);
         EXPECT_EQ(ca.occupancy, cb.occupancy);
         EXPECT_GT(ca.observed_cells, 0u);

@@ -49,8 +49,10 @@ inline Scene box_room(double half_m) {
     s.floor_max_m = Eigen::Vector2d(half_m + 1, half_m + 1);
     s.ceiling_height_m = 3.0;
     const double c = half_m + 0.1;
-    s.walls = {{{-c, -c}, {c, -c}, 0.2, 3.0}, {{c, -c}, {c, c}, 0.2, 3.0},
-               {{c, c}, {-c, c}, 0.2, 3.0}, {{-c, c}, {-c, -c}, 0.2, 3.0}};
+    s.walls = {{{-c, -c}, {c, -c}, 0.2, 3.0},
+               {{c, -c}, {c, c}, 0.2, 3.0},
+               {{c, c}, {-c, c}, 0.2, 3.0},
+               {{-c, c}, {-c, -c}, 0.2, 3.0}};
     return s;
 }
 

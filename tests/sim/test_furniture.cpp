@@ -18,14 +18,17 @@ TEST(Furniture, EveryStyleIsAValidModelOfRealSize) {
             const Eigen::Vector3d size = m.box_object.size_m;
             Eigen::Vector3d lo, hi;
             mesh_bounds(m.mesh_object, lo, hi);
-            EXPECT_NEAR(lo.z(), 0.0, 1e-6);                        // stands on the floor
-            EXPECT_NEAR(lo.x() + hi.x(), 0.0, 1e-5);               // footprint centred
+            EXPECT_NEAR(lo.z(), 0.0, 1e-6);           // stands on the floor
+            EXPECT_NEAR(lo.x() + hi.x(), 0.0, 1e-5);  // footprint centred
             EXPECT_NEAR(lo.y() + hi.y(), 0.0, 1e-5);
             EXPECT_TRUE(((hi - lo) - size).cwiseAbs().maxCoeff() < 1e-5);
-            // Every style is a plausible piece of furniture of its class (the check user meshes get).
+            // Every style is a plausible piece of furniture of its class (the check user meshes
+            // get).
             TriangleMesh placed = m.mesh_object;
-            EXPECT_FALSE(implausible_furniture_extent(placed, class_of(style)).has_value()) << to_string(style);
-            if (static_cast<int>(style) > static_cast<int>(FurnitureStyle::kConferenceTable)) continue;  // the wider world
+            EXPECT_FALSE(implausible_furniture_extent(placed, class_of(style)).has_value())
+                << to_string(style);
+            if (static_cast<int>(style) > static_cast<int>(FurnitureStyle::kConferenceTable))
+                continue;  // the wider world
             if (class_of(style) == ObjectClass::kChair) {
                 EXPECT_GT(size.z(), 0.44) << to_string(style);
                 EXPECT_LT(size.z(), 1.3) << to_string(style);
@@ -49,9 +52,11 @@ TEST(Furniture, SeedNamesOneModel) {
 
 TEST(Furniture, ChairsHaveTheirBackAtMinusX) {
     // The backrest rises behind the seat: the highest vertices lie in the rear half.
-    for (auto style : {FurnitureStyle::kFourLegChair, FurnitureStyle::kOfficeChair, FurnitureStyle::kArmchair, FurnitureStyle::kStackingChair,
-                       FurnitureStyle::kSledChair, FurnitureStyle::kCantileverChair, FurnitureStyle::kSofa, FurnitureStyle::kLoungeChair,
-                       FurnitureStyle::kFoldingChair}) {
+    for (auto style :
+         {FurnitureStyle::kFourLegChair, FurnitureStyle::kOfficeChair, FurnitureStyle::kArmchair,
+          FurnitureStyle::kStackingChair, FurnitureStyle::kSledChair,
+          FurnitureStyle::kCantileverChair, FurnitureStyle::kSofa, FurnitureStyle::kLoungeChair,
+          FurnitureStyle::kFoldingChair}) {
         const FurnitureModel m = make_furniture(style, 1);
         const double top = m.box_object.size_m.z();
         for (const auto& v : m.mesh_object.vertices_m) {

@@ -6,8 +6,8 @@
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/mesh_primitives.hpp"
 #include "makeway/sim/route.hpp"
-#include "makeway/sim/sequence.hpp"
 #include "makeway/sim/scene_generator.hpp"
+#include "makeway/sim/sequence.hpp"
 #include "sim_test_util.hpp"
 
 namespace makeway::sim {
@@ -33,7 +33,8 @@ TEST(Lidar, BeamPatternMatchesDatasheet) {
     EXPECT_EQ(LidarParams{}.num_columns(), 1800);
 
     World world(testing_util::box_room(5.0), {});
-    const PointCloud c = simulate_sweep(world, exact_lidar(), fixed(make_T_xyz_yaw({0.3, -0.2, 1.0}, 0.4)), 0.0, 1, 0);
+    const PointCloud c = simulate_sweep(world, exact_lidar(),
+                                        fixed(make_T_xyz_yaw({0.3, -0.2, 1.0}, 0.4)), 0.0, 1, 0);
     ASSERT_GT(c.size(), 50000u);
     for (std::size_t i = 0; i < c.size(); i += 7) {
         const Eigen::Vector3f& p = c.xyz[i];
@@ -78,7 +79,7 @@ TEST(Lidar, BoxRoomGivesAnalyticRanges) {
 }
 
 class SimulatedScene : public ::testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() {
         SceneGenParams p;
         p.seed = 4;
@@ -108,8 +109,9 @@ TEST_F(SimulatedScene, EveryPointLiesOnTheMeshItsLabelNames) {
         const auto label = static_cast<SemanticLabel>(c.label[i]);
         double d = 0.0;
         if (label == SemanticLabel::kChair || label == SemanticLabel::kTable) {
-            const auto it = std::find_if(scene_->objects.begin(), scene_->objects.end(),
-                                         [&](const SceneObject& o) { return o.id == c.instance[i]; });
+            const auto it =
+                std::find_if(scene_->objects.begin(), scene_->objects.end(),
+                             [&](const SceneObject& o) { return o.id == c.instance[i]; });
             ASSERT_NE(it, scene_->objects.end());
             EXPECT_EQ(to_semantic_label(it->cls), label);
             const std::size_t k = static_cast<std::size_t>(it - scene_->objects.begin());
@@ -145,7 +147,8 @@ TEST_F(SimulatedScene, SameSeedSameSweepForAnyThreadCountAndRayMode) {
     const PointCloud c = simulate_sweep(world, lidar, pose, 1.0, 9, 2);
     ASSERT_EQ(a.size(), b.size());
     ASSERT_EQ(a.size(), c.size());
-    EXPECT_TRUE(a.xyz == b.xyz && a.label == b.label && a.instance == b.instance && a.time_s == b.time_s);
+    EXPECT_TRUE(a.xyz == b.xyz && a.label == b.label && a.instance == b.instance &&
+                a.time_s == b.time_s);
     for (std::size_t i = 0; i < a.size(); ++i) ASSERT_LT((a.xyz[i] - c.xyz[i]).norm(), 1e-4f);
     const PointCloud other_seed = simulate_sweep(world, lidar, pose, 1.0, 10, 2);
     EXPECT_FALSE(a.xyz == other_seed.xyz);
@@ -163,8 +166,9 @@ TEST_F(SimulatedScene, WithoutIntensityTheSameReturns) {
     const PointCloud without = simulate_sweep(world, lidar, pose, 1.0, 9, 2);
     ASSERT_GT(with.size(), 10000u);
     ASSERT_EQ(with.size(), without.size());
-    EXPECT_TRUE(with.xyz == without.xyz && with.ring == without.ring && with.time_s == without.time_s &&
-                with.label == without.label && with.instance == without.instance);
+    EXPECT_TRUE(with.xyz == without.xyz && with.ring == without.ring &&
+                with.time_s == without.time_s && with.label == without.label &&
+                with.instance == without.instance);
     EXPECT_EQ(with.intensity.size(), with.size());
     EXPECT_TRUE(without.intensity.empty());
     EXPECT_GT(*std::max_element(with.intensity.begin(), with.intensity.end()), 20.0f);
@@ -185,7 +189,8 @@ TEST(Lidar, UserMeshInASceneIsHitAndLabelled) {
     o.pose = {2.0, 0.0, 0.3};
     s.objects.push_back(o);
     World world(s, {model_of(s.objects[0])});
-    const PointCloud c = simulate_sweep(world, exact_lidar(), fixed(make_T_xyz_yaw({0, 0, 0.45}, 0)), 0.0, 1, 0);
+    const PointCloud c =
+        simulate_sweep(world, exact_lidar(), fixed(make_T_xyz_yaw({0, 0, 0.45}, 0)), 0.0, 1, 0);
     TriangleMesh placed = *cube;
     transform_mesh(placed, lift_to_3d(o.pose));
     std::size_t hits = 0;
@@ -193,7 +198,9 @@ TEST(Lidar, UserMeshInASceneIsHitAndLabelled) {
         if (c.instance[i] != 42) continue;
         ++hits;
         EXPECT_EQ(c.label[i], static_cast<std::uint8_t>(SemanticLabel::kTable));
-        EXPECT_LT(testing_util::mesh_distance(placed, c.xyz[i].cast<double>() + Eigen::Vector3d(0, 0, 0.45)), 1e-3);
+        EXPECT_LT(testing_util::mesh_distance(
+                      placed, c.xyz[i].cast<double>() + Eigen::Vector3d(0, 0, 0.45)),
+                  1e-3);
     }
     EXPECT_GT(hits, 100u);
 }
@@ -208,8 +215,10 @@ double best_threshold_balanced_accuracy(std::vector<float> a, std::vector<float>
     cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
     double best = 0.5;
     for (float c : cuts) {
-        const double a_below = static_cast<double>(std::lower_bound(a.begin(), a.end(), c) - a.begin()) / a.size();
-        const double b_below = static_cast<double>(std::lower_bound(b.begin(), b.end(), c) - b.begin()) / b.size();
+        const double a_below =
+            static_cast<double>(std::lower_bound(a.begin(), a.end(), c) - a.begin()) / a.size();
+        const double b_below =
+            static_cast<double>(std::lower_bound(b.begin(), b.end(), c) - b.begin()) / b.size();
         best = std::max({best, 0.5 * (a_below + 1.0 - b_below), 0.5 * (b_below + 1.0 - a_below)});
     }
     return best;
@@ -241,8 +250,10 @@ TEST(Lidar, IntensityDoesNotGiveTheClassAway) {
             if (f % 4 != 0) continue;
             for (std::size_t i = 0; i < frame.points_sensor.size(); ++i) {
                 const auto label = static_cast<SemanticLabel>(frame.points_sensor.label[i]);
-                if (label == SemanticLabel::kChair) chair.push_back(frame.points_sensor.intensity[i]);
-                if (label == SemanticLabel::kTable) table.push_back(frame.points_sensor.intensity[i]);
+                if (label == SemanticLabel::kChair)
+                    chair.push_back(frame.points_sensor.intensity[i]);
+                if (label == SemanticLabel::kTable)
+                    table.push_back(frame.points_sensor.intensity[i]);
             }
         }
     }

@@ -54,11 +54,11 @@ TEST(Collision, FootprintAgainstWallsAndFurniture) {
     const std::vector<ObjectModel> models{model_of(table)};
     const RobotParams robot;
     const CollisionChecker checker(s, models, robot);
-    EXPECT_TRUE(checker.collides({2.9, 0.0, 0.0}, 0.0));    // through the wall
+    EXPECT_TRUE(checker.collides({2.9, 0.0, 0.0}, 0.0));  // through the wall
     EXPECT_FALSE(checker.collides({2.0, 2.0, 0.0}, 0.0));
     const double half_l = 0.5 * models[0].box_object.size_m.x();
-    EXPECT_TRUE(checker.collides({half_l, 0.3, 0.0}, 0.0));   // on a leg corner region
-    EXPECT_FALSE(checker.collides({0.0, 0.0, 0.0}, 0.0));     // under the table top, between legs
+    EXPECT_TRUE(checker.collides({half_l, 0.3, 0.0}, 0.0));  // on a leg corner region
+    EXPECT_FALSE(checker.collides({0.0, 0.0, 0.0}, 0.0));    // under the table top, between legs
     const double c1 = checker.clearance_m({1.8, 1.8, 0.0}, 0.0);
     const double c2 = checker.clearance_m({2.2, 2.2, 0.0}, 0.0);
     EXPECT_GT(c1, c2);
@@ -98,7 +98,7 @@ TEST(ContactJudge, CountsEachContactOnceByKindAndCause) {
     RobotState s;
     s.pose = {1.0, 1.0, 0.0};
     s.v_mps = 0.5;
-    double t = 100.0;  // the walker is elsewhere (it passes y = -1 only)
+    double t = 100.0;                           // the walker is elsewhere (it passes y = -1 only)
     for (int k = 0; k < 100; ++k, t += 0.02) {  // drives on into the wall, 2 cm a step
         s.pose.x_m = 1.0 + 0.01 * k;
         for (ContactEvent& e : judge.step(s, t)) events.push_back(e);

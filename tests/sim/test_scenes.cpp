@@ -11,7 +11,8 @@ namespace {
 
 std::vector<OrientedBox> boxes_of(const Scene& s) {
     std::vector<OrientedBox> out;
-    for (const auto& o : s.objects) out.push_back(model_of(o).box_object.transformed(lift_to_3d(o.pose)));
+    for (const auto& o : s.objects)
+        out.push_back(model_of(o).box_object.transformed(lift_to_3d(o.pose)));
     return out;
 }
 
@@ -24,7 +25,8 @@ TEST(SceneGenerator, ScenesAreValidCollisionFreeAndNavigable) {
             const auto boxes = boxes_of(s);
             for (std::size_t i = 0; i < boxes.size(); ++i) {
                 for (std::size_t j = i + 1; j < boxes.size(); ++j) {
-                    const bool related = s.objects[i].table_id == s.objects[j].id || s.objects[j].table_id == s.objects[i].id;
+                    const bool related = s.objects[i].table_id == s.objects[j].id ||
+                                         s.objects[j].table_id == s.objects[i].id;
                     if (!related) {
                         EXPECT_EQ(iou_bev(boxes[i], boxes[j]), 0.0) << i << " " << j;
                     }
@@ -68,7 +70,8 @@ TEST(SceneDynamics, ChairPushingMovesAlongTheForwardAxisOnly) {
     ASSERT_FALSE(s.pushers.empty());
     for (const ChairPusher& p : s.pushers) {
         const auto k = static_cast<std::size_t>(
-            std::find_if(s.objects.begin(), s.objects.end(), [&](const auto& o) { return o.id == p.chair_id; }) -
+            std::find_if(s.objects.begin(), s.objects.end(),
+                         [&](const auto& o) { return o.id == p.chair_id; }) -
             s.objects.begin());
         const Pose2 base = s.objects[k].pose;
         const Eigen::Vector2d forward(std::cos(base.yaw_rad), std::sin(base.yaw_rad));
@@ -112,7 +115,8 @@ TEST(Sequence, RobotDrivesTheRouteWithoutCollisions) {
     double last_x = -1e9;
     while (!sim.reached_goal() && frames < 1500) {
         const SimFrame f = sim.next();
-        EXPECT_FALSE(f.collided) << "frame " << f.index << " at " << f.true_pose.x_m << " " << f.true_pose.y_m;
+        EXPECT_FALSE(f.collided) << "frame " << f.index << " at " << f.true_pose.x_m << " "
+                                 << f.true_pose.y_m;
         EXPECT_GT(f.points_sensor.size(), 1000u);
         EXPECT_EQ(f.objects.size(), s.objects.size());
         last_x = f.true_pose.x_m;

@@ -91,7 +91,8 @@ TEST(Lifecycle, AnObjectOccludedForLongStaysWhereItWasHiddenAndStopsMoving) {
     Eigen::Vector3d last_seen;
     double t = 0.0;
     for (int k = 0; k <= 10; ++k, t += 0.1) {
-        last_seen = Eigen::Vector3d(4.2, 0.3 + 0.08 * k, 0.0);  // moving along +y at 0.8 m/s, behind the table
+        last_seen = Eigen::Vector3d(4.2, 0.3 + 0.08 * k,
+                                    0.0);  // moving along +y at 0.8 m/s, behind the table
         map.update({table, chair_at(last_seen)}, Isometry3::Identity(), t);
     }
     std::vector<std::uint32_t> occluded;
@@ -159,7 +160,8 @@ TEST(Lifecycle, AFalsePositiveNearAStandingChairDoesNotDragIt) {
     // moved, so it is not associated.
     ObjectMap map;
     double t = 0.0;
-    for (int k = 0; k < 10; ++k, t += 0.1) map.update({chair_at({3.0, 0.0, 0.0})}, Isometry3::Identity(), t);
+    for (int k = 0; k < 10; ++k, t += 0.1)
+        map.update({chair_at({3.0, 0.0, 0.0})}, Isometry3::Identity(), t);
     map.update({chair_at({3.0, 0.7, 0.0})}, Isometry3::Identity(), t);
     const auto objects = map.objects();
     ASSERT_EQ(objects.size(), 1u);  // the chair; the false positive is tentative
@@ -173,17 +175,21 @@ TEST(Lifecycle, DetectionsOffTheFloorAreNotObjects) {
     ObjectMap map;
     const Eigen::Vector4d floor(0, 0, 1, 0.1);  // the floor is z = -0.1 in the world
     for (int k = 0; k < 5; ++k) {
-        const TrackerFrameResult r = map.update({table_at({3.0, 0.0, -0.1}), chair_at({3.0, 0.2, 0.65}), chair_at({2.0, 2.0, -0.05})},
-                                                Isometry3::Identity(), 0.1 * k, nullptr, &floor);
+        const TrackerFrameResult r = map.update(
+            {table_at({3.0, 0.0, -0.1}), chair_at({3.0, 0.2, 0.65}), chair_at({2.0, 2.0, -0.05})},
+            Isometry3::Identity(), 0.1 * k, nullptr, &floor);
         EXPECT_EQ(r.unused_detections, 1u);
     }
     const auto objects = map.objects();
     ASSERT_EQ(objects.size(), 2u);
-    for (const auto& o : objects) EXPECT_LT(o.box_world.centre_m.z() - o.box_world.size_m.z() / 2, 0.3);
+    for (const auto& o : objects)
+        EXPECT_LT(o.box_world.centre_m.z() - o.box_world.size_m.z() / 2, 0.3);
     // Without a floor, nothing is known about it: all three are tracked.
     ObjectMap no_floor;
     for (int k = 0; k < 5; ++k) {
-        no_floor.update({table_at({3.0, 0.0, -0.1}), chair_at({3.0, 0.2, 0.65}), chair_at({2.0, 2.0, -0.05})}, Isometry3::Identity(), 0.1 * k);
+        no_floor.update(
+            {table_at({3.0, 0.0, -0.1}), chair_at({3.0, 0.2, 0.65}), chair_at({2.0, 2.0, -0.05})},
+            Isometry3::Identity(), 0.1 * k);
     }
     EXPECT_EQ(no_floor.objects().size(), 3u);
 }
@@ -193,12 +199,15 @@ TEST(Lifecycle, OneChairSeenTwiceIsOneObject) {
     // became map objects, each with its own affordance zone.
     ObjectMap map;
     for (int k = 0; k < 6; ++k) {
-        map.update({chair_at({3.0, 0.0, 0.0}), chair_at({3.1, 0.05, 0.0}, 0.8)}, Isometry3::Identity(), 0.1 * k);
+        map.update({chair_at({3.0, 0.0, 0.0}), chair_at({3.1, 0.05, 0.0}, 0.8)},
+                   Isometry3::Identity(), 0.1 * k);
     }
     EXPECT_EQ(map.objects().size(), 1u);
     // Two chairs side by side (0.6 m apart) are two.
     ObjectMap pair;
-    for (int k = 0; k < 6; ++k) pair.update({chair_at({3.0, 0.0, 0.0}), chair_at({3.0, 0.6, 0.0})}, Isometry3::Identity(), 0.1 * k);
+    for (int k = 0; k < 6; ++k)
+        pair.update({chair_at({3.0, 0.0, 0.0}), chair_at({3.0, 0.6, 0.0})}, Isometry3::Identity(),
+                    0.1 * k);
     EXPECT_EQ(pair.objects().size(), 2u);
 }
 
@@ -208,8 +217,9 @@ TEST(Lifecycle, MinScoreAndTrackedClassesSelectDetections) {
     p.tracked_classes = {true, false};  // chairs only
     ObjectMap map(p);
     for (int k = 0; k < 5; ++k) {
-        const TrackerFrameResult r = map.update({chair_at({2.0, 0.0, 0.0}), chair_at({4.0, 0.0, 0.0}, 0.3), table_at({2.0, 3.0, 0.0})},
-                                                Isometry3::Identity(), 0.1 * k);
+        const TrackerFrameResult r = map.update(
+            {chair_at({2.0, 0.0, 0.0}), chair_at({4.0, 0.0, 0.0}, 0.3), table_at({2.0, 3.0, 0.0})},
+            Isometry3::Identity(), 0.1 * k);
         EXPECT_EQ(r.unused_detections, 2u);
     }
     ASSERT_EQ(map.objects().size(), 1u);
@@ -237,7 +247,8 @@ TEST(Lifecycle, CentreDistanceAssociatesThinBoxesGIoUCannot) {
         ObjectMap map(p);
         std::set<int> ids;
         for (int k = 0; k < 4; ++k) {
-            const TrackerFrameResult r = map.update({cyclist_at(1.5 * k)}, Isometry3::Identity(), 0.5 * k);
+            const TrackerFrameResult r =
+                map.update({cyclist_at(1.5 * k)}, Isometry3::Identity(), 0.5 * k);
             ids.insert(r.track_of_detection[0]);
         }
         EXPECT_EQ(ids.size(), max_distance > 0.0 ? 1u : 4u) << max_distance;
@@ -293,7 +304,8 @@ TEST(Lifecycle, AChairTakenAwayWhileTheRobotWatchesLeavesWithTime) {
     EXPECT_FALSE(watched_chair_stays(TrackerParams{}, 7.0, gone));
     TrackerParams every_frame;
     every_frame.same_view_m = 0.0;
-    EXPECT_FALSE(watched_chair_stays(every_frame, 2.0, gone));  // 3.6 / (4 + 4) < 0.5 after 4 keyframes
+    EXPECT_FALSE(
+        watched_chair_stays(every_frame, 2.0, gone));  // 3.6 / (4 + 4) < 0.5 after 4 keyframes
 }
 
 TEST(Lifecycle, StampsGoingBackInTimeAreRefused) {

@@ -13,11 +13,13 @@ namespace {
 
 const OrientedBox kChair{{2.0, 0.0, 0.45}, {0.5, 0.45, 0.9}, 0.3};
 
-Detection detection(const OrientedBox& box, double score = 0.9, ObjectClass cls = ObjectClass::kChair) {
+Detection detection(const OrientedBox& box, double score = 0.9,
+                    ObjectClass cls = ObjectClass::kChair) {
     Detection d;
     d.box_sensor = box;
     d.cls = cls;
-    d.class_probabilities = cls == ObjectClass::kChair ? std::array<double, 2>{0.8, 0.2} : std::array<double, 2>{0.2, 0.8};
+    d.class_probabilities = cls == ObjectClass::kChair ? std::array<double, 2>{0.8, 0.2}
+                                                       : std::array<double, 2>{0.2, 0.8};
     d.score = score;
     return d;
 }
@@ -29,7 +31,8 @@ TEST(BoxKalmanFilter, ConvergesToAConstantVelocityTruth) {
     for (int k = 1; k <= 60; ++k) {
         kf.predict(0.1);
         OrientedBox z = kChair;
-        z.centre_m += v * 0.1 * k + Eigen::Vector3d(normal(rng, 0, 0.03), normal(rng, 0, 0.03), normal(rng, 0, 0.01));
+        z.centre_m += v * 0.1 * k + Eigen::Vector3d(normal(rng, 0, 0.03), normal(rng, 0, 0.03),
+                                                    normal(rng, 0, 0.01));
         z.yaw_rad += normal(rng, 0, 0.03);
         kf.update(z);
     }
@@ -57,9 +60,11 @@ TEST(BoxKalmanFilter, TheTrafficPresetFollowsACarAtOneMetrePerFrame) {
         return lag;
     };
     const KalmanParams traffic = traffic_preset("Car").kalman;
-    for (int frames = 3; frames <= 20; ++frames) EXPECT_LT(lag_after(traffic, frames), 0.05) << frames;
+    for (int frames = 3; frames <= 20; ++frames)
+        EXPECT_LT(lag_after(traffic, frames), 0.05) << frames;
     EXPECT_GT(lag_after(KalmanParams{}, 3), 0.2);
-    for (const char* type : {"car", "Pedestrian", "CYCLIST", "Van"}) EXPECT_TRUE(traffic_preset(type).validate().empty()) << type;
+    for (const char* type : {"car", "Pedestrian", "CYCLIST", "Van"})
+        EXPECT_TRUE(traffic_preset(type).validate().empty()) << type;
     EXPECT_EQ(traffic_preset("pedestrian").min_hits, 3);
     EXPECT_EQ(traffic_preset("Van").min_hits, traffic_preset("Car").min_hits);
 }
@@ -71,7 +76,8 @@ TEST(BoxKalmanFilter, PositionRandomWalkAddsItsVariance) {
     BoxKalmanFilter a(kChair, still), b(kChair, walking);
     a.predict(0.1);
     b.predict(0.1);
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(b.covariance()(i, i) - a.covariance()(i, i), 4.0 * 0.1, 1e-12);
+    for (int i = 0; i < 3; ++i)
+        EXPECT_NEAR(b.covariance()(i, i) - a.covariance()(i, i), 4.0 * 0.1, 1e-12);
     EXPECT_NEAR(b.covariance()(3, 3), a.covariance()(3, 3), 1e-15);
 }
 
@@ -81,9 +87,11 @@ TEST(BoxKalmanFilter, AYawFlipDoesNotFlipTheTrack) {
         for (int k = 0; k < 5; ++k) kf.predict(0.1), kf.update(kChair);
         OrientedBox flipped = kChair;
         flipped.yaw_rad = wrap_angle(kChair.yaw_rad + flip);
-        if (std::abs(flip) < 3) std::swap(flipped.size_m.x(), flipped.size_m.y());  // the same box turned a quarter
+        if (std::abs(flip) < 3)
+            std::swap(flipped.size_m.x(), flipped.size_m.y());  // the same box turned a quarter
         kf.predict(0.1);
-        EXPECT_EQ(kf.update(flipped), static_cast<int>(std::lround(wrap_angle(flip) / (kPi / 2))) & 3);
+        EXPECT_EQ(kf.update(flipped),
+                  static_cast<int>(std::lround(wrap_angle(flip) / (kPi / 2))) & 3);
         EXPECT_LT(std::abs(angle_diff(kf.box().yaw_rad, kChair.yaw_rad)), 0.01) << "flip " << flip;
         EXPECT_NEAR(kf.box().size_m.x(), 0.5, 0.01);
     }
@@ -114,10 +122,13 @@ double brute_force_cost(const Eigen::MatrixXd& c, std::vector<int>* best) {
 TEST(Hungarian, EqualsBruteForceOnRandomSmallMatrices) {
     Rng rng = make_rng(11);
     for (int trial = 0; trial < 300; ++trial) {
-        const int rows = static_cast<int>(uniform_int(rng, 1, 5)), cols = static_cast<int>(uniform_int(rng, 1, 5));
+        const int rows = static_cast<int>(uniform_int(rng, 1, 5)),
+                  cols = static_cast<int>(uniform_int(rng, 1, 5));
         Eigen::MatrixXd c(rows, cols);
         for (int i = 0; i < rows; ++i) {
-            for (int j = 0; j < cols; ++j) c(i, j) = trial % 3 == 0 ? static_cast<double>(uniform_int(rng, 0, 3)) : uniform(rng, -1, 2);
+            for (int j = 0; j < cols; ++j)
+                c(i, j) = trial % 3 == 0 ? static_cast<double>(uniform_int(rng, 0, 3))
+                                         : uniform(rng, -1, 2);
         }
         std::vector<int> best;
         const double expected = brute_force_cost(c, &best);
@@ -131,7 +142,8 @@ TEST(Hungarian, EqualsBruteForceOnRandomSmallMatrices) {
             used.push_back(got[static_cast<std::size_t>(r)]);
         }
         std::sort(used.begin(), used.end());
-        EXPECT_EQ(std::adjacent_find(used.begin(), used.end()), used.end()) << "a column used twice";
+        EXPECT_EQ(std::adjacent_find(used.begin(), used.end()), used.end())
+            << "a column used twice";
         EXPECT_EQ(used.size(), static_cast<std::size_t>(std::min(rows, cols)));
         EXPECT_NEAR(cost, expected, 1e-9) << c;
     }
@@ -177,24 +189,30 @@ TEST(ObjectMap, OccludedObjectSurvivesAVisibleUnexplainedOneDecaysAndGoes) {
     const OrientedBox visible{{3.0, 2.5, 0.45}, {0.5, 0.45, 0.9}, 0.0};
     double t = 0;
     for (int k = 0; k < 5; ++k, t += 0.1) {
-        map.update({detection(hidden), detection(blocker, 0.9, ObjectClass::kTable), detection(visible)}, Isometry3::Identity(), t);
+        map.update(
+            {detection(hidden), detection(blocker, 0.9, ObjectClass::kTable), detection(visible)},
+            Isometry3::Identity(), t);
     }
     ASSERT_EQ(map.objects().size(), 3u);
     // 3 s: only the blocker is detected; `hidden` is behind it, `visible` is in plain view.
     std::vector<double> visible_existence;
     bool visible_removed = false;
     for (int k = 0; k < 30; ++k, t += 0.1) {
-        const TrackerFrameResult r = map.update({detection(blocker, 0.9, ObjectClass::kTable)}, Isometry3::Identity(), t);
+        const TrackerFrameResult r =
+            map.update({detection(blocker, 0.9, ObjectClass::kTable)}, Isometry3::Identity(), t);
         for (const auto& [id, tr] : map.tracks()) {
-            if ((tr.filter.box().centre_m - visible.centre_m).norm() < 0.2) visible_existence.push_back(tr.existence());
+            if ((tr.filter.box().centre_m - visible.centre_m).norm() < 0.2)
+                visible_existence.push_back(tr.existence());
         }
-        visible_removed |= std::any_of(r.removed.begin(), r.removed.end(), [&](std::uint32_t id) { return id == 3u; });
+        visible_removed |= std::any_of(r.removed.begin(), r.removed.end(),
+                                       [&](std::uint32_t id) { return id == 3u; });
     }
     const auto objects = map.objects();
     ASSERT_EQ(objects.size(), 2u);
-    EXPECT_NEAR(objects[0].box_world.centre_m.x(), 4.0, 0.05);  // the hidden one, id 1, kept its place
+    EXPECT_NEAR(objects[0].box_world.centre_m.x(), 4.0,
+                0.05);  // the hidden one, id 1, kept its place
     EXPECT_EQ(objects[0].id, 1u);
-    EXPECT_NEAR(objects[0].existence, 0.9, 1e-9);               // not penalised while occluded
+    EXPECT_NEAR(objects[0].existence, 0.9, 1e-9);  // not penalised while occluded
     EXPECT_TRUE(visible_removed);
     ASSERT_GE(visible_existence.size(), 2u);
     EXPECT_LT(visible_existence.back(), visible_existence.front());  // it decayed first
@@ -203,7 +221,8 @@ TEST(ObjectMap, OccludedObjectSurvivesAVisibleUnexplainedOneDecaysAndGoes) {
 TEST(ObjectMap, FalsePositiveLeavesWithinThreeFramesAndIsNeverOutput) {
     ObjectMap map;
     const OrientedBox ghost{{3.0, -1.0, 0.45}, {0.5, 0.45, 0.9}, 0.0};
-    TrackerFrameResult r = map.update({detection(kChair), detection(ghost, 0.6)}, Isometry3::Identity(), 0.0);
+    TrackerFrameResult r =
+        map.update({detection(kChair), detection(ghost, 0.6)}, Isometry3::Identity(), 0.0);
     ASSERT_EQ(r.born.size(), 2u);
     const std::uint32_t ghost_id = r.born[1];
     bool gone = false;
@@ -225,7 +244,8 @@ TEST(ObjectMap, MissesBeyondTheDetectorsReachDoNotCount) {
     ObjectMap map(params);
     const OrientedBox far{{5.0, 0.0, 0.45}, {0.5, 0.45, 0.9}, 0.0};
     const OrientedBox near{{2.5, 0.0, 0.45}, {0.5, 0.45, 0.9}, 0.0};
-    for (int k = 0; k < 3; ++k) map.update({detection(far), detection(near)}, Isometry3::Identity(), 0.1 * k);
+    for (int k = 0; k < 3; ++k)
+        map.update({detection(far), detection(near)}, Isometry3::Identity(), 0.1 * k);
     ASSERT_EQ(map.objects().size(), 2u);
     const Isometry3 T_world_sensor = make_T_xyz_yaw({-3.5, 0.0, 0.0}, 0.0);
     for (int k = 3; k < 20; ++k) map.update({}, T_world_sensor, 0.1 * k);
@@ -243,7 +263,8 @@ TEST(ObjectMap, WorksInTheWorldFrameWithAMovingSensor) {
     const OrientedBox chair_world = kChair;
     for (int k = 0; k < 10; ++k) {
         const Isometry3 T_world_sensor = make_T_xyz_yaw({0.2 * k, 0.05 * k, 0.0}, 0.1 * k);
-        map.update({detection(chair_world.transformed(T_world_sensor.inverse()))}, T_world_sensor, 0.1 * k);
+        map.update({detection(chair_world.transformed(T_world_sensor.inverse()))}, T_world_sensor,
+                   0.1 * k);
     }
     ASSERT_EQ(map.objects().size(), 1u);
     EXPECT_LT((map.objects()[0].box_world.centre_m - chair_world.centre_m).norm(), 1e-6);
@@ -263,15 +284,18 @@ TEST(ScanOcclusion, ReturnsInFrontBlockButTheObjectAndTheFloorDoNot) {
     const OrientedBox chair{{4.0, 0.0, 0.45}, {0.5, 0.5, 0.9}, 0.0};
     PointCloud own_and_floor;
     for (int i = -5; i <= 5; ++i) {
-        own_and_floor.xyz.emplace_back(3.75f, 0.04f * i, 0.0f);          // the chair's front face (sensor frame)
-        own_and_floor.xyz.emplace_back(1.0f + 0.2f * (i + 5), 0.0f, -0.45f);  // floor returns on the way
+        own_and_floor.xyz.emplace_back(3.75f, 0.04f * i,
+                                       0.0f);  // the chair's front face (sensor frame)
+        own_and_floor.xyz.emplace_back(1.0f + 0.2f * (i + 5), 0.0f,
+                                       -0.45f);  // floor returns on the way
     }
     EXPECT_FALSE(is_occluded(T_world_sensor.translation(), chair, {}, {}, nullptr));
     const ScanOcclusion clear(own_and_floor, T_world_sensor);
     EXPECT_FALSE(is_occluded(T_world_sensor.translation(), chair, {}, {}, &clear));
     PointCloud wall = own_and_floor;
     for (int i = -40; i <= 40; ++i) {
-        for (float z : {-0.2f, 0.0f, 0.2f}) wall.xyz.emplace_back(2.0f, 0.02f * i, z);  // a person or wall at 2 m
+        for (float z : {-0.2f, 0.0f, 0.2f})
+            wall.xyz.emplace_back(2.0f, 0.02f * i, z);  // a person or wall at 2 m
     }
     const ScanOcclusion blocked(wall, T_world_sensor);
     EXPECT_TRUE(is_occluded(T_world_sensor.translation(), chair, {}, {}, &blocked));

@@ -21,7 +21,8 @@ struct ChairScan {
     OrientedBox box_sensor;
 };
 
-ChairScan scan_chair(sim::FurnitureStyle style, std::uint64_t model_seed, double yaw, std::uint64_t seed) {
+ChairScan scan_chair(sim::FurnitureStyle style, std::uint64_t model_seed, double yaw,
+                     std::uint64_t seed) {
     sim::Scene s = sim::testing_util::box_room(5.0);
     sim::SceneObject chair;
     chair.id = 3;
@@ -36,7 +37,9 @@ ChairScan scan_chair(sim::FurnitureStyle style, std::uint64_t model_seed, double
     ChairScan out;
     sim::LidarParams lidar;  // the real VLP-32C pattern, noise and dropout
     PointCloud raw;
-    for (int k = 0; k < 5; ++k) raw.append(sim::simulate_sweep(world, lidar, [&](double) { return T_world_sensor; }, 0.1 * k, seed, k));
+    for (int k = 0; k < 5; ++k)
+        raw.append(sim::simulate_sweep(
+            world, lidar, [&](double) { return T_world_sensor; }, 0.1 * k, seed, k));
     std::vector<std::size_t> keep;
     for (std::size_t i = 0; i < raw.size(); ++i) {
         const double h = raw.xyz[i].z() + 0.45;
@@ -50,9 +53,11 @@ ChairScan scan_chair(sim::FurnitureStyle style, std::uint64_t model_seed, double
     return out;
 }
 
-CadLibrary library_with(sim::FurnitureStyle style, std::uint64_t model_seed, const CadLibraryParams& params = {}) {
+CadLibrary library_with(sim::FurnitureStyle style, std::uint64_t model_seed,
+                        const CadLibraryParams& params = {}) {
     CadLibrary lib(params);
-    lib.add(std::string(sim::to_string(style)), sim::class_of(style), sim::make_furniture(style, model_seed).mesh_object);
+    lib.add(std::string(sim::to_string(style)), sim::class_of(style),
+            sim::make_furniture(style, model_seed).mesh_object);
     return lib;
 }
 
@@ -65,14 +70,22 @@ TEST(Verification, RecoversThePoseFromWrongStartsIncludingEveryYawFlip) {
             Detection det;
             det.cls = ObjectClass::kChair;
             det.box_sensor = scan.box_sensor;
-            det.box_sensor.centre_m += Eigen::Vector3d(normal(rng, 0, 0.08), normal(rng, 0, 0.08), normal(rng, 0, 0.03));
-            det.box_sensor.yaw_rad = wrap_angle(scan.truth.yaw_rad + flip * kPi / 2 + normal(rng, 0, deg_to_rad(8)));
-            const VerifiedDetection v = verify_detection(scan.cloud_sensor, det, lib, {}, -0.45);  // floor from the ground plane
-            ASSERT_TRUE(v.accepted) << "flip " << flip << " trial " << trial << ": " << v.reason << " yaw err "
-                                    << rad_to_deg(angle_diff(yaw_of(v.T_sensor_object), scan.truth.yaw_rad)) << " t err "
-                                    << (v.T_sensor_object.translation() - scan.truth.t_m).transpose();
-            EXPECT_LT(std::abs(rad_to_deg(angle_diff(yaw_of(v.T_sensor_object), scan.truth.yaw_rad))), 3.0) << "flip " << flip;
-            EXPECT_LT((v.T_sensor_object.translation() - scan.truth.t_m).norm(), 0.03) << "flip " << flip;
+            det.box_sensor.centre_m +=
+                Eigen::Vector3d(normal(rng, 0, 0.08), normal(rng, 0, 0.08), normal(rng, 0, 0.03));
+            det.box_sensor.yaw_rad =
+                wrap_angle(scan.truth.yaw_rad + flip * kPi / 2 + normal(rng, 0, deg_to_rad(8)));
+            const VerifiedDetection v = verify_detection(scan.cloud_sensor, det, lib, {},
+                                                         -0.45);  // floor from the ground plane
+            ASSERT_TRUE(v.accepted)
+                << "flip " << flip << " trial " << trial << ": " << v.reason << " yaw err "
+                << rad_to_deg(angle_diff(yaw_of(v.T_sensor_object), scan.truth.yaw_rad))
+                << " t err " << (v.T_sensor_object.translation() - scan.truth.t_m).transpose();
+            EXPECT_LT(
+                std::abs(rad_to_deg(angle_diff(yaw_of(v.T_sensor_object), scan.truth.yaw_rad))),
+                3.0)
+                << "flip " << flip;
+            EXPECT_LT((v.T_sensor_object.translation() - scan.truth.t_m).norm(), 0.03)
+                << "flip " << flip;
             EXPECT_GE(v.p_exist, 0.5);
             EXPECT_LE(v.p_exist, 1.0);
         }
@@ -82,7 +95,8 @@ TEST(Verification, RecoversThePoseFromWrongStartsIncludingEveryYawFlip) {
 TEST(ClosestPointGrid, EveryCellHoldsTheExactNearestPointOfItsCentre) {
     Rng rng = make_rng(5);
     std::vector<Eigen::Vector3d> pts;
-    for (int i = 0; i < 300; ++i) pts.emplace_back(uniform(rng, -0.4, 0.4), uniform(rng, 0.0, 0.3), uniform(rng, 0.0, 0.9));
+    for (int i = 0; i < 300; ++i)
+        pts.emplace_back(uniform(rng, -0.4, 0.4), uniform(rng, 0.0, 0.3), uniform(rng, 0.0, 0.9));
     const double cell = 0.03;
     const ClosestPointGrid grid(pts, cell, 0.1);
     ASSERT_GT(grid.dims().prod(), 1000);
@@ -91,9 +105,14 @@ TEST(ClosestPointGrid, EveryCellHoldsTheExactNearestPointOfItsCentre) {
         for (int y = 0; y < grid.dims().y(); ++y) {
             for (int x = 0; x < grid.dims().x(); ++x) {
                 // The centre of cell (x, y, z): the grid starts 0.1 m below the points' minimum.
-                const Eigen::Vector3d lo = std::accumulate(pts.begin(), pts.end(), pts.front(),
-                                                           [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a.cwiseMin(b); });
-                const Eigen::Vector3d c = lo - Eigen::Vector3d::Constant(0.1) + (Eigen::Vector3d(x, y, z) + Eigen::Vector3d::Constant(0.5)) * cell;
+                const Eigen::Vector3d lo =
+                    std::accumulate(pts.begin(), pts.end(), pts.front(),
+                                    [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+                                        return a.cwiseMin(b);
+                                    });
+                const Eigen::Vector3d c =
+                    lo - Eigen::Vector3d::Constant(0.1) +
+                    (Eigen::Vector3d(x, y, z) + Eigen::Vector3d::Constant(0.5)) * cell;
                 double brute = 1e9;
                 for (const auto& p : pts) brute = std::min(brute, (p - c).norm());
                 const std::uint32_t j = grid.lookup(c);
@@ -108,7 +127,8 @@ TEST(ClosestPointGrid, EveryCellHoldsTheExactNearestPointOfItsCentre) {
     EXPECT_GT(checked, 1000);
     EXPECT_EQ(grid.lookup(Eigen::Vector3d(5.0, 0.0, 0.0)), ClosestPointGrid::kOutside);
     EXPECT_EQ(grid.lookup(Eigen::Vector3d::Constant(std::nan(""))), ClosestPointGrid::kOutside);
-    EXPECT_EQ(ClosestPointGrid({}, cell, 0.1).lookup(Eigen::Vector3d::Zero()), ClosestPointGrid::kOutside);
+    EXPECT_EQ(ClosestPointGrid({}, cell, 0.1).lookup(Eigen::Vector3d::Zero()),
+              ClosestPointGrid::kOutside);
 }
 
 TEST(ClosestPointGrid, OnePointGridAnswersThatPointEverywhere) {
@@ -133,14 +153,19 @@ TEST(CadLibrary, EveryLevelsNearestPointMatchesBruteForce) {
         int exact = 0, queries = 0;
         double worst_excess_m = 0.0;
         for (int i = 0; i < 2000; ++i) {
-            const Eigen::Vector3d& on = level.points_object[static_cast<std::size_t>(uniform(rng, 0, 1) * (level.points_object.size() - 1))];
-            const Eigen::Vector3d q = on + Eigen::Vector3d(normal(rng, 0, 1), normal(rng, 0, 1), normal(rng, 0, 1)).normalized() *
-                                               uniform(rng, 0.0, reach_m[l]);
+            const Eigen::Vector3d& on = level.points_object[static_cast<std::size_t>(
+                uniform(rng, 0, 1) * (level.points_object.size() - 1))];
+            const Eigen::Vector3d q =
+                on + Eigen::Vector3d(normal(rng, 0, 1), normal(rng, 0, 1), normal(rng, 0, 1))
+                             .normalized() *
+                         uniform(rng, 0.0, reach_m[l]);
             double brute2 = 1e18;
-            for (const auto& p : level.points_object) brute2 = std::min(brute2, (p - q).squaredNorm());
+            for (const auto& p : level.points_object)
+                brute2 = std::min(brute2, (p - q).squaredNorm());
             double d2 = 0.0;
             const std::size_t j = level.nearest(q, reach_m[l], &d2);
-            if (brute2 > reach_m[l] * reach_m[l]) continue;  // nothing within reach: either answer is fine
+            if (brute2 > reach_m[l] * reach_m[l])
+                continue;  // nothing within reach: either answer is fine
             ++queries;
             ASSERT_NE(j, ModelLevel::kNone) << "level " << l;
             EXPECT_DOUBLE_EQ(d2, (level.points_object[j] - q).squaredNorm());
@@ -161,7 +186,8 @@ TEST(CadLibrary, EveryLevelsNearestPointMatchesBruteForce) {
 TEST(Verification, LookupGridAndExactTreeAgree) {
     const ChairScan scan = scan_chair(sim::FurnitureStyle::kOfficeChair, 9, -2.2, 3);
     const CadLibrary fast = library_with(sim::FurnitureStyle::kOfficeChair, 9);
-    const CadLibrary exact = library_with(sim::FurnitureStyle::kOfficeChair, 9, {.lookup_margin_m = {}});
+    const CadLibrary exact =
+        library_with(sim::FurnitureStyle::kOfficeChair, 9, {.lookup_margin_m = {}});
     ASSERT_TRUE(fast.models()[0].levels[0].grid);
     ASSERT_TRUE(fast.models()[0].levels.back().grid);
     ASSERT_FALSE(exact.models()[0].levels[0].grid);
@@ -171,11 +197,14 @@ TEST(Verification, LookupGridAndExactTreeAgree) {
         det.cls = ObjectClass::kChair;
         det.box_sensor = scan.box_sensor;
         det.box_sensor.centre_m += Eigen::Vector3d(normal(rng, 0, 0.06), normal(rng, 0, 0.06), 0.0);
-        det.box_sensor.yaw_rad = wrap_angle(scan.truth.yaw_rad + trial * kPi / 2 + normal(rng, 0, deg_to_rad(5)));
+        det.box_sensor.yaw_rad =
+            wrap_angle(scan.truth.yaw_rad + trial * kPi / 2 + normal(rng, 0, deg_to_rad(5)));
         const VerifiedDetection a = verify_detection(scan.cloud_sensor, det, fast, {}, -0.45);
         const VerifiedDetection b = verify_detection(scan.cloud_sensor, det, exact, {}, -0.45);
         ASSERT_TRUE(a.accepted && b.accepted) << a.reason << " / " << b.reason;
-        EXPECT_LT(std::abs(rad_to_deg(angle_diff(yaw_of(a.T_sensor_object), yaw_of(b.T_sensor_object)))), 1.0);
+        EXPECT_LT(
+            std::abs(rad_to_deg(angle_diff(yaw_of(a.T_sensor_object), yaw_of(b.T_sensor_object)))),
+            1.0);
         EXPECT_LT((a.T_sensor_object.translation() - b.T_sensor_object.translation()).norm(), 0.01);
         EXPECT_NEAR(a.residual_m, b.residual_m, 0.003);
     }
@@ -188,9 +217,11 @@ TEST(Verification, CauchyLossShrugsOffInjectedOutliers) {
     // 30 % of the segment again as random points inside the box.
     const std::size_t seg = segment_points(scan.cloud_sensor, scan.box_sensor, 0.15).size();
     for (std::size_t i = 0; i < seg * 3 / 10; ++i) {
-        const Eigen::Vector3d local(uniform(rng, -0.5, 0.5), uniform(rng, -0.5, 0.5), uniform(rng, -0.5, 0.5));
-        const Eigen::Vector3d p = scan.box_sensor.centre_m + scan.box_sensor.T_frame_box().linear() *
-                                  local.cwiseProduct(scan.box_sensor.size_m);
+        const Eigen::Vector3d local(uniform(rng, -0.5, 0.5), uniform(rng, -0.5, 0.5),
+                                    uniform(rng, -0.5, 0.5));
+        const Eigen::Vector3d p =
+            scan.box_sensor.centre_m +
+            scan.box_sensor.T_frame_box().linear() * local.cwiseProduct(scan.box_sensor.size_m);
         scan.cloud_sensor.xyz.push_back(p.cast<float>());
     }
     const std::vector<Eigen::Vector3f> xyz = scan.cloud_sensor.xyz;
@@ -209,7 +240,8 @@ TEST(Verification, CauchyLossShrugsOffInjectedOutliers) {
     EXPECT_LT((v.T_sensor_object.translation() - scan.truth.t_m).head<2>().norm(), 0.05);
 }
 
-CadLibrary library_scaled(sim::FurnitureStyle style, std::uint64_t model_seed, const Eigen::Vector3f& scale) {
+CadLibrary library_scaled(sim::FurnitureStyle style, std::uint64_t model_seed,
+                          const Eigen::Vector3f& scale) {
     TriangleMesh mesh = sim::make_furniture(style, model_seed).mesh_object;
     for (Eigen::Vector3f& v : mesh.vertices_m) v = v.cwiseProduct(scale);
     CadLibrary lib;
@@ -230,15 +262,21 @@ TEST(Verification, AModelScaledByTenPercentKeepsTheObjectAndAnApproximateOneIsKe
     det.box_sensor.centre_m += Eigen::Vector3d(0.05, -0.04, 0.0);
     det.box_sensor.yaw_rad = wrap_angle(scan.truth.yaw_rad + deg_to_rad(7));
     det.score = 0.8;
-    auto yaw_error_deg = [&](const VerifiedDetection& v) { return std::abs(rad_to_deg(angle_diff(yaw_of(v.T_sensor_object), scan.truth.yaw_rad))); };
+    auto yaw_error_deg = [&](const VerifiedDetection& v) {
+        return std::abs(rad_to_deg(angle_diff(yaw_of(v.T_sensor_object), scan.truth.yaw_rad)));
+    };
 
-    const VerifiedDetection larger = verify_detection(scan.cloud_sensor, det, library_scaled(sim::FurnitureStyle::kFourLegChair, 4, Eigen::Vector3f::Constant(1.1f)), {}, -0.45);
+    const VerifiedDetection larger = verify_detection(
+        scan.cloud_sensor, det,
+        library_scaled(sim::FurnitureStyle::kFourLegChair, 4, Eigen::Vector3f::Constant(1.1f)), {},
+        -0.45);
     ASSERT_TRUE(larger.accepted) << larger.reason;
     EXPECT_FALSE(larger.approximate);
     EXPECT_LT(yaw_error_deg(larger), 10.0);
     EXPECT_GE(larger.p_exist, 0.5);
 
-    const CadLibrary off = library_scaled(sim::FurnitureStyle::kFourLegChair, 4, Eigen::Vector3f(0.7f, 0.7f, 1.0f));
+    const CadLibrary off =
+        library_scaled(sim::FurnitureStyle::kFourLegChair, 4, Eigen::Vector3f(0.7f, 0.7f, 1.0f));
     const VerifiedDetection strict = verify_detection(scan.cloud_sensor, det, off, {}, -0.45);
     EXPECT_FALSE(strict.accepted);
     EXPECT_NE(strict.reason.find("above e_max"), std::string::npos) << strict.reason;
@@ -250,11 +288,15 @@ TEST(Verification, AModelScaledByTenPercentKeepsTheObjectAndAnApproximateOneIsKe
     EXPECT_GT(kept.residual_m, approx.e_max_m);
     EXPECT_DOUBLE_EQ(kept.p_exist, 0.8);
     EXPECT_LT(yaw_error_deg(kept), 10.0);
-    EXPECT_LT(std::abs(rad_to_deg(angle_diff(kept.box_sensor.yaw_rad, scan.box_sensor.yaw_rad))), 10.0);
+    EXPECT_LT(std::abs(rad_to_deg(angle_diff(kept.box_sensor.yaw_rad, scan.box_sensor.yaw_rad))),
+              10.0);
     EXPECT_EQ(kept.box_sensor.centre_m, det.box_sensor.centre_m);
     EXPECT_EQ(kept.box_sensor.size_m, det.box_sensor.size_m);
     // The same setting with a model that fits: the paper's eq. 2, not the network's score.
-    EXPECT_FALSE(verify_detection(scan.cloud_sensor, det, library_with(sim::FurnitureStyle::kFourLegChair, 4), approx, -0.45).approximate);
+    EXPECT_FALSE(verify_detection(scan.cloud_sensor, det,
+                                  library_with(sim::FurnitureStyle::kFourLegChair, 4), approx,
+                                  -0.45)
+                     .approximate);
     VerifyParams bad;
     bad.approx_e_max_m = 0.02;  // below e_max
     EXPECT_EQ(bad.validate().size(), 1u);
@@ -280,7 +322,8 @@ TEST(Verification, RejectsBoxesOnWallsAndEmptySegments) {
 
     Detection table = wall;
     table.cls = ObjectClass::kTable;  // no table model in this library
-    EXPECT_NE(verify_detection(scan.cloud_sensor, table, lib, {}).reason.find("no CAD model"), std::string::npos);
+    EXPECT_NE(verify_detection(scan.cloud_sensor, table, lib, {}).reason.find("no CAD model"),
+              std::string::npos);
 }
 
 // The parallel path gives the serial path's answers, detection by detection.
@@ -299,25 +342,31 @@ TEST(Verification, ASeedFromTheLastFitReverifiesWithOneIcpUnlessTheObjectTurned)
     const VerifiedDetection full = verify_detection(scan.cloud_sensor, det, lib, {}, -0.45);
     ASSERT_TRUE(full.accepted) << full.reason;
     EXPECT_FALSE(full.from_seed);
-    auto yaw_error_deg = [&](const VerifiedDetection& v) { return std::abs(rad_to_deg(angle_diff(yaw_of(v.T_sensor_object), scan.truth.yaw_rad))); };
+    auto yaw_error_deg = [&](const VerifiedDetection& v) {
+        return std::abs(rad_to_deg(angle_diff(yaw_of(v.T_sensor_object), scan.truth.yaw_rad)));
+    };
     VerifySeed near{&lib.models().front(), scan.truth, full.residual_m};
     near.pose.t_m += Eigen::Vector3d(0.03, -0.02, 0.0);
     near.pose.yaw_rad += deg_to_rad(3.0);
     VerifyParams seeding;
     seeding.reseed_tolerance_m = 0.005;
-    const VerifiedDetection seeded = verify_detection(scan.cloud_sensor, det, lib, seeding, -0.45, nullptr, &near);
+    const VerifiedDetection seeded =
+        verify_detection(scan.cloud_sensor, det, lib, seeding, -0.45, nullptr, &near);
     ASSERT_TRUE(seeded.accepted) << seeded.reason;
     EXPECT_TRUE(seeded.from_seed);
     EXPECT_LT(yaw_error_deg(seeded), 3.0);
-    EXPECT_LT((seeded.T_sensor_object.translation() - full.T_sensor_object.translation()).norm(), 0.01);
+    EXPECT_LT((seeded.T_sensor_object.translation() - full.T_sensor_object.translation()).norm(),
+              0.01);
     EXPECT_NEAR(seeded.residual_m, full.residual_m, 0.003);
     VerifySeed turned = near;
     turned.pose.yaw_rad = wrap_angle(turned.pose.yaw_rad + kPi);
-    const VerifiedDetection searched = verify_detection(scan.cloud_sensor, det, lib, seeding, -0.45, nullptr, &turned);
+    const VerifiedDetection searched =
+        verify_detection(scan.cloud_sensor, det, lib, seeding, -0.45, nullptr, &turned);
     ASSERT_TRUE(searched.accepted) << searched.reason;
     EXPECT_FALSE(searched.from_seed);
     EXPECT_LT(yaw_error_deg(searched), 3.0);
-    EXPECT_FALSE(verify_detection(scan.cloud_sensor, det, lib, {}, -0.45, nullptr, &near).from_seed);  // off by default
+    EXPECT_FALSE(verify_detection(scan.cloud_sensor, det, lib, {}, -0.45, nullptr, &near)
+                     .from_seed);  // off by default
 }
 
 TEST(Verification, SerialAndParallelVerificationAgree) {
@@ -361,9 +410,11 @@ TEST(Verification, ARoomOfVariantsTriesOnlyTheClosestInSize) {
     const ChairScan scan = scan_chair(sim::FurnitureStyle::kFourLegChair, 4, 0.6, 5);
     CadLibrary lib;
     for (std::uint64_t seed : {11, 12, 13, 4, 14, 15, 16, 17}) {
-        lib.add("four_leg_" + std::to_string(seed), ObjectClass::kChair, sim::make_furniture(sim::FurnitureStyle::kFourLegChair, seed).mesh_object);
+        lib.add("four_leg_" + std::to_string(seed), ObjectClass::kChair,
+                sim::make_furniture(sim::FurnitureStyle::kFourLegChair, seed).mesh_object);
     }
-    lib.add("office", ObjectClass::kChair, sim::make_furniture(sim::FurnitureStyle::kOfficeChair, 4).mesh_object);
+    lib.add("office", ObjectClass::kChair,
+            sim::make_furniture(sim::FurnitureStyle::kOfficeChair, 4).mesh_object);
     Detection det;
     det.cls = ObjectClass::kChair;
     det.box_sensor = scan.box_sensor;  // the true size: the true model is the closest
@@ -373,12 +424,16 @@ TEST(Verification, ARoomOfVariantsTriesOnlyTheClosestInSize) {
     wall.box_sensor = {{6.4, -2.0, 0.0}, {0.5, 0.5, 0.9}, 0.0};
     VerifyParams params;
     params.max_models = 2;
-    const auto verified = verify_detections(scan.cloud_sensor, {det, wall}, lib, params, [](double, double) { return -0.45; });
+    const auto verified = verify_detections(scan.cloud_sensor, {det, wall}, lib, params,
+                                            [](double, double) { return -0.45; });
     ASSERT_EQ(verified.size(), 2u);
     ASSERT_TRUE(verified[0].accepted) << verified[0].reason;
     EXPECT_FALSE(verified[1].accepted);
-    EXPECT_LT(std::abs(rad_to_deg(angle_diff(yaw_of(verified[0].T_sensor_object), scan.truth.yaw_rad))), 3.0);
-    EXPECT_LT((verified[0].box_sensor.size_m - scan.box_sensor.size_m).norm(), 0.02) << verified[0].model;
+    EXPECT_LT(
+        std::abs(rad_to_deg(angle_diff(yaw_of(verified[0].T_sensor_object), scan.truth.yaw_rad))),
+        3.0);
+    EXPECT_LT((verified[0].box_sensor.size_m - scan.box_sensor.size_m).norm(), 0.02)
+        << verified[0].model;
 
     const auto by_existence = accepted_detections(verified);
     const auto by_detector = accepted_detections(verified, ScoreFrom::kDetector);
@@ -392,14 +447,19 @@ TEST(Verification, ARoomOfVariantsTriesOnlyTheClosestInSize) {
 
 TEST(CadLibrary, FindsEachModelsQuarterTurnSymmetries) {
     CadLibrary lib;
-    for (sim::FurnitureStyle style : {sim::FurnitureStyle::kRoundTable, sim::FurnitureStyle::kRectTable, sim::FurnitureStyle::kOfficeChair,
-                                      sim::FurnitureStyle::kFourLegChair}) {
-        lib.add(std::string(sim::to_string(style)), sim::class_of(style), sim::make_furniture(style, 3).mesh_object);
+    for (sim::FurnitureStyle style :
+         {sim::FurnitureStyle::kRoundTable, sim::FurnitureStyle::kRectTable,
+          sim::FurnitureStyle::kOfficeChair, sim::FurnitureStyle::kFourLegChair}) {
+        lib.add(std::string(sim::to_string(style)), sim::class_of(style),
+                sim::make_furniture(style, 3).mesh_object);
     }
     using Turns = std::array<bool, 4>;
-    EXPECT_EQ(lib.models()[0].quarter_turn_symmetric, (Turns{true, true, true, true}));     // round table
-    EXPECT_EQ(lib.models()[1].quarter_turn_symmetric, (Turns{true, false, true, false}));   // rectangular table
-    EXPECT_EQ(lib.models()[2].quarter_turn_symmetric, (Turns{true, false, false, false}));  // a back rest breaks them
+    EXPECT_EQ(lib.models()[0].quarter_turn_symmetric,
+              (Turns{true, true, true, true}));  // round table
+    EXPECT_EQ(lib.models()[1].quarter_turn_symmetric,
+              (Turns{true, false, true, false}));  // rectangular table
+    EXPECT_EQ(lib.models()[2].quarter_turn_symmetric,
+              (Turns{true, false, false, false}));  // a back rest breaks them
     EXPECT_EQ(lib.models()[3].quarter_turn_symmetric, (Turns{true, false, false, false}));
 }
 
@@ -416,14 +476,16 @@ TEST(Verification, AmbiguousOrientationsAreRejectedOnRequestSymmetricOnesNever) 
     const VerifiedDetection loose = verify_detection(chair.cloud_sensor, det, chairs, {}, -0.45);
     ASSERT_TRUE(loose.accepted) << loose.reason;
     EXPECT_GT(loose.yaw_margin, 0.0);
-    const VerifiedDetection picky = verify_detection(chair.cloud_sensor, det, chairs, strict, -0.45);
+    const VerifiedDetection picky =
+        verify_detection(chair.cloud_sensor, det, chairs, strict, -0.45);
     EXPECT_FALSE(picky.accepted);
     EXPECT_NE(picky.reason.find("ambiguous yaw"), std::string::npos) << picky.reason;
 
     const ChairScan table = scan_chair(sim::FurnitureStyle::kRoundTable, 2, 0.3, 7);
     det.cls = ObjectClass::kTable;
     det.box_sensor = table.box_sensor;
-    const VerifiedDetection round = verify_detection(table.cloud_sensor, det, library_with(sim::FurnitureStyle::kRoundTable, 2), strict, -0.45);
+    const VerifiedDetection round = verify_detection(
+        table.cloud_sensor, det, library_with(sim::FurnitureStyle::kRoundTable, 2), strict, -0.45);
     EXPECT_TRUE(round.accepted) << round.reason;
     EXPECT_TRUE(std::isinf(round.yaw_margin));
 }
@@ -444,9 +506,10 @@ namespace {
 // A stand-in for the learned prior: it "completes" the segment into a given mesh at a given pose
 // (here the chair's true shape, its pose off by 20 deg and 10 cm), or finds nothing.
 class FixedPrior : public ShapePrior {
-public:
+  public:
     FixedPrior(std::optional<Estimate> answer) : answer_(std::move(answer)) {}
-    std::optional<Estimate> estimate(const std::vector<Eigen::Vector3d>& segment, ObjectClass, double floor_z_m) const override {
+    std::optional<Estimate> estimate(const std::vector<Eigen::Vector3d>& segment, ObjectClass,
+                                     double floor_z_m) const override {
         ++calls;
         seen_points = segment.size();
         seen_floor = floor_z_m;
@@ -456,7 +519,7 @@ public:
     mutable std::size_t seen_points = 0;
     mutable double seen_floor = 0.0;
 
-private:
+  private:
     std::optional<Estimate> answer_;
 };
 
@@ -468,7 +531,8 @@ TEST(Verification, AShapePriorVerifiesWhatNoCadModelFits) {
     det.box_sensor.yaw_rad += deg_to_rad(70);  // a poor detector yaw
     ShapePrior::Estimate e;
     e.mesh_object = sim::make_furniture(sim::FurnitureStyle::kOfficeChair, 9).mesh_object;
-    e.T_sensor_object = make_T_xyz_yaw(scan.truth.t_m + Eigen::Vector3d(0.1, -0.05, 0.0), scan.truth.yaw_rad + deg_to_rad(20));
+    e.T_sensor_object = make_T_xyz_yaw(scan.truth.t_m + Eigen::Vector3d(0.1, -0.05, 0.0),
+                                       scan.truth.yaw_rad + deg_to_rad(20));
     const FixedPrior prior(e);
 
     // No CAD models at all: without the prior nothing is verified; with it, ICP against the
@@ -490,16 +554,20 @@ TEST(Verification, AShapePriorVerifiesWhatNoCadModelFits) {
     // hands over to the prior.
     const CadLibrary right = library_with(sim::FurnitureStyle::kOfficeChair, 9);
     const FixedPrior unused(e);
-    EXPECT_EQ(verify_detection(scan.cloud_sensor, det, right, {}, -0.45, &unused).model, "office_chair");
+    EXPECT_EQ(verify_detection(scan.cloud_sensor, det, right, {}, -0.45, &unused).model,
+              "office_chair");
     EXPECT_EQ(unused.calls, 0);
     CadLibrary wrong;
-    wrong.add("four_leg_chair", ObjectClass::kChair, sim::make_furniture(sim::FurnitureStyle::kFourLegChair, 1).mesh_object);
-    const VerifiedDetection handed = verify_detection(scan.cloud_sensor, det, wrong, {}, -0.45, &prior);
+    wrong.add("four_leg_chair", ObjectClass::kChair,
+              sim::make_furniture(sim::FurnitureStyle::kFourLegChair, 1).mesh_object);
+    const VerifiedDetection handed =
+        verify_detection(scan.cloud_sensor, det, wrong, {}, -0.45, &prior);
     EXPECT_TRUE(handed.accepted);
 
     // A prior that finds nothing leaves the detection rejected, and says so.
     const FixedPrior nothing(std::nullopt);
-    const VerifiedDetection r = verify_detection(scan.cloud_sensor, det, empty, {}, -0.45, &nothing);
+    const VerifiedDetection r =
+        verify_detection(scan.cloud_sensor, det, empty, {}, -0.45, &nothing);
     EXPECT_FALSE(r.accepted);
     EXPECT_NE(r.reason.find("shape prior"), std::string::npos) << r.reason;
 }

@@ -14,7 +14,9 @@ struct BoxOverlap {
 };
 
 BoxOverlap box_overlap_3d(const OrientedBox& a, const OrientedBox& b);
-inline double iou_3d(const OrientedBox& a, const OrientedBox& b) { return box_overlap_3d(a, b).iou; }
+inline double iou_3d(const OrientedBox& a, const OrientedBox& b) {
+    return box_overlap_3d(a, b).iou;
+}
 inline double giou_3d(const OrientedBox& a, const OrientedBox& b) {
     return box_overlap_3d(a, b).giou;
 }

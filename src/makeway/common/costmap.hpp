@@ -28,9 +28,12 @@ struct GridWindow {
             *this = o;
             return;
         }
-        x0 = std::min(x0, o.x0), y0 = std::min(y0, o.y0), x1 = std::max(x1, o.x1), y1 = std::max(y1, o.y1);
+        x0 = std::min(x0, o.x0), y0 = std::min(y0, o.y0), x1 = std::max(x1, o.x1),
+        y1 = std::max(y1, o.y1);
     }
-    GridWindow grown(int cells) const { return empty() ? *this : GridWindow{x0 - cells, y0 - cells, x1 + cells, y1 + cells}; }
+    GridWindow grown(int cells) const {
+        return empty() ? *this : GridWindow{x0 - cells, y0 - cells, x1 + cells, y1 + cells};
+    }
     GridWindow clipped(int width, int height) const {
         return {std::max(x0, 0), std::max(y0, 0), std::min(x1, width), std::min(y1, height)};
     }
@@ -44,12 +47,18 @@ struct Costmap {
     std::vector<std::uint8_t> cost;  ///< row-major
 
     Costmap() = default;
-    Costmap(Eigen::Vector2d origin, double resolution, int w, int h, std::uint8_t fill = cost::kFree)
-        : origin_m(origin), resolution_m(resolution), width(w), height(h),
+    Costmap(Eigen::Vector2d origin, double resolution, int w, int h,
+            std::uint8_t fill = cost::kFree)
+        : origin_m(origin),
+          resolution_m(resolution),
+          width(w),
+          height(h),
           cost(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), fill) {}
 
     bool inside(int ix, int iy) const { return ix >= 0 && iy >= 0 && ix < width && iy < height; }
-    std::uint8_t at(int ix, int iy) const { return cost[static_cast<std::size_t>(iy) * width + ix]; }
+    std::uint8_t at(int ix, int iy) const {
+        return cost[static_cast<std::size_t>(iy) * width + ix];
+    }
     std::uint8_t& at(int ix, int iy) { return cost[static_cast<std::size_t>(iy) * width + ix]; }
     Eigen::Vector2i cell_of(const Eigen::Vector2d& p_m) const {
         const Eigen::Vector2d q = (p_m - origin_m) / resolution_m;

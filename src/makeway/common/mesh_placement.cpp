@@ -23,12 +23,18 @@ std::optional<MeshAxis> parse_mesh_axis(std::string_view name) {
 
 std::string_view to_string(MeshAxis axis) {
     switch (axis) {
-        case MeshAxis::kPosX: return "+x";
-        case MeshAxis::kNegX: return "-x";
-        case MeshAxis::kPosY: return "+y";
-        case MeshAxis::kNegY: return "-y";
-        case MeshAxis::kPosZ: return "+z";
-        case MeshAxis::kNegZ: return "-z";
+        case MeshAxis::kPosX:
+            return "+x";
+        case MeshAxis::kNegX:
+            return "-x";
+        case MeshAxis::kPosY:
+            return "+y";
+        case MeshAxis::kNegY:
+            return "-y";
+        case MeshAxis::kPosZ:
+            return "+z";
+        case MeshAxis::kNegZ:
+            return "-z";
     }
     return "?";
 }
@@ -63,10 +69,12 @@ std::optional<Eigen::Matrix3d> placement_rotation(MeshAxis up, MeshAxis forward)
 TriangleMesh place_mesh(TriangleMesh mesh, const MeshPlacement& p) {
     const auto R = placement_rotation(p.up, p.forward);
     if (!R) {
-        throw std::invalid_argument("up axis " + std::string(to_string(p.up)) + " and forward axis " + std::string(to_string(p.forward)) +
+        throw std::invalid_argument("up axis " + std::string(to_string(p.up)) +
+                                    " and forward axis " + std::string(to_string(p.forward)) +
                                     " are parallel");
     }
-    if (!(p.scale > 0.0) || !std::isfinite(p.scale)) throw std::invalid_argument("the scale must be positive");
+    if (!(p.scale > 0.0) || !std::isfinite(p.scale))
+        throw std::invalid_argument("the scale must be positive");
     const Eigen::Matrix3f M = (p.scale * *R).cast<float>();
     for (Eigen::Vector3f& v : mesh.vertices_m) v = M * v;
     if (p.recentre && !mesh.vertices_m.empty()) {
@@ -87,11 +95,15 @@ std::optional<std::string> implausible_furniture_extent(const TriangleMesh& mesh
     // Real furniture: chairs and stools 0.3-1.6 m tall (a bar stool, a wing chair), tables
     // 0.25-1.2 m (a coffee table, a bar table); nothing is 5 m long, and nothing upright is much
     // lower than it is deep unless it is a low table or a bench.
-    const double min_h = cls == ObjectClass::kChair ? 0.3 : 0.25, max_h = cls == ObjectClass::kChair ? 1.6 : 1.2;
+    const double min_h = cls == ObjectClass::kChair ? 0.3 : 0.25,
+                 max_h = cls == ObjectClass::kChair ? 1.6 : 1.2;
     char buf[256];
     if (height < min_h || height > max_h || footprint > 5.0) {
-        std::snprintf(buf, sizeof(buf), "%.2f x %.2f x %.2f m is implausible for a %s (%.2f-%.2f m tall expected): wrong units or up axis?",
-                      size.x(), size.y(), size.z(), std::string(to_string(cls)).c_str(), min_h, max_h);
+        std::snprintf(buf, sizeof(buf),
+                      "%.2f x %.2f x %.2f m is implausible for a %s (%.2f-%.2f m tall expected): "
+                      "wrong units or up axis?",
+                      size.x(), size.y(), size.z(), std::string(to_string(cls)).c_str(), min_h,
+                      max_h);
         return std::string(buf);
     }
     return std::nullopt;

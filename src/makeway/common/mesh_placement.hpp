@@ -22,10 +22,11 @@ Eigen::Vector3d axis_vector(MeshAxis axis);
 std::optional<double> parse_length_unit(std::string_view name);
 
 struct MeshPlacement {
-    MeshAxis up = MeshAxis::kPosZ;       ///< the mesh's up, turned to +z
-    MeshAxis forward = MeshAxis::kPosX;  ///< the mesh's front (a chair: where a sitter faces), turned to +x
-    double scale = 1.0;                  ///< metres per mesh unit
-    bool recentre = true;                ///< footprint centre to the origin, lowest point to z = 0
+    MeshAxis up = MeshAxis::kPosZ;  ///< the mesh's up, turned to +z
+    MeshAxis forward =
+        MeshAxis::kPosX;   ///< the mesh's front (a chair: where a sitter faces), turned to +x
+    double scale = 1.0;    ///< metres per mesh unit
+    bool recentre = true;  ///< footprint centre to the origin, lowest point to z = 0
 };
 
 /// The rotation taking `up` to +z and `forward` to +x; nullopt when they are parallel.
@@ -36,6 +37,7 @@ TriangleMesh place_mesh(TriangleMesh mesh, const MeshPlacement& placement);
 
 /// A warning when a placed mesh's extent cannot be a piece of furniture of `cls` (a chair 12 m
 /// tall: wrong units; 0.1 m tall and 0.9 m deep: lying on its side), nullopt when plausible.
-std::optional<std::string> implausible_furniture_extent(const TriangleMesh& mesh_object, ObjectClass cls);
+std::optional<std::string> implausible_furniture_extent(const TriangleMesh& mesh_object,
+                                                        ObjectClass cls);
 
 }  // namespace makeway

@@ -6,8 +6,8 @@
 // by a test) and `makeway config --describe`. No YAML here: the library stays free of file formats.
 //
 // Keys are the members' names; a section that gathers several structs prefixes an included
-// struct's keys with its name (`include("ground_", ...)`: `ground_seed` is `ground.seed`). Units are
-// in the keys' suffixes (_m, _s, _mps, _deg ...; see param_unit()).
+// struct's keys with its name (`include("ground_", ...)`: `ground_seed` is `ground.seed`). Units
+// are in the keys' suffixes (_m, _s, _mps, _deg ...; see param_unit()).
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -43,10 +43,10 @@ constexpr ParamRange open(double lo, double hi) { return {lo, hi, true, true, fa
 
 /// One of a set of names (an enum written as a word), or a list of such names.
 struct ParamChoice {
-    std::vector<std::string> names;                     ///< admitted names, in the order to list them
-    std::function<std::vector<std::string>()> get;      ///< the current value (one name unless a list)
+    std::vector<std::string> names;                 ///< admitted names, in the order to list them
+    std::function<std::vector<std::string>()> get;  ///< the current value (one name unless a list)
     std::function<void(const std::vector<std::string>&)> set;  ///< called with admitted names only
-    bool list = false;                                  ///< a list of names ([chair, table]), at least one
+    bool list = false;  ///< a list of names ([chair, table]), at least one
 };
 /// Where one parameter lives in a given Params object, typed for the reader.
 using ParamRef = std::variant<double*, int*, std::uint32_t*, std::uint64_t*, bool*, ParamChoice>;
@@ -64,7 +64,7 @@ std::string param_number(double v);
 
 template <class P>
 class ParamTable {
-public:
+  public:
     struct Entry {
         std::string key;  ///< "chair.side_m": a nested mapping
         std::function<ParamRef(P&)> ref;
@@ -80,19 +80,25 @@ public:
     /// A number, integer or flag that is a member of P (or of a struct inside P: `get` returns it).
     template <class T>
     ParamTable& add(std::string key, T P::*member, ParamRange range, std::string doc) {
-        return add_ref(std::move(key), [member](P& p) -> T& { return p.*member; }, range, std::move(doc));
+        return add_ref(
+            std::move(key), [member](P& p) -> T& { return p.*member; }, range, std::move(doc));
     }
     ParamTable& add(std::string key, bool P::*member, std::string doc) {
         return add(std::move(key), member, ParamRange{}, std::move(doc));
     }
     template <class Get>
     ParamTable& add_ref(std::string key, Get get, ParamRange range, std::string doc) {
-        entries_.push_back({std::move(key), [get](P& p) -> ParamRef { return &get(p); }, range, std::move(doc), {}});
+        entries_.push_back({std::move(key),
+                            [get](P& p) -> ParamRef { return &get(p); },
+                            range,
+                            std::move(doc),
+                            {}});
         return *this;
     }
     /// An enum written as one of `names`.
     template <class E>
-    ParamTable& choice(std::string key, E P::*member, std::vector<std::pair<std::string, E>> names, std::string doc) {
+    ParamTable& choice(std::string key, E P::*member, std::vector<std::pair<std::string, E>> names,
+                       std::string doc) {
         std::vector<std::string> words;
         for (const auto& n : names) words.push_back(n.first);
         entries_.push_back({std::move(key),
@@ -113,12 +119,18 @@ public:
                                 };
                                 return c;
                             },
-                            ParamRange{}, std::move(doc), {}});
+                            ParamRange{},
+                            std::move(doc),
+                            {}});
         return *this;
     }
     /// A value of any other shape, as a ParamChoice made for the object (lists of names).
     ParamTable& add_choice(std::string key, std::function<ParamChoice(P&)> make, std::string doc) {
-        entries_.push_back({std::move(key), [make](P& p) -> ParamRef { return make(p); }, ParamRange{}, std::move(doc), {}});
+        entries_.push_back({std::move(key),
+                            [make](P& p) -> ParamRef { return make(p); },
+                            ParamRange{},
+                            std::move(doc),
+                            {}});
         return *this;
     }
     /// The last entry's key before it was renamed: read for one release, with a warning.
@@ -135,15 +147,17 @@ public:
     template <class Q, class Get>
     ParamTable& include(const std::string& prefix, Get get, const ParamTable<Q>& inner) {
         for (const auto& e : inner.entries()) {
-            entries_.push_back({prefix + e.key, [get, ref = e.ref](P& p) { return ref(get(p)); }, e.range, e.doc,
+            entries_.push_back({prefix + e.key, [get, ref = e.ref](P& p) { return ref(get(p)); },
+                                e.range, e.doc,
                                 e.old_key.empty() ? std::string() : prefix + e.old_key});
         }
         // A nested mapping's rules name it ("chair.edge_cost must ..."); a flattened struct's rules
         // name their own keys.
         const bool nested = !prefix.empty() && prefix.back() == '.';
         for (const auto& c : inner.checks()) {
-            checks_.push_back({[get, holds = c.holds](const P& p) { return holds(get(const_cast<P&>(p))); },
-                               nested ? prefix + c.message : c.message});
+            checks_.push_back(
+                {[get, holds = c.holds](const P& p) { return holds(get(const_cast<P&>(p))); },
+                 nested ? prefix + c.message : c.message});
         }
         return *this;
     }
@@ -158,12 +172,19 @@ public:
         for (const auto& e : entries_) {
             const ParamRef r = e.ref(q);
             double v = 0.0;
-            if (const auto* d = std::get_if<double*>(&r)) v = **d;
-            else if (const auto* i = std::get_if<int*>(&r)) v = **i;
-            else if (const auto* u = std::get_if<std::uint32_t*>(&r)) v = static_cast<double>(**u);
-            else if (const auto* w = std::get_if<std::uint64_t*>(&r)) v = static_cast<double>(**w);
-            else continue;
-            if (!e.range.contains(v)) out.push_back(e.key + " must be in " + e.range.text() + " (got " + param_number(v) + ")");
+            if (const auto* d = std::get_if<double*>(&r))
+                v = **d;
+            else if (const auto* i = std::get_if<int*>(&r))
+                v = **i;
+            else if (const auto* u = std::get_if<std::uint32_t*>(&r))
+                v = static_cast<double>(**u);
+            else if (const auto* w = std::get_if<std::uint64_t*>(&r))
+                v = static_cast<double>(**w);
+            else
+                continue;
+            if (!e.range.contains(v))
+                out.push_back(e.key + " must be in " + e.range.text() + " (got " + param_number(v) +
+                              ")");
         }
         for (const auto& c : checks_) {
             if (!c.holds(p)) out.push_back(c.message);
@@ -171,7 +192,7 @@ public:
         return out;
     }
 
-private:
+  private:
     std::vector<Entry> entries_;
     std::vector<Check> checks_;
 };

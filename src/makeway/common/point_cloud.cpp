@@ -51,10 +51,9 @@ std::string PointCloud::consistency_error() const {
         return std::string(name) + " has " + std::to_string(len) + " values for " +
                std::to_string(n) + " points";
     };
-    for (const auto& msg :
-         {check("intensity", intensity.size()), check("ring", ring.size()),
-          check("time", time_s.size()), check("label", label.size()),
-          check("instance", instance.size())}) {
+    for (const auto& msg : {check("intensity", intensity.size()), check("ring", ring.size()),
+                            check("time", time_s.size()), check("label", label.size()),
+                            check("instance", instance.size())}) {
         if (!msg.empty()) return msg;
     }
     return {};

@@ -19,7 +19,8 @@ struct PointFields {
     bool instance = false;
 
     bool operator==(const PointFields& o) const {  // spelled out: C++17-clean for the ROS 1 files
-        return intensity == o.intensity && ring == o.ring && time == o.time && label == o.label && instance == o.instance;
+        return intensity == o.intensity && ring == o.ring && time == o.time && label == o.label &&
+               instance == o.instance;
     }
     static PointFields all() { return {true, true, true, true, true}; }
 };

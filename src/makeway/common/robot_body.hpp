@@ -11,7 +11,7 @@ namespace makeway {
 
 struct BodyHeights {
     double ground_clearance_m = 0.02;  ///< lower parts are rolled over; higher ones stop the robot
-    double top_m = 0.5;                 ///< the top of the robot with its sensor: higher parts pass over it
+    double top_m = 0.5;  ///< the top of the robot with its sensor: higher parts pass over it
     bool can_hit(double z_m) const { return z_m >= ground_clearance_m && z_m <= top_m; }
 };
 

@@ -7,7 +7,8 @@
 
 namespace makeway {
 
-/// Stored in a point cloud's `label` field (uint8). Values are part of the file formats: append only.
+/// Stored in a point cloud's `label` field (uint8). Values are part of the file formats: append
+/// only.
 enum class SemanticLabel : std::uint8_t {
     kUnlabelled = 0,
     kGround = 1,

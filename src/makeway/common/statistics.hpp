@@ -10,11 +10,13 @@
 
 namespace makeway {
 
-/// The q-quantile (q in [0, 1]) as the element at rank round(q (n - 1)) of the sorted values; 0 when empty.
+/// The q-quantile (q in [0, 1]) as the element at rank round(q (n - 1)) of the sorted values; 0
+/// when empty.
 inline double percentile(std::vector<double> v, double q) {
     if (v.empty()) return 0.0;
     std::sort(v.begin(), v.end());
-    return v[std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5))];
+    return v[std::min(v.size() - 1,
+                      static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5))];
 }
 
 /// percentile(v, 0.5): the upper median for an even count.
@@ -30,7 +32,8 @@ struct MeanInterval {
 /// replacement, drawn by a generator seeded with `seed`: the same values and seed give the same
 /// interval on every machine (std::mt19937_64 is specified; indices come from its raw output).
 /// Empty input: all zero.
-inline MeanInterval bootstrap_mean(const std::vector<double>& v, std::uint64_t seed, int resamples = 2000, double level = 0.95) {
+inline MeanInterval bootstrap_mean(const std::vector<double>& v, std::uint64_t seed,
+                                   int resamples = 2000, double level = 0.95) {
     MeanInterval out;
     out.n = v.size();
     if (v.empty()) return out;

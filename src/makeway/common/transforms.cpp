@@ -20,15 +20,20 @@ Pose2 to_pose2(const Isometry2& T) {
 
 Pose2 compose(const Pose2& a, const Pose2& b) { return to_pose2(to_isometry(a) * to_isometry(b)); }
 
-Pose2 between(const Pose2& a, const Pose2& b) { return to_pose2(to_isometry(a).inverse() * to_isometry(b)); }
-
-Pose2 interpolate(const Pose2& a, const Pose2& b, double s) {
-    return {a.x_m + s * (b.x_m - a.x_m), a.y_m + s * (b.y_m - a.y_m), wrap_angle(a.yaw_rad + s * angle_diff(b.yaw_rad, a.yaw_rad))};
+Pose2 between(const Pose2& a, const Pose2& b) {
+    return to_pose2(to_isometry(a).inverse() * to_isometry(b));
 }
 
-Isometry3 make_T_xyz_rpy(const Eigen::Vector3d& translation_m, double roll_rad, double pitch_rad, double yaw_rad) {
+Pose2 interpolate(const Pose2& a, const Pose2& b, double s) {
+    return {a.x_m + s * (b.x_m - a.x_m), a.y_m + s * (b.y_m - a.y_m),
+            wrap_angle(a.yaw_rad + s * angle_diff(b.yaw_rad, a.yaw_rad))};
+}
+
+Isometry3 make_T_xyz_rpy(const Eigen::Vector3d& translation_m, double roll_rad, double pitch_rad,
+                         double yaw_rad) {
     Isometry3 T = Isometry3::Identity();
-    T.linear() = (Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()) *
+    T.linear() = (Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()) *
+                  Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()) *
                   Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitX()))
                      .toRotationMatrix();
     T.translation() = translation_m;

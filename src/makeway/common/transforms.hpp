@@ -1,5 +1,6 @@
 #pragma once
-// SE(2)/SE(3) helpers on Eigen. Transforms are named T_<to>_<from>: p_world = T_world_sensor * p_sensor.
+// SE(2)/SE(3) helpers on Eigen. Transforms are named T_<to>_<from>: p_world = T_world_sensor *
+// p_sensor.
 #include <Eigen/Geometry>
 
 namespace makeway {
@@ -27,7 +28,8 @@ Pose2 interpolate(const Pose2& a, const Pose2& b, double s);
 Isometry3 make_T_xyz_yaw(const Eigen::Vector3d& translation_m, double yaw_rad);
 /// x y z [m], then roll pitch yaw [rad] applied as R = Rz(yaw) Ry(pitch) Rx(roll) (ROS's static
 /// transform order): how extrinsics are given on the command line and as the node's parameter.
-Isometry3 make_T_xyz_rpy(const Eigen::Vector3d& translation_m, double roll_rad, double pitch_rad, double yaw_rad);
+Isometry3 make_T_xyz_rpy(const Eigen::Vector3d& translation_m, double roll_rad, double pitch_rad,
+                         double yaw_rad);
 
 /// Heading of the x axis projected onto the xy plane [rad], in [-pi, pi).
 double yaw_of(const Eigen::Matrix3d& R);

@@ -21,7 +21,8 @@ std::string TriangleMesh::validity_error() const {
 void TriangleMesh::append(const TriangleMesh& other) {
     const int offset = static_cast<int>(vertices_m.size());
     vertices_m.insert(vertices_m.end(), other.vertices_m.begin(), other.vertices_m.end());
-    for (const auto& tri : other.triangles) triangles.push_back(tri + Eigen::Vector3i::Constant(offset));
+    for (const auto& tri : other.triangles)
+        triangles.push_back(tri + Eigen::Vector3i::Constant(offset));
 }
 
 void mesh_bounds(const TriangleMesh& mesh, Eigen::Vector3d& min_m, Eigen::Vector3d& max_m) {

@@ -8,7 +8,8 @@ namespace makeway {
 
 struct TriangleMesh {
     std::vector<Eigen::Vector3f> vertices_m;
-    std::vector<Eigen::Vector3i> triangles;  ///< vertex indices, counter-clockwise seen from outside
+    std::vector<Eigen::Vector3i>
+        triangles;  ///< vertex indices, counter-clockwise seen from outside
 
     std::size_t num_triangles() const { return triangles.size(); }
     /// Empty string when every index is in range and every vertex finite, else what is wrong.

@@ -11,7 +11,8 @@ std::vector<Eigen::Vector3d> voxel_thin(const std::vector<Eigen::Vector3d>& poin
     auto key = [voxel](const Eigen::Vector3d& p) {
         std::uint64_t k = 0;
         for (int a = 0; a < 3; ++a) {
-            const auto v = static_cast<std::int64_t>(std::floor(p[a] / voxel)) & ((std::int64_t{1} << 21) - 1);
+            const auto v =
+                static_cast<std::int64_t>(std::floor(p[a] / voxel)) & ((std::int64_t{1} << 21) - 1);
             k = (k << 21) | static_cast<std::uint64_t>(v);
         }
         return k;

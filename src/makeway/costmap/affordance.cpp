@@ -1,9 +1,9 @@
 #include "makeway/costmap/affordance.hpp"
 
-#include "makeway/costmap/param_tables.hpp"
-
 #include <algorithm>
 #include <cmath>
+
+#include "makeway/costmap/param_tables.hpp"
 
 namespace makeway::costmap {
 namespace {
@@ -18,7 +18,8 @@ Eigen::Vector2d to_object_frame(const ObjectEstimate& o, const Eigen::Vector2d& 
 Eigen::Vector2d zone_half_extent(const ObjectEstimate& o, const AffordanceParams& p) {
     const double hl = 0.5 * o.box_world.size_m.x(), hw = 0.5 * o.box_world.size_m.y();
     if (o.cls == ObjectClass::kChair) return {hl + p.chair.forward_back_m, hw + p.chair.side_m};
-    const bool square = std::abs(o.box_world.size_m.x() - o.box_world.size_m.y()) < p.table.square_tolerance_m;
+    const bool square =
+        std::abs(o.box_world.size_m.x() - o.box_world.size_m.y()) < p.table.square_tolerance_m;
     return {hl + (square ? p.table.sides_m : p.table.ends_m), hw + p.table.sides_m};
 }
 
@@ -28,32 +29,47 @@ const ParamTable<AffordanceParams>& affordance_table() {
     using A = AffordanceParams;
     static const ParamTable<A> table = [] {
         ParamTable<ChairZoneParams> chair;
-        chair.add("forward_back_m", &ChairZoneParams::forward_back_m, closed(0.0, 5.0),
-                  "an ellipse along the chair's axis: reach beyond the chair, both ways")
-            .add("side_m", &ChairZoneParams::side_m, closed(0.0, 5.0), "reach beyond the chair sideways")
-            .add("peak_cost", &ChairZoneParams::peak_cost, closed(0.0, 252.0), "on the chair; soft costs are 1..252")
-            .add("edge_cost", &ChairZoneParams::edge_cost, closed(0.0, 252.0), "at the zone boundary")
-            .require([](const ChairZoneParams& c) { return c.edge_cost <= c.peak_cost; }, "edge_cost must be at most peak_cost");
+        chair
+            .add("forward_back_m", &ChairZoneParams::forward_back_m, closed(0.0, 5.0),
+                 "an ellipse along the chair's axis: reach beyond the chair, both ways")
+            .add("side_m", &ChairZoneParams::side_m, closed(0.0, 5.0),
+                 "reach beyond the chair sideways")
+            .add("peak_cost", &ChairZoneParams::peak_cost, closed(0.0, 252.0),
+                 "on the chair; soft costs are 1..252")
+            .add("edge_cost", &ChairZoneParams::edge_cost, closed(0.0, 252.0),
+                 "at the zone boundary")
+            .require([](const ChairZoneParams& c) { return c.edge_cost <= c.peak_cost; },
+                     "edge_cost must be at most peak_cost");
         ParamTable<TableZoneParams> tab;
-        tab.add("sides_m", &TableZoneParams::sides_m, closed(0.0, 5.0), "a rectangle padded on the long (sitting) sides by this ...")
-            .add("ends_m", &TableZoneParams::ends_m, closed(0.0, 5.0), "... and at the ends by this")
+        tab.add("sides_m", &TableZoneParams::sides_m, closed(0.0, 5.0),
+                "a rectangle padded on the long (sitting) sides by this ...")
+            .add("ends_m", &TableZoneParams::ends_m, closed(0.0, 5.0),
+                 "... and at the ends by this")
             .add("square_tolerance_m", &TableZoneParams::square_tolerance_m, closed(0.0, 5.0),
                  "|length - width| below this: padded all round")
             .add("peak_cost", &TableZoneParams::peak_cost, closed(0.0, 252.0), "on the table")
-            .add("edge_cost", &TableZoneParams::edge_cost, closed(0.0, 252.0), "at the zone boundary")
-            .require([](const TableZoneParams& t) { return t.edge_cost <= t.peak_cost; }, "edge_cost must be at most peak_cost");
+            .add("edge_cost", &TableZoneParams::edge_cost, closed(0.0, 252.0),
+                 "at the zone boundary")
+            .require([](const TableZoneParams& t) { return t.edge_cost <= t.peak_cost; },
+                     "edge_cost must be at most peak_cost");
         ParamTable<A> t;
-        t.add("min_existence", &A::min_existence, closed(0.0, 1.0), "objects less likely than this get no zone")
-            .include("chair.", [](A& a) -> ChairZoneParams& { return a.chair; }, chair)
-            .include("table.", [](A& a) -> TableZoneParams& { return a.table; }, tab);
+        t.add("min_existence", &A::min_existence, closed(0.0, 1.0),
+              "objects less likely than this get no zone")
+            .include(
+                "chair.", [](A& a) -> ChairZoneParams& { return a.chair; }, chair)
+            .include(
+                "table.", [](A& a) -> TableZoneParams& { return a.table; }, tab);
         return t;
     }();
     return table;
 }
 
-std::vector<std::string> AffordanceParams::validate() const { return affordance_table().problems(*this); }
+std::vector<std::string> AffordanceParams::validate() const {
+    return affordance_table().problems(*this);
+}
 
-double zone_coordinate(const ObjectEstimate& o, const AffordanceParams& p, const Eigen::Vector2d& p_m) {
+double zone_coordinate(const ObjectEstimate& o, const AffordanceParams& p,
+                       const Eigen::Vector2d& p_m) {
     const Eigen::Vector2d q = to_object_frame(o, p_m).cwiseAbs();
     const Eigen::Vector2d half_object = 0.5 * o.box_world.size_m.head<2>();
     if ((q.array() <= half_object.array()).all()) return 0.0;
@@ -61,35 +77,42 @@ double zone_coordinate(const ObjectEstimate& o, const AffordanceParams& p, const
     if (o.cls == ObjectClass::kChair) {
         // Ellipse through the zone extents; u grows from the chair's inscribed ellipse outward.
         const double e = std::hypot(q.x() / half_zone.x(), q.y() / half_zone.y());
-        const double e0 = std::min(half_object.x() / half_zone.x(), half_object.y() / half_zone.y());
+        const double e0 =
+            std::min(half_object.x() / half_zone.x(), half_object.y() / half_zone.y());
         return std::max(0.0, (e - e0) / std::max(1e-9, 1.0 - e0));
     }
     // Rectangle: the larger of the normalised overshoots beyond the table edge on each axis.
     const Eigen::Vector2d pad = half_zone - half_object;
-    const double ux = q.x() <= half_object.x() ? 0.0 : (q.x() - half_object.x()) / std::max(pad.x(), 1e-9);
-    const double uy = q.y() <= half_object.y() ? 0.0 : (q.y() - half_object.y()) / std::max(pad.y(), 1e-9);
+    const double ux =
+        q.x() <= half_object.x() ? 0.0 : (q.x() - half_object.x()) / std::max(pad.x(), 1e-9);
+    const double uy =
+        q.y() <= half_object.y() ? 0.0 : (q.y() - half_object.y()) / std::max(pad.y(), 1e-9);
     return std::max(ux, uy);
 }
 
-std::uint8_t zone_cost(const ObjectEstimate& o, const AffordanceParams& p, const Eigen::Vector2d& p_m) {
+std::uint8_t zone_cost(const ObjectEstimate& o, const AffordanceParams& p,
+                       const Eigen::Vector2d& p_m) {
     if (o.existence < p.min_existence) return cost::kFree;
     const double u = zone_coordinate(o, p, p_m);
     if (u > 1.0) return cost::kFree;
     const double peak = o.cls == ObjectClass::kChair ? p.chair.peak_cost : p.table.peak_cost;
     const double edge = o.cls == ObjectClass::kChair ? p.chair.edge_cost : p.table.edge_cost;
-    return static_cast<std::uint8_t>(std::clamp(std::lround(peak + (edge - peak) * u), 1L,
-                                                static_cast<long>(cost::kMaxSoft)));
+    return static_cast<std::uint8_t>(
+        std::clamp(std::lround(peak + (edge - peak) * u), 1L, static_cast<long>(cost::kMaxSoft)));
 }
 
-void zone_bounds(const ObjectEstimate& o, const AffordanceParams& p, Eigen::Vector2d& min_m, Eigen::Vector2d& max_m) {
+void zone_bounds(const ObjectEstimate& o, const AffordanceParams& p, Eigen::Vector2d& min_m,
+                 Eigen::Vector2d& max_m) {
     const Eigen::Vector2d h = zone_half_extent(o, p);
-    const double c = std::abs(std::cos(o.box_world.yaw_rad)), s = std::abs(std::sin(o.box_world.yaw_rad));
+    const double c = std::abs(std::cos(o.box_world.yaw_rad)),
+                 s = std::abs(std::sin(o.box_world.yaw_rad));
     const Eigen::Vector2d r(c * h.x() + s * h.y(), s * h.x() + c * h.y());
     min_m = o.box_world.centre_m.head<2>() - r;
     max_m = o.box_world.centre_m.head<2>() + r;
 }
 
-std::vector<Eigen::Vector2d> zone_outline(const ObjectEstimate& object, const AffordanceParams& params, int rays) {
+std::vector<Eigen::Vector2d> zone_outline(const ObjectEstimate& object,
+                                          const AffordanceParams& params, int rays) {
     std::vector<Eigen::Vector2d> out;
     const Eigen::Vector2d c = object.box_world.centre_m.head<2>();
     for (int k = 0; k < rays; ++k) {

@@ -27,9 +27,9 @@ struct ChairZoneParams {
 };
 
 struct TableZoneParams {
-    double sides_m = 0.75;            ///< padding on the sitting (long) sides
-    double ends_m = 0.15;             ///< padding at the ends
-    double square_tolerance_m = 0.15; ///< |length - width| below this: padded on all sides
+    double sides_m = 0.75;             ///< padding on the sitting (long) sides
+    double ends_m = 0.15;              ///< padding at the ends
+    double square_tolerance_m = 0.15;  ///< |length - width| below this: padded on all sides
     double peak_cost = 200;
     double edge_cost = 30;
 };
@@ -42,7 +42,8 @@ struct AffordanceParams {
 };
 
 /// Zone coordinate of p for the object: 0 on the footprint, 1 on the boundary, > 1 outside.
-double zone_coordinate(const ObjectEstimate& object, const AffordanceParams& params, const Eigen::Vector2d& p_m);
+double zone_coordinate(const ObjectEstimate& object, const AffordanceParams& params,
+                       const Eigen::Vector2d& p_m);
 
 /// Whether p lies inside the object's zone (u <= 1): the risk-zone definition.
 inline bool in_affordance_zone(const ObjectEstimate& object, const AffordanceParams& params,
@@ -51,14 +52,16 @@ inline bool in_affordance_zone(const ObjectEstimate& object, const AffordancePar
 }
 
 /// The soft cost at p (0 outside the zone).
-std::uint8_t zone_cost(const ObjectEstimate& object, const AffordanceParams& params, const Eigen::Vector2d& p_m);
+std::uint8_t zone_cost(const ObjectEstimate& object, const AffordanceParams& params,
+                       const Eigen::Vector2d& p_m);
 
 /// The zone's boundary (u = 1) as a closed polygon of `rays` points, traced outward from the
 /// object's centre in 1 cm steps (up to 6 m): for pictures and markers.
-std::vector<Eigen::Vector2d> zone_outline(const ObjectEstimate& object, const AffordanceParams& params, int rays = 72);
+std::vector<Eigen::Vector2d> zone_outline(const ObjectEstimate& object,
+                                          const AffordanceParams& params, int rays = 72);
 
 /// Axis-aligned world bounds of the zone [m].
-void zone_bounds(const ObjectEstimate& object, const AffordanceParams& params, Eigen::Vector2d& min_m,
-                 Eigen::Vector2d& max_m);
+void zone_bounds(const ObjectEstimate& object, const AffordanceParams& params,
+                 Eigen::Vector2d& min_m, Eigen::Vector2d& max_m);
 
 }  // namespace makeway::costmap

@@ -9,12 +9,14 @@ namespace {
 // min_existence, which decides whether the object is kept at all.
 bool same_zone(const ObjectEstimate& a, const ObjectEstimate& b) {
     return a.cls == b.cls && a.box_world.centre_m.head<2>() == b.box_world.centre_m.head<2>() &&
-           a.box_world.size_m.head<2>() == b.box_world.size_m.head<2>() && a.box_world.yaw_rad == b.box_world.yaw_rad;
+           a.box_world.size_m.head<2>() == b.box_world.size_m.head<2>() &&
+           a.box_world.yaw_rad == b.box_world.yaw_rad;
 }
 
 }  // namespace
 
-void AffordanceLayer::update_bounds(const Costmap& master, const LayerInput& input, GridWindow& window) {
+void AffordanceLayer::update_bounds(const Costmap& master, const LayerInput& input,
+                                    GridWindow& window) {
     std::vector<ObjectEstimate> kept;
     for (const ObjectEstimate& o : input.objects) {
         if (o.existence >= params_.min_existence) kept.push_back(o);

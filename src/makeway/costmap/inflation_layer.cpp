@@ -1,19 +1,23 @@
 #include "makeway/costmap/inflation_layer.hpp"
 
-#include "makeway/costmap/param_tables.hpp"
-
 #include <cmath>
 #include <limits>
+
+#include "makeway/costmap/param_tables.hpp"
 
 namespace makeway::costmap {
 namespace {
 
 constexpr double kFar = 1e10;  // beyond any squared distance in cells, small enough to stay exact
 
-// 1D squared distance transform of f (Felzenszwalb & Huttenlocher 2012, lower envelope of parabolas).
-void dt1d(const std::vector<double>& f, std::vector<double>& d, std::vector<int>& v, std::vector<double>& z) {
+// 1D squared distance transform of f (Felzenszwalb & Huttenlocher 2012, lower envelope of
+// parabolas).
+void dt1d(const std::vector<double>& f, std::vector<double>& d, std::vector<int>& v,
+          std::vector<double>& z) {
     const int n = static_cast<int>(f.size());
-    auto intersect = [&](int q, int p) { return ((f[q] + q * q) - (f[p] + p * p)) / (2.0 * q - 2.0 * p); };
+    auto intersect = [&](int q, int p) {
+        return ((f[q] + q * q) - (f[p] + p * p)) / (2.0 * q - 2.0 * p);
+    };
     int k = 0;
     v[0] = 0;
     z[0] = -std::numeric_limits<double>::infinity();
@@ -38,7 +42,8 @@ void dt1d(const std::vector<double>& f, std::vector<double>& d, std::vector<int>
 const ParamTable<InflationParams>& inflation_table() {
     static const ParamTable<InflationParams> table = [] {
         ParamTable<InflationParams> t;
-        t.add("cost_scaling", &InflationParams::cost_scaling, open(0.0, 100.0), "k [1/m]: costs decay as exp(-k (d - inscribed))");
+        t.add("cost_scaling", &InflationParams::cost_scaling, open(0.0, 100.0),
+              "k [1/m]: costs decay as exp(-k (d - inscribed))");
         return t;
     }();
     return table;
@@ -46,7 +51,8 @@ const ParamTable<InflationParams>& inflation_table() {
 
 std::vector<std::string> InflationParams::validate() const {
     std::vector<std::string> out = inflation_table().problems(*this);
-    if (!(inscribed_radius_m > 0.0 && inscribed_radius_m < 5.0)) out.push_back("inscribed_radius_m must be in (0, 5)");
+    if (!(inscribed_radius_m > 0.0 && inscribed_radius_m < 5.0))
+        out.push_back("inscribed_radius_m must be in (0, 5)");
     if (!(inflation_radius_m >= inscribed_radius_m && inflation_radius_m < 10.0)) {
         out.push_back("inflation_radius_m must be in [inscribed_radius_m, 10)");
     }
@@ -57,11 +63,12 @@ std::uint8_t inflation_cost(double d, const InflationParams& p) {
     if (d <= 0.0) return cost::kLethal;
     if (d <= p.inscribed_radius_m) return cost::kInscribed;
     if (d > p.inflation_radius_m) return cost::kFree;
-    return static_cast<std::uint8_t>(
-        std::max(1.0, std::floor(cost::kMaxSoft * std::exp(-p.cost_scaling * (d - p.inscribed_radius_m)))));
+    return static_cast<std::uint8_t>(std::max(
+        1.0, std::floor(cost::kMaxSoft * std::exp(-p.cost_scaling * (d - p.inscribed_radius_m)))));
 }
 
-std::vector<double> squared_distance_to_lethal(const Costmap& grid, const GridWindow& src, const GridWindow& win) {
+std::vector<double> squared_distance_to_lethal(const Costmap& grid, const GridWindow& src,
+                                               const GridWindow& win) {
     const int w = src.x1 - src.x0, h = src.y1 - src.y0;
     std::vector<double> g(static_cast<std::size_t>(w) * h);
     for (int y = 0; y < h; ++y) {
@@ -114,7 +121,8 @@ void InflationLayer::update_costs(Costmap& master, const GridWindow& window) {
         const double reach2 = std::pow(params_.inflation_radius_m / master.resolution_m, 2);
         cost_of_d2_.clear();
         for (std::size_t k = 0;; ++k) {
-            const std::uint8_t c = inflation_cost(std::sqrt(static_cast<double>(k)) * master.resolution_m, params_);
+            const std::uint8_t c =
+                inflation_cost(std::sqrt(static_cast<double>(k)) * master.resolution_m, params_);
             if (c == cost::kFree && static_cast<double>(k) > reach2) break;
             cost_of_d2_.push_back(c);
         }
@@ -124,7 +132,8 @@ void InflationLayer::update_costs(Costmap& master, const GridWindow& window) {
     for (int y = window.y0; y < window.y1; ++y) {
         for (int x = window.x0; x < window.x1; ++x) {
             const double k = d2[static_cast<std::size_t>(y - window.y0) * ww + (x - window.x0)];
-            const std::uint8_t c = k < free_from ? cost_of_d2_[static_cast<std::size_t>(k)] : cost::kFree;
+            const std::uint8_t c =
+                k < free_from ? cost_of_d2_[static_cast<std::size_t>(k)] : cost::kFree;
             std::uint8_t& m = master.at(x, y);
             if (c > m || (m == cost::kUnknown && c != cost::kFree)) m = c;
         }

@@ -9,7 +9,7 @@ namespace makeway::costmap {
 struct InflationParams {
     double inscribed_radius_m = 0.215;  ///< half the Jackal's width
     double inflation_radius_m = 0.55;
-    double cost_scaling = 3.0;          ///< k [1/m]
+    double cost_scaling = 3.0;  ///< k [1/m]
     std::vector<std::string> validate() const;
 };
 
@@ -17,16 +17,17 @@ struct InflationParams {
 std::uint8_t inflation_cost(double d_m, const InflationParams& params);
 
 class InflationLayer : public Layer {
-public:
+  public:
     explicit InflationLayer(const InflationParams& params) : params_(params) {}
     std::string name() const override { return "inflation"; }
     void update_bounds(const Costmap& master, const LayerInput& input, GridWindow& window) override;
     void update_costs(Costmap& master, const GridWindow& window) override;
 
-private:
+  private:
     InflationParams params_;
-    double table_resolution_m_ = 0.0;        ///< the resolution cost_of_d2_ was made for
-    std::vector<std::uint8_t> cost_of_d2_;  ///< inflation_cost at sqrt(k) cells, out to the first free k past the radius
+    double table_resolution_m_ = 0.0;  ///< the resolution cost_of_d2_ was made for
+    std::vector<std::uint8_t>
+        cost_of_d2_;  ///< inflation_cost at sqrt(k) cells, out to the first free k past the radius
 };
 
 /// Exact squared Euclidean distance [cells^2] from every cell of `window` to the nearest cell with

@@ -13,17 +13,19 @@ namespace makeway::costmap {
 
 /// What one update sees.
 struct LayerInput {
-    const PointCloud* points_world = nullptr;  ///< the latest sweep in the world frame (may be null)
+    const PointCloud* points_world =
+        nullptr;  ///< the latest sweep in the world frame (may be null)
     Eigen::Vector3d sensor_world_m = Eigen::Vector3d::Zero();
     std::vector<ObjectEstimate> objects;
 };
 
 class Layer {
-public:
+  public:
     virtual ~Layer() = default;
     virtual std::string name() const = 0;
     /// Grows `window` by the cells this update changes.
-    virtual void update_bounds(const Costmap& master, const LayerInput& input, GridWindow& window) = 0;
+    virtual void update_bounds(const Costmap& master, const LayerInput& input,
+                               GridWindow& window) = 0;
     /// Writes this layer's costs into master, inside window only, merging by max.
     virtual void update_costs(Costmap& master, const GridWindow& window) = 0;
 };

@@ -12,7 +12,7 @@ struct UpdateResult {
 };
 
 class LayeredCostmap {
-public:
+  public:
     explicit LayeredCostmap(Costmap geometry) : master_(std::move(geometry)) {}
     /// Layers update in the order added; inflation belongs last.
     void add_layer(std::unique_ptr<Layer> layer) { layers_.push_back(std::move(layer)); }
@@ -20,7 +20,7 @@ public:
     const Costmap& master() const { return master_; }
     const std::vector<std::unique_ptr<Layer>>& layers() const { return layers_; }
 
-private:
+  private:
     Costmap master_;
     std::vector<std::unique_ptr<Layer>> layers_;
 };

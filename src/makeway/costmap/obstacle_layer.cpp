@@ -1,11 +1,10 @@
 #include "makeway/costmap/obstacle_layer.hpp"
 
-#include "makeway/costmap/param_tables.hpp"
-
-#include "makeway/costmap/ray_walk.hpp"
-
 #include <cmath>
 #include <cstdlib>
+
+#include "makeway/costmap/param_tables.hpp"
+#include "makeway/costmap/ray_walk.hpp"
 
 namespace makeway::costmap {
 
@@ -14,16 +13,21 @@ const ParamTable<ObstacleLayerParams>& obstacle_layer_table() {
     static const ParamTable<O> table = [] {
         ParamTable<O> t;
         t.add("low_mark_range_m", &O::low_mark_range_m, closed(0.0, 100.0),
-              "returns below 5 cm mark only this close (a tilted pose estimate lifts the far floor) ...")
+              "returns below 5 cm mark only this close (a tilted pose estimate lifts the far "
+              "floor) ...")
             .renamed_from("low_obstacle_range_m")
-            .add("low_min_returns", &O::low_min_returns, closed(1, 65535), "... and only when this many fall in a cell ...")
+            .add("low_min_returns", &O::low_min_returns, closed(1, 65535),
+                 "... and only when this many fall in a cell ...")
             .renamed_from("low_obstacle_min_returns")
             .add("low_min_share", &O::low_min_share, closed(0.0, 1.0),
-                 "... and this share of the cell's low returns stand above the clearance (floor noise lifts a few)")
+                 "... and this share of the cell's low returns stand above the clearance (floor "
+                 "noise lifts a few)")
             .renamed_from("low_obstacle_min_share")
             .add("mark_range_m", &O::mark_range_m, above(0.0, 100.0), "returns farther do not mark")
-            .add("clear_range_m", &O::clear_range_m, above(0.0, 100.0), "rays clear free space this far")
-            .require([](const O& o) { return o.mark_range_m <= o.clear_range_m; }, "mark_range_m must be in (0, clear_range_m]");
+            .add("clear_range_m", &O::clear_range_m, above(0.0, 100.0),
+                 "rays clear free space this far")
+            .require([](const O& o) { return o.mark_range_m <= o.clear_range_m; },
+                     "mark_range_m must be in (0, clear_range_m]");
         return t;
     }();
     return table;
@@ -31,13 +35,16 @@ const ParamTable<ObstacleLayerParams>& obstacle_layer_table() {
 
 std::vector<std::string> ObstacleLayerParams::validate() const {
     std::vector<std::string> out = obstacle_layer_table().problems(*this);
-    if (!(body.ground_clearance_m >= 0.0 && body.ground_clearance_m < body.top_m)) out.push_back("the body's ground clearance must be in [0, its top)");
-    if (!(low_band_top_m >= 0.0 && low_band_top_m <= 1.0)) out.push_back("low_band_top_m must be in [0, 1]");
+    if (!(body.ground_clearance_m >= 0.0 && body.ground_clearance_m < body.top_m))
+        out.push_back("the body's ground clearance must be in [0, its top)");
+    if (!(low_band_top_m >= 0.0 && low_band_top_m <= 1.0))
+        out.push_back("low_band_top_m must be in [0, 1]");
     return out;
 }
 
 ObstacleLayer::ObstacleLayer(const Costmap& geometry, const ObstacleLayerParams& params)
-    : params_(params), grid_(geometry.origin_m, geometry.resolution_m, geometry.width, geometry.height) {}
+    : params_(params),
+      grid_(geometry.origin_m, geometry.resolution_m, geometry.width, geometry.height) {}
 
 void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridWindow& window) {
     if (!input.points_world) return;
@@ -55,7 +62,8 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
     const double low2 = params_.low_mark_range_m * params_.low_mark_range_m;
     for (const Eigen::Vector3f& p : input.points_world->xyz) {
         if (!p.allFinite() || p.z() > params_.body.top_m) continue;
-        const double d2 = (p.head<2>().cast<double>() - input.sensor_world_m.head<2>()).squaredNorm();
+        const double d2 =
+            (p.head<2>().cast<double>() - input.sensor_world_m.head<2>()).squaredNorm();
         if (d2 > clear2) continue;
         const Eigen::Vector2i c = grid_.cell_of(p.head<2>().cast<double>());
         if (!grid_.inside(c.x(), c.y())) continue;
@@ -83,7 +91,8 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
     // below the low band's top, stand above the clearance (floor noise lifts a few, not a share).
     for (int idx : cells) {
         Scratch& e = scratch_[idx];
-        if (e.endpoint != 2 && e.low >= params_.low_min_returns && e.low >= params_.low_min_share * (e.low + e.floor)) {
+        if (e.endpoint != 2 && e.low >= params_.low_min_returns &&
+            e.low >= params_.low_min_share * (e.low + e.floor)) {
             e.endpoint = 2;
             top_[idx] = e.low_top;
         }
@@ -95,22 +104,34 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
     const double sensor_z = input.sensor_world_m.z();
     const int bw = (grid_.width + kBlock - 1) / kBlock, bh = (grid_.height + kBlock - 1) / kBlock;
     block_marks_.resize(static_cast<std::size_t>(bw) * bh, 0);
-    auto block_of = [&](int x, int y) -> std::uint16_t& { return block_marks_[(y / kBlock) * bw + x / kBlock]; };
-    auto empty_block = [&](int bx, int by) { return bx < 0 || by < 0 || bx >= bw || by >= bh || block_marks_[by * bw + bx] == 0; };
+    auto block_of = [&](int x, int y) -> std::uint16_t& {
+        return block_marks_[(y / kBlock) * bw + x / kBlock];
+    };
+    auto empty_block = [&](int bx, int by) {
+        return bx < 0 || by < 0 || bx >= bw || by >= bh || block_marks_[by * bw + bx] == 0;
+    };
     // Clear along each ray (ray_walk.hpp: Bresenham, stopping before the endpoint cell, crossing
     // blocks without marks in one step); a low mark only where the ray passes no higher than its
     // top (plus a noise margin).
     for (int idx : cells) {
         const int ex = idx % grid_.width, ey = idx / grid_.width;
-        const double length = std::sqrt(static_cast<double>((ex - s.x()) * (ex - s.x()) + (ey - s.y()) * (ey - s.y())));
+        const double length = std::sqrt(
+            static_cast<double>((ex - s.x()) * (ex - s.x()) + (ey - s.y()) * (ey - s.y())));
         walk_ray(s.x(), s.y(), ex, ey, kBlock, empty_block, [&](int x, int y) {
             if (!grid_.inside(x, y)) return;
             const int i = y * grid_.width + x;
             if (grid_.cost[i] == cost::kFree || scratch_[i].endpoint == 2) return;
-            bool clears = top_[i] >= params_.low_band_top_m;  // tall marks: any ray (sparse rings rarely see their top)
+            bool clears =
+                top_[i] >=
+                params_.low_band_top_m;  // tall marks: any ray (sparse rings rarely see their top)
             if (!clears) {
-                const double f = length > 0.0 ? std::sqrt(static_cast<double>((x - s.x()) * (x - s.x()) + (y - s.y()) * (y - s.y()))) / length : 0.0;
-                clears = sensor_z + f * (scratch_[idx].end_z - sensor_z) <= top_[i] + kClearMargin_m;
+                const double f = length > 0.0
+                                     ? std::sqrt(static_cast<double>((x - s.x()) * (x - s.x()) +
+                                                                     (y - s.y()) * (y - s.y()))) /
+                                           length
+                                     : 0.0;
+                clears =
+                    sensor_z + f * (scratch_[idx].end_z - sensor_z) <= top_[i] + kClearMargin_m;
             }
             if (clears) {
                 grid_.cost[i] = cost::kFree;

@@ -16,8 +16,8 @@
 namespace makeway::costmap {
 
 struct ObstacleLayerParams {
-    BodyHeights body;                ///< what the robot can hit: returns outside are floor or overhead
-    double low_band_top_m = 0.05;    ///< returns below this are "low" (see above)
+    BodyHeights body;  ///< what the robot can hit: returns outside are floor or overhead
+    double low_band_top_m = 0.05;  ///< returns below this are "low" (see above)
     double low_mark_range_m = 2.5;
     int low_min_returns = 2;
     double low_min_share = 0.5;
@@ -27,14 +27,14 @@ struct ObstacleLayerParams {
 };
 
 class ObstacleLayer : public Layer {
-public:
+  public:
     ObstacleLayer(const Costmap& geometry, const ObstacleLayerParams& params);
     std::string name() const override { return "obstacle"; }
     void update_bounds(const Costmap& master, const LayerInput& input, GridWindow& window) override;
     void update_costs(Costmap& master, const GridWindow& window) override;
     const Costmap& grid() const { return grid_; }
 
-private:
+  private:
     struct Scratch {                // per cell, during one update (zero between updates)
         float end_z = 0.0f;         ///< its lowest return [m]
         float low_top = 0.0f;       ///< the highest low return [m]
@@ -42,14 +42,16 @@ private:
         std::uint16_t floor = 0;    ///< returns below the clearance, or too far
         std::uint8_t endpoint = 0;  ///< 0 none, 1 clear-only, 2 mark
     };
-    static constexpr double kClearMargin_m = 0.05;  ///< a ray this far above a mark's top still clears it (range noise)
-    static constexpr int kBlock = 16;  ///< rays cross blocks of kBlock x kBlock cells holding no mark in one step
+    static constexpr double kClearMargin_m =
+        0.05;  ///< a ray this far above a mark's top still clears it (range noise)
+    static constexpr int kBlock =
+        16;  ///< rays cross blocks of kBlock x kBlock cells holding no mark in one step
 
     ObstacleLayerParams params_;
     Costmap grid_;
-    std::vector<Scratch> scratch_;            ///< one per cell, one cache line per return
-    std::vector<float> top_;                  ///< per marked cell: the highest return behind its mark [m]
-    std::vector<int> cells_;                  ///< the cells with an endpoint in this update
+    std::vector<Scratch> scratch_;  ///< one per cell, one cache line per return
+    std::vector<float> top_;        ///< per marked cell: the highest return behind its mark [m]
+    std::vector<int> cells_;        ///< the cells with an endpoint in this update
     std::vector<std::uint16_t> block_marks_;  ///< per block: its cells that are not free in grid_
 };
 

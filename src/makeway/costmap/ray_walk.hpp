@@ -1,10 +1,11 @@
 #pragma once
 // The cells a ray crosses on a grid, as the obstacle layer clears them: the 8-connected Bresenham
-// line from its start cell to its end cell, the end excluded. In closed form the cell at step t along the major axis
-// has the minor coordinate round-half-up(t * minor / major) (the midpoint rule; Zingl's error-term
-// loop visits the very same cells), so the walk can jump: where the caller says a block of cells
-// holds nothing to visit, it goes straight to the first cell of the line outside that block. Most
-// of a sweep's rays cross free space near the sensor, which is then crossed a block at a time.
+// line from its start cell to its end cell, the end excluded. In closed form the cell at step t
+// along the major axis has the minor coordinate round-half-up(t * minor / major) (the midpoint
+// rule; Zingl's error-term loop visits the very same cells), so the walk can jump: where the caller
+// says a block of cells holds nothing to visit, it goes straight to the first cell of the line
+// outside that block. Most of a sweep's rays cross free space near the sensor, which is then
+// crossed a block at a time.
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>

@@ -4,11 +4,12 @@
 
 namespace makeway::costmap {
 
-void fill_rectangle(Costmap& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& size, double yaw,
-                    std::uint8_t value) {
+void fill_rectangle(Costmap& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& size,
+                    double yaw, std::uint8_t value) {
     const double c = std::cos(yaw), s = std::sin(yaw);
     const Eigen::Vector2d h = 0.5 * size;
-    const Eigen::Vector2d r(std::abs(c) * h.x() + std::abs(s) * h.y(), std::abs(s) * h.x() + std::abs(c) * h.y());
+    const Eigen::Vector2d r(std::abs(c) * h.x() + std::abs(s) * h.y(),
+                            std::abs(s) * h.x() + std::abs(c) * h.y());
     const GridWindow w = grid.window_of(centre - r, centre + r);
     for (int y = w.y0; y < w.y1; ++y) {
         for (int x = w.x0; x < w.x1; ++x) {

@@ -7,7 +7,7 @@
 namespace makeway::costmap {
 
 class StaticLayer : public Layer {
-public:
+  public:
     /// `map` has the master's geometry; lethal/unknown cells are copied, the rest ignored.
     explicit StaticLayer(Costmap map) : map_(std::move(map)) {}
     std::string name() const override { return "static"; }
@@ -15,13 +15,13 @@ public:
     void update_costs(Costmap& master, const GridWindow& window) override;
     const Costmap& grid() const { return map_; }
 
-private:
+  private:
     Costmap map_;
     bool written_ = false;
 };
 
 /// Rasterises filled rectangles (centre, size, yaw) as lethal into a grid of the given geometry.
-void fill_rectangle(Costmap& grid, const Eigen::Vector2d& centre_m, const Eigen::Vector2d& size_m, double yaw_rad,
-                    std::uint8_t value);
+void fill_rectangle(Costmap& grid, const Eigen::Vector2d& centre_m, const Eigen::Vector2d& size_m,
+                    double yaw_rad, std::uint8_t value);
 
 }  // namespace makeway::costmap

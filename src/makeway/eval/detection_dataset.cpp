@@ -32,10 +32,12 @@ void restyle_scene(sim::Scene& scene, const DatasetParams& p) {
         if (p.all_styles && only.empty()) {
             std::vector<sim::FurnitureStyle> allowed;
             for (sim::FurnitureStyle s : sim::styles_of(o.cls)) {
-                if (std::find(excluded.begin(), excluded.end(), s) == excluded.end()) allowed.push_back(s);
+                if (std::find(excluded.begin(), excluded.end(), s) == excluded.end())
+                    allowed.push_back(s);
             }
             if (!allowed.empty()) {
-                o.style = std::string(sim::to_string(allowed[static_cast<std::size_t>(uniform_int(rng, 0, static_cast<std::int64_t>(allowed.size()) - 1))]));
+                o.style = std::string(sim::to_string(allowed[static_cast<std::size_t>(
+                    uniform_int(rng, 0, static_cast<std::int64_t>(allowed.size()) - 1))]));
                 continue;
             }
         }
@@ -47,7 +49,8 @@ void restyle_scene(sim::Scene& scene, const DatasetParams& p) {
         }
         if (only_of_class.size() == 1) to = only_of_class.front();
         if (only_of_class.size() > 1) {  // several styles of the class: one at random each
-            to = only_of_class[static_cast<std::size_t>(uniform_int(rng, 0, static_cast<std::int64_t>(only_of_class.size()) - 1))];
+            to = only_of_class[static_cast<std::size_t>(
+                uniform_int(rng, 0, static_cast<std::int64_t>(only_of_class.size()) - 1))];
         }
         if (!to && std::find(excluded.begin(), excluded.end(), current) != excluded.end()) {
             for (sim::FurnitureStyle s : sim::scene_styles_of(o.cls)) {
@@ -73,7 +76,8 @@ void furnish(sim::Scene& scene, const DatasetParams& p) {
             if (f.cls == o.cls) of_class.push_back(&f);
         }
         if (of_class.empty() || !bernoulli(rng, p.furniture_share)) continue;
-        const UserFurniture& f = *of_class[static_cast<std::size_t>(uniform_int(rng, 0, static_cast<std::int64_t>(of_class.size()) - 1))];
+        const UserFurniture& f = *of_class[static_cast<std::size_t>(
+            uniform_int(rng, 0, static_cast<std::int64_t>(of_class.size()) - 1))];
         o.style.clear();
         o.mesh_file = f.name;
         o.user_mesh = f.mesh_object;
@@ -82,8 +86,9 @@ void furnish(sim::Scene& scene, const DatasetParams& p) {
 
 }  // namespace
 
-std::vector<LabelledKeyframe> generate_detection_dataset(const DatasetParams& p, const std::function<void(int, int)>& progress,
-                                                         std::vector<sim::Scene>* scenes) {
+std::vector<LabelledKeyframe> generate_detection_dataset(
+    const DatasetParams& p, const std::function<void(int, int)>& progress,
+    std::vector<sim::Scene>* scenes) {
     std::vector<LabelledKeyframe> out;
     for (int k = 0; k < p.scenes; ++k) {
         sim::SceneGenParams g;
@@ -107,29 +112,39 @@ std::vector<LabelledKeyframe> generate_detection_dataset(const DatasetParams& p,
         system.T_base_sensor = sp.robot.T_robot_sensor();
         pipeline::FrontEnd front_end(system, simulator.start_pose());
         int made = 0;
-        for (int f = 0; made < p.max_keyframes_per_scene && !simulator.reached_goal() && f < 2000; ++f) {
+        for (int f = 0; made < p.max_keyframes_per_scene && !simulator.reached_goal() && f < 2000;
+             ++f) {
             const sim::SimFrame frame = simulator.next();
-            const pipeline::FrontEndResult front = front_end.add({frame.points_sensor, frame.stamp_s, sp.lidar.sweep_duration_s(),
-                                                                 frame.odometry_pose, frame.odometry_end_pose});
+            const pipeline::FrontEndResult front =
+                front_end.add({frame.points_sensor, frame.stamp_s, sp.lidar.sweep_duration_s(),
+                               frame.odometry_pose, frame.odometry_end_pose});
             if (!front.keyframe) continue;
             LabelledKeyframe kf;
             kf.cloud_sensor = front.keyframe->prepared.cloud_sensor;
             std::map<std::uint32_t, std::size_t> points_of;
             for (std::uint32_t id : kf.cloud_sensor.instance) ++points_of[id];
-            // Labels in the keyframe's true frame (the newest sweep's start); the pose the map gets is the estimate.
+            // Labels in the keyframe's true frame (the newest sweep's start); the pose the map gets
+            // is the estimate.
             const Isometry3 T_keyframe_world = frame.T_world_sensor.inverse();
             kf.sequence = static_cast<std::uint32_t>(k);
             kf.stamp_s = frame.stamp_s;
             kf.T_world_sensor = front.keyframe->T_world_keyframe;
             if (front.keyframe->prepared.ground.found) {
                 const perception::GroundPlaneResult& plane = front.keyframe->prepared.ground;
-                kf.ground_plane_sensor = Eigen::Vector4d(plane.normal.x(), plane.normal.y(), plane.normal.z(), plane.offset);
+                kf.ground_plane_sensor = Eigen::Vector4d(plane.normal.x(), plane.normal.y(),
+                                                         plane.normal.z(), plane.offset);
             }
             for (const sim::ObjectState& o : frame.objects) {
                 const OrientedBox box = o.box_world.transformed(T_keyframe_world);
-                if (std::abs(box.centre_m.x()) > p.range_m || std::abs(box.centre_m.y()) > p.range_m) continue;
-                const auto it = std::find_if(scene.objects.begin(), scene.objects.end(), [&](const sim::SceneObject& s) { return s.id == o.id; });
-                const std::string style = it == scene.objects.end() ? "" : !it->mesh_file.empty() ? "user:" + it->mesh_file : it->style;
+                if (std::abs(box.centre_m.x()) > p.range_m ||
+                    std::abs(box.centre_m.y()) > p.range_m)
+                    continue;
+                const auto it =
+                    std::find_if(scene.objects.begin(), scene.objects.end(),
+                                 [&](const sim::SceneObject& s) { return s.id == o.id; });
+                const std::string style = it == scene.objects.end() ? ""
+                                          : !it->mesh_file.empty()  ? "user:" + it->mesh_file
+                                                                    : it->style;
                 const LabelledObject label{o.id, o.cls, style, box, points_of[o.id]};
                 (label.points >= p.min_points ? kf.objects : kf.unseen).push_back(label);
             }

@@ -25,10 +25,10 @@ struct UserFurniture {
 struct DatasetParams {
     int scenes = 10;
     std::uint64_t seed = 0;
-    int keyframe_every = 10;            ///< sweeps between keyframes along the drive
+    int keyframe_every = 10;  ///< sweeps between keyframes along the drive
     int max_keyframes_per_scene = 30;
-    std::size_t min_points = 10;        ///< objects seen by fewer keyframe points go to `unseen`
-    double range_m = 8.0;               ///< objects whose centre is farther (|x| or |y|) are not labelled
+    std::size_t min_points = 10;  ///< objects seen by fewer keyframe points go to `unseen`
+    double range_m = 8.0;         ///< objects whose centre is farther (|x| or |y|) are not labelled
     /// Styles replaced by another style of their class (training without them), or, with
     /// `only_styles`, the styles every object is given (evaluation on held-out styles).
     std::vector<std::string> exclude_styles;
@@ -47,16 +47,16 @@ struct DatasetParams {
 };
 
 /// The styles of `params` on a scene: excluded styles become the first allowed scene style of their
-/// class; with `only_styles`, every object takes one of those of its class (at random among several,
-/// seeded by the scene); with `all_styles`, a random style of its class that is not excluded.
-/// Throws std::invalid_argument on unknown style names.
+/// class; with `only_styles`, every object takes one of those of its class (at random among
+/// several, seeded by the scene); with `all_styles`, a random style of its class that is not
+/// excluded. Throws std::invalid_argument on unknown style names.
 void restyle_scene(sim::Scene& scene, const DatasetParams& params);
 
 /// Keyframes in time order, `sequence` = the scene's index. With `scenes`, the (restyled) scenes
 /// are appended to it, one per index, for CAD libraries of the furniture actually there.
 /// Throws std::invalid_argument on unknown style names.
-std::vector<LabelledKeyframe> generate_detection_dataset(const DatasetParams& params,
-                                                         const std::function<void(int, int)>& progress = {},
-                                                         std::vector<sim::Scene>* scenes = nullptr);
+std::vector<LabelledKeyframe> generate_detection_dataset(
+    const DatasetParams& params, const std::function<void(int, int)>& progress = {},
+    std::vector<sim::Scene>* scenes = nullptr);
 
 }  // namespace makeway::eval

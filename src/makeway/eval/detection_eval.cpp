@@ -14,21 +14,26 @@ namespace makeway::eval {
 namespace {
 
 // Median and p99 of the detector's latency on the first keyframes, with `threads` threads.
-std::pair<double, double> latency_ms(const perception::Detector& detector, const std::vector<LabelledKeyframe>& kfs, int count, int threads) {
+std::pair<double, double> latency_ms(const perception::Detector& detector,
+                                     const std::vector<LabelledKeyframe>& kfs, int count,
+                                     int threads) {
     perception::set_inference_threads(threads);
     std::vector<double> ms;
     for (int i = 0; i < std::min<int>(count, static_cast<int>(kfs.size())); ++i) {
         const auto t0 = std::chrono::steady_clock::now();
         (void)detector.detect(kfs[static_cast<std::size_t>(i)].cloud_sensor);
-        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        ms.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count());
     }
     return {percentile(ms, 0.5), percentile(ms, 0.99)};
 }
 
 }  // namespace
 
-DetectionEvalResult run_detection_eval(const perception::Detector& detector, const DetectionEvalParams& p,
-                                       const std::function<void(const std::string&, int, int)>& progress) {
+DetectionEvalResult run_detection_eval(
+    const perception::Detector& detector, const DetectionEvalParams& p,
+    const std::function<void(const std::string&, int, int)>& progress) {
     DetectionEvalResult r;
     std::optional<verification::CadLibrary> default_library;  // built only when asked for
     if (p.cad == CadSource::kDefault) default_library = default_cad_library();
@@ -39,13 +44,18 @@ DetectionEvalResult run_detection_eval(const perception::Detector& detector, con
         dp.keyframe_every = p.keyframe_every;
         dp.max_keyframes_per_scene = p.max_keyframes_per_scene;
         dp.system = p.system;
-        if (arm == 0) dp.exclude_styles = p.left_out_styles;
-        else dp.only_styles = p.left_out_styles;
+        if (arm == 0)
+            dp.exclude_styles = p.left_out_styles;
+        else
+            dp.only_styles = p.left_out_styles;
         const std::string what = arm == 0 ? "held-out scenes" : "left-out styles";
         std::vector<sim::Scene> scenes;
-        const std::vector<LabelledKeyframe> kfs = generate_detection_dataset(dp, [&](int d, int t) {
-            if (progress) progress(what, d, t);
-        }, &scenes);
+        const std::vector<LabelledKeyframe> kfs = generate_detection_dataset(
+            dp,
+            [&](int d, int t) {
+                if (progress) progress(what, d, t);
+            },
+            &scenes);
         // Network, then verification against the CAD library of the keyframe's scene; the
         // verified stage ranks by the network's score, the map fuses p_exist.
         std::map<std::uint32_t, verification::CadLibrary> scene_libraries;
@@ -53,10 +63,15 @@ DetectionEvalResult run_detection_eval(const perception::Detector& detector, con
         for (const LabelledKeyframe& kf : kfs) {
             net.push_back(detector.detect(kf.cloud_sensor));
             static const verification::CadLibrary kNoModels;
-            const verification::CadLibrary* lib = default_library ? &*default_library : p.cad == CadSource::kNone ? &kNoModels : nullptr;
+            const verification::CadLibrary* lib = default_library             ? &*default_library
+                                                  : p.cad == CadSource::kNone ? &kNoModels
+                                                                              : nullptr;
             if (!lib) {
                 auto it = scene_libraries.find(kf.sequence);
-                if (it == scene_libraries.end()) it = scene_libraries.emplace(kf.sequence, scene_cad_library(scenes.at(kf.sequence))).first;
+                if (it == scene_libraries.end())
+                    it = scene_libraries
+                             .emplace(kf.sequence, scene_cad_library(scenes.at(kf.sequence)))
+                             .first;
                 lib = &it->second;
             }
             // The floor under a detection from the front end's fitted plane, as the pipeline does.
@@ -70,20 +85,28 @@ DetectionEvalResult run_detection_eval(const perception::Detector& detector, con
                 if (!ground.found) return std::nullopt;
                 return ground.floor_z_at(x, y);
             };
-            const auto verified = verification::verify_detections(kf.cloud_sensor, net.back(), *lib, p.system.verify, floor_z, p.shape_prior);
-            ver.push_back(verification::accepted_detections(verified, verification::ScoreFrom::kDetector));
-            evidence.push_back(verification::accepted_detections(verified, verification::ScoreFrom::kExistence));
+            const auto verified = verification::verify_detections(
+                kf.cloud_sensor, net.back(), *lib, p.system.verify, floor_z, p.shape_prior);
+            ver.push_back(
+                verification::accepted_detections(verified, verification::ScoreFrom::kDetector));
+            evidence.push_back(
+                verification::accepted_detections(verified, verification::ScoreFrom::kExistence));
         }
         StageMetrics& s = arm == 0 ? r.held_out : r.left_out;
         std::vector<std::vector<LabelledBox>> gt;
         for (const LabelledKeyframe& kf : kfs) gt.push_back(ground_truth_of(kf));
         s.network = evaluate_detections(net, gt);
         s.verified = evaluate_detections(ver, gt);
-        s.tracked = evaluate_detections(track_keyframes(kfs, evidence, pipeline::tracker_params_for(&detector, p.system.tracker), dp.range_m), map_ground_truth_of(kfs));
+        s.tracked = evaluate_detections(
+            track_keyframes(kfs, evidence,
+                            pipeline::tracker_params_for(&detector, p.system.tracker), dp.range_m),
+            map_ground_truth_of(kfs));
         s.keyframes = kfs.size();
         if (arm == 0) {
-            std::tie(r.latency_ms_median_1t, r.latency_ms_p99_1t) = latency_ms(detector, kfs, p.latency_keyframes, 1);
-            std::tie(r.latency_ms_median_2t, r.latency_ms_p99_2t) = latency_ms(detector, kfs, p.latency_keyframes, 2);
+            std::tie(r.latency_ms_median_1t, r.latency_ms_p99_1t) =
+                latency_ms(detector, kfs, p.latency_keyframes, 1);
+            std::tie(r.latency_ms_median_2t, r.latency_ms_p99_2t) =
+                latency_ms(detector, kfs, p.latency_keyframes, 2);
         }
     }
     return r;

@@ -25,7 +25,7 @@ enum class CadSource {
 
 struct DetectionEvalParams {
     int scenes = 6;
-    std::uint64_t seed = 1000000;            ///< held out: training seeds stay below this
+    std::uint64_t seed = 1000000;  ///< held out: training seeds stay below this
     std::vector<std::string> left_out_styles{"armchair", "round_table"};
     /// Keyframes every 5 sweeps (2 Hz), the full system's cadence, which the tracking stage needs.
     int keyframe_every = 5;
@@ -33,8 +33,8 @@ struct DetectionEvalParams {
     CadSource cad = CadSource::kScene;
     /// Learned shapes for detections no CAD model fits (null: none). Must outlive the run.
     const verification::ShapePrior* shape_prior = nullptr;
-    pipeline::SystemParams system;           ///< the online system's front end, verification and tracker
-    int latency_keyframes = 20;              ///< timed on 1 and 2 threads
+    pipeline::SystemParams system;  ///< the online system's front end, verification and tracker
+    int latency_keyframes = 20;     ///< timed on 1 and 2 threads
 };
 
 /// The ablation on one set of scenes.
@@ -46,10 +46,12 @@ struct StageMetrics {
 struct DetectionEvalResult {
     StageMetrics held_out;  ///< held-out seeds, styles seen in training
     StageMetrics left_out;  ///< scenes of left-out styles only
-    double latency_ms_median_1t = 0, latency_ms_p99_1t = 0, latency_ms_median_2t = 0, latency_ms_p99_2t = 0;
+    double latency_ms_median_1t = 0, latency_ms_p99_1t = 0, latency_ms_median_2t = 0,
+           latency_ms_p99_2t = 0;
 };
 
-DetectionEvalResult run_detection_eval(const perception::Detector& detector, const DetectionEvalParams& params,
-                                       const std::function<void(const std::string&, int, int)>& progress = {});
+DetectionEvalResult run_detection_eval(
+    const perception::Detector& detector, const DetectionEvalParams& params,
+    const std::function<void(const std::string&, int, int)>& progress = {});
 
 }  // namespace makeway::eval

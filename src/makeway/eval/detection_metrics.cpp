@@ -18,7 +18,8 @@ double average_precision(const std::vector<bool>& hit, std::size_t positives) {
         recall.push_back(static_cast<double>(tp) / static_cast<double>(positives));
     }
     // Precision envelope (monotone from the right), integrated over the recall steps.
-    for (std::size_t i = precision.size() - 1; i > 0; --i) precision[i - 1] = std::max(precision[i - 1], precision[i]);
+    for (std::size_t i = precision.size() - 1; i > 0; --i)
+        precision[i - 1] = std::max(precision[i - 1], precision[i]);
     double ap = 0.0, last_recall = 0.0;
     for (std::size_t i = 0; i < hit.size(); ++i) {
         ap += (recall[i] - last_recall) * precision[i];
@@ -43,19 +44,24 @@ DetectionMetrics evaluate_detections(const std::vector<std::vector<Detection>>& 
                 if (detections[k][i].cls == cls) ranked.push_back({detections[k][i].score, k, i});
             }
         }
-        std::stable_sort(ranked.begin(), ranked.end(), [](const Ranked& a, const Ranked& b) { return a.score > b.score; });
-        for (const auto& f : ground_truth) m.ground_truth += static_cast<std::size_t>(std::count_if(f.begin(), f.end(), [&](const LabelledBox& g) { return g.cls == cls; }));
+        std::stable_sort(ranked.begin(), ranked.end(),
+                         [](const Ranked& a, const Ranked& b) { return a.score > b.score; });
+        for (const auto& f : ground_truth)
+            m.ground_truth += static_cast<std::size_t>(std::count_if(
+                f.begin(), f.end(), [&](const LabelledBox& g) { return g.cls == cls; }));
         m.detections = ranked.size();
         std::size_t yaw_n = 0, yaw10 = 0, yaw30 = 0;
         for (const double thr : {0.25, 0.5}) {
             std::vector<std::vector<bool>> taken(ground_truth.size());
-            for (std::size_t k = 0; k < ground_truth.size(); ++k) taken[k].assign(ground_truth[k].size(), false);
+            for (std::size_t k = 0; k < ground_truth.size(); ++k)
+                taken[k].assign(ground_truth[k].size(), false);
             std::vector<bool> hit;
             for (const Ranked& r : ranked) {
                 const Detection& d = detections[r.frame][r.index];
                 double best = thr;
                 int match = -1;
-                const auto& gts = r.frame < ground_truth.size() ? ground_truth[r.frame] : std::vector<LabelledBox>{};
+                const auto& gts = r.frame < ground_truth.size() ? ground_truth[r.frame]
+                                                                : std::vector<LabelledBox>{};
                 for (std::size_t g = 0; g < gts.size(); ++g) {
                     if (gts[g].cls != cls || taken[r.frame][g]) continue;
                     const double iou = iou_3d(d.box_sensor, gts[g].box);
@@ -74,7 +80,10 @@ DetectionMetrics evaluate_detections(const std::vector<std::vector<Detection>>& 
                 }
             }
             const double ap = average_precision(hit, m.ground_truth);
-            const double ar = m.ground_truth ? static_cast<double>(std::count(hit.begin(), hit.end(), true)) / static_cast<double>(m.ground_truth) : 0.0;
+            const double ar = m.ground_truth
+                                  ? static_cast<double>(std::count(hit.begin(), hit.end(), true)) /
+                                        static_cast<double>(m.ground_truth)
+                                  : 0.0;
             (thr == 0.25 ? m.ap_25 : m.ap_50) = ap;
             (thr == 0.25 ? m.ar_25 : m.ar_50) = ar;
         }
@@ -82,12 +91,14 @@ DetectionMetrics evaluate_detections(const std::vector<std::vector<Detection>>& 
         m.yaw_within_30deg = yaw_n ? static_cast<double>(yaw30) / static_cast<double>(yaw_n) : 0.0;
         if (m.ground_truth) {
             ++classes_with_gt;
-            out.map_25 += m.ap_25, out.map_50 += m.ap_50, out.mar_25 += m.ar_25, out.mar_50 += m.ar_50;
+            out.map_25 += m.ap_25, out.map_50 += m.ap_50, out.mar_25 += m.ar_25,
+                out.mar_50 += m.ar_50;
         }
         out.per_class[cls] = m;
     }
     if (classes_with_gt) {
-        out.map_25 /= classes_with_gt, out.map_50 /= classes_with_gt, out.mar_25 /= classes_with_gt, out.mar_50 /= classes_with_gt;
+        out.map_25 /= classes_with_gt, out.map_50 /= classes_with_gt, out.mar_25 /= classes_with_gt,
+            out.mar_50 /= classes_with_gt;
     }
     return out;
 }

@@ -13,19 +13,21 @@ namespace makeway::eval {
 struct LabelledBox {
     ObjectClass cls = ObjectClass::kChair;
     OrientedBox box;
-    bool yaw_scored = true;  ///< false for rotationally symmetric objects (round tables, stools)
+    bool yaw_scored = true;     ///< false for rotationally symmetric objects (round tables, stools)
     bool pi_symmetric = false;  ///< rectangular tables: yaw scored modulo pi
 };
 
 struct ClassDetectionMetrics {
     double ap_25 = 0.0, ap_50 = 0.0, ar_25 = 0.0, ar_50 = 0.0;
-    double yaw_within_10deg = 0.0, yaw_within_30deg = 0.0;  ///< of yaw-scored true positives at IoU 0.25
+    double yaw_within_10deg = 0.0,
+           yaw_within_30deg = 0.0;  ///< of yaw-scored true positives at IoU 0.25
     std::size_t ground_truth = 0, detections = 0;
 };
 
 struct DetectionMetrics {
     std::map<ObjectClass, ClassDetectionMetrics> per_class;
-    double map_25 = 0.0, map_50 = 0.0, mar_25 = 0.0, mar_50 = 0.0;  ///< means over classes with ground truth
+    double map_25 = 0.0, map_50 = 0.0, mar_25 = 0.0,
+           mar_50 = 0.0;  ///< means over classes with ground truth
 };
 
 /// frames[k]: the detections and ground truth of keyframe k, in one frame (any).

@@ -2,12 +2,11 @@
 
 #include <chrono>
 #include <deque>
-#include <set>
 #include <map>
+#include <set>
 
 #include "makeway/common/box_overlap.hpp"
 #include "makeway/eval/keyframe_stages.hpp"
-
 #include "makeway/eval/scene_cad.hpp"
 #include "makeway/sim/route.hpp"
 #include "makeway/sim/scene_dynamics.hpp"
@@ -21,29 +20,36 @@ using Clock = std::chrono::steady_clock;
 
 PointClass truth_class(std::uint8_t label) {
     switch (static_cast<SemanticLabel>(label)) {
-        case SemanticLabel::kGround: return PointClass::kGround;
+        case SemanticLabel::kGround:
+            return PointClass::kGround;
         case SemanticLabel::kChair:
-        case SemanticLabel::kTable: return PointClass::kMovable;
-        case SemanticLabel::kPerson: return PointClass::kDynamic;
-        default: return PointClass::kPermanent;
+        case SemanticLabel::kTable:
+            return PointClass::kMovable;
+        case SemanticLabel::kPerson:
+            return PointClass::kDynamic;
+        default:
+            return PointClass::kPermanent;
     }
 }
 
 // What the bench keeps of a keyframe's newest sweep to score the labels.
 struct Sample {
     int session = 0;
-    std::vector<Eigen::Vector3f> points_world;  ///< the session's own world (as the front end gave them)
+    std::vector<Eigen::Vector3f>
+        points_world;  ///< the session's own world (as the front end gave them)
     std::vector<std::uint8_t> label;
     std::vector<std::uint32_t> instance;
-    LabelledKeyframe truth;                     ///< truth boxes in the true sensor frame
-    std::vector<OrientedBox> moving_boxes;      ///< chairs a person pulls during the session, same frame
+    LabelledKeyframe truth;  ///< truth boxes in the true sensor frame
+    std::vector<OrientedBox>
+        moving_boxes;  ///< chairs a person pulls during the session, same frame
     std::set<std::uint32_t> moving_ids;
 };
 
 }  // namespace
 
-void drive_sessions(labelling::Labeller& labeller, const sim::Scene& base, int sessions, int max_sweeps, std::uint64_t seed,
-                    const sim::OdometryNoiseParams& odometry, const SessionFrameHook& on_frame) {
+void drive_sessions(labelling::Labeller& labeller, const sim::Scene& base, int sessions,
+                    int max_sweeps, std::uint64_t seed, const sim::OdometryNoiseParams& odometry,
+                    const SessionFrameHook& on_frame) {
     for (int s = 0; s < sessions; ++s) {
         const sim::Scene scene = sim::make_session(base, s);
         const sim::RobotParams robot;
@@ -56,7 +62,9 @@ void drive_sessions(labelling::Labeller& labeller, const sim::Scene& base, int s
         sim::SequenceSimulator simulator(scene, *route, sp);
         labeller.begin_session(simulator.start_pose());
         const auto feed = [&](sim::SimFrame& frame) {
-            return labeller.add_sweep({frame.points_sensor, frame.stamp_s, sp.lidar.sweep_duration_s(), frame.odometry_pose, frame.odometry_end_pose});
+            return labeller.add_sweep({frame.points_sensor, frame.stamp_s,
+                                       sp.lidar.sweep_duration_s(), frame.odometry_pose,
+                                       frame.odometry_end_pose});
         };
         for (int f = 0; f < max_sweeps && !simulator.reached_goal(); ++f) {
             sim::SimFrame frame = simulator.next();
@@ -70,7 +78,8 @@ void drive_sessions(labelling::Labeller& labeller, const sim::Scene& base, int s
 }
 
 std::array<double, labelling::kNumPointClasses> class_iou(
-    const std::array<std::array<std::size_t, labelling::kNumPointClasses>, labelling::kNumPointClasses>& confusion) {
+    const std::array<std::array<std::size_t, labelling::kNumPointClasses>,
+                     labelling::kNumPointClasses>& confusion) {
     std::array<double, labelling::kNumPointClasses> iou{};
     for (int c = 0; c < labelling::kNumPointClasses; ++c) {
         std::size_t tp = confusion[c][c], fp = 0, fn = 0;
@@ -85,7 +94,8 @@ std::array<double, labelling::kNumPointClasses> class_iou(
     return iou;
 }
 
-void add_panoptic(const std::vector<std::uint32_t>& truth, const std::vector<std::uint32_t>& predicted, std::size_t min_points,
+void add_panoptic(const std::vector<std::uint32_t>& truth,
+                  const std::vector<std::uint32_t>& predicted, std::size_t min_points,
                   PanopticQuality& pq) {
     std::map<std::uint32_t, std::size_t> n_truth, n_pred;
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> both;
@@ -113,7 +123,8 @@ void add_panoptic(const std::vector<std::uint32_t>& truth, const std::vector<std
     }
 }
 
-LabelBenchResult run_label_bench(const LabelBenchParams& params, const std::function<void(int, int)>& progress) {
+LabelBenchResult run_label_bench(const LabelBenchParams& params,
+                                 const std::function<void(int, int)>& progress) {
     LabelBenchResult result;
     std::vector<std::vector<Detection>> all_labels, all_still_labels;
     std::vector<std::vector<LabelledBox>> all_truth, all_still_truth;
@@ -132,47 +143,64 @@ LabelBenchResult run_label_bench(const LabelBenchParams& params, const std::func
         double label_seconds = 0.0;
         // Truth visibility as the labeller's keyframes see it: points over the keyframe's window.
         std::deque<std::map<std::uint32_t, std::size_t>> window;
-        drive_sessions(labeller, base, params.sessions, params.max_sweeps, params.seed * 7919 + static_cast<std::uint64_t>(k) * 31, params.odometry,
-                       [&](int s, const sim::Scene& scene, sim::SimFrame& frame, const std::function<pipeline::FrontEndResult(sim::SimFrame&)>& feed) {
-            const auto t0 = Clock::now();
-            Sample sample;
-            sample.label = frame.points_sensor.label;
-            sample.instance = frame.points_sensor.instance;
-            std::map<std::uint32_t, std::size_t> sweep_points;
-            for (std::size_t i = 0; i < sample.instance.size(); ++i) {
-                if (sample.instance[i] && sample.label[i] != static_cast<std::uint8_t>(SemanticLabel::kGround)) ++sweep_points[sample.instance[i]];
-            }
-            if (frame.index == 0) window.clear();
-            window.push_back(std::move(sweep_points));
-            if (window.size() > static_cast<std::size_t>(lp.system.keyframe.window)) window.pop_front();
-            pipeline::FrontEndResult r = feed(frame);
-            label_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-            ++row.sweeps;
-            if (!r.keyframe) return;
-            ++row.keyframes;
-            if (r.points_world.size() != sample.label.size()) throw std::logic_error("bench label: the front end reordered a sweep");
-            sample.session = s;
-            sample.points_world = std::move(r.points_world.xyz);
-            std::map<std::uint32_t, std::size_t> points_of;
-            for (const auto& counts : window) {
-                for (const auto& [id, n] : counts) points_of[id] += n;
-            }
-            const Isometry3 T_sensor_world = frame.T_world_sensor.inverse();
-            for (const sim::ChairPusher& pusher : scene.pushers) sample.moving_ids.insert(pusher.chair_id);
-            for (const sim::ObjectState& o : frame.objects) {
-                const OrientedBox box = o.box_world.transformed(T_sensor_world);
-                if (sample.moving_ids.count(o.id)) sample.moving_boxes.push_back(box);
-                if (std::abs(box.centre_m.x()) > lp.range_m || std::abs(box.centre_m.y()) > lp.range_m) continue;
-                const auto it = std::find_if(scene.objects.begin(), scene.objects.end(), [&](const sim::SceneObject& so) { return so.id == o.id; });
-                const LabelledObject label{o.id, o.cls, it == scene.objects.end() ? "" : it->style, box, points_of[o.id]};
-                (label.points >= lp.min_points ? sample.truth.objects : sample.truth.unseen).push_back(label);
-            }
-            samples.push_back(std::move(sample));
-        });
-        const verification::CadLibrary library = params.cad ? scene_cad_library(base) : verification::CadLibrary{};
+        drive_sessions(
+            labeller, base, params.sessions, params.max_sweeps,
+            params.seed * 7919 + static_cast<std::uint64_t>(k) * 31, params.odometry,
+            [&](int s, const sim::Scene& scene, sim::SimFrame& frame,
+                const std::function<pipeline::FrontEndResult(sim::SimFrame&)>& feed) {
+                const auto t0 = Clock::now();
+                Sample sample;
+                sample.label = frame.points_sensor.label;
+                sample.instance = frame.points_sensor.instance;
+                std::map<std::uint32_t, std::size_t> sweep_points;
+                for (std::size_t i = 0; i < sample.instance.size(); ++i) {
+                    if (sample.instance[i] &&
+                        sample.label[i] != static_cast<std::uint8_t>(SemanticLabel::kGround))
+                        ++sweep_points[sample.instance[i]];
+                }
+                if (frame.index == 0) window.clear();
+                window.push_back(std::move(sweep_points));
+                if (window.size() > static_cast<std::size_t>(lp.system.keyframe.window))
+                    window.pop_front();
+                pipeline::FrontEndResult r = feed(frame);
+                label_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+                ++row.sweeps;
+                if (!r.keyframe) return;
+                ++row.keyframes;
+                if (r.points_world.size() != sample.label.size())
+                    throw std::logic_error("bench label: the front end reordered a sweep");
+                sample.session = s;
+                sample.points_world = std::move(r.points_world.xyz);
+                std::map<std::uint32_t, std::size_t> points_of;
+                for (const auto& counts : window) {
+                    for (const auto& [id, n] : counts) points_of[id] += n;
+                }
+                const Isometry3 T_sensor_world = frame.T_world_sensor.inverse();
+                for (const sim::ChairPusher& pusher : scene.pushers)
+                    sample.moving_ids.insert(pusher.chair_id);
+                for (const sim::ObjectState& o : frame.objects) {
+                    const OrientedBox box = o.box_world.transformed(T_sensor_world);
+                    if (sample.moving_ids.count(o.id)) sample.moving_boxes.push_back(box);
+                    if (std::abs(box.centre_m.x()) > lp.range_m ||
+                        std::abs(box.centre_m.y()) > lp.range_m)
+                        continue;
+                    const auto it =
+                        std::find_if(scene.objects.begin(), scene.objects.end(),
+                                     [&](const sim::SceneObject& so) { return so.id == o.id; });
+                    const LabelledObject label{o.id, o.cls,
+                                               it == scene.objects.end() ? "" : it->style, box,
+                                               points_of[o.id]};
+                    (label.points >= lp.min_points ? sample.truth.objects : sample.truth.unseen)
+                        .push_back(label);
+                }
+                samples.push_back(std::move(sample));
+            });
+        const verification::CadLibrary library =
+            params.cad ? scene_cad_library(base) : verification::CadLibrary{};
         const auto t0 = Clock::now();
         const labelling::LabelResult labels = labeller.finish(params.cad ? &library : nullptr);
-        row.label_seconds = label_seconds + std::chrono::duration<double>(Clock::now() - t0).count();
+        row.label_seconds =
+            label_seconds + std::chrono::duration<double>(Clock::now() - t0).count();
         for (std::size_t s = 1; s < labels.reports.size(); ++s) {
             row.alignment_residual_m.push_back(labels.reports[s].alignment.residual_m);
             row.alignment_correction_m.push_back(labels.reports[s].alignment.correction_m);
@@ -187,20 +215,28 @@ LabelBenchResult run_label_bench(const LabelBenchParams& params, const std::func
         std::vector<std::vector<Detection>> scene_labels, scene_still_labels;
         std::vector<std::vector<LabelledBox>> scene_truth, scene_still_truth;
         for (const Sample& sample : samples) {
-            const std::vector<labelling::PointLabel> predicted = labeller.label_points(sample.session, sample.points_world);
-            std::vector<std::uint32_t> truth_instance(sample.label.size(), 0), predicted_instance(sample.label.size(), 0);
+            const std::vector<labelling::PointLabel> predicted =
+                labeller.label_points(sample.session, sample.points_world);
+            std::vector<std::uint32_t> truth_instance(sample.label.size(), 0),
+                predicted_instance(sample.label.size(), 0);
             for (std::size_t i = 0; i < predicted.size(); ++i) {
                 const PointClass t = truth_class(sample.label[i]);
-                ++row.confusion[static_cast<std::size_t>(t)][static_cast<std::size_t>(predicted[i].cls)];
-                // By motion (Thomas et al.'s definitions): what moves within the session is Dynamic.
-                const bool moving = t == PointClass::kMovable && sample.moving_ids.count(sample.instance[i]);
-                ++row.confusion_by_motion[static_cast<std::size_t>(moving ? PointClass::kDynamic : t)][static_cast<std::size_t>(predicted[i].cls)];
+                ++row.confusion[static_cast<std::size_t>(t)]
+                               [static_cast<std::size_t>(predicted[i].cls)];
+                // By motion (Thomas et al.'s definitions): what moves within the session is
+                // Dynamic.
+                const bool moving =
+                    t == PointClass::kMovable && sample.moving_ids.count(sample.instance[i]);
+                ++row.confusion_by_motion[static_cast<std::size_t>(
+                    moving ? PointClass::kDynamic : t)][static_cast<std::size_t>(predicted[i].cls)];
                 if (t == PointClass::kMovable) truth_instance[i] = sample.instance[i];
-                if (predicted[i].instance && predicted[i].semantic != SemanticLabel::kClutter) predicted_instance[i] = predicted[i].instance;
+                if (predicted[i].instance && predicted[i].semantic != SemanticLabel::kClutter)
+                    predicted_instance[i] = predicted[i].instance;
             }
             add_panoptic(truth_instance, predicted_instance, params.truth_min_points, row.panoptic);
             const labelling::LabelledSessionKeyframe& kf =
-                labels.sessions[static_cast<std::size_t>(sample.session)][next_keyframe[static_cast<std::size_t>(sample.session)]++];
+                labels.sessions[static_cast<std::size_t>(sample.session)]
+                               [next_keyframe[static_cast<std::size_t>(sample.session)]++];
             std::vector<Detection> dets;
             for (const LabelledObject& o : kf.keyframe.objects) {
                 Detection d;
@@ -208,19 +244,23 @@ LabelBenchResult run_label_bench(const LabelBenchParams& params, const std::func
                 d.cls = o.cls;
                 d.class_probabilities.fill(0.0);
                 d.class_probabilities[static_cast<std::size_t>(o.cls)] = 1.0;
-                d.score = std::min(1.0, static_cast<double>(o.points) / 1000.0);  // better-seen labels first
+                d.score = std::min(
+                    1.0, static_cast<double>(o.points) / 1000.0);  // better-seen labels first
                 dets.push_back(d);
             }
             // Still objects only: the chairs pulled during the session are neither truth nor false
             // labels (a static label cannot hold an object that moves under it).
             LabelledKeyframe still = sample.truth;
             still.objects.erase(std::remove_if(still.objects.begin(), still.objects.end(),
-                                               [&](const LabelledObject& o) { return sample.moving_ids.count(o.id) > 0; }),
+                                               [&](const LabelledObject& o) {
+                                                   return sample.moving_ids.count(o.id) > 0;
+                                               }),
                                 still.objects.end());
             std::vector<Detection> still_dets;
             for (const Detection& d : dets) {
-                const bool on_moving = std::any_of(sample.moving_boxes.begin(), sample.moving_boxes.end(),
-                                                   [&](const OrientedBox& b) { return iou_bev(b, d.box_sensor) > 0.1; });
+                const bool on_moving = std::any_of(
+                    sample.moving_boxes.begin(), sample.moving_boxes.end(),
+                    [&](const OrientedBox& b) { return iou_bev(b, d.box_sensor) > 0.1; });
                 if (!on_moving) still_dets.push_back(d);
             }
             scene_still_labels.push_back(std::move(still_dets));

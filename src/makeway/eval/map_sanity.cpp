@@ -14,7 +14,8 @@ void MapSanity::add(const MapSanity& o) {
 }
 
 MapSanity check_map(const std::vector<ObjectEstimate>& objects, const sim::Scene& scene,
-                    const std::vector<sim::ObjectModel>& models, double t_s, const MapSanityParams& p) {
+                    const std::vector<sim::ObjectModel>& models, double t_s,
+                    const MapSanityParams& p) {
     MapSanity s;
     std::vector<std::vector<sim::ObjectState>> truth;  // only when a fast object needs it
     for (const ObjectEstimate& o : objects) {
@@ -28,13 +29,16 @@ MapSanity check_map(const std::vector<ObjectEstimate>& objects, const sim::Scene
         s.max_speed_mps = std::max(s.max_speed_mps, speed);
         if (speed <= p.max_speed_mps) continue;
         if (truth.empty()) {
-            for (double back : p.pushed_lookback_s) truth.push_back(sim::object_states_at(scene, models, std::max(0.0, t_s - back)));
+            for (double back : p.pushed_lookback_s)
+                truth.push_back(sim::object_states_at(scene, models, std::max(0.0, t_s - back)));
         }
-        const bool pushed = std::any_of(truth.begin(), truth.end(), [&](const std::vector<sim::ObjectState>& states) {
-            return std::any_of(states.begin(), states.end(), [&](const sim::ObjectState& t) {
-                return (t.box_world.centre_m - c).head<2>().norm() < p.pushed_radius_m && t.velocity_mps.norm() >= p.pushed_speed_mps;
+        const bool pushed = std::any_of(
+            truth.begin(), truth.end(), [&](const std::vector<sim::ObjectState>& states) {
+                return std::any_of(states.begin(), states.end(), [&](const sim::ObjectState& t) {
+                    return (t.box_world.centre_m - c).head<2>().norm() < p.pushed_radius_m &&
+                           t.velocity_mps.norm() >= p.pushed_speed_mps;
+                });
             });
-        });
         if (!pushed) ++s.fast_unpushed;
     }
     return s;

@@ -26,7 +26,8 @@ Costmap structure_grid(const sim::Scene& scene, double resolution) {
         costmap::fill_rectangle(g, 0.5 * (w.a_m + w.b_m), {d.norm() + w.thickness_m, w.thickness_m},
                                 std::atan2(d.y(), d.x()), cost::kLethal);
     }
-    for (const sim::Pillar& p : scene.pillars) costmap::fill_rectangle(g, p.centre_m, p.size_m, 0.0, cost::kLethal);
+    for (const sim::Pillar& p : scene.pillars)
+        costmap::fill_rectangle(g, p.centre_m, p.size_m, 0.0, cost::kLethal);
     return g;
 }
 
@@ -43,7 +44,7 @@ double distance_to_box(const OrientedBox& box, const Eigen::Vector2d& p) {
 struct SimSweep {
     const PointCloud* points_sensor = nullptr;
     double stamp_s = 0.0, duration_s = 0.1;
-    Pose2 odometry_start, odometry_end;          // wheel odometry (drifting)
+    Pose2 odometry_start, odometry_end;                  // wheel odometry (drifting)
     Isometry3 T_world_sensor_start, T_world_sensor_end;  // truth
     double v_mps = 0.0, w_radps = 0.0;                   // truth, at the sweep's end
 };
@@ -78,7 +79,9 @@ struct Scorer {
         touching_person = person;
         // Each contact, when it starts, is the robot's or another's doing.
         for (ContactEvent& e : judge.step(state, ts, colliding || person)) {
-            ContactCounts& counts = e.kind == "walls" ? out.wall_contacts : e.kind == "furniture" ? out.furniture_contacts : out.people_contacts;
+            ContactCounts& counts = e.kind == "walls"       ? out.wall_contacts
+                                    : e.kind == "furniture" ? out.furniture_contacts
+                                                            : out.people_contacts;
             ++(e.robot_caused ? counts.robot_caused : counts.other_caused);
             out.contact_events.push_back(std::move(e));
         }
@@ -87,9 +90,11 @@ struct Scorer {
         bool risky = false;
         near_chair.resize(truth.size(), false);
         for (std::size_t j = 0; j < truth.size(); ++j) {
-            risky |= costmap::in_affordance_zone(truth[j], params.system.navigator.affordance, c);  // the same zones for every method
+            risky |= costmap::in_affordance_zone(truth[j], params.system.navigator.affordance,
+                                                 c);  // the same zones for every method
             const bool moving = truth[j].velocity_mps.norm() > 0.02;
-            const bool near = moving && distance_to_box(truth[j].box_world, c) < params.robot.inscribed_radius_m() + params.near_miss_m;
+            const bool near = moving && distance_to_box(truth[j].box_world, c) <
+                                            params.robot.inscribed_radius_m() + params.near_miss_m;
             out.near_misses += near && !near_chair[j] && !colliding;
             near_chair[j] = near;
         }
@@ -113,24 +118,29 @@ std::vector<Eigen::Vector2d> route_of(const sim::Scene& scene) {
 // The simulator's loop: act on the last command while the LiDAR sweeps (the robot moves within
 // the sweep), score every physics step, then let the robot's software see the sweep and decide.
 // Intensity is simulated only when the software reads it (`reads_intensity`).
-NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavParams& params, const pipeline::Controller& controller,
-                   bool reads_intensity, const Think& think) {
+NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavParams& params,
+                   const pipeline::Controller& controller, bool reads_intensity,
+                   const Think& think) {
     NavRunResult out;
     out.method = method.name;
     const std::vector<sim::ObjectModel> models = sim::models_of(scene);
     const sim::CollisionChecker checker(scene, models, params.robot);
-    if (auto shortest = sim::mission_route(scene, sim::make_nav_grid(scene, checker, params.robot))) {
+    if (auto shortest =
+            sim::mission_route(scene, sim::make_nav_grid(scene, checker, params.robot))) {
         out.shortest_m = sim::route_length_m(*shortest);
     }
     {
         const pipeline::NavigatorParams& n = params.system.navigator;
-        const UnavoidableRisk u = unavoidable_risk(scene, checker, ground_truth_objects(scene, models, 0.0), params.robot,
-                                                   n.affordance, n.waypoint_tolerance_m, n.goal_tolerance_m, params.resolution_m);
+        const UnavoidableRisk u = unavoidable_risk(
+            scene, checker, ground_truth_objects(scene, models, 0.0), params.robot, n.affordance,
+            n.waypoint_tolerance_m, n.goal_tolerance_m, params.resolution_m);
         out.unavoidable_risk_s = u.reachable ? u.risk_time_s : -1.0;
     }
     sim::World world(scene, models);
     sim::WheelOdometry odometry(scene.start, params.odometry, params.seed ^ 0x0D0ULL);
-    Scorer scorer{scene, models, checker, params, out, sim::ContactJudge(checker, params.robot, params.robot_caused_speed_mps)};
+    Scorer scorer{scene,   models,
+                  checker, params,
+                  out,     sim::ContactJudge(checker, params.robot, params.robot_caused_speed_mps)};
     sim::RobotState state;
     state.pose = scene.start;
     VelocityCommand cmd;
@@ -154,12 +164,16 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
             poses.push_back(state.pose);
             scorer.step(state, t + (i + 1) * dt, dt);
         }
-        out.min_clearance_m = std::min(out.min_clearance_m, checker.clearance_m(state.pose, t + period, 2.0));
+        out.min_clearance_m =
+            std::min(out.min_clearance_m, checker.clearance_m(state.pose, t + period, 2.0));
         // Sense: the sweep over that period, from the moving sensor.
-        const sim::PoseAtTime T_world_sensor_at = sim::sensor_pose_along(std::move(poses), t, dt, T_robot_sensor);
-        const PointCloud sweep = sim::simulate_sweep(world, lidar, T_world_sensor_at, t, params.seed, static_cast<std::uint64_t>(k));
-        const Thought thought = think({&sweep, t, period, odometry_start, odometry.pose(), T_world_sensor_at(t),
-                                       T_world_sensor_at(t + period), state.v_mps, state.w_radps});
+        const sim::PoseAtTime T_world_sensor_at =
+            sim::sensor_pose_along(std::move(poses), t, dt, T_robot_sensor);
+        const PointCloud sweep = sim::simulate_sweep(world, lidar, T_world_sensor_at, t,
+                                                     params.seed, static_cast<std::uint64_t>(k));
+        const Thought thought =
+            think({&sweep, t, period, odometry_start, odometry.pose(), T_world_sensor_at(t),
+                   T_world_sensor_at(t + period), state.v_mps, state.w_radps});
         out.estimated_trajectory.push_back(thought.pose);
         const pipeline::Controller::Step& step = thought.control;
         out.replans += step.nav.replanned;
@@ -182,26 +196,35 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
         cmd = step.command;
     }
     out.trajectory.push_back(state.pose);
-    const Pose2 believed = out.estimated_trajectory.empty() ? state.pose : out.estimated_trajectory.back();
-    out.final_pose_error_m = std::hypot(believed.x_m - state.pose.x_m, believed.y_m - state.pose.y_m);
+    const Pose2 believed =
+        out.estimated_trajectory.empty() ? state.pose : out.estimated_trajectory.back();
+    out.final_pose_error_m =
+        std::hypot(believed.x_m - state.pose.x_m, believed.y_m - state.pose.y_m);
     // The belief of sweep k is the pose at its end: the true pose k + 1.
-    out.pose_ate_m = trajectory_metrics(out.estimated_trajectory, {out.trajectory.begin() + 1, out.trajectory.end()}).ate_rmse_m;
-    const double to_goal = std::hypot(state.pose.x_m - scene.goal.x_m, state.pose.y_m - scene.goal.y_m);
+    out.pose_ate_m = trajectory_metrics(out.estimated_trajectory,
+                                        {out.trajectory.begin() + 1, out.trajectory.end()})
+                         .ate_rmse_m;
+    const double to_goal =
+        std::hypot(state.pose.x_m - scene.goal.x_m, state.pose.y_m - scene.goal.y_m);
     out.stop_distance_m = to_goal;
     const pipeline::Navigator& navigator = controller.navigator();
     out.reached_goal = navigator.arrived() && to_goal < params.arrival_radius_m;
     if (out.gave_up) {
-        out.failure = "gave up (no plan or no progress for " + std::to_string(static_cast<int>(params.system.navigator.give_up_s)) + " s)";
+        out.failure = "gave up (no plan or no progress for " +
+                      std::to_string(static_cast<int>(params.system.navigator.give_up_s)) + " s)";
     } else if (!navigator.arrived()) {
         out.time_s = params.time_limit_s;
         out.failure = "time limit";
     } else if (!out.reached_goal) {
-        out.failure = "stopped " + std::to_string(to_goal).substr(0, 4) + " m from the goal (pose estimate)";
+        out.failure =
+            "stopped " + std::to_string(to_goal).substr(0, 4) + " m from the goal (pose estimate)";
     } else if (out.collisions > 0) {
         out.failure = "collision";
     }
     out.success = out.reached_goal && out.collisions == 0;
-    out.spl = out.success && out.shortest_m > 0 ? out.shortest_m / std::max(out.distance_m, out.shortest_m) : 0.0;
+    out.spl = out.success && out.shortest_m > 0
+                  ? out.shortest_m / std::max(out.distance_m, out.shortest_m)
+                  : 0.0;
     out.final_costmap = navigator.costmap();
     out.last_plan = navigator.plan();
     return out;
@@ -219,29 +242,36 @@ std::optional<NavMethod> nav_method(std::string_view name, const sim::RobotParam
     if (name == "con") return NavMethod{"con", 3.0 * r, 3.0, false, false};
     if (name == "oppo") return NavMethod{"oppo", r, 1.0, false, false};
     if (name == "gt-perc") return NavMethod{"gt-perc", r, 1.0, true, false};
-    if (name == "ours") return NavMethod{"ours", r, 1.0, true, true};  // gt-perc's planner on the online system
+    if (name == "ours")
+        return NavMethod{"ours", r, 1.0, true, true};  // gt-perc's planner on the online system
     return std::nullopt;
 }
 
 NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, ObjectSource& source,
                             const NavParams& params) {
     const Isometry3 T_sensor_robot = params.robot.T_robot_sensor().inverse();
-    pipeline::Controller controller(params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m),
-                                    navigator_params(method, params));
+    pipeline::Controller controller(
+        params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m),
+        navigator_params(method, params));
     controller.set_route(route_of(scene));
-    return drive(scene, method, params, controller, source.reads_intensity(), [&](const SimSweep& s) {
-        // The baselines are fed the truth: the pose, the velocity and (gt-perc) the objects.
-        Thought th;
-        th.pose = project_to_plane(s.T_world_sensor_end * T_sensor_robot);
-        const PointCloud points_world =
-            perception::deskew_to_world({*s.points_sensor, s.stamp_s, s.duration_s, s.T_world_sensor_start, s.T_world_sensor_end});
-        th.control = controller.step({s.stamp_s + s.duration_s, th.pose, s.v_mps, s.w_radps, &points_world, s.T_world_sensor_end.translation(),
-                                      source.objects({s.stamp_s + s.duration_s, s.T_world_sensor_end, s.points_sensor})});
-        return th;
-    });
+    return drive(
+        scene, method, params, controller, source.reads_intensity(), [&](const SimSweep& s) {
+            // The baselines are fed the truth: the pose, the velocity and (gt-perc) the objects.
+            Thought th;
+            th.pose = project_to_plane(s.T_world_sensor_end * T_sensor_robot);
+            const PointCloud points_world =
+                perception::deskew_to_world({*s.points_sensor, s.stamp_s, s.duration_s,
+                                             s.T_world_sensor_start, s.T_world_sensor_end});
+            th.control = controller.step({s.stamp_s + s.duration_s, th.pose, s.v_mps, s.w_radps,
+                                          &points_world, s.T_world_sensor_end.translation(),
+                                          source.objects({s.stamp_s + s.duration_s,
+                                                          s.T_world_sensor_end, s.points_sensor})});
+            return th;
+        });
 }
 
-pipeline::OnlineSystemSetup online_system_setup(const sim::Scene& scene, const NavMethod& method, const NavParams& params) {
+pipeline::OnlineSystemSetup online_system_setup(const sim::Scene& scene, const NavMethod& method,
+                                                const NavParams& params) {
     // What a robot has: its start pose, its sweeps and its wheel odometry, the prebuilt map of
     // walls (objects stand in its free space). Nothing else passes.
     pipeline::OnlineSystemSetup setup;
@@ -265,20 +295,25 @@ NavRunResult run_navigation_online(const sim::Scene& scene, const NavMethod& met
     online.set_route(route_of(scene));
     std::vector<KeyframeObjects> keyframes;
     std::vector<pipeline::StageTiming> timing;
-    NavRunResult out = drive(scene, method, params, online.controller(), detector.uses_intensity(), [&](const SimSweep& s) {
-        const pipeline::OnlineStep step = online.process({*s.points_sensor, s.stamp_s, s.duration_s, s.odometry_start, s.odometry_end});
-        const pipeline::SweepResult& r = step.sweep;
-        if (r.keyframe) {
-            keyframes.push_back({r.keyframe->stamp_s, r.keyframe->T_world_keyframe, r.keyframe->detections.size(),
-                                 r.keyframe->evidence.size(), r.objects});
-            timing.push_back(r.timing);
-        }
-        return Thought{r.pose, step.control};
-    });
+    NavRunResult out = drive(
+        scene, method, params, online.controller(), detector.uses_intensity(),
+        [&](const SimSweep& s) {
+            const pipeline::OnlineStep step = online.process(
+                {*s.points_sensor, s.stamp_s, s.duration_s, s.odometry_start, s.odometry_end});
+            const pipeline::SweepResult& r = step.sweep;
+            if (r.keyframe) {
+                keyframes.push_back({r.keyframe->stamp_s, r.keyframe->T_world_keyframe,
+                                     r.keyframe->detections.size(), r.keyframe->evidence.size(),
+                                     r.objects});
+                timing.push_back(r.timing);
+            }
+            return Thought{r.pose, step.control};
+        });
     out.keyframes = std::move(keyframes);
     out.keyframe_timing = std::move(timing);
     const std::vector<sim::ObjectModel> models = sim::models_of(scene);
-    for (const KeyframeObjects& k : out.keyframes) out.map_sanity.add(check_map(k.objects, scene, models, k.stamp_s));
+    for (const KeyframeObjects& k : out.keyframes)
+        out.map_sanity.add(check_map(k.objects, scene, models, k.stamp_s));
     return out;
 }
 

@@ -2,7 +2,8 @@
 
 namespace makeway::eval {
 
-std::vector<ObjectEstimate> ground_truth_objects(const sim::Scene& scene, const std::vector<sim::ObjectModel>& models,
+std::vector<ObjectEstimate> ground_truth_objects(const sim::Scene& scene,
+                                                 const std::vector<sim::ObjectModel>& models,
                                                  double t_s) {
     return sim::object_estimates_at(scene, models, t_s);
 }

@@ -19,7 +19,7 @@ struct ObjectSourceInput {
 };
 
 class ObjectSource {
-public:
+  public:
     virtual ~ObjectSource() = default;
     virtual std::string name() const = 0;
     virtual std::vector<ObjectEstimate> objects(const ObjectSourceInput& input) = 0;
@@ -29,7 +29,7 @@ public:
 
 /// No semantics: the classic costmap planners.
 class NoObjects : public ObjectSource {
-public:
+  public:
     std::string name() const override { return "none"; }
     std::vector<ObjectEstimate> objects(const ObjectSourceInput&) override { return {}; }
     bool reads_intensity() const override { return false; }
@@ -37,20 +37,21 @@ public:
 
 /// Perfect perception: every chair and table of the scene where it is at time t.
 class GroundTruthObjects : public ObjectSource {
-public:
+  public:
     GroundTruthObjects(const sim::Scene& scene, std::vector<sim::ObjectModel> models)
         : scene_(scene), models_(std::move(models)) {}
     std::string name() const override { return "ground_truth"; }
     std::vector<ObjectEstimate> objects(const ObjectSourceInput& input) override;
     bool reads_intensity() const override { return false; }
 
-private:
+  private:
     const sim::Scene& scene_;
     std::vector<sim::ObjectModel> models_;
 };
 
 /// The simulator's ground truth at t_s as object estimates.
-std::vector<ObjectEstimate> ground_truth_objects(const sim::Scene& scene, const std::vector<sim::ObjectModel>& models,
+std::vector<ObjectEstimate> ground_truth_objects(const sim::Scene& scene,
+                                                 const std::vector<sim::ObjectModel>& models,
                                                  double t_s);
 
 }  // namespace makeway::eval

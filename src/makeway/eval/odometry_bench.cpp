@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "makeway/common/angles.hpp"
@@ -25,8 +25,8 @@ PointCloud sensor_channels(const PointCloud& c) {
 
 }  // namespace
 
-OdometryDrive simulate_odometry_drive(const sim::Scene& scene, const sim::SequenceParams& params, int max_sweeps,
-                                      const std::string& name) {
+OdometryDrive simulate_odometry_drive(const sim::Scene& scene, const sim::SequenceParams& params,
+                                      int max_sweeps, const std::string& name) {
     const auto models = sim::models_of(scene);
     const sim::CollisionChecker checker(scene, models, params.robot);
     const auto route = sim::drive_route(scene, checker, params.robot);
@@ -36,11 +36,13 @@ OdometryDrive simulate_odometry_drive(const sim::Scene& scene, const sim::Sequen
     drive.name = name;
     drive.start_pose = simulator.start_pose();
     std::vector<sim::SimFrame> frames;
-    for (int i = 0; i <= max_sweeps && !simulator.reached_goal(); ++i) frames.push_back(simulator.next());
+    for (int i = 0; i <= max_sweeps && !simulator.reached_goal(); ++i)
+        frames.push_back(simulator.next());
     // Sweep k ends where sweep k + 1 starts.
     for (std::size_t k = 0; k + 1 < frames.size(); ++k) {
         const sim::SimFrame& f = frames[k];
-        drive.sweeps.push_back({sensor_channels(f.points_sensor), f.stamp_s, frames[k + 1].stamp_s - f.stamp_s, f.odometry_pose,
+        drive.sweeps.push_back({sensor_channels(f.points_sensor), f.stamp_s,
+                                frames[k + 1].stamp_s - f.stamp_s, f.odometry_pose,
                                 f.odometry_end_pose, frames[k + 1].true_pose});
         const Pose2& a = f.true_pose;
         const Pose2& b = frames[k + 1].true_pose;
@@ -64,18 +66,23 @@ sim::Scene corridor_scene(double length_m, double width_m) {
     return s;
 }
 
-TrajectoryMetrics trajectory_metrics(const std::vector<Pose2>& estimated, const std::vector<Pose2>& truth) {
+TrajectoryMetrics trajectory_metrics(const std::vector<Pose2>& estimated,
+                                     const std::vector<Pose2>& truth) {
     TrajectoryMetrics m;
     const std::size_t n = std::min(estimated.size(), truth.size());
     if (n == 0) return m;
     double sum_sq = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-        sum_sq += std::pow(estimated[i].x_m - truth[i].x_m, 2) + std::pow(estimated[i].y_m - truth[i].y_m, 2);
+        sum_sq += std::pow(estimated[i].x_m - truth[i].x_m, 2) +
+                  std::pow(estimated[i].y_m - truth[i].y_m, 2);
     }
     m.ate_rmse_m = std::sqrt(sum_sq / static_cast<double>(n));
-    m.final_drift_m = std::hypot(estimated[n - 1].x_m - truth[n - 1].x_m, estimated[n - 1].y_m - truth[n - 1].y_m);
+    m.final_drift_m = std::hypot(estimated[n - 1].x_m - truth[n - 1].x_m,
+                                 estimated[n - 1].y_m - truth[n - 1].y_m);
     std::vector<double> along(n, 0.0);
-    for (std::size_t i = 1; i < n; ++i) along[i] = along[i - 1] + std::hypot(truth[i].x_m - truth[i - 1].x_m, truth[i].y_m - truth[i - 1].y_m);
+    for (std::size_t i = 1; i < n; ++i)
+        along[i] = along[i - 1] +
+                   std::hypot(truth[i].x_m - truth[i - 1].x_m, truth[i].y_m - truth[i - 1].y_m);
     m.length_m = along[n - 1];
     const auto rpe = [&](double d, double& percent, double& deg_per_m) {
         double t_sum = 0.0, r_sum = 0.0;
@@ -106,22 +113,26 @@ OdometryRun run_makeway_odometry(const OdometryDrive& drive, const odometry::Odo
     odometry::LidarOdometry odo(params, T_base_sensor, drive.start_pose);
     for (const OdometrySweep& s : drive.sweeps) {
         const auto t0 = std::chrono::steady_clock::now();
-        const auto r = wheels ? odo.register_sweep(s.points_sensor, s.stamp_s, s.duration_s, s.wheel_start, s.wheel_end)
-                              : odo.register_sweep(s.points_sensor, s.stamp_s, s.duration_s, std::nullopt, std::nullopt);
+        const auto r = wheels ? odo.register_sweep(s.points_sensor, s.stamp_s, s.duration_s,
+                                                   s.wheel_start, s.wheel_end)
+                              : odo.register_sweep(s.points_sensor, s.stamp_s, s.duration_s,
+                                                   std::nullopt, std::nullopt);
         run.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         run.poses.push_back(r.pose);
     }
     return run;
 }
 
-std::vector<OdometryDrive> benchmark_drives(int count, std::uint64_t seed, const sim::SequenceParams& params, int max_sweeps,
+std::vector<OdometryDrive> benchmark_drives(int count, std::uint64_t seed,
+                                            const sim::SequenceParams& params, int max_sweeps,
                                             const std::function<void(int)>& progress) {
     std::vector<OdometryDrive> drives;
     for (int i = 0; i < count; ++i) {
         sim::SequenceParams p = params;
         p.seed = seed + static_cast<std::uint64_t>(i);
         if (i % 5 == 4) {
-            drives.push_back(simulate_odometry_drive(corridor_scene(), p, max_sweeps, "corridor_" + std::to_string(p.seed)));
+            drives.push_back(simulate_odometry_drive(corridor_scene(), p, max_sweeps,
+                                                     "corridor_" + std::to_string(p.seed)));
         } else {
             sim::SceneGenParams g;
             g.seed = p.seed;
@@ -151,14 +162,17 @@ std::vector<Pose2> truth_of(const OdometryDrive& drive) {
     return out;
 }
 
-std::string odometry_table_markdown(const std::vector<OdometryScore>& scores, const std::vector<std::string>& methods) {
+std::string odometry_table_markdown(const std::vector<OdometryScore>& scores,
+                                    const std::vector<std::string>& methods) {
     const auto fmt = [](double v, int digits) {
         char b[32];
         std::snprintf(b, sizeof(b), "%.*f", digits, v);
         return std::string(b);
     };
-    std::string t = "| method | ATE RMSE mean [cm] | ATE worst [cm] | RPE 1 m [%] | RPE 5 m [%] | RPE 5 m [deg/m] | final drift mean [cm] | sweeps/s (1 core) |\n"
-                    "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    std::string t =
+        "| method | ATE RMSE mean [cm] | ATE worst [cm] | RPE 1 m [%] | RPE 5 m [%] | RPE 5 m "
+        "[deg/m] | final drift mean [cm] | sweeps/s (1 core) |\n"
+        "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
     for (const std::string& m : methods) {
         double ate = 0, worst = 0, r1 = 0, r5 = 0, r5d = 0, drift = 0, sps = 0;
         int n = 0;
@@ -174,8 +188,10 @@ std::string odometry_table_markdown(const std::vector<OdometryScore>& scores, co
             sps += s.sweeps_per_second;
         }
         if (n == 0) continue;
-        t += "| " + m + " | " + fmt(100 * ate / n, 2) + " | " + fmt(100 * worst, 2) + " | " + fmt(r1 / n, 2) + " | " + fmt(r5 / n, 2) +
-             " | " + fmt(r5d / n, 3) + " | " + fmt(100 * drift / n, 1) + " | " + (sps > 0 ? fmt(sps / n, 0) : std::string("-")) + " |\n";
+        t += "| " + m + " | " + fmt(100 * ate / n, 2) + " | " + fmt(100 * worst, 2) + " | " +
+             fmt(r1 / n, 2) + " | " + fmt(r5 / n, 2) + " | " + fmt(r5d / n, 3) + " | " +
+             fmt(100 * drift / n, 1) + " | " + (sps > 0 ? fmt(sps / n, 0) : std::string("-")) +
+             " |\n";
     }
     t += "\n| drive | length [m] |";
     for (const auto& m : methods) t += " " + m + " ATE [cm] |";
@@ -184,7 +200,8 @@ std::string odometry_table_markdown(const std::vector<OdometryScore>& scores, co
     t += "\n";
     std::vector<std::string> drives;
     for (const auto& s : scores) {
-        if (std::find(drives.begin(), drives.end(), s.drive) == drives.end()) drives.push_back(s.drive);
+        if (std::find(drives.begin(), drives.end(), s.drive) == drives.end())
+            drives.push_back(s.drive);
     }
     for (const auto& d : drives) {
         std::string row = "| " + d + " |";

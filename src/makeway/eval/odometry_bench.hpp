@@ -32,23 +32,24 @@ struct OdometryDrive {
 
 /// Drives the scene's auto route (start -> waypoint -> goal) for at most `max_sweeps` sweeps.
 /// Throws std::runtime_error when the scene has no route.
-OdometryDrive simulate_odometry_drive(const sim::Scene& scene, const sim::SequenceParams& params, int max_sweeps,
-                                      const std::string& name);
+OdometryDrive simulate_odometry_drive(const sim::Scene& scene, const sim::SequenceParams& params,
+                                      int max_sweeps, const std::string& name);
 
 /// A straight corridor `length_m` x `width_m` with smooth walls (degenerate along its axis for
 /// LiDAR registration), a person walking its length, start at one end, goal at the other.
 sim::Scene corridor_scene(double length_m = 30.0, double width_m = 2.2);
 
 struct TrajectoryMetrics {
-    double ate_rmse_m = 0.0;       ///< RMSE of position errors (both start at the true start pose)
-    double final_drift_m = 0.0;    ///< position error at the end
+    double ate_rmse_m = 0.0;     ///< RMSE of position errors (both start at the true start pose)
+    double final_drift_m = 0.0;  ///< position error at the end
     double rpe_1m_percent = 0.0, rpe_1m_deg_per_m = 0.0;
     double rpe_5m_percent = 0.0, rpe_5m_deg_per_m = 0.0;
     double length_m = 0.0;
 };
 /// Poses one per sweep end, same length. RPE pairs every pose with the first one at least d metres
 /// of true path further on; drives shorter than d give 0.
-TrajectoryMetrics trajectory_metrics(const std::vector<Pose2>& estimated, const std::vector<Pose2>& truth);
+TrajectoryMetrics trajectory_metrics(const std::vector<Pose2>& estimated,
+                                     const std::vector<Pose2>& truth);
 
 struct OdometryRun {
     std::vector<Pose2> poses;  ///< the base at each sweep's end
@@ -60,7 +61,8 @@ OdometryRun run_makeway_odometry(const OdometryDrive& drive, const odometry::Odo
 
 /// The benchmark's drives: medium and dense generated scenes with walkers and chairs being pulled
 /// (seeds seed, seed + 1, ...), every fifth a corridor. `progress(done)` after each drive.
-std::vector<OdometryDrive> benchmark_drives(int count, std::uint64_t seed, const sim::SequenceParams& params, int max_sweeps,
+std::vector<OdometryDrive> benchmark_drives(int count, std::uint64_t seed,
+                                            const sim::SequenceParams& params, int max_sweeps,
                                             const std::function<void(int)>& progress = {});
 
 /// The wheel odometry alone, integrated from the start pose (the baseline every method must beat).
@@ -76,6 +78,7 @@ struct OdometryScore {
 };
 /// A markdown table: per method, the mean and worst ATE, mean RPE and sweeps per second, and one
 /// row per drive.
-std::string odometry_table_markdown(const std::vector<OdometryScore>& scores, const std::vector<std::string>& methods);
+std::string odometry_table_markdown(const std::vector<OdometryScore>& scores,
+                                    const std::vector<std::string>& methods);
 
 }  // namespace makeway::eval

@@ -12,7 +12,9 @@ namespace makeway::eval {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 void score(const perception::Detector& detector, const SessionBenchParams& p, SessionRound& round) {
     DetectionEvalParams ep;
@@ -35,8 +37,9 @@ SessionBenchParams::SessionBenchParams() {
     train.batch_size = 8;
 }
 
-std::vector<SessionRound> run_session_bench(perception::Detector& detector, const SessionBenchParams& p,
-                                            const std::function<void(const std::string&)>& progress) {
+std::vector<SessionRound> run_session_bench(
+    perception::Detector& detector, const SessionBenchParams& p,
+    const std::function<void(const std::string&)>& progress) {
     auto say = [&](const std::string& what) {
         if (progress) progress(what);
     };
@@ -58,7 +61,8 @@ std::vector<SessionRound> run_session_bench(perception::Detector& detector, cons
         round.round = r;
         auto t0 = Clock::now();
         for (int k = 0; k < p.scenes_per_round; ++k) {
-            say("round " + std::to_string(r) + ": labelling room " + std::to_string(k + 1) + " of " + std::to_string(p.scenes_per_round));
+            say("round " + std::to_string(r) + ": labelling room " + std::to_string(k + 1) +
+                " of " + std::to_string(p.scenes_per_round));
             sim::SceneGenParams g;
             g.seed = 2'000'000 + p.seed + static_cast<std::uint64_t>(100 * r + k);
             g.density = k % 2 == 0 ? sim::Density::kMedium : sim::Density::kDense;
@@ -77,14 +81,16 @@ std::vector<SessionRound> run_session_bench(perception::Detector& detector, cons
             std::size_t n = 0;
             for (const auto& session : labels.sessions) {
                 for (const labelling::LabelledSessionKeyframe& kf : session) {
-                    if (n++ % static_cast<std::size_t>(p.keyframe_stride) == 0) auto_labels.push_back(kf.keyframe);
+                    if (n++ % static_cast<std::size_t>(p.keyframe_stride) == 0)
+                        auto_labels.push_back(kf.keyframe);
                 }
             }
         }
         round.label_seconds = since(t0);
         for (const LabelledKeyframe& kf : auto_labels) round.labelled_objects += kf.objects.size();
         round.labelled_keyframes = auto_labels.size();
-        say("round " + std::to_string(r) + ": fine-tuning on " + std::to_string(auto_labels.size()) + " auto-labelled and " +
+        say("round " + std::to_string(r) + ": fine-tuning on " +
+            std::to_string(auto_labels.size()) + " auto-labelled and " +
             std::to_string(replay.size()) + " replayed keyframes");
         t0 = Clock::now();
         std::vector<perception::TrainingSample> samples;
@@ -93,7 +99,8 @@ std::vector<SessionRound> run_session_bench(perception::Detector& detector, cons
             for (const LabelledKeyframe& kf : *set) {
                 perception::TrainingSample s;
                 s.cloud_sensor = &kf.cloud_sensor;
-                for (const LabelledObject& o : kf.objects) s.boxes.emplace_back(o.cls, o.box_sensor);
+                for (const LabelledObject& o : kf.objects)
+                    s.boxes.emplace_back(o.cls, o.box_sensor);
                 samples.push_back(std::move(s));
             }
         }

@@ -16,7 +16,9 @@ namespace makeway::eval {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+double ms_since(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
 
 double median_of(std::vector<double> v) {
     if (v.empty()) return 0.0;
@@ -31,7 +33,8 @@ double quantile_of(std::vector<double> v, double q) {
 }
 
 // Chamfer-L1 [m] of a predicted surface (mesh, or points) to the true surface samples.
-double chamfer_m(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& truth, double scale_m) {
+double chamfer_m(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& truth,
+                 double scale_m) {
     if (mesh.triangles.empty()) return 1.0 * scale_m;  // nothing predicted: one canonical unit
     const shape::MeshSdf sdf(mesh);
     return shape::chamfer_l1(sdf.sample_surface(truth.size(), 5), truth) * scale_m;
@@ -45,8 +48,9 @@ struct SetAccumulator {
 
 }  // namespace
 
-ShapeBenchResult run_shape_bench(const shape::ShapeModel& model, const ShapeBenchParams& p,
-                                 const std::function<void(const std::string&, int, int)>& progress) {
+ShapeBenchResult run_shape_bench(
+    const shape::ShapeModel& model, const ShapeBenchParams& p,
+    const std::function<void(const std::string&, int, int)>& progress) {
     ShapeBenchResult result;
     std::vector<double> fn_ms, f1_update_ms, f1_mesh_ms, f0_ms;
     struct SetSpec {
@@ -81,7 +85,8 @@ ShapeBenchResult run_shape_bench(const shape::ShapeModel& model, const ShapeBenc
             const auto t0 = Clock::now();
             const auto T = model.estimate_pose(ex.cls, view.points, p.solve);
             fn_ms.push_back(ms_since(t0));
-            const auto yaw_err = yaw_error_deg(ex.style, T ? T->yaw_rad() : 0.0, view.truth.yaw_rad());
+            const auto yaw_err =
+                yaw_error_deg(ex.style, T ? T->yaw_rad() : 0.0, view.truth.yaw_rad());
             if (!T) {
                 ++a.failed;
                 if (yaw_err) ++a.yaw_scored, a.yaw_err.push_back(180.0);
@@ -99,11 +104,13 @@ ShapeBenchResult run_shape_bench(const shape::ShapeModel& model, const ShapeBenc
         }
         // Completion per object, every view of it fused, in its true canonical frame.
         std::map<std::pair<int, std::uint32_t>, std::vector<std::size_t>> views_of;
-        for (std::size_t v = 0; v < data.views.size(); ++v) views_of[{data.scene_of_view[v], data.object_of_view[v]}].push_back(v);
+        for (std::size_t v = 0; v < data.views.size(); ++v)
+            views_of[{data.scene_of_view[v], data.object_of_view[v]}].push_back(v);
         int done = 0;
         for (const auto& [key, vs] : views_of) {
             if (!p.completion) break;
-            if (progress) progress("completing " + specs[si].name, ++done, static_cast<int>(views_of.size()));
+            if (progress)
+                progress("completing " + specs[si].name, ++done, static_cast<int>(views_of.size()));
             std::size_t own = 0;
             for (const std::size_t v : vs) own += data.own_points_of_view[v];
             if (own < p.min_points) continue;
@@ -117,7 +124,8 @@ ShapeBenchResult run_shape_bench(const shape::ShapeModel& model, const ShapeBenc
             for (const std::size_t v : vs) {
                 const shape::ShapeView& view = data.views[v];
                 views.emplace_back();
-                for (const auto& q : view.points) views.back().push_back(view.truth.inverse_apply(q));
+                for (const auto& q : view.points)
+                    views.back().push_back(view.truth.inverse_apply(q));
                 origins.push_back(view.truth.inverse_apply(view.origin));
                 partial.insert(partial.end(), views.back().begin(), views.back().end());
             }
@@ -133,7 +141,8 @@ ShapeBenchResult run_shape_bench(const shape::ShapeModel& model, const ShapeBenc
             shape::CompletionParams cp;
             cp.fit_iterations = p.fit_iterations;
             auto t0 = Clock::now();
-            const shape::Completion done_shape = shape::complete_shape(model, ex.cls, views, origins, cp);
+            const shape::Completion done_shape =
+                shape::complete_shape(model, ex.cls, views, origins, cp);
             const double total_ms = ms_since(t0);
             // F_1 on the grid + isosurface timed apart; F_0's share (the code fit and its field) is
             // the rest of the completion's time.
@@ -144,19 +153,25 @@ ShapeBenchResult run_shape_bench(const shape::ShapeModel& model, const ShapeBenc
             f1_mesh_ms.push_back(ms_since(t0));
             f0_ms.push_back(total_ms - f1_mesh_ms.back());
             // Scores.
-            const shape::MeshSdf truth_sdf(data.mesh_object[static_cast<std::size_t>(shape_index)], data.box_object[static_cast<std::size_t>(shape_index)].centre_m,
-                                           1.0 / scale);
-            const std::vector<Eigen::Vector3d>& truth_surface = data.surface[static_cast<std::size_t>(shape_index)];
-            std::vector<std::uint8_t> truth_occ(centres.size()), part_occ(centres.size(), 0), prior_occ(centres.size()), done_occ(centres.size());
+            const shape::MeshSdf truth_sdf(
+                data.mesh_object[static_cast<std::size_t>(shape_index)],
+                data.box_object[static_cast<std::size_t>(shape_index)].centre_m, 1.0 / scale);
+            const std::vector<Eigen::Vector3d>& truth_surface =
+                data.surface[static_cast<std::size_t>(shape_index)];
+            std::vector<std::uint8_t> truth_occ(centres.size()), part_occ(centres.size(), 0),
+                prior_occ(centres.size()), done_occ(centres.size());
             for (std::size_t i = 0; i < centres.size(); ++i) {
                 truth_occ[i] = truth_sdf.inside(centres[i]);
                 prior_occ[i] = done_shape.prior_sdf[i] < 0.0f;
                 done_occ[i] = done_shape.occupancy[i] > 0.5f;
             }
             for (const auto& q : partial) {
-                if (!(q.array().abs() < grid.half_extent).all()) continue;  // off the grid (also NaN)
-                const Eigen::Array3i cell = ((q.array() + grid.half_extent) / grid.cell()).floor().cast<int>();
-                if ((cell >= 0).all() && (cell < grid.resolution).all()) part_occ[grid.index(cell.x(), cell.y(), cell.z())] = 1;
+                if (!(q.array().abs() < grid.half_extent).all())
+                    continue;  // off the grid (also NaN)
+                const Eigen::Array3i cell =
+                    ((q.array() + grid.half_extent) / grid.cell()).floor().cast<int>();
+                if ((cell >= 0).all() && (cell < grid.resolution).all())
+                    part_occ[grid.index(cell.x(), cell.y(), cell.z())] = 1;
             }
             SetAccumulator& a = acc[c];
             a.cp.push_back(shape::chamfer_l1(partial, truth_surface) * scale);
@@ -172,10 +187,16 @@ ShapeBenchResult run_shape_bench(const shape::ShapeModel& model, const ShapeBenc
                 s.partial = partial;
                 s.prior = done_shape.prior_mesh;
                 s.completed = done_shape.mesh;
-                for (const auto& q : data.mesh_object[static_cast<std::size_t>(shape_index)].vertices_m) {
-                    s.truth.vertices_m.push_back(((q.cast<double>() - data.box_object[static_cast<std::size_t>(shape_index)].centre_m) / scale).cast<float>());
+                for (const auto& q :
+                     data.mesh_object[static_cast<std::size_t>(shape_index)].vertices_m) {
+                    s.truth.vertices_m.push_back(
+                        ((q.cast<double>() -
+                          data.box_object[static_cast<std::size_t>(shape_index)].centre_m) /
+                         scale)
+                            .cast<float>());
                 }
-                s.truth.triangles = data.mesh_object[static_cast<std::size_t>(shape_index)].triangles;
+                s.truth.triangles =
+                    data.mesh_object[static_cast<std::size_t>(shape_index)].triangles;
                 result.showcase.push_back(std::move(s));
             }
         }
@@ -187,13 +208,20 @@ ShapeBenchResult run_shape_bench(const shape::ShapeModel& model, const ShapeBenc
             ps.views = a.views;
             ps.failed = a.failed;
             ps.yaw_scored = a.yaw_scored;
-            ps.yaw_within_10deg = a.yaw_scored ? static_cast<double>(a.yaw_ok) / static_cast<double>(a.yaw_scored) : 0.0;
-            ps.centre_within_5cm = a.views ? static_cast<double>(a.centre_ok) / static_cast<double>(a.views) : 0.0;
+            ps.yaw_within_10deg =
+                a.yaw_scored ? static_cast<double>(a.yaw_ok) / static_cast<double>(a.yaw_scored)
+                             : 0.0;
+            ps.centre_within_5cm =
+                a.views ? static_cast<double>(a.centre_ok) / static_cast<double>(a.views) : 0.0;
             ps.median_yaw_error_deg = median_of(a.yaw_err);
             ps.median_centre_error_m = median_of(a.centre_err);
             CompletionStats& cs = set.completion[c];
             cs.objects = a.cp.size();
-            auto mean = [](const std::vector<double>& v) { return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size()); };
+            auto mean = [](const std::vector<double>& v) {
+                return v.empty() ? 0.0
+                                 : std::accumulate(v.begin(), v.end(), 0.0) /
+                                       static_cast<double>(v.size());
+            };
             cs.chamfer_partial_m = mean(a.cp);
             cs.chamfer_prior_m = mean(a.c0);
             cs.chamfer_completed_m = mean(a.c1);

@@ -17,16 +17,17 @@ namespace makeway::eval {
 struct ShapeDatasetParams {
     int scenes = 24;
     std::uint64_t seed = 0;
-    int viewpoints_per_scene = 6;     ///< start, waypoint, goal, then random free places
+    int viewpoints_per_scene = 6;             ///< start, waypoint, goal, then random free places
     std::vector<std::string> exclude_styles;  ///< never drawn (training without them)
     std::vector<std::string> only_styles;     ///< every object takes one of these (held-out styles)
-    std::size_t min_points = 30;      ///< views with fewer of the object's own returns are dropped
-    double max_outlier_share = 0.2;   ///< injected depth outliers: a share in [0, this] per view
-    double ground_band_m = 0.05;      ///< returns this close to the floor are cut (perception's ground removal)
+    std::size_t min_points = 30;     ///< views with fewer of the object's own returns are dropped
+    double max_outlier_share = 0.2;  ///< injected depth outliers: a share in [0, this] per view
+    double ground_band_m =
+        0.05;  ///< returns this close to the floor are cut (perception's ground removal)
     int sdf_samples = 4000;
     int occupancy_samples = 3000;
-    int surface_samples = 2048;       ///< kept per shape for scoring (canonical)
-    int threads = 0;                  ///< shape targets in parallel (0: all cores)
+    int surface_samples = 2048;  ///< kept per shape for scoring (canonical)
+    int threads = 0;             ///< shape targets in parallel (0: all cores)
 };
 
 /// Shapes also keep their surface samples and identity for the benchmark.
@@ -36,11 +37,12 @@ struct ShapeDataset : shape::ShapeTrainingSet {
     std::vector<TriangleMesh> mesh_object;              ///< per shape, in its object frame
     std::vector<OrientedBox> box_object;                ///< per shape
     std::vector<int> scene_of_view;                     ///< per view
-    std::vector<std::uint32_t> object_of_view;          ///< per view: the object's instance id in its scene
-    std::vector<std::size_t> own_points_of_view;        ///< per view: the object's own returns
+    std::vector<std::uint32_t> object_of_view;  ///< per view: the object's instance id in its scene
+    std::vector<std::size_t> own_points_of_view;  ///< per view: the object's own returns
 };
 
 /// Throws std::invalid_argument on unknown style names. `progress(done, total)` per scene.
-ShapeDataset generate_shape_dataset(const ShapeDatasetParams& params, const std::function<void(int, int)>& progress = {});
+ShapeDataset generate_shape_dataset(const ShapeDatasetParams& params,
+                                    const std::function<void(int, int)>& progress = {});
 
 }  // namespace makeway::eval

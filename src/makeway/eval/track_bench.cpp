@@ -31,7 +31,8 @@ struct GapState {
 
 }  // namespace
 
-TrackBenchResult run_track_bench(const TrackBenchParams& p, const std::function<void(int, int)>& progress) {
+TrackBenchResult run_track_bench(const TrackBenchParams& p,
+                                 const std::function<void(int, int)>& progress) {
     TrackBenchResult result;
     std::vector<TrackingFrame> all_gt, all_tracks;
     std::size_t det_yaw_ok = 0, det_yaw_n = 0, map_yaw_ok = 0, map_yaw_n = 0, detections = 0;
@@ -56,8 +57,9 @@ TrackBenchResult run_track_bench(const TrackBenchParams& p, const std::function<
         // Ids are offset per scene so that sequences concatenate into one evaluation.
         const std::uint32_t id_base = static_cast<std::uint32_t>(k) * 1000000u;
         std::unordered_map<std::uint32_t, GapState> gaps;
-        std::unordered_map<std::uint32_t, int> false_tracks;  // born of a false positive -> birth frame
-        std::set<std::uint32_t> seen;                          // objects visible at least once so far
+        std::unordered_map<std::uint32_t, int>
+            false_tracks;              // born of a false positive -> birth frame
+        std::set<std::uint32_t> seen;  // objects visible at least once so far
         for (int f = 0; f < p.max_frames && !simulator.reached_goal(); ++f) {
             const sim::SimFrame frame = simulator.next();
             std::unordered_map<std::uint32_t, std::size_t> points_of;
@@ -70,25 +72,37 @@ TrackBenchResult run_track_bench(const TrackBenchParams& p, const std::function<
             std::vector<bool> is_false;
             // Ground truth for the map: objects in range that have been seen at least once (the map
             // keeps objects while they are out of view); detections: objects seen in this sweep.
-            auto in_range = [&](const OrientedBox& b) { return (b.centre_m - sensor).head<2>().norm() <= p.tracker.sensor_range_m; };
+            auto in_range = [&](const OrientedBox& b) {
+                return (b.centre_m - sensor).head<2>().norm() <= p.tracker.sensor_range_m;
+            };
             for (const sim::ObjectState& o : frame.objects) {
-                const bool visible = points_of[o.id] >= p.min_visible_points && in_range(o.box_world);
+                const bool visible =
+                    points_of[o.id] >= p.min_visible_points && in_range(o.box_world);
                 if (visible) seen.insert(o.id), visible_now.insert(id_base + o.id);
-                if (seen.count(o.id) && in_range(o.box_world)) gt.push_back({id_base + o.id, o.cls, o.box_world});
+                if (seen.count(o.id) && in_range(o.box_world))
+                    gt.push_back({id_base + o.id, o.cls, o.box_world});
                 if (!visible || uniform(rng, 0, 1) < p.p_miss) continue;
                 Detection d;
                 d.cls = o.cls;
-                d.class_probabilities = o.cls == ObjectClass::kChair ? std::array<double, 2>{0.85, 0.15} : std::array<double, 2>{0.15, 0.85};
+                d.class_probabilities = o.cls == ObjectClass::kChair
+                                            ? std::array<double, 2>{0.85, 0.15}
+                                            : std::array<double, 2>{0.15, 0.85};
                 d.score = uniform(rng, 0.6, 1.0);
                 OrientedBox b = o.box_world;
                 for (int a = 0; a < 3; ++a) {
-                    b.centre_m[a] += normal(rng, 0, a == 2 ? p.centre_sigma_m / 2 : p.centre_sigma_m);
+                    b.centre_m[a] +=
+                        normal(rng, 0, a == 2 ? p.centre_sigma_m / 2 : p.centre_sigma_m);
                     b.size_m[a] *= std::max(0.5, 1.0 + normal(rng, 0, p.size_sigma));
                 }
                 const double u = uniform(rng, 0, 1);
-                const int quarter = u < p.p_flip_90 ? 1 : u < 2 * p.p_flip_90 ? 3 : u < 2 * p.p_flip_90 + p.p_flip_180 ? 2 : 0;
-                b.yaw_rad = wrap_angle(b.yaw_rad + quarter * kPi / 2 + normal(rng, 0, deg_to_rad(p.yaw_sigma_deg)));
-                if (quarter % 2 == 1) std::swap(b.size_m.x(), b.size_m.y());  // the same box, a quarter turn off
+                const int quarter = u < p.p_flip_90                      ? 1
+                                    : u < 2 * p.p_flip_90                ? 3
+                                    : u < 2 * p.p_flip_90 + p.p_flip_180 ? 2
+                                                                         : 0;
+                b.yaw_rad = wrap_angle(b.yaw_rad + quarter * kPi / 2 +
+                                       normal(rng, 0, deg_to_rad(p.yaw_sigma_deg)));
+                if (quarter % 2 == 1)
+                    std::swap(b.size_m.x(), b.size_m.y());  // the same box, a quarter turn off
                 det_yaw_ok += yaw_error_deg(o.cls, b.yaw_rad, o.box_world.yaw_rad) <= 10.0;
                 ++det_yaw_n;
                 d.box_sensor = b.transformed(T_sensor_world);
@@ -97,15 +111,21 @@ TrackBenchResult run_track_bench(const TrackBenchParams& p, const std::function<
             }
             // False positives: object-sized boxes at random places in range.
             const double expected_fp = p.false_positive_rate * static_cast<double>(gt.size());
-            int fps = static_cast<int>(expected_fp) + (uniform(rng, 0, 1) < expected_fp - std::floor(expected_fp) ? 1 : 0);
+            int fps = static_cast<int>(expected_fp) +
+                      (uniform(rng, 0, 1) < expected_fp - std::floor(expected_fp) ? 1 : 0);
             for (int i = 0; i < fps; ++i) {
                 Detection d;
                 d.cls = bernoulli(rng, 0.5) ? ObjectClass::kChair : ObjectClass::kTable;
                 d.class_probabilities = {0.5, 0.5};
                 d.score = uniform(rng, 0.3, 0.8);
-                const double r = uniform(rng, 1.0, p.tracker.sensor_range_m), a = uniform(rng, -kPi, kPi);
-                const Eigen::Vector3d size = d.cls == ObjectClass::kChair ? Eigen::Vector3d(0.5, 0.5, 0.9) : Eigen::Vector3d(1.4, 0.8, 0.75);
-                d.box_sensor = {{r * std::cos(a), r * std::sin(a), -0.45 + size.z() / 2}, size, uniform(rng, -kPi, kPi)};
+                const double r = uniform(rng, 1.0, p.tracker.sensor_range_m),
+                             a = uniform(rng, -kPi, kPi);
+                const Eigen::Vector3d size = d.cls == ObjectClass::kChair
+                                                 ? Eigen::Vector3d(0.5, 0.5, 0.9)
+                                                 : Eigen::Vector3d(1.4, 0.8, 0.75);
+                d.box_sensor = {{r * std::cos(a), r * std::sin(a), -0.45 + size.z() / 2},
+                                size,
+                                uniform(rng, -kPi, kPi)};
                 dets.push_back(d);
                 is_false.push_back(true);
                 ++result.false_positives;
@@ -114,8 +134,11 @@ TrackBenchResult run_track_bench(const TrackBenchParams& p, const std::function<
 
             const auto t0 = std::chrono::steady_clock::now();
             const Eigen::Vector4d floor(0, 0, 1, 0);  // the simulator's floor is z = 0
-            const tracking::TrackerFrameResult r = map.update(dets, frame.T_world_sensor, frame.stamp_s, p.use_scan_occlusion ? &frame.points_sensor : nullptr, &floor);
-            update_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            const tracking::TrackerFrameResult r =
+                map.update(dets, frame.T_world_sensor, frame.stamp_s,
+                           p.use_scan_occlusion ? &frame.points_sensor : nullptr, &floor);
+            update_s +=
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
             // False-positive tracks: removed, or taken over by a true detection, within 3 frames?
             for (std::size_t i = 0; i < dets.size(); ++i) {
@@ -159,7 +182,8 @@ TrackBenchResult run_track_bench(const TrackBenchParams& p, const std::function<
                 for (const TrackedBox& tb : tracks) {
                     if (iou_3d(gb.box, tb.box) >= 0.25) t = &tb;
                 }
-                if (s.last_seen_frame >= 0 && f - s.last_seen_frame > 1 && f - s.last_seen_frame <= 21 && s.track_at_last_seen != 0) {
+                if (s.last_seen_frame >= 0 && f - s.last_seen_frame > 1 &&
+                    f - s.last_seen_frame <= 21 && s.track_at_last_seen != 0) {
                     ++result.occlusion_gaps;
                     result.occlusion_gaps_kept += t && t->id == s.track_at_last_seen;
                 }
@@ -175,9 +199,12 @@ TrackBenchResult run_track_bench(const TrackBenchParams& p, const std::function<
     result.overall = evaluate_tracking(all_gt, all_tracks);
     result.per_class = evaluate_tracking_per_class(all_gt, all_tracks);
     result.fps = update_s > 0 ? static_cast<double>(result.frames) / update_s : 0.0;
-    result.mean_detections_per_frame = result.frames ? static_cast<double>(detections) / static_cast<double>(result.frames) : 0.0;
-    result.yaw_within_10deg_detections = det_yaw_n ? static_cast<double>(det_yaw_ok) / static_cast<double>(det_yaw_n) : 0.0;
-    result.yaw_within_10deg_map = map_yaw_n ? static_cast<double>(map_yaw_ok) / static_cast<double>(map_yaw_n) : 0.0;
+    result.mean_detections_per_frame =
+        result.frames ? static_cast<double>(detections) / static_cast<double>(result.frames) : 0.0;
+    result.yaw_within_10deg_detections =
+        det_yaw_n ? static_cast<double>(det_yaw_ok) / static_cast<double>(det_yaw_n) : 0.0;
+    result.yaw_within_10deg_map =
+        map_yaw_n ? static_cast<double>(map_yaw_ok) / static_cast<double>(map_yaw_n) : 0.0;
     return result;
 }
 

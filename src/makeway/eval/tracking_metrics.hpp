@@ -1,8 +1,9 @@
 #pragma once
 // Multi-object tracking metrics on 3D boxes, following the published definitions: CLEAR MOT
 // (Bernardin and Stiefelhagen 2008; matches kept from the previous frame while their IoU holds, the
-// rest by the Hungarian algorithm) and HOTA with DetA and AssA (Luiten et al., IJCV 2021; alpha from
-// 0.05 to 0.95, Hungarian on the global-alignment-weighted similarity per frame). Similarity: 3D IoU.
+// rest by the Hungarian algorithm) and HOTA with DetA and AssA (Luiten et al., IJCV 2021; alpha
+// from 0.05 to 0.95, Hungarian on the global-alignment-weighted similarity per frame). Similarity:
+// 3D IoU.
 #include <cstdint>
 #include <map>
 #include <vector>
@@ -38,12 +39,13 @@ struct TrackingMetricsParams {
 };
 
 /// Metrics over a sequence (gt[k] and tracks[k] are frame k); every box counts, whatever its class.
-TrackingMetrics evaluate_tracking(const std::vector<TrackingFrame>& gt, const std::vector<TrackingFrame>& tracks,
+TrackingMetrics evaluate_tracking(const std::vector<TrackingFrame>& gt,
+                                  const std::vector<TrackingFrame>& tracks,
                                   const TrackingMetricsParams& params = {});
 
 /// The same per class: each class's ground truth against the tracks labelled with that class.
-std::map<ObjectClass, TrackingMetrics> evaluate_tracking_per_class(const std::vector<TrackingFrame>& gt,
-                                                                   const std::vector<TrackingFrame>& tracks,
-                                                                   const TrackingMetricsParams& params = {});
+std::map<ObjectClass, TrackingMetrics> evaluate_tracking_per_class(
+    const std::vector<TrackingFrame>& gt, const std::vector<TrackingFrame>& tracks,
+    const TrackingMetricsParams& params = {});
 
 }  // namespace makeway::eval

@@ -34,7 +34,8 @@ LeastRiskRoute least_risk_route(const sim::NavGrid& g, const std::vector<std::ui
     seed[s.y() * g.width + s.x()] = {0.0, 0.0};
     std::vector<std::vector<int>> parents;
     std::vector<std::vector<Cost>> costs;
-    std::vector<int> accept_best;  // per leg: the accepted cell the next leg continues from (filled at the end)
+    std::vector<int>
+        accept_best;  // per leg: the accepted cell the next leg continues from (filled at the end)
     for (const RouteLeg& leg : legs) {
         std::vector<Cost> cost = seed;
         std::vector<int> parent(n, -1);
@@ -54,7 +55,8 @@ LeastRiskRoute least_risk_route(const sim::NavGrid& g, const std::vector<std::ui
                     if ((!dx && !dy) || g.is_blocked(x + dx, y + dy)) continue;
                     const int nidx = (y + dy) * g.width + x + dx;
                     const double step = g.resolution_m * ((dx && dy) ? std::sqrt(2.0) : 1.0);
-                    const Cost cand{c.zone + 0.5 * step * (in_zone[idx] + in_zone[nidx]), c.length + step};
+                    const Cost cand{c.zone + 0.5 * step * (in_zone[idx] + in_zone[nidx]),
+                                    c.length + step};
                     if (cand < cost[nidx]) {
                         cost[nidx] = cand;
                         parent[nidx] = idx;
@@ -67,8 +69,10 @@ LeastRiskRoute least_risk_route(const sim::NavGrid& g, const std::vector<std::ui
         std::vector<Cost> next(n);
         bool any = false;
         for (std::size_t i = 0; i < n; ++i) {
-            const Eigen::Vector2d c = g.centre_of(static_cast<int>(i % g.width), static_cast<int>(i / g.width));
-            if (cost[i].finite() && (c - leg.target_m).norm() <= leg.tolerance_m + 0.5 * g.resolution_m) {
+            const Eigen::Vector2d c =
+                g.centre_of(static_cast<int>(i % g.width), static_cast<int>(i / g.width));
+            if (cost[i].finite() &&
+                (c - leg.target_m).norm() <= leg.tolerance_m + 0.5 * g.resolution_m) {
                 next[i] = cost[i];
                 any = true;
             }
@@ -100,7 +104,8 @@ LeastRiskRoute least_risk_route(const sim::NavGrid& g, const std::vector<std::ui
     return out;
 }
 
-std::vector<std::uint8_t> zone_cells(const sim::NavGrid& g, const std::vector<ObjectEstimate>& objects,
+std::vector<std::uint8_t> zone_cells(const sim::NavGrid& g,
+                                     const std::vector<ObjectEstimate>& objects,
                                      const costmap::AffordanceParams& params) {
     std::vector<std::uint8_t> in(static_cast<std::size_t>(g.width) * g.height, 0);
     for (const ObjectEstimate& o : objects) {
@@ -109,7 +114,8 @@ std::vector<std::uint8_t> zone_cells(const sim::NavGrid& g, const std::vector<Ob
         const Eigen::Vector2i a = g.cell_of(lo), b = g.cell_of(hi);
         for (int y = std::max(0, a.y()); y <= std::min(g.height - 1, b.y()); ++y) {
             for (int x = std::max(0, a.x()); x <= std::min(g.width - 1, b.x()); ++x) {
-                if (costmap::in_affordance_zone(o, params, g.centre_of(x, y))) in[y * g.width + x] = 1;
+                if (costmap::in_affordance_zone(o, params, g.centre_of(x, y)))
+                    in[y * g.width + x] = 1;
             }
         }
     }
@@ -117,13 +123,17 @@ std::vector<std::uint8_t> zone_cells(const sim::NavGrid& g, const std::vector<Ob
 }
 
 UnavoidableRisk unavoidable_risk(const sim::Scene& scene, const sim::CollisionChecker& checker,
-                                 const std::vector<ObjectEstimate>& objects, const sim::RobotParams& robot,
-                                 const costmap::AffordanceParams& zones, double waypoint_tolerance_m,
-                                 double goal_tolerance_m, double resolution_m) {
-    const sim::NavGrid grid = sim::make_nav_grid(scene, checker, robot, 0.0, resolution_m, robot.inscribed_radius_m());
-    const LeastRiskRoute r = least_risk_route(grid, zone_cells(grid, objects, zones), {scene.start.x_m, scene.start.y_m},
-                                              {{{scene.waypoint.x_m, scene.waypoint.y_m}, waypoint_tolerance_m},
-                                               {{scene.goal.x_m, scene.goal.y_m}, goal_tolerance_m}});
+                                 const std::vector<ObjectEstimate>& objects,
+                                 const sim::RobotParams& robot,
+                                 const costmap::AffordanceParams& zones,
+                                 double waypoint_tolerance_m, double goal_tolerance_m,
+                                 double resolution_m) {
+    const sim::NavGrid grid =
+        sim::make_nav_grid(scene, checker, robot, 0.0, resolution_m, robot.inscribed_radius_m());
+    const LeastRiskRoute r =
+        least_risk_route(grid, zone_cells(grid, objects, zones), {scene.start.x_m, scene.start.y_m},
+                         {{{scene.waypoint.x_m, scene.waypoint.y_m}, waypoint_tolerance_m},
+                          {{scene.goal.x_m, scene.goal.y_m}, goal_tolerance_m}});
     UnavoidableRisk out;
     out.reachable = r.reachable;
     out.zone_length_m = r.zone_length_m;

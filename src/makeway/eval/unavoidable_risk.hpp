@@ -24,9 +24,9 @@ struct RouteLeg {
 };
 
 struct LeastRiskRoute {
-    bool reachable = false;     ///< false: some leg cannot be reached at all (then everything is 0)
-    double zone_length_m = 0.0; ///< the least length inside zones, over every route
-    double length_m = 0.0;      ///< the shortest length among the routes with that zone length
+    bool reachable = false;  ///< false: some leg cannot be reached at all (then everything is 0)
+    double zone_length_m = 0.0;  ///< the least length inside zones, over every route
+    double length_m = 0.0;       ///< the shortest length among the routes with that zone length
     std::vector<Eigen::Vector2d> cells_m;  ///< the route, cell centres from the start
 };
 
@@ -36,12 +36,13 @@ LeastRiskRoute least_risk_route(const sim::NavGrid& grid, const std::vector<std:
                                 const Eigen::Vector2d& start_m, const std::vector<RouteLeg>& legs);
 
 /// Which cells of `grid` lie inside any object's zone (costmap/affordance.hpp's definition).
-std::vector<std::uint8_t> zone_cells(const sim::NavGrid& grid, const std::vector<ObjectEstimate>& objects,
+std::vector<std::uint8_t> zone_cells(const sim::NavGrid& grid,
+                                     const std::vector<ObjectEstimate>& objects,
                                      const costmap::AffordanceParams& params);
 
 struct UnavoidableRisk {
     bool reachable = false;
-    double risk_time_s = 0.0;    ///< zone length at the robot's top speed
+    double risk_time_s = 0.0;  ///< zone length at the robot's top speed
     double zone_length_m = 0.0;
     double length_m = 0.0;
 };
@@ -49,8 +50,10 @@ struct UnavoidableRisk {
 /// The scene at t = 0 (its furniture where it stands), its start, waypoint and goal, the robot's
 /// inscribed radius and top speed.
 UnavoidableRisk unavoidable_risk(const sim::Scene& scene, const sim::CollisionChecker& checker,
-                                 const std::vector<ObjectEstimate>& objects, const sim::RobotParams& robot,
-                                 const costmap::AffordanceParams& zones, double waypoint_tolerance_m,
-                                 double goal_tolerance_m, double resolution_m = 0.05);
+                                 const std::vector<ObjectEstimate>& objects,
+                                 const sim::RobotParams& robot,
+                                 const costmap::AffordanceParams& zones,
+                                 double waypoint_tolerance_m, double goal_tolerance_m,
+                                 double resolution_m = 0.05);
 
 }  // namespace makeway::eval

@@ -1,7 +1,5 @@
 #include "makeway/eval/verify_bench.hpp"
 
-#include "makeway/pipeline/keyframe.hpp"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -12,6 +10,7 @@
 #include "makeway/common/statistics.hpp"
 #include "makeway/perception/accumulator.hpp"
 #include "makeway/perception/ground.hpp"
+#include "makeway/pipeline/keyframe.hpp"
 #include "makeway/sim/furniture.hpp"
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/scene_generator.hpp"
@@ -55,11 +54,14 @@ verification::CadLibrary build_library(const sim::SceneObject& o, Arm arm) {
     verification::CadLibrary lib;
     for (sim::FurnitureStyle style : sim::scene_styles_of(o.cls)) {
         const bool own = std::string(sim::to_string(style)) == o.style;
-        const std::uint64_t seed = own && arm != Arm::kMismatched ? o.model_seed : o.model_seed + 7919 + static_cast<std::uint64_t>(style);
+        const std::uint64_t seed = own && arm != Arm::kMismatched
+                                       ? o.model_seed
+                                       : o.model_seed + 7919 + static_cast<std::uint64_t>(style);
         TriangleMesh mesh = sim::make_furniture(style, seed).mesh_object;
         if (own && arm == Arm::kScaled) {
             Rng rng = make_rng(o.model_seed, 77);
-            const Eigen::Vector3f scale(static_cast<float>(uniform(rng, 0.9, 1.1)), static_cast<float>(uniform(rng, 0.9, 1.1)),
+            const Eigen::Vector3f scale(static_cast<float>(uniform(rng, 0.9, 1.1)),
+                                        static_cast<float>(uniform(rng, 0.9, 1.1)),
                                         static_cast<float>(uniform(rng, 0.9, 1.1)));
             for (Eigen::Vector3f& v : mesh.vertices_m) v = v.cwiseProduct(scale);
         }
@@ -71,15 +73,16 @@ verification::CadLibrary build_library(const sim::SceneObject& o, Arm arm) {
 // Libraries are sampled once per (object model, arm). Scene objects get a cache per scene (their
 // model seeds are the scene's own); the false boxes' two proxies share one for the whole run.
 class LibraryCache {
-public:
+  public:
     const verification::CadLibrary& get(const sim::SceneObject& o, Arm arm) {
-        const std::string key = o.style + "/" + std::to_string(o.model_seed) + "/" + std::to_string(static_cast<int>(arm));
+        const std::string key = o.style + "/" + std::to_string(o.model_seed) + "/" +
+                                std::to_string(static_cast<int>(arm));
         auto it = cache_.find(key);
         if (it == cache_.end()) it = cache_.emplace(key, build_library(o, arm)).first;
         return it->second;
     }
 
-private:
+  private:
     std::map<std::string, verification::CadLibrary> cache_;
 };
 
@@ -110,7 +113,8 @@ BenchKeyframe simulate_bench_keyframe(std::uint64_t seed, int k) {
     for (int s = 0; s < 5; ++s) {
         perception::StampedSweep sw;
         sw.stamp_s = 0.1 * s;
-        sw.points_sensor = sim::simulate_sweep(world, {}, [&](double) { return kf.T_world_sensor; }, sw.stamp_s, seed + k, s);
+        sw.points_sensor = sim::simulate_sweep(
+            world, {}, [&](double) { return kf.T_world_sensor; }, sw.stamp_s, seed + k, s);
         sw.T_world_sensor_start = sw.T_world_sensor_end = kf.T_world_sensor;
         acc.add(std::move(sw));
     }
@@ -123,7 +127,8 @@ BenchKeyframe simulate_bench_keyframe(std::uint64_t seed, int k) {
     return kf;
 }
 
-VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::function<void(int, int)>& progress) {
+VerifyBenchResult run_verify_bench(const VerifyBenchParams& p,
+                                   const std::function<void(int, int)>& progress) {
     VerifyBenchResult result;
     std::vector<Sample> samples[kArms];
     std::vector<double> ms[kArms];
@@ -151,25 +156,34 @@ VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::functi
             det.cls = o.cls;
             det.box_sensor = truth;
             for (int a = 0; a < 3; ++a) {
-                det.box_sensor.centre_m[a] += normal(rng, 0, a == 2 ? p.centre_sigma_m / 2 : p.centre_sigma_m);
+                det.box_sensor.centre_m[a] +=
+                    normal(rng, 0, a == 2 ? p.centre_sigma_m / 2 : p.centre_sigma_m);
                 det.box_sensor.size_m[a] *= std::max(0.5, 1.0 + normal(rng, 0, p.size_sigma));
             }
             const double u = uniform(rng, 0, 1);
-            const double flip = u < p.p_flip_90 ? kPi / 2 : u < 2 * p.p_flip_90 ? -kPi / 2 : u < 2 * p.p_flip_90 + p.p_flip_180 ? kPi : 0.0;
-            det.box_sensor.yaw_rad = wrap_angle(truth.yaw_rad + flip + normal(rng, 0, deg_to_rad(p.yaw_sigma_deg)));
+            const double flip = u < p.p_flip_90                      ? kPi / 2
+                                : u < 2 * p.p_flip_90                ? -kPi / 2
+                                : u < 2 * p.p_flip_90 + p.p_flip_180 ? kPi
+                                                                     : 0.0;
+            det.box_sensor.yaw_rad =
+                wrap_angle(truth.yaw_rad + flip + normal(rng, 0, deg_to_rad(p.yaw_sigma_deg)));
             ++result.true_boxes;
             for (int arm = 0; arm < kArms; ++arm) {
                 const verification::CadLibrary& lib = libraries.get(o, static_cast<Arm>(arm));
                 const auto t0 = std::chrono::steady_clock::now();
-                const verification::VerifiedDetection v =
-                    verification::verify_detection(cloud, det, lib, p.verify, floor_z(det.box_sensor.centre_m));
-                ms[arm].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+                const verification::VerifiedDetection v = verification::verify_detection(
+                    cloud, det, lib, p.verify, floor_z(det.box_sensor.centre_m));
+                ms[arm].push_back(
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                        .count());
                 Sample smp;
                 smp.accepted = v.accepted;
                 true_rejected[arm] += !v.accepted;
                 approximate[arm] += v.approximate;
-                const auto yb = yaw_error_deg(o.style, det.box_sensor.yaw_rad, yaw_of(T_sensor_object));
-                const auto ya = yaw_error_deg(o.style, yaw_of(v.T_sensor_object), yaw_of(T_sensor_object));
+                const auto yb =
+                    yaw_error_deg(o.style, det.box_sensor.yaw_rad, yaw_of(T_sensor_object));
+                const auto ya =
+                    yaw_error_deg(o.style, yaw_of(v.T_sensor_object), yaw_of(T_sensor_object));
                 smp.scored_yaw = yb.has_value();
                 smp.yaw_before_deg = yb.value_or(0.0);
                 smp.yaw_after_deg = ya.value_or(0.0);
@@ -181,32 +195,46 @@ VerifyBenchResult run_verify_bench(const VerifyBenchParams& p, const std::functi
         // False boxes: chair-sized boxes on structure points (walls, pillars) away from furniture.
         std::vector<std::size_t> structure;
         for (std::size_t i = 0; i < cloud.size(); ++i) {
-            if (cloud.label[i] == static_cast<std::uint8_t>(SemanticLabel::kStructure)) structure.push_back(i);
+            if (cloud.label[i] == static_cast<std::uint8_t>(SemanticLabel::kStructure))
+                structure.push_back(i);
         }
         for (int f = 0; f < p.false_boxes_per_scene && !structure.empty(); ++f) {
-            const Eigen::Vector3d c = cloud.xyz[structure[static_cast<std::size_t>(uniform_int(rng, 0, static_cast<std::int64_t>(structure.size()) - 1))]].cast<double>();
+            const Eigen::Vector3d c =
+                cloud
+                    .xyz[structure[static_cast<std::size_t>(
+                        uniform_int(rng, 0, static_cast<std::int64_t>(structure.size()) - 1))]]
+                    .cast<double>();
             Detection det;
             det.cls = bernoulli(rng, 0.5) ? ObjectClass::kChair : ObjectClass::kTable;
-            det.box_sensor = {{c.x(), c.y(), floor_z(c) + 0.45}, {0.55, 0.5, 0.9}, uniform(rng, -kPi, kPi)};
+            det.box_sensor = {
+                {c.x(), c.y(), floor_z(c) + 0.45}, {0.55, 0.5, 0.9}, uniform(rng, -kPi, kPi)};
             if (det.cls == ObjectClass::kTable) det.box_sensor.size_m = {1.4, 0.8, 0.75};
             ++result.false_boxes;
             sim::SceneObject proxy;
             proxy.cls = det.cls;
             proxy.style = det.cls == ObjectClass::kChair ? "four_leg_chair" : "rect_table";
             for (int arm = 0; arm < kArms; ++arm) {
-                const verification::CadLibrary& lib = proxy_libraries.get(proxy, static_cast<Arm>(arm));
-                false_accepted[arm] += verification::verify_detection(cloud, det, lib, p.verify, floor_z(c)).accepted;
+                const verification::CadLibrary& lib =
+                    proxy_libraries.get(proxy, static_cast<Arm>(arm));
+                false_accepted[arm] +=
+                    verification::verify_detection(cloud, det, lib, p.verify, floor_z(c)).accepted;
             }
         }
         if (progress) progress(k + 1, p.scenes);
     }
     for (int arm = 0; arm < kArms; ++arm) {
-        VerifyBenchArm& a = arm == 0 ? result.matched : arm == 1 ? result.mismatched : result.scaled;
+        VerifyBenchArm& a = arm == 0   ? result.matched
+                            : arm == 1 ? result.mismatched
+                                       : result.scaled;
         a.before = stats(samples[arm], false);
         a.after = stats(samples[arm], true);
-        a.true_rejection_rate = result.true_boxes ? static_cast<double>(true_rejected[arm]) / result.true_boxes : 0.0;
-        a.approximate_rate = result.true_boxes ? static_cast<double>(approximate[arm]) / result.true_boxes : 0.0;
-        a.false_acceptance_rate = result.false_boxes ? static_cast<double>(false_accepted[arm]) / result.false_boxes : 0.0;
+        a.true_rejection_rate =
+            result.true_boxes ? static_cast<double>(true_rejected[arm]) / result.true_boxes : 0.0;
+        a.approximate_rate =
+            result.true_boxes ? static_cast<double>(approximate[arm]) / result.true_boxes : 0.0;
+        a.false_acceptance_rate =
+            result.false_boxes ? static_cast<double>(false_accepted[arm]) / result.false_boxes
+                               : 0.0;
         a.ms_per_object_median = median(ms[arm]);
         a.ms_per_object_p99 = percentile(ms[arm], 0.99);
     }

@@ -18,12 +18,12 @@ struct VerifyBenchParams {
     int scenes = 5;
     std::uint64_t seed = 0;
     double centre_sigma_m = 0.06;
-    double size_sigma = 0.08;        ///< relative
+    double size_sigma = 0.08;  ///< relative
     double yaw_sigma_deg = 5.0;
-    double p_flip_90 = 0.2;          ///< each of +pi/2 and -pi/2
+    double p_flip_90 = 0.2;  ///< each of +pi/2 and -pi/2
     double p_flip_180 = 0.2;
     int false_boxes_per_scene = 10;
-    std::size_t min_points = 100;    ///< objects with fewer keyframe points are not scored
+    std::size_t min_points = 100;  ///< objects with fewer keyframe points are not scored
     verification::VerifyParams verify;
 };
 
@@ -35,11 +35,12 @@ struct OrientationStats {
     double median_centre_error_m = 0.0;
 };
 
-struct VerifyBenchArm {   ///< one library: matched, mismatched or scaled models
+struct VerifyBenchArm {  ///< one library: matched, mismatched or scaled models
     OrientationStats before;
-    OrientationStats after;          ///< accepted detections at their refined pose
+    OrientationStats after;  ///< accepted detections at their refined pose
     double true_rejection_rate = 0.0;
-    double approximate_rate = 0.0;   ///< true boxes accepted by the approximate level (approx_e_max_m)
+    double approximate_rate =
+        0.0;  ///< true boxes accepted by the approximate level (approx_e_max_m)
     double false_acceptance_rate = 0.0;
     double ms_per_object_median = 0.0;
     double ms_per_object_p99 = 0.0;
@@ -61,9 +62,9 @@ std::optional<double> yaw_error_deg(const std::string& style, double yaw_a_rad, 
 /// removed, with the scene's ground truth.
 struct BenchKeyframe {
     sim::Scene scene;
-    std::vector<sim::ObjectModel> models;      ///< one per scene object
+    std::vector<sim::ObjectModel> models;  ///< one per scene object
     Isometry3 T_world_sensor = Isometry3::Identity();
-    PointCloud cloud_sensor;                    ///< instance ids per point
+    PointCloud cloud_sensor;  ///< instance ids per point
     perception::GroundPlaneResult ground;
     double floor_z_m(const Eigen::Vector3d& p_sensor) const;  ///< the floor's height under a point
 };

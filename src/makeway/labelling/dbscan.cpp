@@ -8,11 +8,16 @@ namespace {
 struct Adaptor {
     const std::vector<Eigen::Vector3d>* points;
     std::size_t kdtree_get_point_count() const { return points->size(); }
-    double kdtree_get_pt(std::size_t i, std::size_t dim) const { return (*points)[i][static_cast<Eigen::Index>(dim)]; }
+    double kdtree_get_pt(std::size_t i, std::size_t dim) const {
+        return (*points)[i][static_cast<Eigen::Index>(dim)];
+    }
     template <class Bbox>
-    bool kdtree_get_bbox(Bbox&) const { return false; }
+    bool kdtree_get_bbox(Bbox&) const {
+        return false;
+    }
 };
-using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Adaptor>, Adaptor, 3, std::size_t>;
+using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Adaptor>,
+                                                 Adaptor, 3, std::size_t>;
 
 }  // namespace
 
@@ -23,11 +28,13 @@ DbscanResult dbscan(const std::vector<Eigen::Vector3d>& points, const DbscanPara
     const Adaptor adaptor{&points};
     Tree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(10));
     tree.buildIndex();
-    const double radius2 = params.eps_m * params.eps_m;  // nanoflann's L2 adaptors take squared radii
+    const double radius2 =
+        params.eps_m * params.eps_m;  // nanoflann's L2 adaptors take squared radii
     std::vector<std::pair<std::size_t, double>> found;
     auto neighbours = [&](std::size_t i) {
         found.clear();
-        tree.radiusSearch(points[i].data(), radius2, found, nanoflann::SearchParams(32, 0.0f, false));
+        tree.radiusSearch(points[i].data(), radius2, found,
+                          nanoflann::SearchParams(32, 0.0f, false));
         std::vector<std::size_t> out;
         out.reserve(found.size());
         for (const auto& [j, d2] : found) {
@@ -49,7 +56,8 @@ DbscanResult dbscan(const std::vector<Eigen::Vector3d>& points, const DbscanPara
         while (!frontier.empty()) {
             const std::size_t j = frontier.back();
             frontier.pop_back();
-            if (result.cluster[j] == DbscanResult::kNoise) result.cluster[j] = id;  // border or core
+            if (result.cluster[j] == DbscanResult::kNoise)
+                result.cluster[j] = id;  // border or core
             if (visited[j]) continue;
             visited[j] = 1;
             std::vector<std::size_t> more = neighbours(j);
@@ -65,7 +73,8 @@ DbscanResult dbscan(const std::vector<Eigen::Vector3d>& points, const DbscanPara
 std::vector<std::vector<std::size_t>> cluster_members(const DbscanResult& result) {
     std::vector<std::vector<std::size_t>> members(static_cast<std::size_t>(result.clusters));
     for (std::size_t i = 0; i < result.cluster.size(); ++i) {
-        if (result.cluster[i] >= 0) members[static_cast<std::size_t>(result.cluster[i])].push_back(i);
+        if (result.cluster[i] >= 0)
+            members[static_cast<std::size_t>(result.cluster[i])].push_back(i);
     }
     return members;
 }

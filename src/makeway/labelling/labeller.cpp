@@ -6,9 +6,9 @@
 #include <map>
 #include <stdexcept>
 
-#include "makeway/common/param_table.hpp"
 #include "makeway/common/angles.hpp"
 #include "makeway/common/box_overlap.hpp"
+#include "makeway/common/param_table.hpp"
 #include "makeway/common/voxel_thin.hpp"
 #include "makeway/labelling/object_rules.hpp"
 #include "makeway/labelling/upright_box.hpp"
@@ -17,7 +17,9 @@ namespace makeway::labelling {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 std::vector<Eigen::Vector3d> to_world(const PointCloud& cloud, const Isometry3& T) {
     std::vector<Eigen::Vector3d> out;
@@ -59,7 +61,8 @@ struct Labeller::Impl {
     std::unique_ptr<MultiSessionOccupancy> occupancy;
     std::vector<Object> objects;
     std::vector<std::vector<std::size_t>> objects_of;  ///< per session: indices into objects
-    std::vector<verification::CadLibrary> single_models;  ///< the library split into one-model libraries
+    std::vector<verification::CadLibrary>
+        single_models;  ///< the library split into one-model libraries
 
     bool finished = false;
     double seconds_front_end = 0.0;
@@ -76,7 +79,8 @@ struct Labeller::Impl {
     PointLabel label_point(int session, const Eigen::Vector3d& p) const {
         const Session& s = sessions[static_cast<std::size_t>(session)];
         const double h = height_of(s, p);
-        if (h < params.system.keyframe.ground_filter.ground_band_m) return {PointClass::kGround, SemanticLabel::kGround, 0};
+        if (h < params.system.keyframe.ground_filter.ground_band_m)
+            return {PointClass::kGround, SemanticLabel::kGround, 0};
         for (std::size_t index : objects_of[static_cast<std::size_t>(session)]) {
             const Object& o = objects[index];
             const double margin = o.model ? params.label_distance_m : params.unknown_box_margin_m;
@@ -84,24 +88,34 @@ struct Labeller::Impl {
             if (o.model) {
                 double d2 = 0.0;
                 const Eigen::Vector3d q = o.T_object_world * p;
-                if (o.model->levels.back().nearest(q, params.label_distance_m, &d2) == verification::ModelLevel::kNone) continue;
+                if (o.model->levels.back().nearest(q, params.label_distance_m, &d2) ==
+                    verification::ModelLevel::kNone)
+                    continue;
             }
-            return {PointClass::kMovable, o.info.cls ? to_semantic_label(*o.info.cls) : SemanticLabel::kClutter, o.info.id};
+            return {PointClass::kMovable,
+                    o.info.cls ? to_semantic_label(*o.info.cls) : SemanticLabel::kClutter,
+                    o.info.id};
         }
-        if (h > params.system.keyframe.ground_filter.ceiling_height_m) return {PointClass::kPermanent, SemanticLabel::kCeiling, 0};
+        if (h > params.system.keyframe.ground_filter.ceiling_height_m)
+            return {PointClass::kPermanent, SemanticLabel::kCeiling, 0};
         switch (occupancy->classify(session, p)) {
-            case PointClass::kDynamic: return {PointClass::kDynamic, SemanticLabel::kPerson, 0};
-            case PointClass::kMovable: return {PointClass::kMovable, SemanticLabel::kClutter, 0};
-            default: return {PointClass::kPermanent, SemanticLabel::kStructure, 0};
+            case PointClass::kDynamic:
+                return {PointClass::kDynamic, SemanticLabel::kPerson, 0};
+            case PointClass::kMovable:
+                return {PointClass::kMovable, SemanticLabel::kClutter, 0};
+            default:
+                return {PointClass::kPermanent, SemanticLabel::kStructure, 0};
         }
     }
 
-    // Share of the model's surface (finest level at T_world_object) that `session` saw through: free
-    // in at least min_free_sweeps sweeps and never hit; over the surface it observed at all.
-    double seen_through(int session, const verification::CadModel& model, const Isometry3& T_world_object) const {
+    // Share of the model's surface (finest level at T_world_object) that `session` saw through:
+    // free in at least min_free_sweeps sweeps and never hit; over the surface it observed at all.
+    double seen_through(int session, const verification::CadModel& model,
+                        const Isometry3& T_world_object) const {
         std::size_t observed = 0, through = 0;
         for (const Eigen::Vector3d& q : model.levels.back().points_object) {
-            const MultiSessionOccupancy::Evidence e = occupancy->evidence(session, T_world_object * q);
+            const MultiSessionOccupancy::Evidence e =
+                occupancy->evidence(session, T_world_object * q);
             if (e.hits + e.free == 0) continue;
             ++observed;
             through += e.hits == 0 && e.free >= params.occupancy.min_free_sweeps;
@@ -111,8 +125,8 @@ struct Labeller::Impl {
 
     void align(LabelResult& result, const LabelProgress& progress);
     void trace(const LabelProgress& progress);
-    void find_objects(int session, const verification::CadLibrary* library, const UnknownClassifier& classify_unknown,
-                      SessionReport& report);
+    void find_objects(int session, const verification::CadLibrary* library,
+                      const UnknownClassifier& classify_unknown, SessionReport& report);
     void label_keyframes(LabelResult& result, const LabelProgress& progress);
 };
 
@@ -131,7 +145,8 @@ void Labeller::begin_session(const Pose2& start_pose) {
 }
 
 pipeline::FrontEndResult Labeller::add_sweep(pipeline::Sweep sweep) {
-    if (impl_->sessions.empty() || impl_->finished) throw std::logic_error("labeller: add_sweep outside a session");
+    if (impl_->sessions.empty() || impl_->finished)
+        throw std::logic_error("labeller: add_sweep outside a session");
     const auto t0 = Clock::now();
     Impl::Session& s = impl_->sessions.back();
     const double stamp_s = sweep.stamp_s;
@@ -140,11 +155,13 @@ pipeline::FrontEndResult Labeller::add_sweep(pipeline::Sweep sweep) {
     if (s.sweeps % static_cast<std::size_t>(impl_->params.trace_every) == 0) {
         Impl::TracedSweep t;
         // The sweep's rays start where the sensor was mid-sweep (it moves a few cm in 0.1 s).
-        t.origin = 0.5 * (r.T_world_sensor_start.translation() + r.T_world_sensor_end.translation());
+        t.origin =
+            0.5 * (r.T_world_sensor_start.translation() + r.T_world_sensor_end.translation());
         std::vector<Eigen::Vector3d> pts;
         pts.reserve(r.points_world.size());
         for (const Eigen::Vector3f& p : r.points_world.xyz) pts.push_back(p.cast<double>());
-        for (const Eigen::Vector3d& p : voxel_thin(pts, impl_->params.trace_voxel_m)) t.points_world.push_back(p.cast<float>());
+        for (const Eigen::Vector3d& p : voxel_thin(pts, impl_->params.trace_voxel_m))
+            t.points_world.push_back(p.cast<float>());
         s.traced.push_back(std::move(t));
     }
     if (r.keyframe) {
@@ -163,13 +180,16 @@ pipeline::FrontEndResult Labeller::add_sweep(pipeline::Sweep sweep) {
     return r;
 }
 
-const Isometry3& Labeller::T_reference_session(int session) const { return impl_->sessions.at(static_cast<std::size_t>(session)).T_ref; }
+const Isometry3& Labeller::T_reference_session(int session) const {
+    return impl_->sessions.at(static_cast<std::size_t>(session)).T_ref;
+}
 
 void Labeller::Impl::align(LabelResult& result, const LabelProgress& progress) {
     auto session_map = [&](const Session& s, const Isometry3& T) {
         std::vector<Eigen::Vector3d> map;
         for (const KeyframeRecord& k : s.keyframes) {
-            for (const Eigen::Vector3d& p : to_world(k.cloud_sensor, T * k.T_world_keyframe)) map.push_back(p);
+            for (const Eigen::Vector3d& p : to_world(k.cloud_sensor, T * k.T_world_keyframe))
+                map.push_back(p);
         }
         return voxel_thin(map, params.align.voxel_m);
     };
@@ -178,14 +198,16 @@ void Labeller::Impl::align(LabelResult& result, const LabelProgress& progress) {
     for (std::size_t i = 0; i < sessions.size(); ++i) {
         Session& s = sessions[i];
         if (i > 0) {
-            result.reports[i].alignment = align_session(reference, session_map(s, Isometry3::Identity()), params.align);
+            result.reports[i].alignment =
+                align_session(reference, session_map(s, Isometry3::Identity()), params.align);
             s.T_ref = result.reports[i].alignment.T_reference_session;
         }
         for (const KeyframeRecord& k : s.keyframes) {
             if (!k.plane_sensor) continue;
             const Isometry3 T = s.T_ref * k.T_world_keyframe;
             const Eigen::Vector3d n = T.linear() * k.plane_sensor->head<3>();
-            s.floor_ref = Eigen::Vector4d(n.x(), n.y(), n.z(), k.plane_sensor->w() - n.dot(T.translation()));
+            s.floor_ref =
+                Eigen::Vector4d(n.x(), n.y(), n.z(), k.plane_sensor->w() - n.dot(T.translation()));
             break;
         }
         if (progress) progress("align", i + 1, sessions.size());
@@ -199,12 +221,14 @@ void Labeller::Impl::trace(const LabelProgress& progress) {
             bounds.extend(s.T_ref * t.origin);
             for (const Eigen::Vector3f& p : t.points_world) {
                 const Eigen::Vector3d q = s.T_ref * p.cast<double>();
-                if ((q - s.T_ref * t.origin).norm() <= params.occupancy.max_range_m) bounds.extend(q);
+                if ((q - s.T_ref * t.origin).norm() <= params.occupancy.max_range_m)
+                    bounds.extend(q);
             }
         }
     }
     if (bounds.isEmpty()) throw std::invalid_argument("labelling: the sessions hold no points");
-    occupancy = std::make_unique<MultiSessionOccupancy>(params.occupancy, bounds, static_cast<int>(sessions.size()));
+    occupancy = std::make_unique<MultiSessionOccupancy>(params.occupancy, bounds,
+                                                        static_cast<int>(sessions.size()));
     std::size_t total = 0, done = 0;
     for (const Session& s : sessions) total += s.traced.size();
     std::vector<Eigen::Vector3f> pts;
@@ -215,17 +239,20 @@ void Labeller::Impl::trace(const LabelProgress& progress) {
             pts.clear();
             for (const Eigen::Vector3f& p : t.points_world) pts.push_back(Tf * p);
             occupancy->add_sweep(static_cast<int>(i), s.T_ref * t.origin, pts);
-            if (progress && (++done % 20 == 0 || done == total)) progress("ray tracing", done, total);
+            if (progress && (++done % 20 == 0 || done == total))
+                progress("ray tracing", done, total);
         }
     }
 }
 
-void Labeller::Impl::find_objects(int session, const verification::CadLibrary* library, const UnknownClassifier& classify_unknown,
+void Labeller::Impl::find_objects(int session, const verification::CadLibrary* library,
+                                  const UnknownClassifier& classify_unknown,
                                   SessionReport& report) {
     const Session& s = sessions[static_cast<std::size_t>(session)];
     std::vector<Eigen::Vector3d> map;
     for (const KeyframeRecord& k : s.keyframes) {
-        for (const Eigen::Vector3d& p : to_world(k.cloud_sensor, s.T_ref * k.T_world_keyframe)) map.push_back(p);
+        for (const Eigen::Vector3d& p : to_world(k.cloud_sensor, s.T_ref * k.T_world_keyframe))
+            map.push_back(p);
     }
     map = voxel_thin(map, params.map_voxel_m);
     // Step 2 on the map: Dynamic points are not objects' (a walker would join a chair's cluster).
@@ -247,9 +274,11 @@ void Labeller::Impl::find_objects(int session, const verification::CadLibrary* l
     const bool have_models = library && !library->models().empty();
     if (have_models && single_models.size() != library->models().size()) {
         single_models.clear();
-        for (std::size_t i = 0; i < library->models().size(); ++i) single_models.push_back(library->only(i));
+        for (std::size_t i = 0; i < library->models().size(); ++i)
+            single_models.push_back(library->only(i));
     }
-    const SeenThrough through = [&](const verification::CadModel& model, const Isometry3& T_world_object) {
+    const SeenThrough through = [&](const verification::CadModel& model,
+                                    const Isometry3& T_world_object) {
         return seen_through(session, model, T_world_object);
     };
     while (!queue.empty()) {
@@ -264,11 +293,16 @@ void Labeller::Impl::find_objects(int session, const verification::CadLibrary* l
         const OrientedBox box_world = upright_pca_box(c.points_world, floor_z);
         if (!furniture_sized(box_world, floor_z, params)) {
             // A wall with chairs against it: its Movable points may still be objects of their own.
-            if (const auto part = movable_part(c, params)) enqueue(cluster_points(*part, std::vector<char>(part->size(), 1), c.depth + 1, params));
+            if (const auto part = movable_part(c, params))
+                enqueue(
+                    cluster_points(*part, std::vector<char>(part->size(), 1), c.depth + 1, params));
             continue;
         }
-        // Step 5: the CAD model that fits best (object_rules.hpp: residual, explained share, free space).
-        const std::optional<CadFit> best = have_models ? fit_cad_model(c, box_world, floor_z, single_models, through, params) : std::nullopt;
+        // Step 5: the CAD model that fits best (object_rules.hpp: residual, explained share, free
+        // space).
+        const std::optional<CadFit> best =
+            have_models ? fit_cad_model(c, box_world, floor_z, single_models, through, params)
+                        : std::nullopt;
         Object o;
         o.info.session = session;
         o.info.map_points = n;
@@ -276,7 +310,8 @@ void Labeller::Impl::find_objects(int session, const verification::CadLibrary* l
         if (best) {
             o.model = best->model;
             o.T_object_world = best->verified.T_sensor_object.inverse();
-            if (auto rest = unexplained_rest(c, *best, params)) enqueue(cluster_points(rest->points_world, rest->movable, rest->depth, params));
+            if (auto rest = unexplained_rest(c, *best, params))
+                enqueue(cluster_points(rest->points_world, rest->movable, rest->depth, params));
             o.info.cls = best->verified.detection.cls;
             o.info.box_world = best->verified.box_sensor;  // the verifier's frame was the world
             o.info.model = best->verified.model;
@@ -291,12 +326,13 @@ void Labeller::Impl::find_objects(int session, const verification::CadLibrary* l
         } else {
             continue;  // Permanent: it never moved and no model explains it
         }
-        // The same object twice (a cluster and a piece split off a neighbour): the first stays. Only
-        // within a class: a chair tucked under its table overlaps the table from above.
-        const bool duplicate = std::any_of(objects.begin(), objects.end(), [&](const Object& other) {
-            return other.info.session == session && other.info.cls == o.info.cls &&
-                   iou_bev(other.info.box_world, o.info.box_world) > params.duplicate_iou;
-        });
+        // The same object twice (a cluster and a piece split off a neighbour): the first stays.
+        // Only within a class: a chair tucked under its table overlaps the table from above.
+        const bool duplicate =
+            std::any_of(objects.begin(), objects.end(), [&](const Object& other) {
+                return other.info.session == session && other.info.cls == o.info.cls &&
+                       iou_bev(other.info.box_world, o.info.box_world) > params.duplicate_iou;
+            });
         if (duplicate) continue;
         o.info.id = static_cast<std::uint32_t>(objects.size() + 1);
         objects_of[static_cast<std::size_t>(session)].push_back(objects.size());
@@ -323,11 +359,15 @@ void Labeller::Impl::label_keyframes(LabelResult& result, const LabelProgress& p
             std::vector<std::size_t> keep;
             std::map<std::uint32_t, std::size_t> points_of;
             for (std::size_t i = 0; i < k.cloud_sensor.size(); ++i) {
-                const PointLabel l = label_point(static_cast<int>(si), T_ref_kf * k.cloud_sensor.xyz[i].cast<double>());
-                const bool unknown_object = l.instance != 0 && l.semantic == SemanticLabel::kClutter;
-                if (unknown_object) continue;  // left out of training: neither object nor background
+                const PointLabel l = label_point(static_cast<int>(si),
+                                                 T_ref_kf * k.cloud_sensor.xyz[i].cast<double>());
+                const bool unknown_object =
+                    l.instance != 0 && l.semantic == SemanticLabel::kClutter;
+                if (unknown_object)
+                    continue;  // left out of training: neither object nor background
                 keep.push_back(i);
-                out.point_labels.push_back(static_cast<std::uint32_t>(l.semantic) | (l.instance << 16));
+                out.point_labels.push_back(static_cast<std::uint32_t>(l.semantic) |
+                                           (l.instance << 16));
                 out.point_classes.push_back(l.cls);
                 ++result.point_class_counts[static_cast<std::size_t>(l.cls)];
                 if (l.instance) ++points_of[l.instance];
@@ -337,9 +377,13 @@ void Labeller::Impl::label_keyframes(LabelResult& result, const LabelProgress& p
             for (const Object& o : objects) {
                 if (o.info.session != static_cast<int>(si) || !o.info.cls) continue;
                 const OrientedBox box = o.info.box_world.transformed(T_kf_ref);
-                if (std::abs(box.centre_m.x()) > params.range_m || std::abs(box.centre_m.y()) > params.range_m) continue;
-                const LabelledObject label{o.info.id, *o.info.cls, o.info.model, box, points_of[o.info.id]};
-                (label.points >= params.min_points ? out.keyframe.objects : out.keyframe.unseen).push_back(label);
+                if (std::abs(box.centre_m.x()) > params.range_m ||
+                    std::abs(box.centre_m.y()) > params.range_m)
+                    continue;
+                const LabelledObject label{o.info.id, *o.info.cls, o.info.model, box,
+                                           points_of[o.info.id]};
+                (label.points >= params.min_points ? out.keyframe.objects : out.keyframe.unseen)
+                    .push_back(label);
             }
             result.sessions[si].push_back(std::move(out));
             if (progress) progress("labels", ++done, total);
@@ -347,15 +391,17 @@ void Labeller::Impl::label_keyframes(LabelResult& result, const LabelProgress& p
     }
 }
 
-LabelResult Labeller::finish(const verification::CadLibrary* library, const UnknownClassifier& classify_unknown,
+LabelResult Labeller::finish(const verification::CadLibrary* library,
+                             const UnknownClassifier& classify_unknown,
                              const LabelProgress& progress) {
     Impl& m = *impl_;
     if (m.finished) throw std::logic_error("labeller: finish called twice");
     if (m.sessions.empty()) throw std::invalid_argument("labelling: no sessions");
     for (std::size_t i = 0; i < m.sessions.size(); ++i) {
         if (m.sessions[i].keyframes.empty()) {
-            throw std::invalid_argument("labelling: session " + std::to_string(i + 1) + " has no keyframe (fewer than " +
-                                        std::to_string(m.params.system.keyframe.every) + " sweeps)");
+            throw std::invalid_argument(
+                "labelling: session " + std::to_string(i + 1) + " has no keyframe (fewer than " +
+                std::to_string(m.params.system.keyframe.every) + " sweeps)");
         }
     }
     m.finished = true;
@@ -388,13 +434,15 @@ LabelResult Labeller::finish(const verification::CadLibrary* library, const Unkn
     return result;
 }
 
-std::vector<PointLabel> Labeller::label_points(int session, const std::vector<Eigen::Vector3f>& points_session_world) const {
+std::vector<PointLabel> Labeller::label_points(
+    int session, const std::vector<Eigen::Vector3f>& points_session_world) const {
     const Impl& m = *impl_;
     if (!m.finished) throw std::logic_error("labeller: label_points before finish");
     const Isometry3& T = m.sessions.at(static_cast<std::size_t>(session)).T_ref;
     std::vector<PointLabel> out;
     out.reserve(points_session_world.size());
-    for (const Eigen::Vector3f& p : points_session_world) out.push_back(m.label_point(session, T * p.cast<double>()));
+    for (const Eigen::Vector3f& p : points_session_world)
+        out.push_back(m.label_point(session, T * p.cast<double>()));
     return out;
 }
 

@@ -1,20 +1,24 @@
 #include "makeway/labelling/occupancy.hpp"
 
-#include "makeway/labelling/param_tables.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
+#include "makeway/labelling/param_tables.hpp"
+
 namespace makeway::labelling {
 
 std::string_view to_string(PointClass c) {
     switch (c) {
-        case PointClass::kGround: return "ground";
-        case PointClass::kPermanent: return "permanent";
-        case PointClass::kMovable: return "movable";
-        case PointClass::kDynamic: return "dynamic";
+        case PointClass::kGround:
+            return "ground";
+        case PointClass::kPermanent:
+            return "permanent";
+        case PointClass::kMovable:
+            return "movable";
+        case PointClass::kDynamic:
+            return "dynamic";
     }
     return "?";
 }
@@ -24,12 +28,18 @@ const ParamTable<OccupancyParams>& occupancy_table() {
     static const ParamTable<O> table = [] {
         ParamTable<O> t;
         t.add("voxel_m", &O::voxel_m, above(0.0, 10.0), "the multi-session occupancy grid")
-            .add("end_margin_m", &O::end_margin_m, closed(0.0, 10.0), "free space stops this short of a return ...")
-            .add("range_margin", &O::range_margin, closed(0.0, 1.0), "... plus this share of its range (grazing rays do not carve surfaces)")
-            .add("min_free_sweeps", &O::min_free_sweeps, closed(1, 100000), "movable: another session saw the voxel free in this many sweeps ...")
-            .add("absent_hit_ratio", &O::absent_hit_ratio, below(0.0, 1.0), "... and hit it in at most this share of them")
-            .add("dynamic_min_free", &O::dynamic_min_free, closed(1, 100000), "dynamic: its own session saw it free this often ...")
-            .add("dynamic_hit_ratio", &O::dynamic_hit_ratio, below(0.0, 1.0), "... and hit it in fewer than this share of them");
+            .add("end_margin_m", &O::end_margin_m, closed(0.0, 10.0),
+                 "free space stops this short of a return ...")
+            .add("range_margin", &O::range_margin, closed(0.0, 1.0),
+                 "... plus this share of its range (grazing rays do not carve surfaces)")
+            .add("min_free_sweeps", &O::min_free_sweeps, closed(1, 100000),
+                 "movable: another session saw the voxel free in this many sweeps ...")
+            .add("absent_hit_ratio", &O::absent_hit_ratio, below(0.0, 1.0),
+                 "... and hit it in at most this share of them")
+            .add("dynamic_min_free", &O::dynamic_min_free, closed(1, 100000),
+                 "dynamic: its own session saw it free this often ...")
+            .add("dynamic_hit_ratio", &O::dynamic_hit_ratio, below(0.0, 1.0),
+                 "... and hit it in fewer than this share of them");
         return t;
     }();
     return table;
@@ -42,17 +52,20 @@ std::vector<std::string> OccupancyParams::validate() const {
     return e;
 }
 
-MultiSessionOccupancy::MultiSessionOccupancy(const OccupancyParams& params, const Eigen::AlignedBox3d& bounds, int sessions)
+MultiSessionOccupancy::MultiSessionOccupancy(const OccupancyParams& params,
+                                             const Eigen::AlignedBox3d& bounds, int sessions)
     : params_(params), sessions_(sessions) {
     if (sessions < 1) throw std::invalid_argument("occupancy: at least one session");
     if (bounds.isEmpty()) throw std::invalid_argument("occupancy: empty bounds");
     origin_ = bounds.min();
     const Eigen::Vector3d extent = bounds.sizes() / params.voxel_m;
     dims_ = (extent.array().ceil() + 1.0).cast<int>().matrix();
-    voxels_ = static_cast<std::size_t>(dims_.x()) * static_cast<std::size_t>(dims_.y()) * static_cast<std::size_t>(dims_.z());
+    voxels_ = static_cast<std::size_t>(dims_.x()) * static_cast<std::size_t>(dims_.y()) *
+              static_cast<std::size_t>(dims_.z());
     if (voxels_ * static_cast<std::size_t>(sessions) > params.max_voxels) {
-        throw std::invalid_argument("occupancy: the sessions span " + std::to_string(voxels_) + " voxels of " +
-                                    std::to_string(params.voxel_m) + " m, more than the " + std::to_string(params.max_voxels) +
+        throw std::invalid_argument("occupancy: the sessions span " + std::to_string(voxels_) +
+                                    " voxels of " + std::to_string(params.voxel_m) +
+                                    " m, more than the " + std::to_string(params.max_voxels) +
                                     " allowed (a larger labelling.voxel_m or fewer sessions)");
     }
     cells_.assign(voxels_ * static_cast<std::size_t>(sessions), Cell{});
@@ -65,7 +78,8 @@ bool MultiSessionOccupancy::index_of(const Eigen::Vector3d& p, Eigen::Vector3i& 
     return (v.array() >= 0).all() && (v.array() < dims_.array()).all();
 }
 
-void MultiSessionOccupancy::add_sweep(int session, const Eigen::Vector3d& origin, const std::vector<Eigen::Vector3f>& points_world) {
+void MultiSessionOccupancy::add_sweep(int session, const Eigen::Vector3d& origin,
+                                      const std::vector<Eigen::Vector3f>& points_world) {
     if (session < 0 || session >= sessions_) throw std::out_of_range("occupancy: no such session");
     const std::uint32_t stamp = ++sweep_;
     const double h = params_.voxel_m;
@@ -83,7 +97,8 @@ void MultiSessionOccupancy::add_sweep(int session, const Eigen::Vector3d& origin
             }
         }
         // Free space: Amanatides & Woo's voxel walk from the origin to the end of the free part.
-        const double free_len = std::min(range - params_.end_margin_m - params_.range_margin * range, params_.max_range_m);
+        const double free_len = std::min(
+            range - params_.end_margin_m - params_.range_margin * range, params_.max_range_m);
         if (free_len <= 0.0) continue;
         const Eigen::Vector3d dir = d / range;
         const Eigen::Vector3d start_f = (origin - origin_) / h;
@@ -123,7 +138,8 @@ void MultiSessionOccupancy::add_sweep(int session, const Eigen::Vector3d& origin
     }
 }
 
-MultiSessionOccupancy::Evidence MultiSessionOccupancy::evidence(int session, const Eigen::Vector3d& p_world) const {
+MultiSessionOccupancy::Evidence MultiSessionOccupancy::evidence(
+    int session, const Eigen::Vector3d& p_world) const {
     Eigen::Vector3i v;
     if (session < 0 || session >= sessions_ || !index_of(p_world, v)) return {};
     const Cell& c = cell(session, flat(v));
@@ -132,11 +148,14 @@ MultiSessionOccupancy::Evidence MultiSessionOccupancy::evidence(int session, con
 
 PointClass MultiSessionOccupancy::classify(int session, const Eigen::Vector3d& p_world) const {
     const Evidence own = evidence(session, p_world);
-    if (own.free >= params_.dynamic_min_free && own.hits < params_.dynamic_hit_ratio * own.free) return PointClass::kDynamic;
+    if (own.free >= params_.dynamic_min_free && own.hits < params_.dynamic_hit_ratio * own.free)
+        return PointClass::kDynamic;
     for (int s = 0; s < sessions_; ++s) {
         if (s == session) continue;
         const Evidence other = evidence(s, p_world);
-        if (other.free >= params_.min_free_sweeps && other.hits <= params_.absent_hit_ratio * other.free) return PointClass::kMovable;
+        if (other.free >= params_.min_free_sweeps &&
+            other.hits <= params_.absent_hit_ratio * other.free)
+            return PointClass::kMovable;
     }
     return PointClass::kPermanent;
 }

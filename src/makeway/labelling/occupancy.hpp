@@ -28,23 +28,27 @@ struct OccupancyParams {
     double max_range_m = 40.0;  ///< longer rays are traced only this far (their end is not a hit)
     /// Movable: another session saw the voxel free in at least this many sweeps ...
     int min_free_sweeps = 2;
-    /// ... and hit it in at most this share of them (grazing rays and range noise hit now and then).
+    /// ... and hit it in at most this share of them (grazing rays and range noise hit now and
+    /// then).
     double absent_hit_ratio = 0.15;
     /// Dynamic: the point's own session saw the voxel free in at least this many sweeps and hit it
     /// in fewer than this share of them (a walker fills a voxel for a sweep or two).
     int dynamic_min_free = 3;
     double dynamic_hit_ratio = 0.5;
-    std::size_t max_voxels = 200'000'000;  ///< sessions x voxels of the grid; a larger area is refused
+    std::size_t max_voxels =
+        200'000'000;  ///< sessions x voxels of the grid; a larger area is refused
     std::vector<std::string> validate() const;
 };
 
 class MultiSessionOccupancy {
-public:
+  public:
     /// `bounds`: the world box the sessions' points lie in (rays are clipped to it).
-    MultiSessionOccupancy(const OccupancyParams& params, const Eigen::AlignedBox3d& bounds, int sessions);
+    MultiSessionOccupancy(const OccupancyParams& params, const Eigen::AlignedBox3d& bounds,
+                          int sessions);
 
     /// One sweep of `session`: rays from `origin` to every point (world frame).
-    void add_sweep(int session, const Eigen::Vector3d& origin, const std::vector<Eigen::Vector3f>& points_world);
+    void add_sweep(int session, const Eigen::Vector3d& origin,
+                   const std::vector<Eigen::Vector3f>& points_world);
 
     struct Evidence {
         int hits = 0;  ///< sweeps with a return in the voxel
@@ -56,18 +60,24 @@ public:
     PointClass classify(int session, const Eigen::Vector3d& p_world) const;
     int sessions() const { return sessions_; }
 
-private:
+  private:
     struct Cell {
         std::uint16_t hits = 0, free = 0;
         std::uint32_t last_hit = 0, last_free = 0;  ///< the sweep that counted last (+1; 0: none)
     };
     bool index_of(const Eigen::Vector3d& p, Eigen::Vector3i& v) const;
     std::size_t flat(const Eigen::Vector3i& v) const {
-        return (static_cast<std::size_t>(v.z()) * static_cast<std::size_t>(dims_.y()) + static_cast<std::size_t>(v.y())) *
-                   static_cast<std::size_t>(dims_.x()) + static_cast<std::size_t>(v.x());
+        return (static_cast<std::size_t>(v.z()) * static_cast<std::size_t>(dims_.y()) +
+                static_cast<std::size_t>(v.y())) *
+                   static_cast<std::size_t>(dims_.x()) +
+               static_cast<std::size_t>(v.x());
     }
-    Cell& cell(int session, std::size_t i) { return cells_[static_cast<std::size_t>(session) * voxels_ + i]; }
-    const Cell& cell(int session, std::size_t i) const { return cells_[static_cast<std::size_t>(session) * voxels_ + i]; }
+    Cell& cell(int session, std::size_t i) {
+        return cells_[static_cast<std::size_t>(session) * voxels_ + i];
+    }
+    const Cell& cell(int session, std::size_t i) const {
+        return cells_[static_cast<std::size_t>(session) * voxels_ + i];
+    }
 
     OccupancyParams params_;
     Eigen::Vector3d origin_;

@@ -12,11 +12,13 @@ std::vector<std::string> SessionAlignParams::validate() const {
     std::vector<std::string> e;
     if (!(voxel_m > 0.0)) e.push_back("labelling.align.voxel_m must be > 0");
     if (iterations < 1) e.push_back("labelling.align.iterations must be >= 1");
-    if (max_distance_m.empty()) e.push_back("labelling.align.max_distance_m needs at least one stage");
+    if (max_distance_m.empty())
+        e.push_back("labelling.align.max_distance_m needs at least one stage");
     for (double d : max_distance_m) {
         if (!(d > 0.0)) e.push_back("labelling.align.max_distance_m must be > 0");
     }
-    if (!(cauchy_scale_m > 0.0) || !(inlier_m > 0.0)) e.push_back("labelling.align.cauchy_scale_m and inlier_m must be > 0");
+    if (!(cauchy_scale_m > 0.0) || !(inlier_m > 0.0))
+        e.push_back("labelling.align.cauchy_scale_m and inlier_m must be > 0");
     return e;
 }
 
@@ -44,13 +46,15 @@ void rows_of(const Eigen::Vector3d& p, const odometry::MapMatch& m, std::vector<
 
 }  // namespace
 
-SessionAlignment align_session(const odometry::VoxelMap& reference, const std::vector<Eigen::Vector3d>& session_map,
+SessionAlignment align_session(const odometry::VoxelMap& reference,
+                               const std::vector<Eigen::Vector3d>& session_map,
                                const SessionAlignParams& params, const Isometry3& initial) {
     SessionAlignment out;
     Isometry3 T = initial;
     const std::vector<Eigen::Vector3d> points = voxel_thin(session_map, params.voxel_m);
     std::vector<Row> rows;
-    const int per_stage = std::max(1, params.iterations / static_cast<int>(params.max_distance_m.size()));
+    const int per_stage =
+        std::max(1, params.iterations / static_cast<int>(params.max_distance_m.size()));
     for (double max_d : params.max_distance_m) {
         for (int it = 0; it < per_stage; ++it) {
             ++out.iterations;
@@ -75,7 +79,9 @@ SessionAlignment align_session(const odometry::VoxelMap& reference, const std::v
             D.linear() = Eigen::AngleAxisd(dx.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
             D.translation() = Eigen::Vector3d(dx.x(), dx.y(), 0.0);
             T = D * T;
-            if (dx.head<2>().norm() < params.convergence_m && std::abs(dx.z()) < params.convergence_m) break;
+            if (dx.head<2>().norm() < params.convergence_m &&
+                std::abs(dx.z()) < params.convergence_m)
+                break;
         }
     }
     double sum2 = 0.0;
@@ -84,13 +90,15 @@ SessionAlignment align_session(const odometry::VoxelMap& reference, const std::v
         const Eigen::Vector3d p = T * q;
         const std::optional<odometry::MapMatch> m = reference.nearest(p, params.inlier_m);
         if (!m) continue;
-        const double r = m->shape == odometry::VoxelShape::kPlane ? m->axis.dot(p - m->point) : (p - m->point).head<2>().norm();
+        const double r = m->shape == odometry::VoxelShape::kPlane ? m->axis.dot(p - m->point)
+                                                                  : (p - m->point).head<2>().norm();
         sum2 += r * r;
         ++inliers;
     }
     out.T_reference_session = T;
     out.residual_m = inliers ? std::sqrt(sum2 / static_cast<double>(inliers)) : 0.0;
-    out.inlier_fraction = points.empty() ? 0.0 : static_cast<double>(inliers) / static_cast<double>(points.size());
+    out.inlier_fraction =
+        points.empty() ? 0.0 : static_cast<double>(inliers) / static_cast<double>(points.size());
     const Isometry3 C = T * initial.inverse();
     out.correction_m = C.translation().head<2>().norm();
     out.correction_deg = std::abs(rad_to_deg(std::atan2(C.linear()(1, 0), C.linear()(0, 0))));

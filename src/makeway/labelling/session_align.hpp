@@ -12,26 +12,31 @@
 namespace makeway::labelling {
 
 struct SessionAlignParams {
-    double voxel_m = 0.1;               ///< the moving map is thinned to one point per voxel
+    double voxel_m = 0.1;  ///< the moving map is thinned to one point per voxel
     int iterations = 30;
-    std::vector<double> max_distance_m{0.5, 0.25, 0.1};  ///< correspondence distance, shrinking per stage
+    std::vector<double> max_distance_m{0.5, 0.25,
+                                       0.1};  ///< correspondence distance, shrinking per stage
     double cauchy_scale_m = 0.05;
-    double inlier_m = 0.05;             ///< matches closer than this make the reported residual
+    double inlier_m = 0.05;  ///< matches closer than this make the reported residual
     double convergence_m = 1e-4;
     std::vector<std::string> validate() const;
 };
 
 struct SessionAlignment {
-    Isometry3 T_reference_session = Isometry3::Identity();  ///< maps the session's world into the reference's
+    Isometry3 T_reference_session =
+        Isometry3::Identity();     ///< maps the session's world into the reference's
     double residual_m = 0.0;       ///< RMS point-to-plane distance of the inliers after alignment
     double inlier_fraction = 0.0;  ///< share of the session's map within inlier_m of the reference
-    double correction_m = 0.0, correction_deg = 0.0;  ///< size of the correction to the odometry's frame
+    double correction_m = 0.0,
+           correction_deg = 0.0;  ///< size of the correction to the odometry's frame
     int iterations = 0;
 };
 
 /// `session_map`: the session's points in its own world frame (its odometry from its start pose);
 /// `initial`: the guess (identity when sessions start at known poses of the same frame).
-SessionAlignment align_session(const odometry::VoxelMap& reference, const std::vector<Eigen::Vector3d>& session_map,
-                               const SessionAlignParams& params, const Isometry3& initial = Isometry3::Identity());
+SessionAlignment align_session(const odometry::VoxelMap& reference,
+                               const std::vector<Eigen::Vector3d>& session_map,
+                               const SessionAlignParams& params,
+                               const Isometry3& initial = Isometry3::Identity());
 
 }  // namespace makeway::labelling

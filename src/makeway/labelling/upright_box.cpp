@@ -8,7 +8,8 @@
 
 namespace makeway::labelling {
 
-OrientedBox upright_pca_box(const std::vector<Eigen::Vector3d>& points, std::optional<double> floor_z_m) {
+OrientedBox upright_pca_box(const std::vector<Eigen::Vector3d>& points,
+                            std::optional<double> floor_z_m) {
     OrientedBox box;
     if (points.empty()) return box;
     Eigen::Vector2d mean = Eigen::Vector2d::Zero();

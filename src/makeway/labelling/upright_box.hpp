@@ -12,8 +12,9 @@
 namespace makeway::labelling {
 
 /// Yaw in (-pi/2, pi/2]: the box's x runs along the larger horizontal spread. An empty cluster
-/// gives a zero-size box at the origin; a cluster without horizontal spread (a single vertical line)
-/// yaw 0. `floor_z_m` extends the box down to the floor (objects stand on it).
-OrientedBox upright_pca_box(const std::vector<Eigen::Vector3d>& points, std::optional<double> floor_z_m = std::nullopt);
+/// gives a zero-size box at the origin; a cluster without horizontal spread (a single vertical
+/// line) yaw 0. `floor_z_m` extends the box down to the floor (objects stand on it).
+OrientedBox upright_pca_box(const std::vector<Eigen::Vector3d>& points,
+                            std::optional<double> floor_z_m = std::nullopt);
 
 }  // namespace makeway::labelling

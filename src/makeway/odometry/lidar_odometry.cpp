@@ -1,17 +1,16 @@
 #include "makeway/odometry/lidar_odometry.hpp"
 
-#include "makeway/odometry/param_tables.hpp"
-
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <numeric>
 #include <stdexcept>
+#include <tuple>
 
 #include "makeway/common/angles.hpp"
 #include "makeway/common/voxel_thin.hpp"
+#include "makeway/odometry/param_tables.hpp"
 
 namespace makeway::odometry {
 namespace {
@@ -33,32 +32,50 @@ const ParamTable<OdometryParams>& odometry_table() {
     using O = OdometryParams;
     static const ParamTable<O> table = [] {
         ParamTable<O> t;
-        t.add_ref("voxel_m", [](O& o) -> double& { return o.map.voxel_m; }, above(0.01, 10.0),
-                  "map voxels; each keeps at most max_points_per_voxel points and its shape")
-            .add_ref("max_points_per_voxel", [](O& o) -> int& { return o.map.max_points_per_voxel; }, closed(1, 1000), "")
-            .add_ref("planarity", [](O& o) -> double& { return o.map.planarity; }, open(0.0, 1.0),
-                     "spread ratio below which a voxel is a plane (or, of the larger two, a line)")
-            .add("source_voxel_m", &O::source_voxel_m, above(0.0, 10.0), "registration uses one point per voxel of this size")
-            .add("insert_voxel_m", &O::insert_voxel_m, above(0.0, 10.0), "the map receives one point per voxel of this size")
-            .add("min_range_m", &O::min_range_m, closed(0.0, 1000.0), "closer returns (the robot, a person at the sensor) unused")
+        t.add_ref(
+             "voxel_m", [](O& o) -> double& { return o.map.voxel_m; }, above(0.01, 10.0),
+             "map voxels; each keeps at most max_points_per_voxel points and its shape")
+            .add_ref(
+                "max_points_per_voxel", [](O& o) -> int& { return o.map.max_points_per_voxel; },
+                closed(1, 1000), "")
+            .add_ref(
+                "planarity", [](O& o) -> double& { return o.map.planarity; }, open(0.0, 1.0),
+                "spread ratio below which a voxel is a plane (or, of the larger two, a line)")
+            .add("source_voxel_m", &O::source_voxel_m, above(0.0, 10.0),
+                 "registration uses one point per voxel of this size")
+            .add("insert_voxel_m", &O::insert_voxel_m, above(0.0, 10.0),
+                 "the map receives one point per voxel of this size")
+            .add("min_range_m", &O::min_range_m, closed(0.0, 1000.0),
+                 "closer returns (the robot, a person at the sensor) unused")
             .add("max_range_m", &O::max_range_m, above(0.0, 1000.0), "")
-            .add("min_height_m", &O::min_height_m, closed(-5.0, 5.0), "points lower above the base (the floor) are left out")
-            .add("map_radius_m", &O::map_radius_m, above(0.0, 1000.0), "voxels farther from the robot are dropped")
+            .add("min_height_m", &O::min_height_m, closed(-5.0, 5.0),
+                 "points lower above the base (the floor) are left out")
+            .add("map_radius_m", &O::map_radius_m, above(0.0, 1000.0),
+                 "voxels farther from the robot are dropped")
             .add("max_iterations", &O::max_iterations, closed(1, 1000), "")
-            .add("convergence_m", &O::convergence_m, above(0.0, 1.0), "iterations stop when a step moves less (rotation at 1 m counted alike)")
+            .add("convergence_m", &O::convergence_m, above(0.0, 1.0),
+                 "iterations stop when a step moves less (rotation at 1 m counted alike)")
             .add("initial_threshold_m", &O::initial_threshold_m, above(0.0, 100.0),
                  "correspondence distance until the adaptive one has 5 sweeps of history")
             .add("min_threshold_m", &O::min_threshold_m, above(0.0, 100.0), "")
             .add("max_threshold_m", &O::max_threshold_m, above(0.0, 100.0), "")
-            .add("residual_sigma_m", &O::residual_sigma_m, above(0.0, 10.0), "one correspondence's noise, weighed against the wheel prior")
-            .add("wheel_sigma_m", &O::wheel_sigma_m, above(0.0, 10.0), "the wheel prediction's sigma per sweep: floor ...")
-            .add("wheel_sigma_per_m", &O::wheel_sigma_per_m, closed(0.0, 10.0), "... plus this share of the distance driven")
+            .add("residual_sigma_m", &O::residual_sigma_m, above(0.0, 10.0),
+                 "one correspondence's noise, weighed against the wheel prior")
+            .add("wheel_sigma_m", &O::wheel_sigma_m, above(0.0, 10.0),
+                 "the wheel prediction's sigma per sweep: floor ...")
+            .add("wheel_sigma_per_m", &O::wheel_sigma_per_m, closed(0.0, 10.0),
+                 "... plus this share of the distance driven")
             .add("wheel_sigma_rad", &O::wheel_sigma_rad, above(0.0, 10.0), "")
             .add("wheel_sigma_per_rad", &O::wheel_sigma_per_rad, closed(0.0, 10.0), "")
             .add("deskew", &O::deskew, "move each point with the pose at its own time")
-            .require([](const O& o) { return o.min_range_m < o.max_range_m; }, "needs 0 <= min_range_m < max_range_m")
-            .require([](const O& o) { return o.min_threshold_m <= o.initial_threshold_m && o.initial_threshold_m <= o.max_threshold_m; },
-                     "needs 0 < min_threshold_m <= initial_threshold_m <= max_threshold_m");
+            .require([](const O& o) { return o.min_range_m < o.max_range_m; },
+                     "needs 0 <= min_range_m < max_range_m")
+            .require(
+                [](const O& o) {
+                    return o.min_threshold_m <= o.initial_threshold_m &&
+                           o.initial_threshold_m <= o.max_threshold_m;
+                },
+                "needs 0 < min_threshold_m <= initial_threshold_m <= max_threshold_m");
         return t;
     }();
     return table;
@@ -70,13 +87,16 @@ std::vector<std::string> OdometryParams::validate() const {
     return p;
 }
 
-LidarOdometry::LidarOdometry(const OdometryParams& params, const Isometry3& T_base_sensor, const Pose2& start_pose)
+LidarOdometry::LidarOdometry(const OdometryParams& params, const Isometry3& T_base_sensor,
+                             const Pose2& start_pose)
     : params_(params), T_base_sensor_(T_base_sensor), pose_(start_pose), map_(params.map) {
     throw_if_problems(params.validate(), "lidar odometry");
 }
 
-OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, double /*stamp_s*/, double duration_s,
-                                             const std::optional<Pose2>& wheel_start, const std::optional<Pose2>& wheel_end) {
+OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, double /*stamp_s*/,
+                                             double duration_s,
+                                             const std::optional<Pose2>& wheel_start,
+                                             const std::optional<Pose2>& wheel_end) {
     // 1. Prediction: the wheels' motion over the sweep (and over any gap since the last one), else
     // the last sweep's motion again.
     Pose2 gap, motion = last_motion_;
@@ -89,7 +109,8 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
     const Pose2 predicted = compose(predicted_start, motion);
 
     // 2. De-skewing into the base frame at the sweep's end; range and floor filters.
-    const bool timed = params_.deskew && points_sensor.time_s.size() == points_sensor.size() && duration_s > 0.0;
+    const bool timed =
+        params_.deskew && points_sensor.time_s.size() == points_sensor.size() && duration_s > 0.0;
     const Isometry3 T_end_start = lift_to_3d(motion).inverse();
     std::vector<Eigen::Vector3d> points;
     points.reserve(points_sensor.size());
@@ -107,23 +128,27 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
         if (timed) {
             if (points_sensor.time_s[i] != column_time) {
                 column_time = points_sensor.time_s[i];
-                const double s = std::clamp(static_cast<double>(column_time) / duration_s, 0.0, 1.0);
+                const double s =
+                    std::clamp(static_cast<double>(column_time) / duration_s, 0.0, 1.0);
                 T_end_point = T_end_start * lift_to_3d(interpolate(Pose2{}, motion, s));
             }
             points.push_back(T_end_point * p_base);
         } else {
-            points.push_back(T_end_start * p_base);  // an instantaneous sweep, taken at its stamp (the start)
+            points.push_back(T_end_start *
+                             p_base);  // an instantaneous sweep, taken at its stamp (the start)
         }
     }
 
     OdometryResult out;
     Pose2 estimate = predicted;
-    const double threshold = deviations_.size() < 5
-                                 ? params_.initial_threshold_m
-                                 : std::clamp(3.0 * std::sqrt(std::accumulate(deviations_.begin(), deviations_.end(), 0.0,
-                                                                              [](double a, double d) { return a + d * d; }) /
-                                                              static_cast<double>(deviations_.size())),
-                                              params_.min_threshold_m, params_.max_threshold_m);
+    const double threshold =
+        deviations_.size() < 5
+            ? params_.initial_threshold_m
+            : std::clamp(
+                  3.0 * std::sqrt(std::accumulate(deviations_.begin(), deviations_.end(), 0.0,
+                                                  [](double a, double d) { return a + d * d; }) /
+                                  static_cast<double>(deviations_.size())),
+                  params_.min_threshold_m, params_.max_threshold_m);
     out.threshold_m = threshold;
     if (!first_ && !map_.empty()) {
         // 3. Planar Gauss-Newton with the wheel prior.
@@ -155,7 +180,8 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
                 // (corners of planes, clutter: no direction to trust) and other lines, which
                 // indoors are mostly one scan ring crossing a wall, a sampling pattern that moves
                 // with the robot.
-                Eigen::Matrix3d J = Eigen::Matrix3d::Zero();  // d(q) / d(x, y, yaw); z does not move
+                Eigen::Matrix3d J =
+                    Eigen::Matrix3d::Zero();  // d(q) / d(x, y, yaw); z does not move
                 J << 1.0, 0.0, -rp.y(), 0.0, 1.0, rp.x(), 0.0, 0.0, 0.0;
                 if (m->shape == VoxelShape::kPlane && std::abs(m->axis.z()) < kHorizontal) {
                     const Eigen::Vector3d row = J.transpose() * m->axis;
@@ -168,7 +194,9 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
                     // firing's column of returns, a "line" that slides along the wall (nearly the
                     // line of sight) as the robot moves; taken whole, those columns held the pose
                     // back by 13 cm in the first second of the benchmark's corridor.
-                    const Eigen::Vector3d across = Eigen::Vector3d(estimate.y_m - q.y(), q.x() - estimate.x_m, 0.0).normalized();
+                    const Eigen::Vector3d across =
+                        Eigen::Vector3d(estimate.y_m - q.y(), q.x() - estimate.x_m, 0.0)
+                            .normalized();
                     const Eigen::Vector3d row = J.transpose() * across;
                     const double r = across.dot(d);
                     const double w = sq(kernel) / sq(kernel + r * r) * inv_var;
@@ -181,7 +209,8 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
             }
             H_lidar = H;
             out.correspondences = matched;
-            const Eigen::Vector3d prior_r(estimate.x_m - predicted.x_m, estimate.y_m - predicted.y_m,
+            const Eigen::Vector3d prior_r(estimate.x_m - predicted.x_m,
+                                          estimate.y_m - predicted.y_m,
                                           angle_diff(estimate.yaw_rad, predicted.yaw_rad));
             H += prior_info.asDiagonal();
             g += prior_info.cwiseProduct(prior_r);
@@ -191,14 +220,17 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
             estimate.y_m += step.y();
             estimate.yaw_rad = wrap_angle(estimate.yaw_rad + step.z());
             out.iterations = it + 1;
-            if (step.head<2>().norm() + kLever_m * std::abs(step.z()) < params_.convergence_m) break;
+            if (step.head<2>().norm() + kLever_m * std::abs(step.z()) < params_.convergence_m)
+                break;
         }
-        const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(H_lidar).eigenvalues();
+        const Eigen::Vector3d ev =
+            Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(H_lidar).eigenvalues();
         out.constraint_ratio = ev(2) > 0.0 ? std::max(ev(0), 0.0) / ev(2) : 0.0;
         // The adaptive threshold: how far registration moved the prediction (KISS-ICP's model
         // deviation, with the rotation counted at the sensor's useful range).
-        const double deviation = std::hypot(estimate.x_m - predicted.x_m, estimate.y_m - predicted.y_m) +
-                                 10.0 * std::abs(angle_diff(estimate.yaw_rad, predicted.yaw_rad));
+        const double deviation =
+            std::hypot(estimate.x_m - predicted.x_m, estimate.y_m - predicted.y_m) +
+            10.0 * std::abs(angle_diff(estimate.yaw_rad, predicted.yaw_rad));
         deviations_.push_back(deviation);
         if (deviations_.size() > kDeviationWindow) deviations_.erase(deviations_.begin());
     }
@@ -207,7 +239,9 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
     // 4. The map: the registered sweep in, far voxels out.
     const double c = std::cos(estimate.yaw_rad), s = std::sin(estimate.yaw_rad);
     std::vector<Eigen::Vector3d> world = voxel_thin(points, params_.insert_voxel_m);
-    for (auto& p : world) p = Eigen::Vector3d(c * p.x() - s * p.y() + estimate.x_m, s * p.x() + c * p.y() + estimate.y_m, p.z());
+    for (auto& p : world)
+        p = Eigen::Vector3d(c * p.x() - s * p.y() + estimate.x_m,
+                            s * p.x() + c * p.y() + estimate.y_m, p.z());
     map_.add(world);
     map_.keep_within(Eigen::Vector3d(estimate.x_m, estimate.y_m, 0.0), params_.map_radius_m);
 

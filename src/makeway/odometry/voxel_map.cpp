@@ -22,7 +22,7 @@ void VoxelMap::fit_plane(Voxel& v) const {
     // line of points, e.g. one scan ring on a wall, has no plane: its middle spread is tiny too).
     const Eigen::Vector3d ev = eig.eigenvalues().cwiseMax(0.0);
     const double share = params_.planarity * params_.planarity;  // eigenvalues are spreads squared
-    if (ev(2) <= 1e-8) return;  // all points in one place
+    if (ev(2) <= 1e-8) return;                                   // all points in one place
     if (ev(1) <= share * ev(2)) {
         v.shape = VoxelShape::kLine;
         v.axis = eig.eigenvectors().col(2).normalized();
@@ -49,9 +49,10 @@ void VoxelMap::add(const std::vector<Eigen::Vector3d>& points_world) {
         v.points.push_back(p);
         changed.push_back(k);
     }
-    std::sort(changed.begin(), changed.end(), [](const Eigen::Vector3i& a, const Eigen::Vector3i& b) {
-        return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
-    });
+    std::sort(
+        changed.begin(), changed.end(), [](const Eigen::Vector3i& a, const Eigen::Vector3i& b) {
+            return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+        });
     changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
     for (const auto& k : changed) fit_plane(voxels_.find(k).value());
 }
@@ -68,7 +69,8 @@ void VoxelMap::keep_within(const Eigen::Vector3d& centre, double radius_m) {
     }
 }
 
-std::optional<MapMatch> VoxelMap::nearest(const Eigen::Vector3d& query, double max_distance_m) const {
+std::optional<MapMatch> VoxelMap::nearest(const Eigen::Vector3d& query,
+                                          double max_distance_m) const {
     const Eigen::Vector3i k = key(query);
     double best = max_distance_m * max_distance_m;
     const Voxel* best_voxel = nullptr;
@@ -93,11 +95,14 @@ std::optional<MapMatch> VoxelMap::nearest(const Eigen::Vector3d& query, double m
     // best match so far cannot hold a closer point, and is not looked up.
     const Eigen::Vector3d low = query - k.cast<double>() * params_.voxel_m;
     const Eigen::Vector3d high = Eigen::Vector3d::Constant(params_.voxel_m) - low;
-    const auto gap2 = [&](int d, int axis) { return d < 0 ? low(axis) * low(axis) : d > 0 ? high(axis) * high(axis) : 0.0; };
+    const auto gap2 = [&](int d, int axis) {
+        return d < 0 ? low(axis) * low(axis) : d > 0 ? high(axis) * high(axis) : 0.0;
+    };
     for (int dx = -1; dx <= 1; ++dx) {
         for (int dy = -1; dy <= 1; ++dy) {
             for (int dz = -1; dz <= 1; ++dz) {
-                if ((dx | dy | dz) == 0 || gap2(dx, 0) + gap2(dy, 1) + gap2(dz, 2) >= best) continue;
+                if ((dx | dy | dz) == 0 || gap2(dx, 0) + gap2(dy, 1) + gap2(dz, 2) >= best)
+                    continue;
                 search(Eigen::Vector3i(k.x() + dx, k.y() + dy, k.z() + dz));
             }
         }

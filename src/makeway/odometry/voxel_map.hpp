@@ -29,12 +29,13 @@ enum class VoxelShape { kUnknown, kPlane, kLine, kBlob };
 struct MapMatch {
     Eigen::Vector3d point = Eigen::Vector3d::Zero();
     VoxelShape shape = VoxelShape::kUnknown;
-    Eigen::Vector3d axis = Eigen::Vector3d::Zero();  ///< unit: the normal of a kPlane, the direction of a kLine
+    Eigen::Vector3d axis =
+        Eigen::Vector3d::Zero();  ///< unit: the normal of a kPlane, the direction of a kLine
     double distance_m = 0.0;
 };
 
 class VoxelMap {
-public:
+  public:
     explicit VoxelMap(const VoxelMapParams& params = {}) : params_(params) {}
 
     /// Adds world points (voxels already full keep what they have: the map does not drift with new
@@ -51,16 +52,18 @@ public:
     /// Every point of the map (tests, pictures).
     std::vector<Eigen::Vector3d> points() const;
 
-private:
+  private:
     struct Voxel {
-        Eigen::Vector3d first = Eigen::Vector3d::Zero();  ///< its first point, inline: keep_within reads it for every voxel
+        Eigen::Vector3d first = Eigen::Vector3d::Zero();  ///< its first point, inline: keep_within
+                                                          ///< reads it for every voxel
         std::vector<Eigen::Vector3d> points;
         VoxelShape shape = VoxelShape::kUnknown;
         Eigen::Vector3d axis = Eigen::Vector3d::Zero();
     };
     struct KeyHash {
         std::size_t operator()(const Eigen::Vector3i& k) const {
-            return static_cast<std::size_t>(k.x()) * 73856093u ^ static_cast<std::size_t>(k.y()) * 19349669u ^
+            return static_cast<std::size_t>(k.x()) * 73856093u ^
+                   static_cast<std::size_t>(k.y()) * 19349669u ^
                    static_cast<std::size_t>(k.z()) * 83492791u;
         }
     };

@@ -12,7 +12,8 @@ std::vector<std::string> AccumulatorParams::validate() const {
 }
 
 void KeyframeAccumulator::add(const StampedSweep& sweep) {
-    sweeps_.push_back({deskew_sweep(sweep, Isometry3::Identity(), params_.deskew), sweep.stamp_s, sweep.T_world_sensor_start});
+    sweeps_.push_back({deskew_sweep(sweep, Isometry3::Identity(), params_.deskew), sweep.stamp_s,
+                       sweep.T_world_sensor_start});
     while (static_cast<int>(sweeps_.size()) > params_.window) sweeps_.pop_front();
 }
 
@@ -34,7 +35,8 @@ PointCloud deskew_sweep(const StampedSweep& s, const Isometry3& T_target_world, 
         if (per_point && !(c.time_s[i] == last_time)) {
             last_time = c.time_s[i];
             const double alpha = std::clamp(c.time_s[i] / s.duration_s, 0.0, 1.0);
-            const Isometry3 T = T_target_world * interpolate(s.T_world_sensor_start, s.T_world_sensor_end, alpha);
+            const Isometry3 T =
+                T_target_world * interpolate(s.T_world_sensor_start, s.T_world_sensor_end, alpha);
             R = T.linear().cast<float>();
             t = T.translation().cast<float>();
         }

@@ -14,10 +14,10 @@ namespace makeway::perception {
 /// One sweep with its poses: points are in the sensor frame of their own firing time.
 struct StampedSweep {
     PointCloud points_sensor;
-    double stamp_s = 0.0;                                   ///< sweep start
+    double stamp_s = 0.0;  ///< sweep start
     double duration_s = 0.1;
     Isometry3 T_world_sensor_start = Isometry3::Identity();
-    Isometry3 T_world_sensor_end = Isometry3::Identity();   ///< equal to start: no de-skewing
+    Isometry3 T_world_sensor_end = Isometry3::Identity();  ///< equal to start: no de-skewing
 };
 
 struct AccumulatorParams {
@@ -26,17 +26,19 @@ struct AccumulatorParams {
     std::vector<std::string> validate() const;
 };
 
-/// The sweep's points in a target frame (T_target_world), each moved with the sensor pose at its own
-/// time (linear in translation, slerp in rotation between the start and end poses) when `deskew`
-/// and the sweep has per-point time and moved; otherwise all with the start pose. Channels kept.
-PointCloud deskew_sweep(const StampedSweep& sweep, const Isometry3& T_target_world, bool deskew = true);
+/// The sweep's points in a target frame (T_target_world), each moved with the sensor pose at its
+/// own time (linear in translation, slerp in rotation between the start and end poses) when
+/// `deskew` and the sweep has per-point time and moved; otherwise all with the start pose. Channels
+/// kept.
+PointCloud deskew_sweep(const StampedSweep& sweep, const Isometry3& T_target_world,
+                        bool deskew = true);
 /// deskew_sweep into the world frame.
 inline PointCloud deskew_to_world(const StampedSweep& sweep, bool deskew = true) {
     return deskew_sweep(sweep, Isometry3::Identity(), deskew);
 }
 
 class KeyframeAccumulator {
-public:
+  public:
     explicit KeyframeAccumulator(const AccumulatorParams& params = {}) : params_(params) {}
     /// De-skews the sweep into the world frame once, on arrival: a keyframe is then one rigid
     /// transform per point, not one interpolated pose per point for every keyframe it is part of.
@@ -46,11 +48,11 @@ public:
     /// The newest sweep de-skewed into the world frame (empty before the first add).
     const PointCloud& newest_world() const;
 
-    /// Every point of the window in the newest sweep's start frame (T_world_keyframe), channels kept;
-    /// `time_s` becomes time relative to the keyframe stamp. Empty when no sweep was added.
+    /// Every point of the window in the newest sweep's start frame (T_world_keyframe), channels
+    /// kept; `time_s` becomes time relative to the keyframe stamp. Empty when no sweep was added.
     PointCloud keyframe(Isometry3* T_world_keyframe = nullptr) const;
 
-private:
+  private:
     struct WorldSweep {
         PointCloud points_world;
         double stamp_s = 0.0;

@@ -12,19 +12,22 @@
 namespace makeway::perception {
 
 struct BevGridParams {
-    double range_m = 8.0;         ///< square [-range, range]^2 around the sensor [m]
-    double cell_m = 0.1;          ///< input cell [m]
-    double z_min_m = -0.5;        ///< height band in the sensor frame [m] (sensor ~0.45 m above the floor)
+    double range_m = 8.0;  ///< square [-range, range]^2 around the sensor [m]
+    double cell_m = 0.1;   ///< input cell [m]
+    double z_min_m =
+        -0.5;  ///< height band in the sensor frame [m] (sensor ~0.45 m above the floor)
     double z_max_m = 1.3;
     int height_slices = 9;
-    int output_stride = 2;        ///< output cells are stride x input cells
+    int output_stride = 2;  ///< output cells are stride x input cells
     /// A mean-intensity channel. Off by default: with intensity that reveals only material (see
     /// sim/world.hpp), it did not help (README, "Intensity channel"), and sensors differ in it.
     bool intensity = false;
     std::vector<std::string> validate() const;
 
-    int cells() const { return static_cast<int>(2.0 * range_m / cell_m + 0.5); }   ///< per side, input
-    int out_cells() const { return cells() / output_stride; }                      ///< per side, output
+    int cells() const {
+        return static_cast<int>(2.0 * range_m / cell_m + 0.5);
+    }                                                          ///< per side, input
+    int out_cells() const { return cells() / output_stride; }  ///< per side, output
     int channels() const { return height_slices + 1 + (intensity ? 1 : 0); }
     double out_cell_m() const { return cell_m * output_stride; }
 };
@@ -48,6 +51,7 @@ struct DecodeParams {
 
 /// Peaks (3x3 local maxima above the threshold) of the heatmaps into boxes, then rotated NMS.
 /// Class probabilities: each class heatmap at the peak, normalised; score: the peak value.
-std::vector<Detection> decode_heads(const std::vector<float>& heads, const BevGridParams& grid, const DecodeParams& params);
+std::vector<Detection> decode_heads(const std::vector<float>& heads, const BevGridParams& grid,
+                                    const DecodeParams& params);
 
 }  // namespace makeway::perception

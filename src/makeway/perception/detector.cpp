@@ -12,11 +12,15 @@
 namespace makeway::perception {
 
 ConvBnImpl::ConvBnImpl(int in, int out, int stride) {
-    conv = register_module("conv", torch::nn::Conv2d(torch::nn::Conv2dOptions(in, out, 3).stride(stride).padding(1).bias(false)));
+    conv = register_module(
+        "conv", torch::nn::Conv2d(
+                    torch::nn::Conv2dOptions(in, out, 3).stride(stride).padding(1).bias(false)));
     bn = register_module("bn", torch::nn::BatchNorm2d(out));
 }
 
-torch::Tensor ConvBnImpl::forward(const torch::Tensor& x) { return torch::relu(bn->forward(conv->forward(x))); }
+torch::Tensor ConvBnImpl::forward(const torch::Tensor& x) {
+    return torch::relu(bn->forward(conv->forward(x)));
+}
 
 CenterNetImpl::CenterNetImpl(int in, int w) {
     stem = register_module("stem", ConvBn(in, w, 2));
@@ -25,9 +29,11 @@ CenterNetImpl::CenterNetImpl(int in, int w) {
     down = register_module("down", ConvBn(w, 2 * w, 2));
     s4a = register_module("s4a", ConvBn(2 * w, 2 * w, 1));
     s4b = register_module("s4b", ConvBn(2 * w, 2 * w, 1));
-    up = register_module("up", torch::nn::ConvTranspose2d(torch::nn::ConvTranspose2dOptions(2 * w, w, 2).stride(2)));
+    up = register_module(
+        "up", torch::nn::ConvTranspose2d(torch::nn::ConvTranspose2dOptions(2 * w, w, 2).stride(2)));
     head_conv = register_module("head_conv", ConvBn(w, w, 1));
-    head = register_module("head", torch::nn::Conv2d(torch::nn::Conv2dOptions(w, kHeadChannels, 1)));
+    head =
+        register_module("head", torch::nn::Conv2d(torch::nn::Conv2dOptions(w, kHeadChannels, 1)));
     // Heatmap logits start at p = 0.1 (CenterNet), the rest near zero.
     torch::NoGradGuard no_grad;
     head->bias.zero_();
@@ -42,15 +48,18 @@ torch::Tensor CenterNetImpl::forward(const torch::Tensor& bev) {
 }
 
 torch::Tensor activate_heads(const torch::Tensor& raw) {
-    return torch::cat({torch::sigmoid(raw.slice(1, 0, kNumObjectClasses)), raw.slice(1, kNumObjectClasses)}, 1);
+    return torch::cat(
+        {torch::sigmoid(raw.slice(1, 0, kNumObjectClasses)), raw.slice(1, kNumObjectClasses)}, 1);
 }
 
 torch::Tensor bev_tensor(const PointCloud& cloud, const BevGridParams& g) {
     std::vector<float> bev = encode_bev(cloud, g);
-    return torch::from_blob(bev.data(), {1, g.channels(), g.cells(), g.cells()}, torch::kFloat32).clone();
+    return torch::from_blob(bev.data(), {1, g.channels(), g.cells(), g.cells()}, torch::kFloat32)
+        .clone();
 }
 
-Detector::Detector(const DetectorParams& params) : params_(params), impl_(std::make_unique<Impl>()) {
+Detector::Detector(const DetectorParams& params)
+    : params_(params), impl_(std::make_unique<Impl>()) {
     torch::manual_seed(params.seed);
     impl_->net = CenterNet(params.grid.channels(), params.width);
     impl_->net->eval();
@@ -70,10 +79,12 @@ namespace {
 
 // Grid and network shape, stored in the model file beside the weights.
 torch::Tensor params_tensor(const DetectorParams& p) {
-    return torch::tensor({p.grid.range_m, p.grid.cell_m, p.grid.z_min_m, p.grid.z_max_m, static_cast<double>(p.grid.height_slices),
-                          static_cast<double>(p.grid.output_stride), static_cast<double>(p.width), p.decode.score_threshold,
-                          p.decode.nms_bev_iou, p.grid.intensity ? 1.0 : 0.0},
-                         torch::kFloat64);
+    return torch::tensor(
+        {p.grid.range_m, p.grid.cell_m, p.grid.z_min_m, p.grid.z_max_m,
+         static_cast<double>(p.grid.height_slices), static_cast<double>(p.grid.output_stride),
+         static_cast<double>(p.width), p.decode.score_threshold, p.decode.nms_bev_iou,
+         p.grid.intensity ? 1.0 : 0.0},
+        torch::kFloat64);
 }
 
 }  // namespace
@@ -94,25 +105,32 @@ Detector Detector::load(const std::filesystem::path& path) {
         torch::serialize::InputArchive archive;
         archive.load_from(bytes.data(), bytes.size());
         torch::Tensor t;
-        if (!archive.try_read("makeway_detector_params", t) || (t.numel() != 9 && t.numel() != 10)) {
+        if (!archive.try_read("makeway_detector_params", t) ||
+            (t.numel() != 9 && t.numel() != 10)) {
             throw std::runtime_error("not a makeway detector (no parameters)");
         }
         const auto v = t.to(torch::kFloat64).contiguous();
         const double* d = v.data_ptr<double>();
         DetectorParams p;
-        p.grid = {.range_m = d[0], .cell_m = d[1], .z_min_m = d[2], .z_max_m = d[3], .height_slices = static_cast<int>(d[4]),
+        p.grid = {.range_m = d[0],
+                  .cell_m = d[1],
+                  .z_min_m = d[2],
+                  .z_max_m = d[3],
+                  .height_slices = static_cast<int>(d[4]),
                   .output_stride = static_cast<int>(d[5])};
         p.width = static_cast<int>(d[6]);
         p.decode.score_threshold = d[7];
         p.decode.nms_bev_iou = d[8];
         p.grid.intensity = t.numel() == 9 || d[9] != 0.0;  // files before the flag had the channel
-        if (!p.grid.validate().empty() || p.width < 1 || p.width > 512) throw std::runtime_error("impossible parameters in the file");
+        if (!p.grid.validate().empty() || p.width < 1 || p.width > 512)
+            throw std::runtime_error("impossible parameters in the file");
         Detector det(p);
         det.impl_->net->load(archive);
         det.impl_->net->eval();
         return det;
     } catch (const c10::Error& e) {
-        throw std::runtime_error(path.string() + ": not a readable model (" + first_line(e.what_without_backtrace()) + ")");
+        throw std::runtime_error(path.string() + ": not a readable model (" +
+                                 first_line(e.what_without_backtrace()) + ")");
     } catch (const std::runtime_error& e) {
         const std::string what = e.what();
         if (what.rfind(path.string(), 0) == 0) throw;
@@ -120,7 +138,8 @@ Detector Detector::load(const std::filesystem::path& path) {
     } catch (const std::exception& e) {
         // A damaged archive surfaces as whatever torch's readers throw (the TorchScript type
         // parser, std::bad_alloc for a size field gone wild): all of them are a bad file.
-        throw std::runtime_error(path.string() + ": not a readable model (" + first_line(e.what()) + ")");
+        throw std::runtime_error(path.string() + ": not a readable model (" + first_line(e.what()) +
+                                 ")");
     }
 }
 
@@ -132,7 +151,9 @@ void set_inference_threads(int threads) {
     // for other work (a quarter of the CPU samples of a study-space run; in bench nav's shards
     // four times their system time). Looked up at run time, so that any other BLAS links as well.
     using SetThreads = void (*)(int);
-    if (auto* set_blas = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set_blas(threads);
+    if (auto* set_blas =
+            reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
+        set_blas(threads);
 }
 
 std::vector<float> Detector::heads(const PointCloud& cloud) const {
@@ -140,7 +161,8 @@ std::vector<float> Detector::heads(const PointCloud& cloud) const {
     if (params_.threads > 0) torch::set_num_threads(params_.threads);
     // The network is in eval mode since construction, load() or the end of training: nothing here
     // writes to it, so several threads may detect at once.
-    const torch::Tensor out = activate_heads(impl_->net->forward(bev_tensor(cloud, params_.grid))).contiguous();
+    const torch::Tensor out =
+        activate_heads(impl_->net->forward(bev_tensor(cloud, params_.grid))).contiguous();
     return std::vector<float>(out.data_ptr<float>(), out.data_ptr<float>() + out.numel());
 }
 

@@ -24,7 +24,7 @@ struct DetectorParams {
 };
 
 class Detector : public ObjectDetector {
-public:
+  public:
     /// A freshly initialised network (seeded).
     explicit Detector(const DetectorParams& params = {});
     ~Detector() override;
@@ -50,7 +50,7 @@ public:
     struct Impl;  ///< torch internals (detector.cpp)
     Impl& impl() const { return *impl_; }
 
-private:
+  private:
     DetectorParams params_;
     std::unique_ptr<Impl> impl_;
 };
@@ -68,12 +68,13 @@ struct TrainingSample {
 struct TrainParams {
     int epochs = 20;
     int batch_size = 8;
-    double learning_rate = 2e-3;   ///< AdamW peak, cosine-decayed after a 5 % warm-up
+    double learning_rate = 2e-3;  ///< AdamW peak, cosine-decayed after a 5 % warm-up
     double weight_decay = 1e-4;
     std::uint64_t seed = 0;
-    bool augment = true;           ///< rotation about z, flip, subsampling, range dropout
-    int threads = 0;               ///< 0: torch's default
-    std::filesystem::path checkpoint;  ///< written every epoch when set; resumed from when it exists
+    bool augment = true;  ///< rotation about z, flip, subsampling, range dropout
+    int threads = 0;      ///< 0: torch's default
+    std::filesystem::path
+        checkpoint;  ///< written every epoch when set; resumed from when it exists
     std::vector<std::string> validate() const;
 };
 
@@ -83,8 +84,9 @@ struct EpochReport {
 };
 
 /// Trains in place. `progress(step, steps, loss)` after each batch; `on_epoch` after each epoch.
-std::vector<EpochReport> train_detector(Detector& detector, const std::vector<TrainingSample>& samples, const TrainParams& params,
-                                        const std::function<void(int, int, double)>& progress = {},
-                                        const std::function<void(const EpochReport&)>& on_epoch = {});
+std::vector<EpochReport> train_detector(
+    Detector& detector, const std::vector<TrainingSample>& samples, const TrainParams& params,
+    const std::function<void(int, int, double)>& progress = {},
+    const std::function<void(const EpochReport&)>& on_epoch = {});
 
 }  // namespace makeway::perception

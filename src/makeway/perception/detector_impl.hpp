@@ -18,7 +18,8 @@ TORCH_MODULE(ConvBn);
 struct CenterNetImpl : torch::nn::Module {
     CenterNetImpl(int in_channels, int width);
     torch::Tensor forward(const torch::Tensor& bev);  ///< raw heads: heatmap logits first
-    ConvBn stem{nullptr}, s2a{nullptr}, s2b{nullptr}, down{nullptr}, s4a{nullptr}, s4b{nullptr}, head_conv{nullptr};
+    ConvBn stem{nullptr}, s2a{nullptr}, s2b{nullptr}, down{nullptr}, s4a{nullptr}, s4b{nullptr},
+        head_conv{nullptr};
     torch::nn::ConvTranspose2d up{nullptr};
     torch::nn::Conv2d head{nullptr};
 };

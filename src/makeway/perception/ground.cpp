@@ -1,13 +1,12 @@
 #include "makeway/perception/ground.hpp"
 
-#include "makeway/perception/param_tables.hpp"
-
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
 #include "makeway/common/angles.hpp"
 #include "makeway/common/random.hpp"
 #include "makeway/common/voxel_thin.hpp"
+#include "makeway/perception/param_tables.hpp"
 
 namespace makeway::perception {
 
@@ -17,8 +16,10 @@ const ParamTable<GroundPlaneParams>& ground_plane_table() {
         ParamTable<G> t;
         t.add("inlier_distance_m", &G::inlier_distance_m, open(0.0, 1.0), "")
             .add("iterations", &G::iterations, closed(1, 100000), "")
-            .add("max_tilt_deg", &G::max_tilt_deg, above(0.0, 90.0), "the ground is roughly below a robot's sensor")
-            .add("voxel_m", &G::voxel_m, below(0.0, 1.0), "RANSAC hypotheses scored by inlier area (voxels of this size; 0: points)")
+            .add("max_tilt_deg", &G::max_tilt_deg, above(0.0, 90.0),
+                 "the ground is roughly below a robot's sensor")
+            .add("voxel_m", &G::voxel_m, below(0.0, 1.0),
+                 "RANSAC hypotheses scored by inlier area (voxels of this size; 0: points)")
             .add("min_sensor_height_m", &G::min_sensor_height_m, closed(0.0, 10.0), "")
             .add("seed", &G::seed, closed(0.0, 1.8446744073709552e19), "");
         return t;
@@ -30,17 +31,24 @@ const ParamTable<GroundFilterParams>& ground_filter_table() {
     using F = GroundFilterParams;
     static const ParamTable<F> table = [] {
         ParamTable<F> t;
-        t.add("ground_band_m", &F::ground_band_m, closed(0.0, 10.0), "points lower than this above the ground are removed")
-            .add("ceiling_height_m", &F::ceiling_height_m, above(0.0, 100.0), "points higher than this above the ground are removed")
-            .require([](const F& f) { return f.ground_band_m < f.ceiling_height_m; }, "need 0 <= ground_band_m < ceiling_height_m");
+        t.add("ground_band_m", &F::ground_band_m, closed(0.0, 10.0),
+              "points lower than this above the ground are removed")
+            .add("ceiling_height_m", &F::ceiling_height_m, above(0.0, 100.0),
+                 "points higher than this above the ground are removed")
+            .require([](const F& f) { return f.ground_band_m < f.ceiling_height_m; },
+                     "need 0 <= ground_band_m < ceiling_height_m");
         return t;
     }();
     return table;
 }
 
-std::vector<std::string> GroundPlaneParams::validate() const { return ground_plane_table().problems(*this); }
+std::vector<std::string> GroundPlaneParams::validate() const {
+    return ground_plane_table().problems(*this);
+}
 
-std::vector<std::string> GroundFilterParams::validate() const { return ground_filter_table().problems(*this); }
+std::vector<std::string> GroundFilterParams::validate() const {
+    return ground_filter_table().problems(*this);
+}
 
 GroundPlaneResult fit_ground_plane(const PointCloud& cloud, const GroundPlaneParams& params) {
     GroundPlaneResult best;
@@ -57,7 +65,8 @@ GroundPlaneResult fit_ground_plane(const PointCloud& cloud, const GroundPlanePar
     // count: a spinning LiDAR packs its beams near the horizon, and the dense bands they draw on
     // nearby walls, joined with the first floor ring, otherwise make a tilted "plane" with more
     // points than the floor.
-    const std::vector<Eigen::Vector3d> cells = params.voxel_m > 0.0 ? voxel_thin(pts, params.voxel_m) : pts;
+    const std::vector<Eigen::Vector3d> cells =
+        params.voxel_m > 0.0 ? voxel_thin(pts, params.voxel_m) : pts;
     Rng rng = make_rng(params.seed, 31);
     const double cos_tilt = std::cos(deg_to_rad(params.max_tilt_deg));
     const auto n_cells = static_cast<std::int64_t>(cells.size());
@@ -82,8 +91,9 @@ GroundPlaneResult fit_ground_plane(const PointCloud& cloud, const GroundPlanePar
         }
     }
     if (best.inliers < params.min_inliers) {
-        best.reason = "no plane with at least " + std::to_string(params.min_inliers) + " occupied voxels within " +
-                      std::to_string(params.max_tilt_deg) + " deg of horizontal";
+        best.reason = "no plane with at least " + std::to_string(params.min_inliers) +
+                      " occupied voxels within " + std::to_string(params.max_tilt_deg) +
+                      " deg of horizontal";
         best.inliers = 0;
         return best;
     }

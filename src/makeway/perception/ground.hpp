@@ -1,7 +1,8 @@
 #pragma once
-// Ground plane by RANSAC at start-up (Fischler & Bolles 1981): the plane with the most points, among
-// planes tilted at most max_tilt_deg from the sensor's horizontal, refined by least squares on its
-// inliers. Then, per keyframe, points near the ground and above the ceiling height are removed.
+// Ground plane by RANSAC at start-up (Fischler & Bolles 1981): the plane with the most points,
+// among planes tilted at most max_tilt_deg from the sensor's horizontal, refined by least squares
+// on its inliers. Then, per keyframe, points near the ground and above the ceiling height are
+// removed.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -14,8 +15,10 @@ struct GroundPlaneParams {
     double inlier_distance_m = 0.05;
     int iterations = 300;
     double max_tilt_deg = 25.0;  ///< the ground is roughly below a robot's sensor
-    double voxel_m = 0.1;        ///< hypotheses are scored by inlier voxels of this size (area); 0: by points
-    std::size_t min_inliers = 200;  ///< inlier voxels (points when voxel_m = 0) for a plane to count
+    double voxel_m =
+        0.1;  ///< hypotheses are scored by inlier voxels of this size (area); 0: by points
+    std::size_t min_inliers =
+        200;  ///< inlier voxels (points when voxel_m = 0) for a plane to count
     /// The ground lies at least this far below the sensor. Without it, the returns of the beams
     /// near 0 deg elevation on the walls (the VLP-32C packs 20 of its 32 beams within +-4 deg) form
     /// a "plane" through the sensor that can out-vote the floor in a small room.
@@ -26,27 +29,32 @@ struct GroundPlaneParams {
 
 struct GroundPlaneResult {
     bool found = false;
-    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit, pointing up (away from the ground)
-    double offset = 0.0;                                ///< plane: normal . p + offset = 0
+    Eigen::Vector3d normal =
+        Eigen::Vector3d::UnitZ();  ///< unit, pointing up (away from the ground)
+    double offset = 0.0;           ///< plane: normal . p + offset = 0
     std::size_t inliers = 0;
     std::string reason;  ///< why not found
 
     /// Signed height of p above the plane [m].
     double height_of(const Eigen::Vector3d& p) const { return normal.dot(p) + offset; }
     /// z of the plane below (x, y) [m]: where an object standing there has its origin.
-    double floor_z_at(double x_m, double y_m) const { return -(normal.x() * x_m + normal.y() * y_m + offset) / normal.z(); }
+    double floor_z_at(double x_m, double y_m) const {
+        return -(normal.x() * x_m + normal.y() * y_m + offset) / normal.z();
+    }
 };
 
-GroundPlaneResult fit_ground_plane(const PointCloud& points_sensor, const GroundPlaneParams& params);
+GroundPlaneResult fit_ground_plane(const PointCloud& points_sensor,
+                                   const GroundPlaneParams& params);
 
 struct GroundFilterParams {
-    double ground_band_m = 0.08;     ///< points lower than this above the ground are removed
-    double ceiling_height_m = 2.2;   ///< points higher than this above the ground are removed
+    double ground_band_m = 0.08;    ///< points lower than this above the ground are removed
+    double ceiling_height_m = 2.2;  ///< points higher than this above the ground are removed
     std::vector<std::string> validate() const;
 };
 
 /// Keeps the points between the ground band and the ceiling height (all channels kept).
-PointCloud remove_ground_and_ceiling(const PointCloud& points_sensor, const GroundPlaneResult& ground,
+PointCloud remove_ground_and_ceiling(const PointCloud& points_sensor,
+                                     const GroundPlaneResult& ground,
                                      const GroundFilterParams& params);
 
 }  // namespace makeway::perception

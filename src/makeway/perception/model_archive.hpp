@@ -18,7 +18,8 @@ std::string model_archive_problem(std::string_view bytes);
 /// "PATH: no such KIND file", "PATH: cannot read the KIND file" or "PATH: <the problem>".
 std::string read_checked_model_archive(const std::filesystem::path& path, const std::string& kind);
 
-/// The first non-empty line of a library's message, at most 120 characters (error lines are one line).
+/// The first non-empty line of a library's message, at most 120 characters (error lines are one
+/// line).
 std::string first_line(const std::string& text);
 
 }  // namespace makeway::perception

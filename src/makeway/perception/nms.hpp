@@ -7,8 +7,9 @@
 namespace makeway::perception {
 
 struct NmsParams {
-    double max_bev_iou = 0.25;     ///< a box overlapping a kept, higher-scoring one more than this is dropped
-    bool per_class = false;        ///< false: a chair and a table cannot share a footprint either
+    double max_bev_iou =
+        0.25;  ///< a box overlapping a kept, higher-scoring one more than this is dropped
+    bool per_class = false;  ///< false: a chair and a table cannot share a footprint either
     std::size_t max_detections = 100;
 };
 

@@ -10,7 +10,7 @@
 namespace makeway::perception {
 
 class ObjectDetector {
-public:
+  public:
     virtual ~ObjectDetector() = default;
     /// Detections in the cloud's (sensor) frame; the cloud is ground- and ceiling-filtered.
     virtual std::vector<Detection> detect(const PointCloud& cloud_sensor) const = 0;

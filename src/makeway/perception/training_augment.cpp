@@ -24,7 +24,8 @@ void augment_sample(PointCloud& cloud, LabelledBoxes& boxes, Rng& rng) {
     for (auto [cls, b] : boxes) {
         if (flip) b.centre_m.y() = -b.centre_m.y(), b.yaw_rad = -b.yaw_rad;
         const Eigen::Vector2d xy = b.centre_m.head<2>();
-        b.centre_m.head<2>() = Eigen::Vector2d(std::cos(a) * xy.x() - std::sin(a) * xy.y(), std::sin(a) * xy.x() + std::cos(a) * xy.y());
+        b.centre_m.head<2>() = Eigen::Vector2d(std::cos(a) * xy.x() - std::sin(a) * xy.y(),
+                                               std::sin(a) * xy.x() + std::cos(a) * xy.y());
         b.yaw_rad = wrap_angle(b.yaw_rad + a);
         if (b.centre_m.head<2>().norm() <= max_range) out.emplace_back(cls, b);
     }

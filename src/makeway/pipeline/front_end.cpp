@@ -6,13 +6,18 @@ namespace makeway::pipeline {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+double ms_since(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
 
 }  // namespace
 
 FrontEnd::FrontEnd(const SystemParams& params, const Pose2& start_pose)
-    : params_(params), start_pose_(start_pose), accumulator_({.window = params.keyframe.window, .deskew = params.keyframe.deskew}) {
-    if (params.lidar_odometry_enabled) lidar_odometry_.emplace(params.lidar_odometry, params.T_base_sensor, start_pose);
+    : params_(params),
+      start_pose_(start_pose),
+      accumulator_({.window = params.keyframe.window, .deskew = params.keyframe.deskew}) {
+    if (params.lidar_odometry_enabled)
+        lidar_odometry_.emplace(params.lidar_odometry, params.T_base_sensor, start_pose);
 }
 
 Isometry3 FrontEnd::T_world_sensor_at(const Pose2& odometry) const {
@@ -29,9 +34,10 @@ FrontEndResult FrontEnd::add(Sweep sweep) {
         // LiDAR odometry: the sweep registered against the local map with the wheels as prior.
         const Clock::time_point t_odo = Clock::now();
         const bool wheels = sweep.odometry_start && sweep.odometry_end;
-        out.odometry = lidar_odometry_->register_sweep(sweep.points_sensor, sweep.stamp_s, sweep.duration_s,
-                                                       wheels ? sweep.odometry_start : std::nullopt,
-                                                       wheels ? sweep.odometry_end : std::nullopt);
+        out.odometry =
+            lidar_odometry_->register_sweep(sweep.points_sensor, sweep.stamp_s, sweep.duration_s,
+                                            wheels ? sweep.odometry_start : std::nullopt,
+                                            wheels ? sweep.odometry_end : std::nullopt);
         out.odometry_ms = ms_since(t_odo);
         out.T_world_sensor_start = out.odometry->T_world_sensor_start;
         out.T_world_sensor_end = out.odometry->T_world_sensor_end;
@@ -39,18 +45,21 @@ FrontEndResult FrontEnd::add(Sweep sweep) {
     } else {
         const Pose2 odom_start = sweep.odometry_start.value_or(last_odometry_);
         const Pose2 odom_end = sweep.odometry_end.value_or(odom_start);
-        if (!T_world_odom_) T_world_odom_ = to_isometry(start_pose_) * to_isometry(odom_start).inverse();
+        if (!T_world_odom_)
+            T_world_odom_ = to_isometry(start_pose_) * to_isometry(odom_start).inverse();
         last_odometry_ = odom_end;
         out.T_world_sensor_start = T_world_sensor_at(odom_start);
         out.T_world_sensor_end = T_world_sensor_at(odom_end);
         out.pose = to_pose2(*T_world_odom_ * to_isometry(odom_end));
     }
-    const perception::StampedSweep stamped{std::move(sweep.points_sensor), sweep.stamp_s, sweep.duration_s, out.T_world_sensor_start,
-                                     out.T_world_sensor_end};
+    const perception::StampedSweep stamped{std::move(sweep.points_sensor), sweep.stamp_s,
+                                           sweep.duration_s, out.T_world_sensor_start,
+                                           out.T_world_sensor_end};
     accumulator_.add(stamped);
     out.points_world = accumulator_.newest_world();
     out.deskew_ms = ms_since(t0);
-    if (!accumulator_.full() || sweeps_++ % static_cast<std::size_t>(params_.keyframe.every) != 0) return out;
+    if (!accumulator_.full() || sweeps_++ % static_cast<std::size_t>(params_.keyframe.every) != 0)
+        return out;
 
     // Keyframe: the window in the newest sweep's frame, then the ground plane (fitted once: the
     // sensor is rigid on the robot) and the ground and ceiling removed.

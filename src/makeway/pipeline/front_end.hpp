@@ -1,9 +1,10 @@
 #pragma once
 // The front end of the online system: the pose of every sweep (LiDAR odometry fused with the wheel
-// odometry from the start pose, or the wheel odometry alone), and every `keyframe.every` sweeps a keyframe (the last `window` sweeps de-skewed and
-// accumulated into the newest sweep's frame, ground plane by RANSAC at the first keyframe, ground
-// and ceiling removed). The Pipeline runs it on label-free sweeps; the detector's dataset runs the
-// very same code on labelled ones, so that training and evaluation see the pipeline's keyframes.
+// odometry from the start pose, or the wheel odometry alone), and every `keyframe.every` sweeps a
+// keyframe (the last `window` sweeps de-skewed and accumulated into the newest sweep's frame,
+// ground plane by RANSAC at the first keyframe, ground and ceiling removed). The Pipeline runs it
+// on label-free sweeps; the detector's dataset runs the very same code on labelled ones, so that
+// training and evaluation see the pipeline's keyframes.
 #include <optional>
 
 #include "makeway/common/point_cloud.hpp"
@@ -17,8 +18,9 @@ namespace makeway::pipeline {
 
 /// One LiDAR sweep as a robot receives it.
 struct Sweep {
-    PointCloud points_sensor;  ///< in the sensor frame of each point's firing time; time_s since stamp_s
-    double stamp_s = 0.0;      ///< sweep start [s]
+    PointCloud
+        points_sensor;  ///< in the sensor frame of each point's firing time; time_s since stamp_s
+    double stamp_s = 0.0;  ///< sweep start [s]
     double duration_s = 0.1;
     /// Wheel odometry of the base (its own drifting frame) at the sweep's start and end. Absent:
     /// the robot is taken as standing still since the last reading.
@@ -34,22 +36,22 @@ struct FrontEndKeyframe {
 struct FrontEndResult {
     Isometry3 T_world_sensor_start = Isometry3::Identity();  ///< estimated
     Isometry3 T_world_sensor_end = Isometry3::Identity();
-    Pose2 pose;              ///< the base at the sweep's end, estimated
-    PointCloud points_world; ///< the sweep de-skewed into the world frame
+    Pose2 pose;               ///< the base at the sweep's end, estimated
+    PointCloud points_world;  ///< the sweep de-skewed into the world frame
     std::optional<FrontEndKeyframe> keyframe;
-    double deskew_ms = 0.0;  ///< pose and de-skewing of this sweep (the odometry included)
+    double deskew_ms = 0.0;    ///< pose and de-skewing of this sweep (the odometry included)
     double odometry_ms = 0.0;  ///< the LiDAR odometry's registration alone
     std::optional<odometry::OdometryResult> odometry;  ///< with lidar_odometry
 };
 
 class FrontEnd {
-public:
+  public:
     /// `params.validate()` is the caller's (the Pipeline checks it once).
     FrontEnd(const SystemParams& params, const Pose2& start_pose);
     /// Channels are kept as given (the Pipeline strips the simulator's before).
     FrontEndResult add(Sweep sweep);
 
-private:
+  private:
     Isometry3 T_world_sensor_at(const Pose2& odometry) const;
 
     SystemParams params_;

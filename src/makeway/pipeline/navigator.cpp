@@ -17,10 +17,13 @@ namespace {
 // when the padded footprint cannot stand there at any heading, so it never plans through a gap
 // 0.43-0.51 m wide that DWA then refuses (measured: 4 of gt-perc's 6 failures on 100 scenes).
 NavigatorParams with_monitor_padding(NavigatorParams p) {
-    const double padding = p.monitor.enabled ? std::max(p.dwa.footprint_padding_m, p.monitor.stop_padding_m) : p.dwa.footprint_padding_m;
+    const double padding = p.monitor.enabled
+                               ? std::max(p.dwa.footprint_padding_m, p.monitor.stop_padding_m)
+                               : p.dwa.footprint_padding_m;
     p.dwa.footprint_padding_m = padding;
     p.inflation.inscribed_radius_m += padding;
-    p.inflation.inflation_radius_m = std::max(p.inflation.inflation_radius_m, p.inflation.inscribed_radius_m);
+    p.inflation.inflation_radius_m =
+        std::max(p.inflation.inflation_radius_m, p.inflation.inscribed_radius_m);
     return p;
 }
 
@@ -58,14 +61,18 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
     // the map is kept while the robot waits for a goal).
     costmap_.update(in.points_world, in.sensor_world_m, in.objects);
     // Legs: waypoints, then the goal, judged on the pose estimate.
-    if (leg_ < legs_.size() && (here - legs_[leg_]).norm() < (leg_ + 1 == legs_.size() ? params_.goal_tolerance_m : params_.waypoint_tolerance_m)) {
+    if (leg_ < legs_.size() &&
+        (here - legs_[leg_]).norm() <
+            (leg_ + 1 == legs_.size() ? params_.goal_tolerance_m : params_.waypoint_tolerance_m)) {
         ++leg_;
         plan_.clear();
         out.reached_waypoint = true;
     }
     if (arrived()) {
         out.arrived = true;
-        out.update_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        out.update_ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count();
         return out;
     }
     check_progress(in, out);
@@ -94,7 +101,9 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
     // A robot that cannot plan, or cannot make progress, gives up instead of waiting forever.
     if (in.t_s - planned_t_ > params_.give_up_s || in.t_s - moved_t_ > params_.give_up_s) {
         out.gave_up = true;
-        out.update_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        out.update_ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count();
         return out;
     }
     // Local control: back up while recovering, else DWA along the plan.
@@ -107,7 +116,8 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
         // DWA's best velocity a standstill: every way forward along the plan collides within the
         // horizon (a gap entered at an angle its footprint does not turn in). Waiting for
         // stuck_timeout_s would only wait; after standstill_timeout_s it is stuck now.
-        const bool still = out.dwa_found && std::abs(out.command.v_mps) < params_.standstill_v_mps &&
+        const bool still = out.dwa_found &&
+                           std::abs(out.command.v_mps) < params_.standstill_v_mps &&
                            std::abs(out.command.w_radps) < params_.standstill_w_radps;
         if (!still) {
             standstill_since_ = -1.0;
@@ -120,14 +130,16 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
             out.command = {-params_.backup_speed_mps, 0.0};
         }
     }
-    out.update_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    out.update_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return out;
 }
 
 planning::PlanResult Navigator::plan(const Eigen::Vector2d& here, double t_s, bool& around) {
     // The plan ends inside the leg's tolerance (a goal in a zone is reached from its cheap side),
     // short enough of the tolerance that the robot still crosses it on its pose estimate.
-    const double tolerance = leg_ + 1 == legs_.size() ? params_.goal_tolerance_m : params_.waypoint_tolerance_m;
+    const double tolerance =
+        leg_ + 1 == legs_.size() ? params_.goal_tolerance_m : params_.waypoint_tolerance_m;
     const double radius = params_.plan_to_tolerance * tolerance;
     std::erase_if(avoided_, [&](const Avoided& a) { return a.until_s <= t_s; });
     if (!avoided_.empty()) {
@@ -136,16 +148,20 @@ planning::PlanResult Navigator::plan(const Eigen::Vector2d& here, double t_s, bo
         Costmap map = costmap_.master();
         const double r = params_.detour_radius_m;
         for (const Avoided& a : avoided_) {
-            const GridWindow win = map.window_of(a.at_m - Eigen::Vector2d(r, r), a.at_m + Eigen::Vector2d(r, r));
+            const GridWindow win =
+                map.window_of(a.at_m - Eigen::Vector2d(r, r), a.at_m + Eigen::Vector2d(r, r));
             for (int y = win.y0; y < win.y1; ++y) {
                 for (int x = win.x0; x < win.x1; ++x) {
                     const Eigen::Vector2d w = map.centre_of(x, y);
-                    if ((w - a.at_m).norm() > r || (w - here).norm() < params_.inflation.inscribed_radius_m) continue;
+                    if ((w - a.at_m).norm() > r ||
+                        (w - here).norm() < params_.inflation.inscribed_radius_m)
+                        continue;
                     map.at(x, y) = cost::kLethal;
                 }
             }
         }
-        planning::PlanResult p = planning::plan_astar(map, here, legs_[leg_], params_.astar, radius);
+        planning::PlanResult p =
+            planning::plan_astar(map, here, legs_[leg_], params_.astar, radius);
         if (p.status == planning::PlanStatus::kOk) {
             around = true;
             return p;
@@ -165,7 +181,8 @@ std::size_t Navigator::nearest_plan_index(const Eigen::Vector2d& robot) const {
 
 Eigen::Vector2d Navigator::along_plan(const Eigen::Vector2d& robot, double ahead_m) const {
     std::size_t i = nearest_plan_index(robot);
-    for (double travelled = 0.0; i + 1 < plan_.size() && travelled < ahead_m; ++i) travelled += (plan_[i + 1] - plan_[i]).norm();
+    for (double travelled = 0.0; i + 1 < plan_.size() && travelled < ahead_m; ++i)
+        travelled += (plan_[i + 1] - plan_[i]).norm();
     return plan_[i];
 }
 
@@ -173,16 +190,20 @@ bool Navigator::plan_blocked(const Eigen::Vector2d& robot) const {
     const Costmap& m = costmap_.master();
     const std::size_t nearest = nearest_plan_index(robot);
     double travelled = 0.0;
-    for (std::size_t i = nearest; i < plan_.size() && travelled < params_.blocked_lookahead_m; ++i) {
+    for (std::size_t i = nearest; i < plan_.size() && travelled < params_.blocked_lookahead_m;
+         ++i) {
         if (i > nearest) travelled += (plan_[i] - plan_[i - 1]).norm();
         const auto c = m.cost_at(plan_[i]);
-        if (c && *c >= cost::kInscribed && *c != cost::kUnknown && (plan_[i] - robot).norm() > params_.blocked_ignore_m) return true;
+        if (c && *c >= cost::kInscribed && *c != cost::kUnknown &&
+            (plan_[i] - robot).norm() > params_.blocked_ignore_m)
+            return true;
     }
     return false;
 }
 
 VelocityCommand Navigator::follow_plan(const NavigatorInput& in, NavigatorStep& out) const {
-    const planning::DwaResult r = planning::dwa_step(costmap_.master(), {in.pose, in.v_mps, in.w_radps}, plan_, params_.dwa);
+    const planning::DwaResult r =
+        planning::dwa_step(costmap_.master(), {in.pose, in.v_mps, in.w_radps}, plan_, params_.dwa);
     out.dwa_found = r.found;
     if (r.found) return r.command;
     // Every velocity collides: turn toward the path on the spot.
@@ -197,7 +218,8 @@ double Navigator::remaining_m(const Eigen::Vector2d& robot) const {
     if (plan_.empty()) return leg_ < legs_.size() ? (legs_[leg_] - robot).norm() : 0.0;
     const std::size_t nearest = nearest_plan_index(robot);
     double left = (plan_[nearest] - robot).norm();
-    for (std::size_t i = nearest + 1; i < plan_.size(); ++i) left += (plan_[i] - plan_[i - 1]).norm();
+    for (std::size_t i = nearest + 1; i < plan_.size(); ++i)
+        left += (plan_[i] - plan_[i - 1]).norm();
     return left;
 }
 
@@ -227,7 +249,8 @@ void Navigator::start_recovery(const NavigatorInput& in, NavigatorStep& out) {
     progress_t_ = in.t_s + params_.backup_duration_s;
     if (!plan_.empty() && detours_ < params_.max_detours && params_.detour_radius_m > 0.0) {
         // The plan leads where the robot cannot go: the next plan goes around that spot.
-        avoided_.push_back({along_plan(here, params_.detour_ahead_m), in.t_s + params_.detour_memory_s});
+        avoided_.push_back(
+            {along_plan(here, params_.detour_ahead_m), in.t_s + params_.detour_memory_s});
         ++detours_;
         out.detour = true;
         detour_pending_ = detours_ == 1;  // the first detour of the leg only (below)

@@ -19,26 +19,27 @@ namespace makeway::pipeline {
 
 struct NavigatorInput {
     double t_s = 0.0;
-    Pose2 pose;                                ///< the base, estimated
-    double v_mps = 0.0, w_radps = 0.0;         ///< current velocity (the commanded one, or wheel odometry)
+    Pose2 pose;                         ///< the base, estimated
+    double v_mps = 0.0, w_radps = 0.0;  ///< current velocity (the commanded one, or wheel odometry)
     const PointCloud* points_world = nullptr;  ///< the latest sweep, world frame (may be null)
     Eigen::Vector3d sensor_world_m = Eigen::Vector3d::Zero();
-    std::vector<ObjectEstimate> objects;       ///< the object map (empty for the classic costmap)
+    std::vector<ObjectEstimate> objects;  ///< the object map (empty for the classic costmap)
 };
 
 struct NavigatorStep {
     VelocityCommand command;
     bool replanned = false;
     planning::PlanStatus plan_status = planning::PlanStatus::kOk;  ///< of the last A* call
-    bool has_plan = false;        ///< a plan to follow this cycle
-    bool dwa_found = true;        ///< false: every velocity collided, turning on the spot
-    bool recovering = false;      ///< backing up
+    bool has_plan = false;                                         ///< a plan to follow this cycle
+    bool dwa_found = true;    ///< false: every velocity collided, turning on the spot
+    bool recovering = false;  ///< backing up
     bool started_recovery = false;
-    bool detour = false;          ///< the recovery also marked the stuck spot for A* to go around
+    bool detour = false;  ///< the recovery also marked the stuck spot for A* to go around
     bool reached_waypoint = false;
-    bool arrived = false;         ///< the last leg's goal is reached (by the pose estimate)
-    bool gave_up = false;         ///< no plan, or no progress despite recoveries, for give_up_s: the mission failed
-    double update_ms = 0.0;       ///< costmap update + planning + DWA
+    bool arrived = false;  ///< the last leg's goal is reached (by the pose estimate)
+    bool gave_up =
+        false;  ///< no plan, or no progress despite recoveries, for give_up_s: the mission failed
+    double update_ms = 0.0;  ///< costmap update + planning + DWA
 };
 
 /// What the navigator did this cycle, in one word (run.json's nav_state): arrived, gave_up,
@@ -47,7 +48,7 @@ struct NavigatorStep {
 const char* to_string_state(const NavigatorStep& step);
 
 class Navigator {
-public:
+  public:
     /// `static_map`: the prebuilt map of walls (its geometry becomes the costmap's). Throws
     /// std::invalid_argument listing every problem of `params`.
     Navigator(const Costmap& static_map, const NavigatorParams& params);
@@ -65,7 +66,7 @@ public:
     /// nearest the robot, straight without a plan; 0 when arrived.
     double remaining_m(const Eigen::Vector2d& robot_m) const;
 
-private:
+  private:
     bool plan_blocked(const Eigen::Vector2d& robot_m) const;
     /// A* to the leg's target; `around`: the plan goes around the stuck spots (not through them).
     planning::PlanResult plan(const Eigen::Vector2d& from_m, double t_s, bool& around);
@@ -73,7 +74,8 @@ private:
     Eigen::Vector2d along_plan(const Eigen::Vector2d& robot_m, double ahead_m) const;
     VelocityCommand follow_plan(const NavigatorInput& input, NavigatorStep& step) const;
     void check_progress(const NavigatorInput& input, NavigatorStep& step);
-    void start_recovery(const NavigatorInput& input, NavigatorStep& step);  ///< back up, then replan (around the spot ahead)
+    void start_recovery(const NavigatorInput& input,
+                        NavigatorStep& step);  ///< back up, then replan (around the spot ahead)
 
     NavigatorParams params_;
     ObjectCostmap costmap_;
@@ -84,17 +86,21 @@ private:
     double best_remaining_m_ = 0.0;  ///< the shortest way left seen on this leg
     std::size_t progress_leg_ = 0;
     double progress_t_ = 0.0, recovery_until_ = -1.0;
-    double moved_t_ = 0.0;      ///< when the robot last made progress along its plan (recoveries do not reset it)
-    double planned_t_ = 0.0;    ///< when A* last found a plan
+    double moved_t_ =
+        0.0;  ///< when the robot last made progress along its plan (recoveries do not reset it)
+    double planned_t_ = 0.0;  ///< when A* last found a plan
     bool started_ = false;
     struct Avoided {
         Eigen::Vector2d at_m;
         double until_s;
     };
-    std::vector<Avoided> avoided_;  ///< where the robot got stuck: A* goes around them while they last
-    int detours_ = 0;               ///< on this leg
-    double standstill_since_ = -1.0;  ///< DWA's best velocity has been a standstill since (-1: it is not)
-    bool detour_pending_ = false;   ///< the leg's first detour was decided; its first plan restarts the progress clock
+    std::vector<Avoided>
+        avoided_;      ///< where the robot got stuck: A* goes around them while they last
+    int detours_ = 0;  ///< on this leg
+    double standstill_since_ =
+        -1.0;  ///< DWA's best velocity has been a standstill since (-1: it is not)
+    bool detour_pending_ =
+        false;  ///< the leg's first detour was decided; its first plan restarts the progress clock
 };
 
 }  // namespace makeway::pipeline

@@ -12,13 +12,16 @@
 namespace makeway::pipeline {
 
 ObjectCostmap::ObjectCostmap(const Costmap& static_map, const NavigatorParams& params)
-    : layered_(Costmap(static_map.origin_m, static_map.resolution_m, static_map.width, static_map.height)) {
+    : layered_(Costmap(static_map.origin_m, static_map.resolution_m, static_map.width,
+                       static_map.height)) {
     throw_if_problems(params.validate());
     layered_.add_layer(std::make_unique<costmap::StaticLayer>(static_map));
     layered_.add_layer(std::make_unique<costmap::ObstacleLayer>(static_map, params.obstacle));
-    if (params.affordance_layer) layered_.add_layer(std::make_unique<costmap::AffordanceLayer>(params.affordance));
+    if (params.affordance_layer)
+        layered_.add_layer(std::make_unique<costmap::AffordanceLayer>(params.affordance));
     costmap::InflationParams inflation = params.inflation;
-    inflation.inflation_radius_m = std::max(inflation.inflation_radius_m, inflation.inscribed_radius_m);
+    inflation.inflation_radius_m =
+        std::max(inflation.inflation_radius_m, inflation.inscribed_radius_m);
     layered_.add_layer(std::make_unique<costmap::InflationLayer>(inflation));
 }
 

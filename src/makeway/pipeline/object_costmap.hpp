@@ -14,18 +14,19 @@
 namespace makeway::pipeline {
 
 class ObjectCostmap {
-public:
+  public:
     /// The grid is `static_map`'s (origin, resolution, size). Throws std::invalid_argument listing
     /// every problem of `params`.
     ObjectCostmap(const Costmap& static_map, const NavigatorParams& params);
 
     /// One sweep: `points_world` (may be null: only the objects change) seen from `sensor_world_m`,
     /// and the object map after it.
-    void update(const PointCloud* points_world, const Eigen::Vector3d& sensor_world_m, const std::vector<ObjectEstimate>& objects);
+    void update(const PointCloud* points_world, const Eigen::Vector3d& sensor_world_m,
+                const std::vector<ObjectEstimate>& objects);
 
     const Costmap& master() const { return layered_.master(); }
 
-private:
+  private:
     costmap::LayeredCostmap layered_;
 };
 

@@ -16,18 +16,23 @@ Costmap map_of(const OnlineSystemSetup& s) {
 std::pair<double, double> velocity_between(const Pose2& a, const Pose2& b, double dt) {
     if (!(dt > 1e-6)) return {0.0, 0.0};
     const Isometry2 delta = to_isometry(a).inverse() * to_isometry(b);
-    return {delta.translation().x() / dt, std::atan2(delta.linear()(1, 0), delta.linear()(0, 0)) / dt};
+    return {delta.translation().x() / dt,
+            std::atan2(delta.linear()(1, 0), delta.linear()(0, 0)) / dt};
 }
 
 }  // namespace
 
 Costmap free_area(const Pose2& centre, double side_m, double resolution_m) {
     const int cells = static_cast<int>(side_m / resolution_m);
-    return Costmap(Eigen::Vector2d(centre.x_m, centre.y_m) - Eigen::Vector2d::Constant(0.5 * side_m), resolution_m, cells, cells);
+    return Costmap(
+        Eigen::Vector2d(centre.x_m, centre.y_m) - Eigen::Vector2d::Constant(0.5 * side_m),
+        resolution_m, cells, cells);
 }
 
 Controller::Controller(const Costmap& static_map, const NavigatorParams& params)
-    : navigator_(static_map, params), monitor_(params.monitor), min_existence_(params.affordance.min_existence) {}
+    : navigator_(static_map, params),
+      monitor_(params.monitor),
+      min_existence_(params.affordance.min_existence) {}
 
 void Controller::set_route(std::vector<Eigen::Vector2d> legs_m) {
     navigating_ = !legs_m.empty();
@@ -46,7 +51,8 @@ Controller::Step Controller::step(const NavigatorInput& in) {
     Step out;
     out.navigating = navigating_;
     out.nav = navigator_.step(in);
-    const VelocityCommand wanted = navigating_ && !out.nav.arrived && !out.nav.gave_up ? out.nav.command : VelocityCommand{};
+    const VelocityCommand wanted =
+        navigating_ && !out.nav.arrived && !out.nav.gave_up ? out.nav.command : VelocityCommand{};
     if (out.nav.arrived || out.nav.gave_up) navigating_ = false;
     const Clock::time_point t0 = Clock::now();
     // A chair someone moves can come up beside the robot where the sensor sees its seat but not
@@ -56,7 +62,9 @@ Controller::Step Controller::step(const NavigatorInput& in) {
     // open below their top. Every chair goes to the personal space's test (new returns beside one
     // are that chair being pulled, not a walker).
     const planning::CollisionMonitorParams& mp = monitor_.params();
-    std::erase_if(moved_at_, [&](const auto& kv) { return in.t_s - kv.second > mp.blind_memory_s; });  // a long run's ids do not pile up
+    std::erase_if(moved_at_, [&](const auto& kv) {
+        return in.t_s - kv.second > mp.blind_memory_s;
+    });  // a long run's ids do not pile up
     std::vector<Polygon2> chairs, moved_chairs;
     for (const ObjectEstimate& o : in.objects) {
         if (o.cls != ObjectClass::kChair || o.existence < min_existence_) continue;
@@ -66,7 +74,8 @@ Controller::Step Controller::step(const NavigatorInput& in) {
         chairs.push_back(chair_footprint(o, moving ? mp.object_lead_s : 0.0));
         if (moving) moved_chairs.push_back(chairs.back());
     }
-    out.guard = monitor_.filter({in.t_s, in.pose, in.points_world, wanted, in.v_mps, in.w_radps, &moved_chairs, &chairs});
+    out.guard = monitor_.filter(
+        {in.t_s, in.pose, in.points_world, wanted, in.v_mps, in.w_radps, &moved_chairs, &chairs});
     out.monitor_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     // Idle (never driven, arrived, gave up, cancelled): zero, whatever the monitor was doing (a
     // recovery it had started is not a goal's to finish).
@@ -113,12 +122,15 @@ void OnlineSystem::control(const Sweep& sweep, OnlineStep& out) {
     // The velocity as the robot measures it: the wheel odometry's increment over the sweep (else
     // the pose estimate's since the last sweep).
     if (sweep.odometry_start && sweep.odometry_end) {
-        std::tie(out.v_mps, out.w_radps) = velocity_between(*sweep.odometry_start, *sweep.odometry_end, sweep.duration_s);
+        std::tie(out.v_mps, out.w_radps) =
+            velocity_between(*sweep.odometry_start, *sweep.odometry_end, sweep.duration_s);
     } else if (last_pose_) {
-        std::tie(out.v_mps, out.w_radps) = velocity_between(*last_pose_, out.sweep.pose, sweep.duration_s);
+        std::tie(out.v_mps, out.w_radps) =
+            velocity_between(*last_pose_, out.sweep.pose, sweep.duration_s);
     }
     last_pose_ = out.sweep.pose;
-    out.control = controller_.step({sweep.stamp_s + sweep.duration_s, out.sweep.pose, out.v_mps, out.w_radps, &out.sweep.points_world,
+    out.control = controller_.step({sweep.stamp_s + sweep.duration_s, out.sweep.pose, out.v_mps,
+                                    out.w_radps, &out.sweep.points_world,
                                     out.sweep.T_world_sensor_end.translation(), out.sweep.objects});
 }
 

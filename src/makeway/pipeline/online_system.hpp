@@ -29,18 +29,20 @@ Polygon2 chair_footprint(const ObjectEstimate& o, double lead_s);
 /// The navigator, then the collision monitor between it and the motors (every method of the
 /// benchmark drives through this; `ours` inside an OnlineSystem).
 class Controller {
-public:
+  public:
     /// Throws std::invalid_argument listing every problem of `params` (monitor included).
     Controller(const Costmap& static_map, const NavigatorParams& params);
 
     struct Step {
         NavigatorStep nav;              ///< the navigator's step (the costmap was updated)
         planning::MonitorResult guard;  ///< what the monitor did to the command
-        VelocityCommand command;        ///< what goes to the motors: zero without a route, on arrival, on giving up
-        bool navigating = false;        ///< a route was being driven at this step
+        VelocityCommand
+            command;  ///< what goes to the motors: zero without a route, on arrival, on giving up
+        bool navigating = false;  ///< a route was being driven at this step
         double monitor_ms = 0.0;
     };
-    /// One control cycle on the latest sweep (`in.points_world` may be null: the monitor's memory alone).
+    /// One control cycle on the latest sweep (`in.points_world` may be null: the monitor's memory
+    /// alone).
     Step step(const NavigatorInput& in);
     /// The legs to drive (waypoints, then the goal); empty: idle.
     void set_route(std::vector<Eigen::Vector2d> legs_m);
@@ -48,11 +50,12 @@ public:
     bool navigating() const { return navigating_; }
     const Navigator& navigator() const { return navigator_; }
 
-private:
+  private:
     Navigator navigator_;
     planning::CollisionMonitor monitor_;
     double min_existence_;  ///< objects this likely lend the monitor their footprints ...
-    std::unordered_map<std::uint32_t, double> moved_at_;  ///< ... when they moved lately: object id -> when last seen moving
+    std::unordered_map<std::uint32_t, double>
+        moved_at_;  ///< ... when they moved lately: object id -> when last seen moving
     bool navigating_ = false;
 };
 
@@ -69,24 +72,29 @@ struct OnlineSystemSetup {
     std::optional<Costmap> map;
     MapKind map_kind = MapKind::kNone;  ///< with a map: kWalls or kFurnished
     double free_area_m = 40.0, free_area_resolution_m = 0.05;
-    const perception::ObjectDetector* detector = nullptr;  ///< may be null (no detection); must outlive the system
-    const verification::CadLibrary* library = nullptr;     ///< may be null (no CAD verification)
-    const verification::ShapePrior* prior = nullptr;       ///< may be null (no learned shapes)
+    const perception::ObjectDetector* detector =
+        nullptr;  ///< may be null (no detection); must outlive the system
+    const verification::CadLibrary* library = nullptr;  ///< may be null (no CAD verification)
+    const verification::ShapePrior* prior = nullptr;    ///< may be null (no learned shapes)
 };
 
 struct OnlineStep {
     SweepResult sweep;
     Controller::Step control;
-    double v_mps = 0.0, w_radps = 0.0;  ///< the base's velocity over the sweep (wheel odometry; else the pose estimate)
-    /// The per-sweep work: the pose (odometry and de-skewing), the costmap, planning and the monitor [ms].
-    double per_sweep_ms() const { return sweep.timing.deskew_ms + control.nav.update_ms + control.monitor_ms; }
+    double v_mps = 0.0, w_radps = 0.0;  ///< the base's velocity over the sweep (wheel odometry;
+                                        ///< else the pose estimate)
+    /// The per-sweep work: the pose (odometry and de-skewing), the costmap, planning and the
+    /// monitor [ms].
+    double per_sweep_ms() const {
+        return sweep.timing.deskew_ms + control.nav.update_ms + control.monitor_ms;
+    }
 };
 
 /// Without a prebuilt map: a free square grid of `side_m` centred on the start, to map into.
 Costmap free_area(const Pose2& centre, double side_m, double resolution_m = 0.05);
 
 class OnlineSystem {
-public:
+  public:
     /// Throws std::invalid_argument listing every problem of the parameters.
     explicit OnlineSystem(const OnlineSystemSetup& setup);
 
@@ -97,8 +105,12 @@ public:
     /// keyframe the front end formed is left in `pending` for perceive(), which may run on another
     /// thread (one call at a time) and updates the object map the next drive() uses.
     OnlineStep drive(const Sweep& sweep, std::optional<PendingKeyframe>* pending);
-    KeyframeResult perceive(PendingKeyframe pending, StageTiming& timing) { return pipeline_.perceive(std::move(pending), timing); }
-    void set_route(std::vector<Eigen::Vector2d> legs_m) { controller_.set_route(std::move(legs_m)); }
+    KeyframeResult perceive(PendingKeyframe pending, StageTiming& timing) {
+        return pipeline_.perceive(std::move(pending), timing);
+    }
+    void set_route(std::vector<Eigen::Vector2d> legs_m) {
+        controller_.set_route(std::move(legs_m));
+    }
     void cancel() { controller_.cancel(); }
 
     const Costmap& costmap() const { return controller_.navigator().costmap(); }
@@ -110,7 +122,7 @@ public:
     const Pipeline& pipeline() const { return pipeline_; }
     const SystemParams& params() const { return pipeline_.params(); }
 
-private:
+  private:
     Costmap static_map_;
     Pipeline pipeline_;
     Controller controller_;

@@ -1,6 +1,7 @@
 #pragma once
 // The online system's own configurable parameters (common/param_table.hpp); each stage's table
-// lives with its stage, these are the pipeline's: keyframes, tracked shapes, the navigator's policy.
+// lives with its stage, these are the pipeline's: keyframes, tracked shapes, the navigator's
+// policy.
 #include "makeway/common/param_table.hpp"
 #include "makeway/pipeline/system_params.hpp"
 #include "makeway/pipeline/tracked_shapes.hpp"

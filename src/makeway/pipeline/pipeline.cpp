@@ -11,14 +11,18 @@ namespace makeway::pipeline {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+double ms_since(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
 
 // Every problem of the parameters, and of the ICP levels against the CAD library's.
 const SystemParams& validated(const SystemParams& params, const verification::CadLibrary* library) {
     std::vector<std::string> problems = params.validate();
     if (library) {
-        for (const std::string& p : library->params().validate()) problems.push_back("cad_library." + p);
-        for (const std::string& p : params.verify.icp.validate(library->params().voxel_sizes_m.size())) {
+        for (const std::string& p : library->params().validate())
+            problems.push_back("cad_library." + p);
+        for (const std::string& p :
+             params.verify.icp.validate(library->params().voxel_sizes_m.size())) {
             problems.push_back("verification.icp." + p);
         }
     }
@@ -28,14 +32,16 @@ const SystemParams& validated(const SystemParams& params, const verification::Ca
 
 }  // namespace
 
-tracking::TrackerParams tracker_params_for(const perception::ObjectDetector* detector, tracking::TrackerParams params) {
+tracking::TrackerParams tracker_params_for(const perception::ObjectDetector* detector,
+                                           tracking::TrackerParams params) {
     // Misses count only where the detector can see: inside the circle its square grid contains,
     // less half a large chair so that the whole object is inside.
     if (detector) params.miss_range_m = std::min(params.sensor_range_m, detector->reach_m() - 0.5);
     return params;
 }
 
-Pipeline::Pipeline(const SystemParams& params, const Pose2& start_pose, const perception::ObjectDetector* detector,
+Pipeline::Pipeline(const SystemParams& params, const Pose2& start_pose,
+                   const perception::ObjectDetector* detector,
                    const verification::CadLibrary* library)
     : params_(validated(params, library)),
       detector_(detector),
@@ -77,7 +83,8 @@ SweepResult Pipeline::track(const Sweep& sweep, std::optional<PendingKeyframe>* 
     out.timing.odometry_ms = front.odometry_ms;
     out.odometry = front.odometry;
     out.keyframe_formed = front.keyframe.has_value();
-    if (front.keyframe && pending) *pending = PendingKeyframe{std::move(*front.keyframe), sweep.stamp_s};
+    if (front.keyframe && pending)
+        *pending = PendingKeyframe{std::move(*front.keyframe), sweep.stamp_s};
     out.objects = objects();
     out.timing.total_ms = ms_since(t0);
     return out;
@@ -95,7 +102,8 @@ std::vector<ObjectEstimate> Pipeline::objects() const {
     return objects_;
 }
 
-KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s, StageTiming& timing) {
+KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s,
+                                          StageTiming& timing) {
     KeyframeResult kf;
     kf.index = keyframes_++;
     kf.stamp_s = stamp_s;
@@ -107,30 +115,40 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
     Clock::time_point t = Clock::now();
     if (detector_) kf.detections = detector_->detect(kf.prepared.cloud_sensor);
     timing.detect_ms = ms_since(t);
-    // Verify against the CAD models: accepted boxes become the aligned model's, scored by p_exist (eq. 2).
+    // Verify against the CAD models: accepted boxes become the aligned model's, scored by p_exist
+    // (eq. 2).
     t = Clock::now();
     kf.evidence = kf.detections;
     const bool have_cad = library_ && !library_->models().empty();
     if (shapes_) shapes_->begin_keyframe(kf.T_world_keyframe);
     if (params_.verification_enabled && (have_cad || shapes_)) {
         const PreparedKeyframe& prepared = kf.prepared;
-        // Objects the map verified lately: one ICP from their last fit (the full search when it fails).
-        const auto seeds = have_cad ? seeds_for(kf.detections, kf.T_world_keyframe, stamp_s) : std::vector<std::optional<verification::VerifySeed>>{};
-        kf.verified = verification::verify_detections(prepared.cloud_sensor, kf.detections, have_cad ? *library_ : no_library_, params_.verify,
-                                                      [&](double x, double y) { return prepared.floor_z_at(x, y); }, shapes_.get(), seeds);
+        // Objects the map verified lately: one ICP from their last fit (the full search when it
+        // fails).
+        const auto seeds = have_cad ? seeds_for(kf.detections, kf.T_world_keyframe, stamp_s)
+                                    : std::vector<std::optional<verification::VerifySeed>>{};
+        kf.verified = verification::verify_detections(
+            prepared.cloud_sensor, kf.detections, have_cad ? *library_ : no_library_,
+            params_.verify, [&](double x, double y) { return prepared.floor_z_at(x, y); },
+            shapes_.get(), seeds);
         kf.evidence = verification::accepted_detections(kf.verified);
     }
     timing.verify_ms = ms_since(t);
     // Track: associate (GIoU + Hungarian), filter, fuse class and existence (eqs. 3-5), prune.
     t = Clock::now();
-    // Objects stand on the floor: the keyframe's plane, in the world frame, is the tracker's z prior.
+    // Objects stand on the floor: the keyframe's plane, in the world frame, is the tracker's z
+    // prior.
     std::optional<Eigen::Vector4d> floor;
     if (kf.prepared.ground.found) {
         const Eigen::Vector3d n = kf.T_world_keyframe.linear() * kf.prepared.ground.normal;
-        floor = Eigen::Vector4d(n.x(), n.y(), n.z(), kf.prepared.ground.offset - n.dot(kf.T_world_keyframe.translation()));
+        floor =
+            Eigen::Vector4d(n.x(), n.y(), n.z(),
+                            kf.prepared.ground.offset - n.dot(kf.T_world_keyframe.translation()));
     }
-    kf.tracking = map_.update(kf.evidence, kf.T_world_keyframe, stamp_s, nullptr, floor ? &*floor : nullptr);
-    if (have_cad && params_.verify.reseed_tolerance_m > 0.0) remember_fits(kf);  // only re-verification reads them
+    kf.tracking =
+        map_.update(kf.evidence, kf.T_world_keyframe, stamp_s, nullptr, floor ? &*floor : nullptr);
+    if (have_cad && params_.verify.reseed_tolerance_m > 0.0)
+        remember_fits(kf);  // only re-verification reads them
     timing.track_ms = ms_since(t);
     // Learned shapes: each object verified against one gains this view, and its shape is completed
     // from all of its views; the next keyframe verifies it against that shape.
@@ -138,14 +156,16 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
         t = Clock::now();
         std::unordered_set<std::uint32_t> live;
         for (const auto& [id, track] : map_.tracks()) live.insert(id);
-        kf.shapes_completed = shapes_->add_views(kf.prepared.cloud_sensor, kf.verified, kf.tracking.track_of_detection, live);
+        kf.shapes_completed = shapes_->add_views(kf.prepared.cloud_sensor, kf.verified,
+                                                 kf.tracking.track_of_detection, live);
         timing.shape_ms = ms_since(t);
     }
     return kf;
 }
 
-std::vector<std::optional<verification::VerifySeed>> Pipeline::seeds_for(const std::vector<Detection>& detections,
-                                                                          const Isometry3& T_world_keyframe, double stamp_s) const {
+std::vector<std::optional<verification::VerifySeed>> Pipeline::seeds_for(
+    const std::vector<Detection>& detections, const Isometry3& T_world_keyframe,
+    double stamp_s) const {
     std::vector<std::optional<verification::VerifySeed>> seeds(detections.size());
     const verification::VerifyParams& p = params_.verify;
     if (fits_.empty() || p.reseed_tolerance_m <= 0.0) return seeds;
@@ -165,7 +185,8 @@ std::vector<std::optional<verification::VerifySeed>> Pipeline::seeds_for(const s
         // The fit in this keyframe's sensor frame, as the 4-DoF pose ICP optimises (the sensor
         // stands level on the robot: its yaw about the sensor's z).
         const Isometry3 T = T_keyframe_world * best->T_world_object;
-        seeds[i] = verification::VerifySeed{best->model, {T.translation(), yaw_of(T)}, best->residual_m};
+        seeds[i] =
+            verification::VerifySeed{best->model, {T.translation(), yaw_of(T)}, best->residual_m};
     }
     return seeds;
 }
@@ -176,7 +197,9 @@ void Pipeline::remember_fits(const KeyframeResult& kf) {
     for (const verification::VerifiedDetection& v : kf.verified) {
         if (!v.accepted) continue;
         const std::size_t evidence = k++;
-        if (evidence >= kf.tracking.track_of_detection.size() || kf.tracking.track_of_detection[evidence] < 0) continue;
+        if (evidence >= kf.tracking.track_of_detection.size() ||
+            kf.tracking.track_of_detection[evidence] < 0)
+            continue;
         const verification::CadModel* model = nullptr;
         for (const verification::CadModel& m : library_->models()) {
             if (m.name == v.model) model = &m;

@@ -38,36 +38,43 @@ namespace makeway::pipeline {
 
 /// Wall-clock time of each stage [ms] (zero for stages that did not run).
 struct StageTiming {
-    double deskew_ms = 0.0;  ///< every sweep: its pose and de-skewing into the world
+    double deskew_ms = 0.0;    ///< every sweep: its pose and de-skewing into the world
     double odometry_ms = 0.0;  ///< ... of which the LiDAR odometry's registration
-    double accumulate_ms = 0.0, ground_ms = 0.0, detect_ms = 0.0, verify_ms = 0.0, track_ms = 0.0;  ///< keyframes
-    double shape_ms = 0.0;   ///< keyframes with a shape prior: the tracked objects' shapes completed from their views
-    double total_ms = 0.0;   ///< the whole process_sweep
+    double accumulate_ms = 0.0, ground_ms = 0.0, detect_ms = 0.0, verify_ms = 0.0,
+           track_ms = 0.0;  ///< keyframes
+    double shape_ms = 0.0;  ///< keyframes with a shape prior: the tracked objects' shapes completed
+                            ///< from their views
+    double total_ms = 0.0;  ///< the whole process_sweep
     /// The keyframe chain: accumulation to the object map.
-    double keyframe_ms() const { return accumulate_ms + ground_ms + detect_ms + verify_ms + track_ms + shape_ms; }
+    double keyframe_ms() const {
+        return accumulate_ms + ground_ms + detect_ms + verify_ms + track_ms + shape_ms;
+    }
 };
 
 /// Everything one keyframe produced, for tests, evaluation and pictures (no side channels).
 struct KeyframeResult {
     std::size_t index = 0;
     double stamp_s = 0.0;
-    Isometry3 T_world_keyframe = Isometry3::Identity();  ///< the pipeline's estimate
-    PreparedKeyframe prepared;                           ///< ground-filtered cloud and plane
-    std::vector<Detection> detections;                   ///< the network's, sensor frame
+    Isometry3 T_world_keyframe = Isometry3::Identity();     ///< the pipeline's estimate
+    PreparedKeyframe prepared;                              ///< ground-filtered cloud and plane
+    std::vector<Detection> detections;                      ///< the network's, sensor frame
     std::vector<verification::VerifiedDetection> verified;  ///< empty without a CAD library
-    std::vector<Detection> evidence;                     ///< what the tracker was fed
+    std::vector<Detection> evidence;                        ///< what the tracker was fed
     tracking::TrackerFrameResult tracking;
-    std::size_t shapes_completed = 0;                    ///< tracked objects whose shape was completed anew
+    std::size_t shapes_completed = 0;  ///< tracked objects whose shape was completed anew
 };
 
 struct SweepResult {
     Isometry3 T_world_sensor_start = Isometry3::Identity();  ///< estimated
     Isometry3 T_world_sensor_end = Isometry3::Identity();
-    Pose2 pose;                 ///< the base at the sweep's end, estimated
-    PointCloud points_world;    ///< this sweep de-skewed into the world frame (the obstacle layer's input)
-    std::optional<odometry::OdometryResult> odometry;  ///< the LiDAR odometry's report, when it runs
+    Pose2 pose;  ///< the base at the sweep's end, estimated
+    PointCloud
+        points_world;  ///< this sweep de-skewed into the world frame (the obstacle layer's input)
+    std::optional<odometry::OdometryResult>
+        odometry;  ///< the LiDAR odometry's report, when it runs
     std::optional<KeyframeResult> keyframe;
-    bool keyframe_formed = false;         ///< the front end formed a keyframe (perceived in `keyframe`, or handed on by track())
+    bool keyframe_formed = false;  ///< the front end formed a keyframe (perceived in `keyframe`, or
+                                   ///< handed on by track())
     std::vector<ObjectEstimate> objects;  ///< the object map after this sweep, world frame
     StageTiming timing;
 };
@@ -79,12 +86,12 @@ struct PendingKeyframe {
 };
 
 class Pipeline {
-public:
+  public:
     /// `detector` and `library` may be null (no detection / no verification); both must outlive
-    /// the pipeline. Throws std::invalid_argument listing every problem of `params` (and of its ICP levels against
-    /// the library's).
-    Pipeline(const SystemParams& params, const Pose2& start_pose, const perception::ObjectDetector* detector,
-             const verification::CadLibrary* library);
+    /// the pipeline. Throws std::invalid_argument listing every problem of `params` (and of its ICP
+    /// levels against the library's).
+    Pipeline(const SystemParams& params, const Pose2& start_pose,
+             const perception::ObjectDetector* detector, const verification::CadLibrary* library);
 
     /// The whole method for one sweep, top to bottom. Never throws on degenerate input (an empty
     /// sweep gives an empty keyframe and no detections).
@@ -103,7 +110,9 @@ public:
 
     /// Where objects can stand: the free space of the prebuilt map of walls (a robot has it).
     /// Objects outside it (beyond the walls, inside them) never enter the object map.
-    void set_object_region(std::function<bool(const Eigen::Vector2d&)> allowed) { map_.set_region(std::move(allowed)); }
+    void set_object_region(std::function<bool(const Eigen::Vector2d&)> allowed) {
+        map_.set_region(std::move(allowed));
+    }
     /// A learned shape prior (may be null; must outlive the pipeline): detections no CAD model
     /// fits, or all detections when there is no library, are verified against its completed shape,
     /// kept per tracked object and completed again from each new view (TrackedShapes).
@@ -114,12 +123,14 @@ public:
     const SystemParams& params() const { return params_; }
     std::size_t keyframes() const { return keyframes_; }
 
-private:
+  private:
     KeyframeResult process_keyframe(FrontEndKeyframe front, double stamp_s, StageTiming& timing);
     /// Per detection, the fit of the tracked object it shows (VerifyParams::reseed_*), if any.
-    std::vector<std::optional<verification::VerifySeed>> seeds_for(const std::vector<Detection>& detections,
-                                                                    const Isometry3& T_world_keyframe, double stamp_s) const;
-    /// Keeps the fits of this keyframe's accepted detections under their tracks; forgets dead tracks'.
+    std::vector<std::optional<verification::VerifySeed>> seeds_for(
+        const std::vector<Detection>& detections, const Isometry3& T_world_keyframe,
+        double stamp_s) const;
+    /// Keeps the fits of this keyframe's accepted detections under their tracks; forgets dead
+    /// tracks'.
     void remember_fits(const KeyframeResult& kf);
 
     struct TrackFit {  ///< a tracked object's last CAD fit
@@ -132,7 +143,8 @@ private:
     const perception::ObjectDetector* detector_;
     const verification::CadLibrary* library_;
     std::unique_ptr<TrackedShapes> shapes_;  ///< wraps the shape prior
-    verification::CadLibrary no_library_;  ///< what verification sees with a prior and no CAD models
+    verification::CadLibrary
+        no_library_;  ///< what verification sees with a prior and no CAD models
     FrontEnd front_end_;
     tracking::ObjectMap map_;
     std::unordered_map<std::uint32_t, TrackFit> fits_;  ///< by track id
@@ -142,6 +154,7 @@ private:
 };
 
 /// The tracker's parameters with misses judged only within what the detector covers.
-tracking::TrackerParams tracker_params_for(const perception::ObjectDetector* detector, tracking::TrackerParams params);
+tracking::TrackerParams tracker_params_for(const perception::ObjectDetector* detector,
+                                           tracking::TrackerParams params);
 
 }  // namespace makeway::pipeline

@@ -34,29 +34,34 @@ struct KeyframeParams {
 /// The navigation policy around the costmap, A* and DWA: when to replan and how to recover.
 struct NavigatorParams {
     costmap::ObstacleLayerParams obstacle;
-    costmap::InflationParams inflation;   ///< inflation_radius_m: the method's (con: 3x the robot)
-    bool affordance_layer = true;         ///< object-aware zones (false: the classic costmap)
+    costmap::InflationParams inflation;  ///< inflation_radius_m: the method's (con: 3x the robot)
+    bool affordance_layer = true;        ///< object-aware zones (false: the classic costmap)
     costmap::AffordanceParams affordance;
     planning::AStarParams astar;
     planning::DwaParams dwa;
     /// Between the navigator and the motors, on the raw sweep (the footprint and the body from the
     /// robot description; config section `collision_monitor`).
     planning::CollisionMonitorParams monitor;
-    double replan_period_s = 1.0;         ///< the global plan is renewed at least this often
-    double blocked_lookahead_m = 3.0;     ///< a lethal cell on the plan this far ahead forces a replan ...
-    double blocked_ignore_m = 0.3;        ///< ... unless it is this close to the robot (under its own body)
-    int turn_target_index = 3;            ///< DWA finds nothing: turn on the spot toward this plan point (cells from its start)
+    double replan_period_s = 1.0;  ///< the global plan is renewed at least this often
+    double blocked_lookahead_m =
+        3.0;  ///< a lethal cell on the plan this far ahead forces a replan ...
+    double blocked_ignore_m =
+        0.3;  ///< ... unless it is this close to the robot (under its own body)
+    int turn_target_index =
+        3;  ///< DWA finds nothing: turn on the spot toward this plan point (cells from its start)
     double turn_rate_radps = 1.0;
-    double stuck_progress_m = 0.3;        ///< the way left along the plan shrinking by less than this ...
-    double stuck_timeout_s = 6.0;         ///< ... for this long means stuck: back up and replan
+    double stuck_progress_m = 0.3;  ///< the way left along the plan shrinking by less than this ...
+    double stuck_timeout_s = 6.0;   ///< ... for this long means stuck: back up and replan
     double backup_speed_mps = 0.15;
     double backup_duration_s = 1.0;
-    double standstill_timeout_s = 2.0;    ///< DWA's best velocity a standstill this long: stuck now (back up and replan)
-    double standstill_v_mps = 0.01;       ///< standstill: slower than this ...
-    double standstill_w_radps = 0.05;     ///< ... turning slower than this
-    double waypoint_tolerance_m = 0.5;    ///< a waypoint counts as reached this close
-    double goal_tolerance_m = 0.3;        ///< the goal counts as reached this close (own pose estimate)
-    double give_up_s = 20.0;              ///< no plan found, or no progress despite recoveries, this long: the mission fails
+    double standstill_timeout_s =
+        2.0;  ///< DWA's best velocity a standstill this long: stuck now (back up and replan)
+    double standstill_v_mps = 0.01;     ///< standstill: slower than this ...
+    double standstill_w_radps = 0.05;   ///< ... turning slower than this
+    double waypoint_tolerance_m = 0.5;  ///< a waypoint counts as reached this close
+    double goal_tolerance_m = 0.3;  ///< the goal counts as reached this close (own pose estimate)
+    double give_up_s =
+        20.0;  ///< no plan found, or no progress despite recoveries, this long: the mission fails
     /// Stuck means the plan leads where the robot cannot go (a gap its footprint does not turn
     /// through, a person standing in it): the plan's point detour_ahead_m ahead is avoided by A*
     /// (a disc of detour_radius_m, lethal) for detour_memory_s, at most max_detours times per leg;
@@ -67,20 +72,23 @@ struct NavigatorParams {
     double detour_radius_m = 0.35;
     double detour_memory_s = 30.0;
     int max_detours = 3;
-    double plan_to_tolerance = 0.6;       ///< A* ends anywhere within this share of the leg's tolerance (0: at the point)
+    double plan_to_tolerance =
+        0.6;  ///< A* ends anywhere within this share of the leg's tolerance (0: at the point)
     std::vector<std::string> validate() const;         ///< everything, layers and planners included
     std::vector<std::string> validate_policy() const;  ///< the policy constants alone
 };
 
 struct SystemParams {
-    /// The sensor on the robot's base (extrinsics): odometry poses the base, the points are the sensor's.
+    /// The sensor on the robot's base (extrinsics): odometry poses the base, the points are the
+    /// sensor's.
     Isometry3 T_base_sensor = Isometry3::Identity();
     /// The pose of every sweep: LiDAR odometry fused with the wheel odometry (the paper's front
     /// end); false: the wheel odometry alone.
     bool lidar_odometry_enabled = true;
     odometry::OdometryParams lidar_odometry;  ///< the `lidar_odometry` section
     KeyframeParams keyframe;
-    bool verification_enabled = true;  ///< with a CAD library: 4-DoF ICP, p_exist as existence evidence
+    bool verification_enabled =
+        true;  ///< with a CAD library: 4-DoF ICP, p_exist as existence evidence
     verification::VerifyParams verify;
     TrackedShapeParams shapes;  ///< with a shape prior: learned shapes kept per tracked object
     tracking::TrackerParams tracker;
@@ -94,7 +102,7 @@ struct SystemParams {
 /// and limits (its top speed at most the robot's), the collision monitor's footprint, body, limits
 /// and sensor height, and the extrinsics. `T_base_sensor`: measured extrinsics (null: the
 /// description's, lidar_height_m above the base's centre).
-void apply_robot(const RobotDescription& robot, SystemParams& params, const Isometry3* T_base_sensor = nullptr);
-
+void apply_robot(const RobotDescription& robot, SystemParams& params,
+                 const Isometry3* T_base_sensor = nullptr);
 
 }  // namespace makeway::pipeline

@@ -11,9 +11,12 @@ const ParamTable<TrackedShapeParams>& tracked_shape_table() {
     using T = TrackedShapeParams;
     static const ParamTable<T> table = [] {
         ParamTable<T> t;
-        t.add("match_distance_m", &T::match_distance_m, above(0.0, 10.0), "a segment this close to a tracked object's learned shape is verified against it")
-            .add("max_views", &T::max_views, closed(1, 1000), "the latest views of a tracked object fused into its learned shape")
-            .add("view_margin_m", &T::view_margin_m, closed(0.0, 2.0), "a view: the keyframe's returns in the fitted box grown by this");
+        t.add("match_distance_m", &T::match_distance_m, above(0.0, 10.0),
+              "a segment this close to a tracked object's learned shape is verified against it")
+            .add("max_views", &T::max_views, closed(1, 1000),
+                 "the latest views of a tracked object fused into its learned shape")
+            .add("view_margin_m", &T::view_margin_m, closed(0.0, 2.0),
+                 "a view: the keyframe's returns in the fitted box grown by this");
         return t;
     }();
     return table;
@@ -21,17 +24,20 @@ const ParamTable<TrackedShapeParams>& tracked_shape_table() {
 
 std::vector<std::string> TrackedShapeParams::validate() const {
     std::vector<std::string> problems = tracked_shape_table().problems(*this);
-    if (!(ground_band_m >= 0.0 && ground_band_m <= 10.0)) problems.push_back("ground_band_m must be in [0, 10]");
+    if (!(ground_band_m >= 0.0 && ground_band_m <= 10.0))
+        problems.push_back("ground_band_m must be in [0, 10]");
     return problems;
 }
 
-TrackedShapes::TrackedShapes(const verification::ShapePrior* prior, const TrackedShapeParams& params) : prior_(prior), params_(params) {
+TrackedShapes::TrackedShapes(const verification::ShapePrior* prior,
+                             const TrackedShapeParams& params)
+    : prior_(prior), params_(params) {
     if (!prior_) throw std::invalid_argument("TrackedShapes needs a shape prior");
     throw_if_problems(params_.validate());
 }
 
-std::optional<verification::ShapePrior::Estimate> TrackedShapes::estimate(const std::vector<Eigen::Vector3d>& segment, ObjectClass cls,
-                                                                          double floor_z_m) const {
+std::optional<verification::ShapePrior::Estimate> TrackedShapes::estimate(
+    const std::vector<Eigen::Vector3d>& segment, ObjectClass cls, double floor_z_m) const {
     // Where the segment stands: the centroid of its returns above the floor band, in the world.
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     std::size_t n = 0;
@@ -70,9 +76,12 @@ Eigen::Vector3d box_centre(const TriangleMesh& mesh) {
 
 }  // namespace
 
-std::size_t TrackedShapes::add_views(const PointCloud& cloud, const std::vector<verification::VerifiedDetection>& verified,
-                                     const std::vector<int>& track_of_accepted, const std::unordered_set<std::uint32_t>& live) {
-    for (auto it = shapes_.begin(); it != shapes_.end();) it = live.count(it->first) ? std::next(it) : shapes_.erase(it);
+std::size_t TrackedShapes::add_views(const PointCloud& cloud,
+                                     const std::vector<verification::VerifiedDetection>& verified,
+                                     const std::vector<int>& track_of_accepted,
+                                     const std::unordered_set<std::uint32_t>& live) {
+    for (auto it = shapes_.begin(); it != shapes_.end();)
+        it = live.count(it->first) ? std::next(it) : shapes_.erase(it);
     std::size_t completed = 0, accepted = 0;
     for (const verification::VerifiedDetection& v : verified) {
         if (!v.accepted) continue;
@@ -83,7 +92,8 @@ std::size_t TrackedShapes::add_views(const PointCloud& cloud, const std::vector<
         auto [it, is_new] = shapes_.try_emplace(id);
         Shape& s = it->second;
         if (is_new || s.cls != v.detection.cls) {
-            // The first fit (or the tracker's class changed its mind): this estimate's frame and mesh.
+            // The first fit (or the tracker's class changed its mind): this estimate's frame and
+            // mesh.
             s = Shape{};
             s.cls = v.detection.cls;
             s.mesh_object = v.shape->mesh_object;
@@ -91,11 +101,13 @@ std::size_t TrackedShapes::add_views(const PointCloud& cloud, const std::vector<
             s.scale = v.shape->scale;
             s.offset_m = v.shape->offset_m;
         }
-        // The view: the keyframe's returns in the fitted box (grown), in the object frame the fit found.
+        // The view: the keyframe's returns in the fitted box (grown), in the object frame the fit
+        // found.
         const Isometry3 T_object_sensor = v.T_sensor_object.inverse();
         View view;
         view.origin_object = T_object_sensor.translation();
-        for (const auto& p : verification::segment_points(cloud, v.box_sensor, params_.view_margin_m)) {
+        for (const auto& p :
+             verification::segment_points(cloud, v.box_sensor, params_.view_margin_m)) {
             const Eigen::Vector3d q = T_object_sensor * p;
             if (q.z() > params_.ground_band_m) view.points_object.push_back(q);
         }
@@ -105,7 +117,8 @@ std::size_t TrackedShapes::add_views(const PointCloud& cloud, const std::vector<
         while (s.views.size() > params_.max_views) s.views.pop_front();
         // One view: the prior's mesh was completed from it already.
         if (s.views.size() < 2) continue;
-        if (auto mesh = prior_->complete({s.views.begin(), s.views.end()}, s.cls, s.scale, s.offset_m)) {
+        if (auto mesh =
+                prior_->complete({s.views.begin(), s.views.end()}, s.cls, s.scale, s.offset_m)) {
             s.mesh_object = std::move(*mesh);
             s.centre_object = box_centre(s.mesh_object);
             ++s.completions;

@@ -23,38 +23,46 @@ namespace makeway::pipeline {
 
 struct TrackedShapeParams {
     /// A segment whose centroid (xy, points above the floor band) lies this close to a shaped
-    /// track's mesh centre is that object. Wider than a chair's half width would let a neighbour in.
+    /// track's mesh centre is that object. Wider than a chair's half width would let a neighbour
+    /// in.
     double match_distance_m = 0.35;
-    std::size_t max_views = 8;     ///< the latest views of an object that are fused (older ones drop out)
-    double ground_band_m = 0.05;   ///< returns this close to the floor are not a view's (nor the centroid's)
-    double view_margin_m = 0.10;   ///< a view is the keyframe's points in the fitted box grown by this
+    std::size_t max_views =
+        8;  ///< the latest views of an object that are fused (older ones drop out)
+    double ground_band_m =
+        0.05;  ///< returns this close to the floor are not a view's (nor the centroid's)
+    double view_margin_m =
+        0.10;  ///< a view is the keyframe's points in the fitted box grown by this
     std::vector<std::string> validate() const;
 };
 
 class TrackedShapes : public verification::ShapePrior {
-public:
+  public:
     /// `prior` (not null, outlives this) gives the first shape of each object and fuses the views.
-    explicit TrackedShapes(const verification::ShapePrior* prior, const TrackedShapeParams& params = {});
+    explicit TrackedShapes(const verification::ShapePrior* prior,
+                           const TrackedShapeParams& params = {});
 
     /// The keyframe's pose, before verification (estimate() matches segments in the world frame).
     void begin_keyframe(const Isometry3& T_world_sensor) { T_world_sensor_ = T_world_sensor; }
 
     /// A shaped track's mesh where the segment stands, else the prior's estimate. Thread-safe
     /// between begin_keyframe() and add_views() (reads only).
-    std::optional<Estimate> estimate(const std::vector<Eigen::Vector3d>& segment_sensor, ObjectClass cls, double floor_z_m) const override;
+    std::optional<Estimate> estimate(const std::vector<Eigen::Vector3d>& segment_sensor,
+                                     ObjectClass cls, double floor_z_m) const override;
 
     /// After tracking: `verified` as verification returned them, `track_of_accepted` the object
     /// map's track per accepted detection (TrackerFrameResult::track_of_detection, in order),
     /// `live` the map's tracks now. Each accepted fit against a completed shape adds a view to its
     /// track and completes the track's shape again; shapes of tracks that left the map are dropped.
     /// Returns how many shapes were completed.
-    std::size_t add_views(const PointCloud& cloud_sensor, const std::vector<verification::VerifiedDetection>& verified,
-                          const std::vector<int>& track_of_accepted, const std::unordered_set<std::uint32_t>& live);
+    std::size_t add_views(const PointCloud& cloud_sensor,
+                          const std::vector<verification::VerifiedDetection>& verified,
+                          const std::vector<int>& track_of_accepted,
+                          const std::unordered_set<std::uint32_t>& live);
 
     struct Shape {
         ObjectClass cls = ObjectClass::kChair;
         TriangleMesh mesh_object;
-        Isometry3 T_world_object = Isometry3::Identity();  ///< the last verified pose
+        Isometry3 T_world_object = Isometry3::Identity();         ///< the last verified pose
         Eigen::Vector3d centre_object = Eigen::Vector3d::Zero();  ///< the mesh's box centre
         double scale = 1.0;
         Eigen::Vector3d offset_m = Eigen::Vector3d::Zero();
@@ -63,7 +71,7 @@ public:
     };
     const std::unordered_map<std::uint32_t, Shape>& shapes() const { return shapes_; }
 
-private:
+  private:
     const verification::ShapePrior* prior_;
     TrackedShapeParams params_;
     Isometry3 T_world_sensor_ = Isometry3::Identity();

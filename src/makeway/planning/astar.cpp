@@ -1,18 +1,19 @@
 #include "makeway/planning/astar.hpp"
 
-#include "makeway/planning/param_tables.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <queue>
+
+#include "makeway/planning/param_tables.hpp"
 
 namespace makeway::planning {
 
 const ParamTable<AStarParams>& astar_table() {
     static const ParamTable<AStarParams> table = [] {
         ParamTable<AStarParams> t;
-        t.add("cost_weight", &AStarParams::cost_weight, closed(0.0, 100.0), "a step costs its length x (1 + this x cost / 252)")
+        t.add("cost_weight", &AStarParams::cost_weight, closed(0.0, 100.0),
+              "a step costs its length x (1 + this x cost / 252)")
             .add("allow_unknown", &AStarParams::allow_unknown, "plans may cross cells never seen");
         return t;
     }();
@@ -27,17 +28,23 @@ std::vector<std::string> AStarParams::validate() const {
 
 std::string_view to_string(PlanStatus s) {
     switch (s) {
-        case PlanStatus::kOk: return "ok";
-        case PlanStatus::kStartBlocked: return "start_blocked";
-        case PlanStatus::kGoalBlocked: return "goal_blocked";
-        case PlanStatus::kNoPath: return "no_path";
-        case PlanStatus::kOutsideMap: return "outside_map";
+        case PlanStatus::kOk:
+            return "ok";
+        case PlanStatus::kStartBlocked:
+            return "start_blocked";
+        case PlanStatus::kGoalBlocked:
+            return "goal_blocked";
+        case PlanStatus::kNoPath:
+            return "no_path";
+        case PlanStatus::kOutsideMap:
+            return "outside_map";
     }
     return "unknown";
 }
 
-PlanResult plan_astar(const Costmap& map, const Eigen::Vector2d& start_m, const Eigen::Vector2d& goal_m,
-                      const AStarParams& params, double goal_radius_m) {
+PlanResult plan_astar(const Costmap& map, const Eigen::Vector2d& start_m,
+                      const Eigen::Vector2d& goal_m, const AStarParams& params,
+                      double goal_radius_m) {
     PlanResult r;
     const Eigen::Vector2i s = map.cell_of(start_m), g = map.cell_of(goal_m);
     if (!map.inside(s.x(), s.y()) || !map.inside(g.x(), g.y())) {
@@ -56,10 +63,12 @@ PlanResult plan_astar(const Costmap& map, const Eigen::Vector2d& start_m, const 
     const double radius = std::max(goal_radius_m, 0.0);
     bool goal_open = passable(g.x(), g.y());
     const int reach = static_cast<int>(std::ceil(radius / map.resolution_m));
-    for (int dy = -reach; dy <= reach && !goal_open; ++dy) {  // any free cell of the goal's disc will do
+    for (int dy = -reach; dy <= reach && !goal_open;
+         ++dy) {  // any free cell of the goal's disc will do
         for (int dx = -reach; dx <= reach && !goal_open; ++dx) {
             const int x = g.x() + dx, y = g.y() + dy;
-            goal_open = map.inside(x, y) && (map.centre_of(x, y) - goal_m).norm() <= radius && passable(x, y);
+            goal_open = map.inside(x, y) && (map.centre_of(x, y) - goal_m).norm() <= radius &&
+                        passable(x, y);
         }
     }
     if (!goal_open) {
@@ -74,10 +83,12 @@ PlanResult plan_astar(const Costmap& map, const Eigen::Vector2d& start_m, const 
     const double res = map.resolution_m;
     auto heuristic = [&](int idx) {  // octile distance [m]
         const double dx = std::abs(idx % w - g.x()), dy = std::abs(idx / w - g.y());
-        return std::max(0.0, res * (std::max(dx, dy) + (std::sqrt(2.0) - 1.0) * std::min(dx, dy)) - radius);
+        return std::max(
+            0.0, res * (std::max(dx, dy) + (std::sqrt(2.0) - 1.0) * std::min(dx, dy)) - radius);
     };
     auto is_goal = [&](int idx) {
-        return radius == 0.0 ? idx == g.y() * w + g.x() : (map.centre_of(idx % w, idx / w) - goal_m).norm() <= radius;
+        return radius == 0.0 ? idx == g.y() * w + g.x()
+                             : (map.centre_of(idx % w, idx / w) - goal_m).norm() <= radius;
     };
     using Entry = std::pair<double, int>;
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
@@ -105,7 +116,8 @@ PlanResult plan_astar(const Costmap& map, const Eigen::Vector2d& start_m, const 
                 const double step = res * ((dx && dy) ? std::sqrt(2.0) : 1.0);
                 const std::uint8_t c = map.at(nx, ny);
                 const double soft = c == cost::kUnknown ? cost::kMaxSoft : c;
-                const double cand = best[idx] + step * (1.0 + params.cost_weight * soft / cost::kMaxSoft);
+                const double cand =
+                    best[idx] + step * (1.0 + params.cost_weight * soft / cost::kMaxSoft);
                 if (cand < best[nidx]) {
                     best[nidx] = cand;
                     parent[nidx] = idx;
@@ -118,11 +130,13 @@ PlanResult plan_astar(const Costmap& map, const Eigen::Vector2d& start_m, const 
         r.status = PlanStatus::kNoPath;
         return r;
     }
-    for (int idx = goal; idx >= 0; idx = parent[idx]) r.path_m.push_back(map.centre_of(idx % w, idx / w));
+    for (int idx = goal; idx >= 0; idx = parent[idx])
+        r.path_m.push_back(map.centre_of(idx % w, idx / w));
     std::reverse(r.path_m.begin(), r.path_m.end());
     r.path_m.front() = start_m;
     if (radius == 0.0) r.path_m.back() = goal_m;
-    for (std::size_t i = 1; i < r.path_m.size(); ++i) r.length_m += (r.path_m[i] - r.path_m[i - 1]).norm();
+    for (std::size_t i = 1; i < r.path_m.size(); ++i)
+        r.length_m += (r.path_m[i] - r.path_m[i - 1]).norm();
     r.cost = best[goal];
     r.status = PlanStatus::kOk;
     return r;

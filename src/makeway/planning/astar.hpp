@@ -20,8 +20,9 @@ enum class PlanStatus { kOk, kStartBlocked, kGoalBlocked, kNoPath, kOutsideMap }
 
 struct PlanResult {
     PlanStatus status = PlanStatus::kNoPath;
-    std::vector<Eigen::Vector2d> path_m;  ///< cell centres from start to goal (ends replaced by the exact points)
-    double cost = 0.0;                    ///< the objective, in metres-equivalent
+    std::vector<Eigen::Vector2d>
+        path_m;         ///< cell centres from start to goal (ends replaced by the exact points)
+    double cost = 0.0;  ///< the objective, in metres-equivalent
     double length_m = 0.0;
     std::size_t expansions = 0;
 };
@@ -31,7 +32,8 @@ std::string_view to_string(PlanStatus status);
 /// `goal_radius_m` > 0: any cell whose centre lies within it of the goal ends the search (a goal
 /// inside an affordance zone is then reached from its cheapest side); the path ends at that cell's
 /// centre. kGoalBlocked when no cell of the disc can be entered.
-PlanResult plan_astar(const Costmap& costmap, const Eigen::Vector2d& start_m, const Eigen::Vector2d& goal_m,
-                      const AStarParams& params = {}, double goal_radius_m = 0.0);
+PlanResult plan_astar(const Costmap& costmap, const Eigen::Vector2d& start_m,
+                      const Eigen::Vector2d& goal_m, const AStarParams& params = {},
+                      double goal_radius_m = 0.0);
 
 }  // namespace makeway::planning

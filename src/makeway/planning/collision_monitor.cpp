@@ -1,14 +1,13 @@
 #include "makeway/planning/collision_monitor.hpp"
 
-#include "makeway/planning/param_tables.hpp"
-
 #include <algorithm>
-#include <optional>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <unordered_set>
 
 #include "makeway/common/angles.hpp"
+#include "makeway/planning/param_tables.hpp"
 
 namespace makeway::planning {
 namespace {
@@ -34,13 +33,20 @@ double rect_signed_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& h) 
 
 std::string_view to_string(MonitorAction a) {
     switch (a) {
-        case MonitorAction::kNone: return "none";
-        case MonitorAction::kSlowdown: return "slowdown";
-        case MonitorAction::kApproach: return "approach";
-        case MonitorAction::kStop: return "stop";
-        case MonitorAction::kBackup: return "recovery_backup";
-        case MonitorAction::kRotate: return "recovery_rotate";
-        case MonitorAction::kBlocked: return "blocked";
+        case MonitorAction::kNone:
+            return "none";
+        case MonitorAction::kSlowdown:
+            return "slowdown";
+        case MonitorAction::kApproach:
+            return "approach";
+        case MonitorAction::kStop:
+            return "stop";
+        case MonitorAction::kBackup:
+            return "recovery_backup";
+        case MonitorAction::kRotate:
+            return "recovery_rotate";
+        case MonitorAction::kBlocked:
+            return "blocked";
     }
     return "none";
 }
@@ -51,62 +57,90 @@ const ParamTable<CollisionMonitorParams>& collision_monitor_table() {
         ParamTable<C> t;
         t.add("enabled", &C::enabled, "")
             .add("latency_s", &C::latency_s, closed(0.0, 2.0),
-                 "sweep age + one control period: how long a command runs before the next check can change it")
-            .add("min_points", &C::min_points, closed(1, 100000), "returns in a zone before it acts")
+                 "sweep age + one control period: how long a command runs before the next check "
+                 "can change it")
+            .add("min_points", &C::min_points, closed(1, 100000),
+                 "returns in a zone before it acts")
             .add("stop_padding_m", &C::stop_padding_m, closed(0.0, 1.0),
-                 "stop zone: footprint + this along the command for latency_s, then braking (2.5 sigma of the LiDAR's range noise)")
-            .add("slowdown_padding_m", &C::slowdown_padding_m, closed(0.0, 2.0), "slowdown zone: footprint + this, swept ...")
-            .add("slowdown_time_s", &C::slowdown_time_s, closed(0.0, 10.0), "... along the command this much longer before braking")
+                 "stop zone: footprint + this along the command for latency_s, then braking (2.5 "
+                 "sigma of the LiDAR's range noise)")
+            .add("slowdown_padding_m", &C::slowdown_padding_m, closed(0.0, 2.0),
+                 "slowdown zone: footprint + this, swept ...")
+            .add("slowdown_time_s", &C::slowdown_time_s, closed(0.0, 10.0),
+                 "... along the command this much longer before braking")
             .add("slowdown_ratio", &C::slowdown_ratio, above(0.0, 1.0),
-                 "inside the slowdown zone: at most this share of the top speed (a cap: DWA samples around the current speed)")
+                 "inside the slowdown zone: at most this share of the top speed (a cap: DWA "
+                 "samples around the current speed)")
             .add("time_before_collision_s", &C::time_before_collision_s, closed(0.0, 10.0),
-                 "approach: the command slowed so that contact stays at least this far ahead (0: off)")
-            .add("simulation_time_step_s", &C::simulation_time_step_s, closed(0.005, 1.0), "the zones' time step along the predicted motion")
+                 "approach: the command slowed so that contact stays at least this far ahead (0: "
+                 "off)")
+            .add("simulation_time_step_s", &C::simulation_time_step_s, closed(0.005, 1.0),
+                 "the zones' time step along the predicted motion")
             .add("dynamic_speed_mps", &C::dynamic_speed_mps, closed(0.0, 5.0),
-                 "returns new in this sweep (people) may move this fast: their stop and approach padding grows with it")
-            .add("dynamic_history", &C::dynamic_history, closed(1, 100), "new: a return in the cell (or next to it) in fewer than dynamic_min_seen ...")
+                 "returns new in this sweep (people) may move this fast: their stop and approach "
+                 "padding grows with it")
+            .add("dynamic_history", &C::dynamic_history, closed(1, 100),
+                 "new: a return in the cell (or next to it) in fewer than dynamic_min_seen ...")
             .add("dynamic_min_seen", &C::dynamic_min_seen, closed(1, 100),
-                 "... of the last dynamic_history sweeps (2: a walker turning back over cells it left stays new; off: README)")
+                 "... of the last dynamic_history sweeps (2: a walker turning back over cells it "
+                 "left stays new; off: README)")
             .add("dynamic_cluster_m", &C::dynamic_cluster_m, closed(0.0, 2.0),
-                 "> 0: a mover stays one, returns about this close to a mover (this sweep or those) move too (off: README) ...")
+                 "> 0: a mover stays one, returns about this close to a mover (this sweep or "
+                 "those) move too (off: README) ...")
             .add("dynamic_cluster_min_new", &C::dynamic_cluster_min_new, closed(1, 1000),
-                 "... a mover: a cell that size with this many new returns (not a sliver out of a shadow)")
+                 "... a mover: a cell that size with this many new returns (not a sliver out of a "
+                 "shadow)")
             .add("dynamic_min_height_m", &C::dynamic_min_height_m, closed(0.0, 3.0),
-                 "... and at least this high (lower: the floor's noise where the lowest rings graze it)")
+                 "... and at least this high (lower: the floor's noise where the lowest rings "
+                 "graze it)")
             .add("dynamic_memory_s", &C::dynamic_memory_s, closed(0.0, 10.0),
-                 "a mover is remembered this long (padding growing with its age) until seen again: a walker turning back or inside "
+                 "a mover is remembered this long (padding growing with its age) until seen again: "
+                 "a walker turning back or inside "
                  "the minimum range (0: off; README)")
             .add("dynamic_memory_range_m", &C::dynamic_memory_range_m, above(0.0, 10.0),
                  "... movers this close to the base (farther, the next sweeps see them again) ...")
             .add("dynamic_memory_min_new", &C::dynamic_memory_min_new, closed(1, 1000),
-                 "... with this many new returns within 0.2 m (a body, not a sliver of wall out of a shadow)")
+                 "... with this many new returns within 0.2 m (a body, not a sliver of wall out of "
+                 "a shadow)")
             .add("dynamic_personal_space_m", &C::dynamic_personal_space_m, closed(0.0, 2.0),
-                 "a new return this close to the footprint holds the robot whatever the command (0: off; README) ...")
-            .add("personal_space_object_margin_m", &C::personal_space_object_margin_m, closed(0.0, 1.0),
+                 "a new return this close to the footprint holds the robot whatever the command "
+                 "(0: off; README) ...")
+            .add("personal_space_object_margin_m", &C::personal_space_object_margin_m,
+                 closed(0.0, 1.0),
                  "... unless it lies this close to a known chair (a pulled chair, not a walker)")
-            .add("min_scale", &C::min_scale, below(0.0, 1.0), "an approach scale below this holds the robot")
+            .add("min_scale", &C::min_scale, below(0.0, 1.0),
+                 "an approach scale below this holds the robot")
             .add("lowest_beam_deg", &C::lowest_beam_deg, closed(-90.0, 90.0),
-                 "the LiDAR's lowest beam (VLP-32C); with robot.lidar_height_m: what it cannot see near it")
+                 "the LiDAR's lowest beam (VLP-32C); with robot.lidar_height_m: what it cannot see "
+                 "near it")
             .add("blind_memory_s", &C::blind_memory_s, closed(0.0, 60.0),
-                 "returns the sensor can no longer see (a chair leg it closes in on) are remembered at most this long")
+                 "returns the sensor can no longer see (a chair leg it closes in on) are "
+                 "remembered at most this long")
             .add("low_edge_support", &C::low_edge_support, closed(0, 24),
-                 "a low return seen in one sweep only (a table foot 3 cm high) is remembered with this many returns around it "
+                 "a low return seen in one sweep only (a table foot 3 cm high) is remembered with "
+                 "this many returns around it "
                  "(5 x 5 cells; 0: never)")
             .add("object_footprints", &C::object_footprints,
-                 "inside that blind ring the object map's chairs count as returns (a pulled chair's base is not seen) ...")
+                 "inside that blind ring the object map's chairs count as returns (a pulled "
+                 "chair's base is not seen) ...")
             .add("object_moving_mps", &C::object_moving_mps, closed(0.0, 10.0),
-                 "... those that moved faster than this in the last blind_memory_s (a box also covers the backrest above the body)")
+                 "... those that moved faster than this in the last blind_memory_s (a box also "
+                 "covers the backrest above the body)")
             .add("object_lead_s", &C::object_lead_s, closed(0.0, 5.0),
-                 "... each swept along its velocity this far ahead (the object map lags a keyframe; 0: where it is)")
-            .add("max_range_m", &C::max_range_m, above(0.0, 50.0), "returns farther than this from the base are not looked at")
+                 "... each swept along its velocity this far ahead (the object map lags a "
+                 "keyframe; 0: where it is)")
+            .add("max_range_m", &C::max_range_m, above(0.0, 50.0),
+                 "returns farther than this from the base are not looked at")
             .add("recovery_after_s", &C::recovery_after_s, above(0.0, 3600.0),
                  "held this long: back up into space the sweep shows free, else turn on the spot")
             .add("backup_speed_mps", &C::backup_speed_mps, above(0.0, 5.0), "")
             .add("backup_distance_m", &C::backup_distance_m, closed(0.0, 10.0), "")
             .add("rotate_speed_radps", &C::rotate_speed_radps, above(0.0, 10.0), "")
             .add("rotate_angle_rad", &C::rotate_angle_rad, closed(0.0, 10.0), "")
-            .require([](const C& c) { return c.slowdown_padding_m >= c.stop_padding_m; }, "slowdown_padding_m must be in [stop_padding_m, 2]")
-            .require([](const C& c) { return c.dynamic_min_seen <= c.dynamic_history; }, "dynamic_min_seen must be in [1, dynamic_history]");
+            .require([](const C& c) { return c.slowdown_padding_m >= c.stop_padding_m; },
+                     "slowdown_padding_m must be in [stop_padding_m, 2]")
+            .require([](const C& c) { return c.dynamic_min_seen <= c.dynamic_history; },
+                     "dynamic_min_seen must be in [1, dynamic_history]");
         return t;
     }();
     return table;
@@ -114,11 +148,14 @@ const ParamTable<CollisionMonitorParams>& collision_monitor_table() {
 
 std::vector<std::string> CollisionMonitorParams::validate() const {
     std::vector<std::string> p = collision_monitor_table().problems(*this);
-    if (!(footprint_length_m > 0.0 && footprint_width_m > 0.0)) p.push_back("footprint must be positive");
-    if (!(body.top_m > body.ground_clearance_m)) p.push_back("body top must be above its ground clearance");
+    if (!(footprint_length_m > 0.0 && footprint_width_m > 0.0))
+        p.push_back("footprint must be positive");
+    if (!(body.top_m > body.ground_clearance_m))
+        p.push_back("body top must be above its ground clearance");
     if (!(max_acc_mps2 > 0.0 && max_ang_acc_radps2 > 0.0)) p.push_back("accelerations must be > 0");
     if (!(max_v_mps > 0.0 && max_w_radps > 0.0)) p.push_back("top speeds must be > 0");
-    if (!(sensor_height_m >= 0.0 && sensor_height_m <= 5.0)) p.push_back("sensor_height_m must be in [0, 5]");
+    if (!(sensor_height_m >= 0.0 && sensor_height_m <= 5.0))
+        p.push_back("sensor_height_m must be in [0, 5]");
     return p;
 }
 
@@ -131,7 +168,9 @@ std::vector<std::pair<double, Pose2>> CollisionMonitor::trajectory(const Motion&
     // The unicycle of the simulator and the DWA: each velocity moves toward its target within the
     // acceleration limits, the pose follows the exact arc of each step.
     const double dt = params_.simulation_time_step_s;
-    auto approach = [](double x, double target, double step) { return x + std::clamp(target - x, -step, step); };
+    auto approach = [](double x, double target, double step) {
+        return x + std::clamp(target - x, -step, step);
+    };
     std::vector<std::pair<double, Pose2>> out{{0.0, Pose2{}}};
     double v = m.current.v_mps, w = m.current.w_radps, t = 0.0;
     Pose2 pose;
@@ -143,15 +182,18 @@ std::vector<std::pair<double, Pose2>> CollisionMonitor::trajectory(const Motion&
         w = approach(w, target.w_radps, params_.max_ang_acc_radps2 * dt);
         const Pose2 d = along_arc(v, w, dt);
         const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
-        pose = {pose.x_m + c * d.x_m - s * d.y_m, pose.y_m + s * d.x_m + c * d.y_m, wrap_angle(pose.yaw_rad + d.yaw_rad)};
+        pose = {pose.x_m + c * d.x_m - s * d.y_m, pose.y_m + s * d.x_m + c * d.y_m,
+                wrap_angle(pose.yaw_rad + d.yaw_rad)};
         t += dt;
         out.emplace_back(t, pose);
     }
     return out;
 }
 
-double CollisionMonitor::first_contact(const Motion& m, double padding, const std::vector<Eigen::Vector2d>& pts,
-                                       const std::vector<char>& dynamic, const std::vector<double>& age_s) const {
+double CollisionMonitor::first_contact(const Motion& m, double padding,
+                                       const std::vector<Eigen::Vector2d>& pts,
+                                       const std::vector<char>& dynamic,
+                                       const std::vector<double>& age_s) const {
     const Eigen::Vector2d half(0.5 * params_.footprint_length_m, 0.5 * params_.footprint_width_m);
     const std::vector<std::pair<double, Pose2>> poses = trajectory(m);
     // Only returns the padded footprint can reach along the way.
@@ -179,21 +221,26 @@ double CollisionMonitor::first_contact(const Motion& m, double padding, const st
         int hits = 0;
         for (std::size_t j = 0; j < near.size(); ++j) {
             const Eigen::Vector2d d = near[j] - Eigen::Vector2d(q.x_m, q.y_m);
-            const double sd = rect_signed_distance({c * d.x() + s * d.y(), -s * d.x() + c * d.y()}, half);
+            const double sd =
+                rect_signed_distance({c * d.x() + s * d.y(), -s * d.x() + c * d.y()}, half);
             // Inside the zone, and closer than now: a robot may always move away from what is near.
-            if (sd <= padding + growth[j] * (lead[j] + t) && sd < now[j] - 1e-4 && ++hits >= params_.min_points) return t;
+            if (sd <= padding + growth[j] * (lead[j] + t) && sd < now[j] - 1e-4 &&
+                ++hits >= params_.min_points)
+                return t;
         }
     }
     return -1.0;
 }
 
-MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const std::vector<Eigen::Vector2d>& pts,
+MonitorResult CollisionMonitor::check(const VelocityCommand& cmd,
+                                      const std::vector<Eigen::Vector2d>& pts,
                                       const std::vector<char>& dynamic) const {
     return check(cmd, cmd, pts, dynamic);
 }
 
 MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const VelocityCommand& current,
-                                      const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic,
+                                      const std::vector<Eigen::Vector2d>& pts,
+                                      const std::vector<char>& dynamic,
                                       const std::vector<double>& age_s) const {
     MonitorResult r;
     r.command = cmd;
@@ -213,26 +260,34 @@ MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const Velocity
     // surface toward it is a contact the robot caused when the walker steps in (rotating on the
     // spot sweeps a corner; creeping forward closes a gap the walker is about to fill).
     if (params_.dynamic_personal_space_m > 0.0) {
-        const Eigen::Vector2d half(0.5 * params_.footprint_length_m, 0.5 * params_.footprint_width_m);
+        const Eigen::Vector2d half(0.5 * params_.footprint_length_m,
+                                   0.5 * params_.footprint_width_m);
         for (std::size_t i = 0; i < dynamic.size() && i < pts.size(); ++i) {
-            if (dynamic[i] == 1 && rect_signed_distance(pts[i], half) < params_.dynamic_personal_space_m) return hold(MonitorAction::kStop);
+            if (dynamic[i] == 1 &&
+                rect_signed_distance(pts[i], half) < params_.dynamic_personal_space_m)
+                return hold(MonitorAction::kStop);
         }
     }
-    if (first_contact({current, cmd, params_.latency_s, true}, params_.stop_padding_m, pts, dynamic, age_s) >= 0.0) {
+    if (first_contact({current, cmd, params_.latency_s, true}, params_.stop_padding_m, pts, dynamic,
+                      age_s) >= 0.0) {
         return hold(MonitorAction::kStop);
     }
     double scale = 1.0;
     const double T = params_.time_before_collision_s;
-    const double t_c = T > 0.0 ? first_contact({current, cmd, T, false}, params_.stop_padding_m, pts, dynamic, age_s) : -1.0;
+    const double t_c = T > 0.0 ? first_contact({current, cmd, T, false}, params_.stop_padding_m,
+                                               pts, dynamic, age_s)
+                               : -1.0;
     if (t_c >= 0.0 && t_c / T < scale) {  // contact kept at least T away at the scaled speed
         scale = t_c / T;
         r.action = MonitorAction::kApproach;
     }
     const double v = cmd.v_mps, w = cmd.w_radps;
-    const double cap = params_.slowdown_ratio * std::min(params_.max_v_mps / std::max(std::abs(v), 1e-9),
-                                                         params_.max_w_radps / std::max(std::abs(w), 1e-9));
+    const double cap =
+        params_.slowdown_ratio * std::min(params_.max_v_mps / std::max(std::abs(v), 1e-9),
+                                          params_.max_w_radps / std::max(std::abs(w), 1e-9));
     if (cap < scale &&
-        first_contact({current, cmd, params_.latency_s + params_.slowdown_time_s, true}, params_.slowdown_padding_m, pts) >= 0.0) {
+        first_contact({current, cmd, params_.latency_s + params_.slowdown_time_s, true},
+                      params_.slowdown_padding_m, pts) >= 0.0) {
         scale = cap;
         r.action = MonitorAction::kSlowdown;
     }
@@ -242,10 +297,12 @@ MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const Velocity
     return r;
 }
 
-bool CollisionMonitor::recovery_free(const VelocityCommand& c, const VelocityCommand& current, double duration_s,
-                                     const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic,
+bool CollisionMonitor::recovery_free(const VelocityCommand& c, const VelocityCommand& current,
+                                     double duration_s, const std::vector<Eigen::Vector2d>& pts,
+                                     const std::vector<char>& dynamic,
                                      const std::vector<double>& age_s) const {
-    return first_contact({current, c, duration_s + params_.latency_s, true}, params_.stop_padding_m, pts, dynamic, age_s) < 0.0;
+    return first_contact({current, c, duration_s + params_.latency_s, true}, params_.stop_padding_m,
+                         pts, dynamic, age_s) < 0.0;
 }
 
 double CollisionMonitor::blind_radius_m(double z_m) const {
@@ -257,7 +314,8 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     // what is older than blind_memory_s.
     const Eigen::Vector2d here(in.pose.x_m, in.pose.y_m);
     std::erase_if(memory_, [&](const Remembered& m) {
-        return m.t_s < in.t_s - params_.blind_memory_s - 1e-9 || (m.p_world - here).norm() >= m.blind_m;
+        return m.t_s < in.t_s - params_.blind_memory_s - 1e-9 ||
+               (m.p_world - here).norm() >= m.blind_m;
     });
     const Isometry2 T_base_world = to_isometry(in.pose).inverse();
     std::vector<Eigen::Vector2d> pts;
@@ -268,8 +326,10 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     if (in.points_world != nullptr) {
         std::unordered_set<std::int64_t> seen;
         std::vector<std::int64_t> cells;
-        auto key_of = [](std::int64_t ix, std::int64_t iy) {  // unsigned: no shift of a negative value
-            return static_cast<std::int64_t>((static_cast<std::uint64_t>(ix) << 32) ^ (static_cast<std::uint64_t>(iy) & 0xffffffffULL));
+        auto key_of = [](std::int64_t ix,
+                         std::int64_t iy) {  // unsigned: no shift of a negative value
+            return static_cast<std::int64_t>((static_cast<std::uint64_t>(ix) << 32) ^
+                                             (static_cast<std::uint64_t>(iy) & 0xffffffffULL));
         };
         const double r2 = params_.max_range_m * params_.max_range_m;
         struct Candidate {
@@ -277,12 +337,15 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             Eigen::Vector2d q;  ///< world
             double keep_m;      ///< remembered while closer than this to the sensor
             bool high;          ///< high enough to be a mover
-            bool seen_before;   ///< a return was near it in the last dynamic_history sweeps (not one sweep's noise)
+            bool seen_before;  ///< a return was near it in the last dynamic_history sweeps (not one
+                               ///< sweep's noise)
             bool clustered = false;  ///< near a mover (dynamic_cluster_m)
         };
         std::vector<Candidate> candidates;
         for (const Eigen::Vector3f& p : in.points_world->xyz) {
-            if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()) || !params_.body.can_hit(p.z())) continue;
+            if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()) ||
+                !params_.body.can_hit(p.z()))
+                continue;
             const Eigen::Vector2d q(p.x(), p.y());
             const double d2 = (q - here).squaredNorm();
             if (d2 > r2) continue;
@@ -294,43 +357,52 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             // New: a return in this cell or next to it in fewer than dynamic_min_seen of the last
             // dynamic_history sweeps (none new before the first). A surface stays where it is
             // sweep after sweep; a walker who turns back crosses each cell it left once.
-            const int need = std::min<int>(params_.dynamic_min_seen, static_cast<int>(previous_cells_.size()));
+            const int need =
+                std::min<int>(params_.dynamic_min_seen, static_cast<int>(previous_cells_.size()));
             int seen_in = 0;
             for (const std::vector<std::int64_t>& earlier : previous_cells_) {
                 bool here_then = false;
                 for (std::int64_t dx = -1; dx <= 1 && !here_then; ++dx) {
-                    for (std::int64_t dy = -1; dy <= 1 && !here_then; ++dy) here_then = std::binary_search(earlier.begin(), earlier.end(), key_of(ix + dx, iy + dy));
+                    for (std::int64_t dy = -1; dy <= 1 && !here_then; ++dy)
+                        here_then = std::binary_search(earlier.begin(), earlier.end(),
+                                                       key_of(ix + dx, iy + dy));
                 }
                 if (here_then && ++seen_in >= need) break;
             }
             const bool known = seen_in >= need;
-            const bool seen_before = seen_in > 0 || previous_cells_.empty();  // not one sweep's noise
+            const bool seen_before =
+                seen_in > 0 || previous_cells_.empty();  // not one sweep's noise
             // Near the floor, noise: the lowest rings graze it ~0.9 m out, and a return 2 cm up
             // there is new in every sweep. People are seen higher up.
             const bool high = p.z() >= params_.dynamic_min_height_m;
             dynamic.push_back(known || !high ? 0 : 1);
-            candidates.push_back({pts.size() - 1, q, std::min(blind_radius_m(p.z()), std::sqrt(d2)) - kThinCell_m, high, seen_before});
+            candidates.push_back({pts.size() - 1, q,
+                                  std::min(blind_radius_m(p.z()), std::sqrt(d2)) - kThinCell_m,
+                                  high, seen_before});
         }
         // A mover stays a mover: returns near one that was new in this sweep or the last
         // dynamic_history sweeps move too (a walker turning back walks into the cells it just
         // left, which are not new).
         std::vector<std::int64_t> movers;
         auto coarse = [&](const Eigen::Vector2d& q) {
-            return std::pair<std::int64_t, std::int64_t>(static_cast<std::int64_t>(std::floor(q.x() / params_.dynamic_cluster_m)),
-                                                         static_cast<std::int64_t>(std::floor(q.y() / params_.dynamic_cluster_m)));
+            return std::pair<std::int64_t, std::int64_t>(
+                static_cast<std::int64_t>(std::floor(q.x() / params_.dynamic_cluster_m)),
+                static_cast<std::int64_t>(std::floor(q.y() / params_.dynamic_cluster_m)));
         };
         if (params_.dynamic_cluster_m > 0.0) {
             // A mover's cell holds dynamic_cluster_min_new new returns: a walker's leading edge
             // does, the sliver of wall the robot's own motion brings out of a shadow does not.
             std::vector<std::int64_t> seeds;
             for (const Candidate& c : candidates) {
-                if (dynamic[c.index]) seeds.push_back(key_of(coarse(c.q).first, coarse(c.q).second));
+                if (dynamic[c.index])
+                    seeds.push_back(key_of(coarse(c.q).first, coarse(c.q).second));
             }
             std::sort(seeds.begin(), seeds.end());
             for (std::size_t i = 0; i < seeds.size();) {
                 std::size_t j = i;
                 while (j < seeds.size() && seeds[j] == seeds[i]) ++j;
-                if (static_cast<int>(j - i) >= params_.dynamic_cluster_min_new) movers.push_back(seeds[i]);
+                if (static_cast<int>(j - i) >= params_.dynamic_cluster_min_new)
+                    movers.push_back(seeds[i]);
                 i = j;
             }
             for (Candidate& c : candidates) {
@@ -341,7 +413,8 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
                     for (std::int64_t dy = -1; dy <= 1 && !near; ++dy) {
                         const std::int64_t k = key_of(cx + dx, cy + dy);
                         near = std::binary_search(movers.begin(), movers.end(), k);
-                        for (const std::vector<std::int64_t>& earlier : previous_movers_) near = near || std::binary_search(earlier.begin(), earlier.end(), k);
+                        for (const std::vector<std::int64_t>& earlier : previous_movers_)
+                            near = near || std::binary_search(earlier.begin(), earlier.end(), k);
                     }
                 }
                 dynamic[c.index] = near ? 1 : 0;
@@ -363,24 +436,30 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             int n = 0;
             for (std::int64_t dx = -2; dx <= 2; ++dx) {
                 for (std::int64_t dy = -2; dy <= 2; ++dy) {
-                    if ((dx != 0 || dy != 0) && seen.count(key_of(ix + dx, iy + dy)) && ++n >= params_.low_edge_support) return true;
+                    if ((dx != 0 || dy != 0) && seen.count(key_of(ix + dx, iy + dy)) &&
+                        ++n >= params_.low_edge_support)
+                        return true;
                 }
             }
             return false;
         };
         for (const Candidate& c : candidates) {
-            if (c.keep_m > 0.0 && (c.seen_before || supported(c)) && !c.clustered) memory_.push_back({c.q, in.t_s, c.keep_m});
+            if (c.keep_m > 0.0 && (c.seen_before || supported(c)) && !c.clustered)
+                memory_.push_back({c.q, in.t_s, c.keep_m});
         }
         std::sort(cells.begin(), cells.end());
         previous_cells_.push_back(std::move(cells));
         previous_movers_.push_back(std::move(movers));
-        while (static_cast<int>(previous_cells_.size()) > params_.dynamic_history) previous_cells_.pop_front();
-        while (static_cast<int>(previous_movers_.size()) > params_.dynamic_history) previous_movers_.pop_front();
+        while (static_cast<int>(previous_cells_.size()) > params_.dynamic_history)
+            previous_cells_.pop_front();
+        while (static_cast<int>(previous_movers_.size()) > params_.dynamic_history)
+            previous_movers_.pop_front();
     }
 
     // New returns beside a known chair are the chair moving (someone pulls it): still movers for
     // the stop zone, but out of the personal space and the movers' memory, which are for walkers.
-    if ((params_.dynamic_personal_space_m > 0.0 || params_.dynamic_memory_s > 0.0) && in.chairs_world != nullptr && !in.chairs_world->empty()) {
+    if ((params_.dynamic_personal_space_m > 0.0 || params_.dynamic_memory_s > 0.0) &&
+        in.chairs_world != nullptr && !in.chairs_world->empty()) {
         std::vector<Polygon2> chairs;
         for (const Polygon2& poly : *in.chairs_world) {
             Polygon2 base;
@@ -413,7 +492,9 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
         const double range2 = params_.dynamic_memory_range_m * params_.dynamic_memory_range_m;
         for (std::size_t i = 0; i < dynamic.size(); ++i) {
             if (dynamic[i] != 1 || pts[i].squaredNorm() > range2) continue;
-            const auto around = std::count_if(seen_now.begin(), seen_now.end(), [&](const Eigen::Vector2d& s) { return (s - pts[i]).squaredNorm() <= 0.04; });
+            const auto around = std::count_if(
+                seen_now.begin(), seen_now.end(),
+                [&](const Eigen::Vector2d& s) { return (s - pts[i]).squaredNorm() <= 0.04; });
             if (around >= params_.dynamic_memory_min_new) walker.push_back(pts[i]);
         }
         std::erase_if(movers_, [&](const std::pair<Eigen::Vector2d, double>& m) {
@@ -421,7 +502,9 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             if (a > params_.dynamic_memory_s + 1e-9) return true;
             const double r = params_.dynamic_speed_mps * a + kThinCell_m;
             const Eigen::Vector2d q = T_base_world * m.first;
-            return std::any_of(seen_now.begin(), seen_now.end(), [&](const Eigen::Vector2d& s) { return (s - q).squaredNorm() <= r * r; });
+            return std::any_of(seen_now.begin(), seen_now.end(), [&](const Eigen::Vector2d& s) {
+                return (s - q).squaredNorm() <= r * r;
+            });
         });
         for (const auto& [p, t] : movers_) {
             pts.push_back(T_base_world * p);
@@ -438,7 +521,8 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
         for (const Polygon2& poly : *in.footprints_world) {
             for (std::size_t i = 0; i < poly.size(); ++i) {
                 const Eigen::Vector2d a = poly[i], b = poly[(i + 1) % poly.size()];
-                const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / kThinCell_m)));
+                const int n =
+                    std::max(1, static_cast<int>(std::ceil((b - a).norm() / kThinCell_m)));
                 for (int k = 0; k < n; ++k) {
                     const Eigen::Vector2d q = a + (b - a) * (static_cast<double>(k) / n);
                     if ((q - here).norm() >= blind) continue;
@@ -474,9 +558,12 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     // Held for a while: back up into free space, else turn on the spot toward free space.
     const VelocityCommand backup{-params_.backup_speed_mps, 0.0};
     const double turn_sign = in.command.w_radps < 0.0 ? -1.0 : 1.0;
-    const VelocityCommand turns[2] = {{0.0, turn_sign * params_.rotate_speed_radps}, {0.0, -turn_sign * params_.rotate_speed_radps}};
+    const VelocityCommand turns[2] = {{0.0, turn_sign * params_.rotate_speed_radps},
+                                      {0.0, -turn_sign * params_.rotate_speed_radps}};
     std::optional<std::pair<VelocityCommand, double>> chosen;
-    if (params_.backup_distance_m > 0.0 && recovery_free(backup, current, params_.backup_distance_m / params_.backup_speed_mps, pts, dynamic, age)) {
+    if (params_.backup_distance_m > 0.0 &&
+        recovery_free(backup, current, params_.backup_distance_m / params_.backup_speed_mps, pts,
+                      dynamic, age)) {
         chosen = {backup, params_.backup_distance_m / params_.backup_speed_mps};
     } else {
         for (const VelocityCommand& t : turns) {

@@ -68,15 +68,14 @@
 // recovery_after_s, it backs up (straight, backup_distance_m at backup_speed_mps) if the sweep
 // shows that space free, else turns on the spot (rotate_angle_rad, the free side first); the
 // recovery's own command passes the same stop check every cycle.
+#include <Eigen/Core>
 #include <cstdint>
 #include <deque>
 #include <optional>
-#include <utility>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "makeway/common/point_cloud.hpp"
 #include "makeway/common/polygon2d.hpp"
@@ -90,40 +89,62 @@ struct CollisionMonitorParams {
     bool enabled = true;
     double footprint_length_m = 0.508;  ///< the robot's true footprint (a rectangle on the base)
     double footprint_width_m = 0.430;
-    BodyHeights body;                   ///< returns outside [ground_clearance_m, top_m] are ignored (nav2 min/max_height)
-    double max_v_mps = 0.75;            ///< the robot's top speeds (the slowdown zone caps a share of them)
+    BodyHeights
+        body;  ///< returns outside [ground_clearance_m, top_m] are ignored (nav2 min/max_height)
+    double max_v_mps = 0.75;  ///< the robot's top speeds (the slowdown zone caps a share of them)
     double max_w_radps = 2.0;
-    double max_acc_mps2 = 1.0;          ///< braking deceleration, linear
-    double max_ang_acc_radps2 = 3.0;    ///< braking deceleration, angular
-    double latency_s = 0.2;             ///< sweep age + one control period before a command acts
-    int min_points = 2;                 ///< returns in a zone before it acts (nav2 min_points)
-    double stop_padding_m = 0.04;       ///< the stop zone and the approach check: footprint grown by this
-    double slowdown_padding_m = 0.1;    ///< the slowdown zone: footprint grown by this ...
-    double slowdown_time_s = 0.3;       ///< ... along the command this much longer before braking [s]
-    double slowdown_ratio = 0.6;        ///< inside the slowdown zone: at most this share of the top speeds
-    double time_before_collision_s = 0.8;  ///< approach: contact kept at least this far ahead [s]; 0: off
+    double max_acc_mps2 = 1.0;        ///< braking deceleration, linear
+    double max_ang_acc_radps2 = 3.0;  ///< braking deceleration, angular
+    double latency_s = 0.2;           ///< sweep age + one control period before a command acts
+    int min_points = 2;               ///< returns in a zone before it acts (nav2 min_points)
+    double stop_padding_m =
+        0.04;  ///< the stop zone and the approach check: footprint grown by this
+    double slowdown_padding_m = 0.1;  ///< the slowdown zone: footprint grown by this ...
+    double slowdown_time_s = 0.3;     ///< ... along the command this much longer before braking [s]
+    double slowdown_ratio =
+        0.6;  ///< inside the slowdown zone: at most this share of the top speeds
+    double time_before_collision_s =
+        0.8;  ///< approach: contact kept at least this far ahead [s]; 0: off
     double simulation_time_step_s = 0.05;  ///< the zones' time step along the predicted motion [s]
-    double dynamic_speed_mps = 1.0;     ///< new returns may move this fast (a walking person); 0: all static
-    int dynamic_history = 5;            ///< sweeps a cell is remembered as seen ...
-    int dynamic_min_seen = 1;           ///< ... new: seen in fewer than this many of them (2: a walker turning back is new; README)
-    double dynamic_cluster_m = 0.0;     ///< returns within about this of a mover (this sweep or the last dynamic_history) move too; 0: off ...
-    int dynamic_cluster_min_new = 5;    ///< ... a mover: a cell of that size with this many new returns
-    double dynamic_min_height_m = 0.1;  ///< lower returns are never new (floor noise at the lowest rings' reach)
-    double dynamic_memory_s = 0.0;      ///< a mover is remembered this long, its padding growing with its age, until seen again; 0: off
-    double dynamic_memory_range_m = 0.8;  ///< ... movers this close to the base (farther, the next sweeps see them again) ...
-    int dynamic_memory_min_new = 5;     ///< ... with this many new returns within 0.2 m (a body, not a sliver out of a shadow)
-    double dynamic_personal_space_m = 0.0;  ///< a new return this close to the footprint holds the robot (any command); 0: off (README) ...
-    double personal_space_object_margin_m = 0.2;  ///< ... unless it lies this close to a known chair (MonitorInput::chairs_world): the chair moves, not a walker
-    double min_scale = 0.05;            ///< an approach scale below this holds the robot (counts as a stop)
-    double sensor_height_m = 0.45;      ///< the LiDAR above the floor (on the base's centre) ...
-    double lowest_beam_deg = -25.0;     ///< ... and its lowest beam: what it cannot see near it is remembered ...
-    double blind_memory_s = 10.0;       ///< ... at most this long (a robot held in front of a chair leg keeps it)
-    int low_edge_support = 0;           ///< a return below dynamic_min_height_m seen in one sweep only is remembered with this many returns around it (5 x 5 cells); 0: never
-    bool object_footprints = true;      ///< inside the blind ring, MonitorInput::footprints_world count as returns ...
-    double object_moving_mps = 0.05;    ///< ... (the Controller's: chairs that moved faster than this in the last blind_memory_s)
-    double object_lead_s = 0.0;         ///< ... each swept along its velocity this far ahead (the map lags a keyframe); 0: where it is
-    double max_range_m = 4.0;           ///< returns farther than this from the base are not looked at
-    double recovery_after_s = 3.0;      ///< held this long: start a recovery
+    double dynamic_speed_mps =
+        1.0;                   ///< new returns may move this fast (a walking person); 0: all static
+    int dynamic_history = 5;   ///< sweeps a cell is remembered as seen ...
+    int dynamic_min_seen = 1;  ///< ... new: seen in fewer than this many of them (2: a walker
+                               ///< turning back is new; README)
+    double dynamic_cluster_m = 0.0;  ///< returns within about this of a mover (this sweep or the
+                                     ///< last dynamic_history) move too; 0: off ...
+    int dynamic_cluster_min_new =
+        5;  ///< ... a mover: a cell of that size with this many new returns
+    double dynamic_min_height_m =
+        0.1;  ///< lower returns are never new (floor noise at the lowest rings' reach)
+    double dynamic_memory_s = 0.0;  ///< a mover is remembered this long, its padding growing with
+                                    ///< its age, until seen again; 0: off
+    double dynamic_memory_range_m =
+        0.8;  ///< ... movers this close to the base (farther, the next sweeps see them again) ...
+    int dynamic_memory_min_new =
+        5;  ///< ... with this many new returns within 0.2 m (a body, not a sliver out of a shadow)
+    double dynamic_personal_space_m = 0.0;  ///< a new return this close to the footprint holds the
+                                            ///< robot (any command); 0: off (README) ...
+    double personal_space_object_margin_m =
+        0.2;  ///< ... unless it lies this close to a known chair (MonitorInput::chairs_world): the
+              ///< chair moves, not a walker
+    double min_scale = 0.05;  ///< an approach scale below this holds the robot (counts as a stop)
+    double sensor_height_m = 0.45;  ///< the LiDAR above the floor (on the base's centre) ...
+    double lowest_beam_deg =
+        -25.0;  ///< ... and its lowest beam: what it cannot see near it is remembered ...
+    double blind_memory_s =
+        10.0;  ///< ... at most this long (a robot held in front of a chair leg keeps it)
+    int low_edge_support =
+        0;  ///< a return below dynamic_min_height_m seen in one sweep only is remembered with this
+            ///< many returns around it (5 x 5 cells); 0: never
+    bool object_footprints =
+        true;  ///< inside the blind ring, MonitorInput::footprints_world count as returns ...
+    double object_moving_mps = 0.05;  ///< ... (the Controller's: chairs that moved faster than this
+                                      ///< in the last blind_memory_s)
+    double object_lead_s = 0.0;  ///< ... each swept along its velocity this far ahead (the map lags
+                                 ///< a keyframe); 0: where it is
+    double max_range_m = 4.0;    ///< returns farther than this from the base are not looked at
+    double recovery_after_s = 3.0;  ///< held this long: start a recovery
     double backup_speed_mps = 0.15;
     double backup_distance_m = 0.3;
     double rotate_speed_radps = 0.8;
@@ -138,10 +159,11 @@ inline constexpr int kMonitorActions = 7;
 
 struct MonitorInput {
     double t_s = 0.0;
-    Pose2 pose;                                ///< the base in the world frame of the points (estimated)
-    const PointCloud* points_world = nullptr;  ///< the latest de-skewed sweep; null: only the memory
-    VelocityCommand command;                   ///< what the navigator asks for
-    double v_mps = 0.0, w_radps = 0.0;         ///< the base's velocity now (wheel odometry)
+    Pose2 pose;  ///< the base in the world frame of the points (estimated)
+    const PointCloud* points_world =
+        nullptr;                        ///< the latest de-skewed sweep; null: only the memory
+    VelocityCommand command;            ///< what the navigator asks for
+    double v_mps = 0.0, w_radps = 0.0;  ///< the base's velocity now (wheel odometry)
     /// Objects solid below the body's top (null or empty: none): where the sensor cannot see the
     /// floor, their outlines count as returns (with object_footprints).
     const std::vector<Polygon2>* footprints_world = nullptr;
@@ -153,13 +175,13 @@ struct MonitorInput {
 struct MonitorResult {
     VelocityCommand command;  ///< what goes to the motors
     MonitorAction action = MonitorAction::kNone;
-    double scale = 1.0;       ///< the command's share that passed (0: held)
+    double scale = 1.0;  ///< the command's share that passed (0: held)
     bool recovering = false;
     bool started_recovery = false;
 };
 
 class CollisionMonitor {
-public:
+  public:
     /// Throws std::invalid_argument listing every problem of `params`.
     explicit CollisionMonitor(const CollisionMonitorParams& params);
 
@@ -169,16 +191,18 @@ public:
     /// `dynamic` (empty, or one flag per point): returns that are new in this sweep (1), or new and
     /// beside a known chair (2: moving, but no walker: out of the personal space); `current`: the
     /// velocity now (the first form: already at the commanded velocity).
-    MonitorResult check(const VelocityCommand& command, const std::vector<Eigen::Vector2d>& points_base,
+    MonitorResult check(const VelocityCommand& command,
+                        const std::vector<Eigen::Vector2d>& points_base,
                         const std::vector<char>& dynamic = {}) const;
     /// `age_s` (empty, or one per point): how long ago a flagged return was seen (remembered
     /// movers); its padding grows by dynamic_speed_mps over that age too.
     MonitorResult check(const VelocityCommand& command, const VelocityCommand& current,
-                        const std::vector<Eigen::Vector2d>& points_base, const std::vector<char>& dynamic = {},
+                        const std::vector<Eigen::Vector2d>& points_base,
+                        const std::vector<char>& dynamic = {},
                         const std::vector<double>& age_s = {}) const;
     const CollisionMonitorParams& params() const { return params_; }
 
-private:
+  private:
     struct Remembered {
         Eigen::Vector2d p_world;
         double t_s;
@@ -197,7 +221,8 @@ private:
     /// it is closing in on; negative: none. A flagged (`dynamic`) return's padding grows by
     /// dynamic_speed_mps (age + latency_s + t).
     double first_contact(const Motion& m, double padding, const std::vector<Eigen::Vector2d>& pts,
-                         const std::vector<char>& dynamic = {}, const std::vector<double>& age_s = {}) const;
+                         const std::vector<char>& dynamic = {},
+                         const std::vector<double>& age_s = {}) const;
     /// How far from the sensor a part z_m above the floor drops out of its lowest beam.
     double blind_radius_m(double z_m) const;
     bool recovery_free(const VelocityCommand& c, const VelocityCommand& current, double duration_s,
@@ -207,10 +232,13 @@ private:
     CollisionMonitorParams params_;
     double tan_down_;  ///< tan of the lowest beam's angle below the horizon
     std::vector<Remembered> memory_;
-    std::vector<std::pair<Eigen::Vector2d, double>> movers_;  ///< remembered movers (world, when seen), dynamic_memory_s
-    std::deque<std::vector<std::int64_t>> previous_cells_;  ///< the last sweeps' thinned cells (each sorted), for new returns
-    std::deque<std::vector<std::int64_t>> previous_movers_; ///< the last sweeps' coarse cells of new returns (each sorted)
-    double held_since_ = -1.0;     ///< when the current hold began (-1: not held)
+    std::vector<std::pair<Eigen::Vector2d, double>>
+        movers_;  ///< remembered movers (world, when seen), dynamic_memory_s
+    std::deque<std::vector<std::int64_t>>
+        previous_cells_;  ///< the last sweeps' thinned cells (each sorted), for new returns
+    std::deque<std::vector<std::int64_t>>
+        previous_movers_;       ///< the last sweeps' coarse cells of new returns (each sorted)
+    double held_since_ = -1.0;  ///< when the current hold began (-1: not held)
     double recovery_until_ = -1.0;
     VelocityCommand recovery_command_;
 };

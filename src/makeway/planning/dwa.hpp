@@ -33,14 +33,16 @@ struct DwaParams {
     int w_samples = 15;
     double footprint_length_m = 0.508;
     double footprint_width_m = 0.430;
-    double footprint_padding_m = 0.0;  ///< rollouts keep this clear of lethal cells (the collision monitor's stop padding)
+    double footprint_padding_m =
+        0.0;  ///< rollouts keep this clear of lethal cells (the collision monitor's stop padding)
     double lookahead_m = 1.2;  ///< carrot distance along the global path
     double w_path = 1.0;
     double w_heading = 0.6;
     double w_clearance = 0.5;
     double w_speed = 0.4;
     bool plan_envelope = true;
-    double envelope_margin = 10.0;  ///< cost units above the plan's highest cost still inside the envelope
+    double envelope_margin =
+        10.0;  ///< cost units above the plan's highest cost still inside the envelope
     std::vector<std::string> validate() const;
 };
 
@@ -51,7 +53,7 @@ struct DwaState {
 };
 
 struct DwaResult {
-    bool found = false;           ///< false: every sampled velocity collides (recovery needed)
+    bool found = false;  ///< false: every sampled velocity collides (recovery needed)
     VelocityCommand command;
     int admissible = 0;
     int samples = 0;
@@ -68,21 +70,21 @@ bool footprint_collides(const Costmap& costmap, const Pose2& pose, const DwaPara
 /// a room is most poses of most rollouts. Poses near lethal cells, or outside the window or the
 /// map, are sampled as footprint_collides does. Keeps a reference to `costmap`.
 class FootprintChecker {
-public:
+  public:
     FootprintChecker(const Costmap& costmap, const DwaParams& params, const GridWindow& window);
     bool collides(const Pose2& pose) const;
 
-private:
+  private:
     const Costmap& map_;
     std::vector<Eigen::Vector2d> samples_;
     double half_length_m_ = 0.0, half_width_m_ = 0.0;
-    GridWindow window_;           ///< clipped to the map
+    GridWindow window_;            ///< clipped to the map
     std::vector<int> lethal_sum_;  ///< (w+1) x (h+1): lethal cells in [x0, x0+i) x [y0, y0+j)
 };
 
 /// `path_m` is the global path (any length >= 1); the carrot is taken along it from the point
 /// nearest the robot.
-DwaResult dwa_step(const Costmap& costmap, const DwaState& state, const std::vector<Eigen::Vector2d>& path_m,
-                   const DwaParams& params);
+DwaResult dwa_step(const Costmap& costmap, const DwaState& state,
+                   const std::vector<Eigen::Vector2d>& path_m, const DwaParams& params);
 
 }  // namespace makeway::planning

@@ -4,11 +4,12 @@
 
 namespace makeway::shape {
 
-LearnedShapePrior::LearnedShapePrior(std::shared_ptr<const ShapeModel> model, const LearnedPriorParams& params)
+LearnedShapePrior::LearnedShapePrior(std::shared_ptr<const ShapeModel> model,
+                                     const LearnedPriorParams& params)
     : model_(std::move(model)), params_(params) {}
 
-std::optional<verification::ShapePrior::Estimate> LearnedShapePrior::estimate(const std::vector<Eigen::Vector3d>& segment, ObjectClass cls,
-                                                                               double floor_z_m) const {
+std::optional<verification::ShapePrior::Estimate> LearnedShapePrior::estimate(
+    const std::vector<Eigen::Vector3d>& segment, ObjectClass cls, double floor_z_m) const {
     if (!model_ || shape_class_index(cls) < 0) return std::nullopt;
     // The gravity frame: the floor under the centroid of the points above the ground band.
     std::vector<Eigen::Vector3d> kept;
@@ -25,7 +26,8 @@ std::optional<verification::ShapePrior::Estimate> LearnedShapePrior::estimate(co
     std::vector<Eigen::Vector3d> canonical;
     canonical.reserve(kept.size());
     for (const auto& p : kept) canonical.push_back(T->inverse_apply(p));
-    const Completion c = complete_shape(*model_, cls, {canonical}, {T->inverse_apply(-origin)}, params_.completion);
+    const Completion c =
+        complete_shape(*model_, cls, {canonical}, {T->inverse_apply(-origin)}, params_.completion);
     if (c.mesh.triangles.empty()) return std::nullopt;
     // Object frame: the canonical axes, metres, the lowest point on the floor.
     Estimate e;
@@ -38,16 +40,19 @@ std::optional<verification::ShapePrior::Estimate> LearnedShapePrior::estimate(co
     for (auto& v : e.mesh_object.vertices_m) v.z() -= static_cast<float>(zmin);
     e.scale = T->scale;
     e.offset_m = Eigen::Vector3d(0, 0, -zmin);
-    // s v = p_object + (0, 0, zmin), so p_sensor = origin + s R v + t = origin + t + (0, 0, zmin) + R p_object (R turns about z).
+    // s v = p_object + (0, 0, zmin), so p_sensor = origin + s R v + t = origin + t + (0, 0, zmin) +
+    // R p_object (R turns about z).
     e.T_sensor_object = Isometry3::Identity();
     e.T_sensor_object.linear() = T->rotation;
     e.T_sensor_object.translation() = origin + T->translation + Eigen::Vector3d(0, 0, zmin);
     return e;
 }
 
-std::optional<TriangleMesh> LearnedShapePrior::complete(const std::vector<View>& views, ObjectClass cls, double scale,
+std::optional<TriangleMesh> LearnedShapePrior::complete(const std::vector<View>& views,
+                                                        ObjectClass cls, double scale,
                                                         const Eigen::Vector3d& offset_m) const {
-    if (!model_ || shape_class_index(cls) < 0 || views.empty() || !(scale > 0.0)) return std::nullopt;
+    if (!model_ || shape_class_index(cls) < 0 || views.empty() || !(scale > 0.0))
+        return std::nullopt;
     std::vector<std::vector<Eigen::Vector3d>> canonical;
     std::vector<Eigen::Vector3d> origins;
     std::size_t points = 0;

@@ -9,8 +9,8 @@
 
 namespace makeway::shape {
 
-Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                          const Eigen::Vector3d& c) {
+Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                          const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
     // Ericson, Real-Time Collision Detection 5.1.5: which Voronoi region of the triangle holds p.
     const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
     const double d1 = ab.dot(ap), d2 = ac.dot(ap);
@@ -26,7 +26,8 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
     const double vb = d5 * d2 - d1 * d6;
     if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
     const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+        return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
     const double denom = va + vb + vc;
     if (!(std::abs(denom) > 0.0)) return a;  // degenerate triangle
     return a + ab * (vb / denom) + ac * (vc / denom);
@@ -44,7 +45,8 @@ MeshSdf::MeshSdf(const TriangleMesh& mesh, const Eigen::Vector3d& offset, double
     build(0, static_cast<int>(triangles_.size()));
     double area = 0.0;
     for (const auto& t : triangles_) {
-        area += 0.5 * (vertices_[t[1]] - vertices_[t[0]]).cross(vertices_[t[2]] - vertices_[t[0]]).norm();
+        area += 0.5 *
+                (vertices_[t[1]] - vertices_[t[0]]).cross(vertices_[t[2]] - vertices_[t[0]]).norm();
         cumulative_area_.push_back(area);
     }
 }
@@ -65,10 +67,12 @@ int MeshSdf::build(int first, int count) {
     int axis = 0;
     box.sizes().maxCoeff(&axis);
     auto centroid = [&](int t) {
-        return vertices_[triangles_[t][0]][axis] + vertices_[triangles_[t][1]][axis] + vertices_[triangles_[t][2]][axis];
+        return vertices_[triangles_[t][0]][axis] + vertices_[triangles_[t][1]][axis] +
+               vertices_[triangles_[t][2]][axis];
     };
     const int half = count / 2;
-    std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
+    std::nth_element(order_.begin() + first, order_.begin() + first + half,
+                     order_.begin() + first + count,
                      [&](int a, int b) { return centroid(a) < centroid(b); });
     const int left = build(first, half);
     const int right = build(first + half, count - half);
@@ -92,8 +96,12 @@ double MeshSdf::unsigned_distance(const Eigen::Vector3d& q) const {
         if (box_distance2(n.box, q) >= best) continue;
         if (n.left < 0) {
             for (int k = n.first; k < n.first + n.count; ++k) {
-                const Eigen::Vector3i& t = triangles_[static_cast<std::size_t>(order_[static_cast<std::size_t>(k)])];
-                const double d2 = (closest_point_on_triangle(q, vertices_[t[0]], vertices_[t[1]], vertices_[t[2]]) - q).squaredNorm();
+                const Eigen::Vector3i& t =
+                    triangles_[static_cast<std::size_t>(order_[static_cast<std::size_t>(k)])];
+                const double d2 = (closest_point_on_triangle(q, vertices_[t[0]], vertices_[t[1]],
+                                                             vertices_[t[2]]) -
+                                   q)
+                                      .squaredNorm();
                 best = std::min(best, d2);
             }
             continue;
@@ -115,7 +123,8 @@ double MeshSdf::unsigned_distance(const Eigen::Vector3d& q) const {
 double MeshSdf::winding_number(const Eigen::Vector3d& q) const {
     double total = 0.0;
     for (const auto& t : triangles_) {
-        const Eigen::Vector3d a = vertices_[t[0]] - q, b = vertices_[t[1]] - q, c = vertices_[t[2]] - q;
+        const Eigen::Vector3d a = vertices_[t[0]] - q, b = vertices_[t[1]] - q,
+                              c = vertices_[t[2]] - q;
         const double la = a.norm(), lb = b.norm(), lc = c.norm();
         const double det = a.dot(b.cross(c));
         const double den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
@@ -132,10 +141,12 @@ std::vector<Eigen::Vector3d> MeshSdf::sample_surface(std::size_t count, std::uin
     for (std::size_t i = 0; i < count; ++i) {
         const double u = uniform(rng, 0.0, total);
         const auto it = std::upper_bound(cumulative_area_.begin(), cumulative_area_.end(), u);
-        const auto& t = triangles_[static_cast<std::size_t>(std::min<std::ptrdiff_t>(it - cumulative_area_.begin(), static_cast<std::ptrdiff_t>(triangles_.size()) - 1))];
+        const auto& t = triangles_[static_cast<std::size_t>(std::min<std::ptrdiff_t>(
+            it - cumulative_area_.begin(), static_cast<std::ptrdiff_t>(triangles_.size()) - 1))];
         double r1 = uniform(rng, 0.0, 1.0), r2 = uniform(rng, 0.0, 1.0);
         if (r1 + r2 > 1.0) r1 = 1.0 - r1, r2 = 1.0 - r2;
-        out.push_back(vertices_[t[0]] + r1 * (vertices_[t[1]] - vertices_[t[0]]) + r2 * (vertices_[t[2]] - vertices_[t[0]]));
+        out.push_back(vertices_[t[0]] + r1 * (vertices_[t[1]] - vertices_[t[0]]) +
+                      r2 * (vertices_[t[2]] - vertices_[t[0]]));
     }
     return out;
 }

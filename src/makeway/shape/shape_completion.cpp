@@ -4,27 +4,34 @@
 
 namespace makeway::shape {
 
-TsdfVolume fuse_views(const ShapeModel& model, const std::vector<std::vector<Eigen::Vector3d>>& views, const std::vector<Eigen::Vector3d>& origins) {
-    if (views.size() != origins.size()) throw std::invalid_argument("one sensor origin per view is needed");
+TsdfVolume fuse_views(const ShapeModel& model,
+                      const std::vector<std::vector<Eigen::Vector3d>>& views,
+                      const std::vector<Eigen::Vector3d>& origins) {
+    if (views.size() != origins.size())
+        throw std::invalid_argument("one sensor origin per view is needed");
     TsdfVolume tsdf(model.params().grid, model.params().truncation_cells);
     for (std::size_t v = 0; v < views.size(); ++v) tsdf.integrate(views[v], origins[v]);
     return tsdf;
 }
 
-TriangleMesh grid_isosurface(const CubeGrid& grid, const std::vector<float>& values, double level, bool inside_below) {
+TriangleMesh grid_isosurface(const CubeGrid& grid, const std::vector<float>& values, double level,
+                             bool inside_below) {
     const Eigen::Vector3i dims = Eigen::Vector3i::Constant(grid.resolution);
     return extract_isosurface(values, dims, grid.centre(0, 0, 0), grid.cell(), level, inside_below);
 }
 
-Completion complete_shape(const ShapeModel& model, ObjectClass cls, const std::vector<std::vector<Eigen::Vector3d>>& views,
-                          const std::vector<Eigen::Vector3d>& origins, const CompletionParams& params) {
+Completion complete_shape(const ShapeModel& model, ObjectClass cls,
+                          const std::vector<std::vector<Eigen::Vector3d>>& views,
+                          const std::vector<Eigen::Vector3d>& origins,
+                          const CompletionParams& params) {
     if (shape_class_index(cls) < 0) throw std::invalid_argument("no shape networks for this class");
     Completion out;
     const TsdfVolume tsdf = fuse_views(model, views, origins);
     out.observed_cells = tsdf.observed_cells();
     std::size_t total = 0;
     for (const auto& v : views) total += v.size();
-    const std::size_t every = std::max<std::size_t>(1, total / static_cast<std::size_t>(std::max(1, params.fit_points)));
+    const std::size_t every =
+        std::max<std::size_t>(1, total / static_cast<std::size_t>(std::max(1, params.fit_points)));
     std::vector<Eigen::Vector3d> surface, free;
     std::size_t k = 0;
     for (std::size_t v = 0; v < views.size(); ++v) {
@@ -32,7 +39,8 @@ Completion complete_shape(const ShapeModel& model, ObjectClass cls, const std::v
             if (k++ % every) continue;
             surface.push_back(p);
             const Eigen::Vector3d d = p - origins[v];
-            if (d.norm() > params.free_offset * 1.5) free.push_back(p - params.free_offset * d.normalized());
+            if (d.norm() > params.free_offset * 1.5)
+                free.push_back(p - params.free_offset * d.normalized());
         }
     }
     out.code = model.fit_latent(cls, surface, free, params.fit_iterations);

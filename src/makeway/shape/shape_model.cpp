@@ -17,9 +17,12 @@ void set_threads(int threads) {
 
 int shape_class_index(ObjectClass cls) {
     switch (cls) {
-        case ObjectClass::kChair: return 0;
-        case ObjectClass::kTable: return 1;
-        default: return -1;
+        case ObjectClass::kChair:
+            return 0;
+        case ObjectClass::kTable:
+            return 1;
+        default:
+            return -1;
     }
 }
 
@@ -68,7 +71,8 @@ torch::Tensor SdfDecoderImpl::forward(const torch::Tensor& input) {
 
 OccupancyNetImpl::OccupancyNetImpl(int w) {
     e1 = register_module("e1", torch::nn::Conv3d(torch::nn::Conv3dOptions(2, 16, 3).padding(1)));
-    e2 = register_module("e2", torch::nn::Conv3d(torch::nn::Conv3dOptions(16, 32, 3).padding(1).stride(2)));
+    e2 = register_module(
+        "e2", torch::nn::Conv3d(torch::nn::Conv3dOptions(16, 32, 3).padding(1).stride(2)));
     e3 = register_module("e3", torch::nn::Conv3d(torch::nn::Conv3dOptions(32, 32, 3).padding(1)));
     fc_in = register_module("fc_in", torch::nn::Linear(32 + 1 + kLatentDim + 3, w));
     blocks = register_module("blocks", torch::nn::ModuleList());
@@ -83,32 +87,38 @@ torch::Tensor OccupancyNetImpl::encode(const torch::Tensor& volumes) {
     return torch::cat({f, c}, 1);
 }
 
-torch::Tensor OccupancyNetImpl::decode(const torch::Tensor& features, const torch::Tensor& codes, const torch::Tensor& points) {
+torch::Tensor OccupancyNetImpl::decode(const torch::Tensor& features, const torch::Tensor& codes,
+                                       const torch::Tensor& points) {
     const auto b = points.size(0), m = points.size(1);
     // grid_sample wants (x, y, z) in [-1, 1] against a [B, C, D=z, H=y, W=x] volume.
     const torch::Tensor grid = points.view({b, 1, 1, m, 3});
-    const torch::Tensor sampled = F::grid_sample(features, grid, F::GridSampleFuncOptions().align_corners(false).padding_mode(torch::kBorder))
-                                      .view({b, features.size(1), m})
-                                      .transpose(1, 2);
+    const torch::Tensor sampled =
+        F::grid_sample(features, grid,
+                       F::GridSampleFuncOptions().align_corners(false).padding_mode(torch::kBorder))
+            .view({b, features.size(1), m})
+            .transpose(1, 2);
     const torch::Tensor z = codes.unsqueeze(1).expand({-1, m, -1});
     torch::Tensor h = fc_in(torch::cat({sampled, z, points}, 2));
     for (std::size_t i = 0; i < blocks->size(); i += 2) {
-        const torch::Tensor r = blocks[i + 1]->as<torch::nn::Linear>()->forward(torch::relu(blocks[i]->as<torch::nn::Linear>()->forward(torch::relu(h))));
+        const torch::Tensor r = blocks[i + 1]->as<torch::nn::Linear>()->forward(
+            torch::relu(blocks[i]->as<torch::nn::Linear>()->forward(torch::relu(h))));
         h = h + r;
     }
     return fc_out(torch::relu(h)).squeeze(2);
 }
 
 torch::Tensor TorchSimilarity::apply(const torch::Tensor& v) const {
-    return scale.view({-1, 1, 1}) * torch::matmul(v, rotation.transpose(1, 2)) + translation.unsqueeze(1);
+    return scale.view({-1, 1, 1}) * torch::matmul(v, rotation.transpose(1, 2)) +
+           translation.unsqueeze(1);
 }
 
-TorchSimilarity solve_upright_similarity(const torch::Tensor& v, const torch::Tensor& p, const torch::Tensor& w) {
-    const torch::Tensor wsum = w.sum(1, true).clamp_min(1e-6);                       // [B, 1]
-    const torch::Tensor vbar = (w.unsqueeze(2) * v).sum(1) / wsum;                    // [B, 3]
+TorchSimilarity solve_upright_similarity(const torch::Tensor& v, const torch::Tensor& p,
+                                         const torch::Tensor& w) {
+    const torch::Tensor wsum = w.sum(1, true).clamp_min(1e-6);      // [B, 1]
+    const torch::Tensor vbar = (w.unsqueeze(2) * v).sum(1) / wsum;  // [B, 3]
     const torch::Tensor pbar = (w.unsqueeze(2) * p).sum(1) / wsum;
     const torch::Tensor dv = v - vbar.unsqueeze(1), dp = p - pbar.unsqueeze(1);
-    const torch::Tensor S = torch::einsum("bn,bni,bnj->bij", {w, dp, dv});           // sum w dp dv^T
+    const torch::Tensor S = torch::einsum("bn,bni,bnj->bij", {w, dp, dv});  // sum w dp dv^T
     const torch::Tensor c = S.select(1, 0).select(1, 0) + S.select(1, 1).select(1, 1);
     const torch::Tensor s = S.select(1, 1).select(1, 0) - S.select(1, 0).select(1, 1);
     const torch::Tensor norm = torch::sqrt(c * c + s * s + 1e-12);
@@ -119,7 +129,8 @@ TorchSimilarity solve_upright_similarity(const torch::Tensor& v, const torch::Te
     const torch::Tensor trace = cy * c + sy * s + S.select(1, 2).select(1, 2);
     const torch::Tensor var_v = (w * dv.pow(2).sum(2)).sum(1).clamp_min(1e-9);
     T.scale = trace / var_v;
-    T.translation = pbar - T.scale.unsqueeze(1) * torch::matmul(T.rotation, vbar.unsqueeze(2)).squeeze(2);
+    T.translation =
+        pbar - T.scale.unsqueeze(1) * torch::matmul(T.rotation, vbar.unsqueeze(2)).squeeze(2);
     return T;
 }
 
@@ -143,11 +154,13 @@ torch::Tensor points_tensor(const std::vector<Eigen::Vector3d>& points) {
     torch::Tensor out = torch::empty({static_cast<long>(points.size()), 3});
     float* d = out.data_ptr<float>();
     for (std::size_t i = 0; i < points.size(); ++i)
-        for (int a = 0; a < 3; ++a) d[3 * i + static_cast<std::size_t>(a)] = static_cast<float>(points[i][a]);
+        for (int a = 0; a < 3; ++a)
+            d[3 * i + static_cast<std::size_t>(a)] = static_cast<float>(points[i][a]);
     return out;
 }
 
-ShapeModel::ShapeModel(const ShapeModelParams& params) : params_(params), impl_(std::make_unique<Impl>()) {
+ShapeModel::ShapeModel(const ShapeModelParams& params)
+    : params_(params), impl_(std::make_unique<Impl>()) {
     torch::manual_seed(params.seed);
     for (auto& n : impl_->nets) {
         n.fn = CorrespondenceNet(params.correspondence_width);
@@ -182,10 +195,12 @@ ClassNets& nets_of(ShapeModel::Impl& impl, ObjectClass cls) {
 }
 
 torch::Tensor params_tensor(const ShapeModelParams& p) {
-    return torch::tensor({1.0, static_cast<double>(p.points), static_cast<double>(p.correspondence_width), static_cast<double>(p.sdf_width),
-                          static_cast<double>(p.occupancy_width), static_cast<double>(p.grid.resolution), p.grid.half_extent,
-                          p.truncation_cells, p.sdf_clamp},
-                         torch::kFloat64);
+    return torch::tensor(
+        {1.0, static_cast<double>(p.points), static_cast<double>(p.correspondence_width),
+         static_cast<double>(p.sdf_width), static_cast<double>(p.occupancy_width),
+         static_cast<double>(p.grid.resolution), p.grid.half_extent, p.truncation_cells,
+         p.sdf_clamp},
+        torch::kFloat64);
 }
 
 }  // namespace
@@ -216,7 +231,8 @@ ShapeModel ShapeModel::load(const std::filesystem::path& path) {
         torch::serialize::InputArchive archive;
         archive.load_from(bytes.data(), bytes.size());
         torch::Tensor t;
-        if (!archive.try_read("makeway_shape_params", t) || t.numel() != 9) throw std::runtime_error("not a makeway shape model (no parameters)");
+        if (!archive.try_read("makeway_shape_params", t) || t.numel() != 9)
+            throw std::runtime_error("not a makeway shape model (no parameters)");
         const auto v = t.to(torch::kFloat64).contiguous();
         const double* d = v.data_ptr<double>();
         if (d[0] != 1.0) throw std::runtime_error("unknown shape model version");
@@ -230,9 +246,11 @@ ShapeModel ShapeModel::load(const std::filesystem::path& path) {
         p.truncation_cells = d[7];
         p.sdf_clamp = d[8];
         auto in = [](double x, double lo, double hi) { return x >= lo && x <= hi; };
-        if (!in(p.points, 8, 8192) || !in(p.correspondence_width, 4, 1024) || !in(p.sdf_width, kLatentDim + 8, 2048) ||
-            !in(p.occupancy_width, 4, 1024) || !in(p.grid.resolution, 4, 128) || p.grid.resolution % 2 != 0 || !in(p.grid.half_extent, 0.5, 4.0) ||
-            !in(p.truncation_cells, 0.5, 20) || !in(p.sdf_clamp, 1e-3, 1.0)) {
+        if (!in(p.points, 8, 8192) || !in(p.correspondence_width, 4, 1024) ||
+            !in(p.sdf_width, kLatentDim + 8, 2048) || !in(p.occupancy_width, 4, 1024) ||
+            !in(p.grid.resolution, 4, 128) || p.grid.resolution % 2 != 0 ||
+            !in(p.grid.half_extent, 0.5, 4.0) || !in(p.truncation_cells, 0.5, 20) ||
+            !in(p.sdf_clamp, 1e-3, 1.0)) {
             throw std::runtime_error("impossible parameters in the file");
         }
         ShapeModel model(p);
@@ -247,7 +265,8 @@ ShapeModel ShapeModel::load(const std::filesystem::path& path) {
             model.impl_->nets[k].f1->load(f1);
             torch::Tensor code;
             archive.read(c + "_mean_code", code);
-            if (code.numel() != kLatentDim) throw std::runtime_error("the mean code has the wrong size");
+            if (code.numel() != kLatentDim)
+                throw std::runtime_error("the mean code has the wrong size");
             model.impl_->nets[k].mean_code = code.to(torch::kFloat32).view({kLatentDim}).clone();
             model.impl_->nets[k].fn->eval();
             model.impl_->nets[k].f0->eval();
@@ -255,17 +274,20 @@ ShapeModel ShapeModel::load(const std::filesystem::path& path) {
         }
         return model;
     } catch (const c10::Error& e) {
-        throw std::runtime_error(path.string() + ": not a readable shape model (" + perception::first_line(e.what_without_backtrace()) + ")");
+        throw std::runtime_error(path.string() + ": not a readable shape model (" +
+                                 perception::first_line(e.what_without_backtrace()) + ")");
     } catch (const std::runtime_error& e) {
         const std::string what = e.what();
         if (what.rfind(path.string(), 0) == 0) throw;
         throw std::runtime_error(path.string() + ": " + perception::first_line(what));
     } catch (const std::exception& e) {
-        throw std::runtime_error(path.string() + ": not a readable shape model (" + perception::first_line(e.what()) + ")");
+        throw std::runtime_error(path.string() + ": not a readable shape model (" +
+                                 perception::first_line(e.what()) + ")");
     }
 }
 
-Correspondences ShapeModel::correspond(ObjectClass cls, const std::vector<Eigen::Vector3d>& points) const {
+Correspondences ShapeModel::correspond(ObjectClass cls,
+                                       const std::vector<Eigen::Vector3d>& points) const {
     Correspondences out;
     if (points.empty()) return out;
     torch::NoGradGuard no_grad;
@@ -278,7 +300,9 @@ Correspondences ShapeModel::correspond(ObjectClass cls, const std::vector<Eigen:
         std::vector<std::size_t> all(points.size());
         for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
         Rng rng = make_rng(points.size(), 29);
-        for (std::size_t i = 0; i < np; ++i) std::swap(all[i], all[i + static_cast<std::size_t>(uniform_int(rng, 0, static_cast<std::int64_t>(all.size() - i - 1)))]);
+        for (std::size_t i = 0; i < np; ++i)
+            std::swap(all[i], all[i + static_cast<std::size_t>(uniform_int(
+                                          rng, 0, static_cast<std::int64_t>(all.size() - i - 1)))]);
         rows.assign(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(np));
     } else {
         for (std::size_t i = 0; i < np; ++i) rows[i] = i % points.size();
@@ -286,7 +310,8 @@ Correspondences ShapeModel::correspond(ObjectClass cls, const std::vector<Eigen:
     std::vector<Eigen::Vector3d> sample;
     sample.reserve(np);
     for (const std::size_t i : rows) sample.push_back(points[i]);
-    const torch::Tensor t = n.fn->forward(points_tensor(sample).unsqueeze(0)).squeeze(0).contiguous();
+    const torch::Tensor t =
+        n.fn->forward(points_tensor(sample).unsqueeze(0)).squeeze(0).contiguous();
     const float* d = t.data_ptr<float>();
     const std::size_t count = std::min(np, points.size());
     for (std::size_t i = 0; i < count; ++i) {
@@ -297,7 +322,8 @@ Correspondences ShapeModel::correspond(ObjectClass cls, const std::vector<Eigen:
     return out;
 }
 
-std::optional<Similarity3> ShapeModel::estimate_pose(ObjectClass cls, const std::vector<Eigen::Vector3d>& points,
+std::optional<Similarity3> ShapeModel::estimate_pose(ObjectClass cls,
+                                                     const std::vector<Eigen::Vector3d>& points,
                                                      const RobustSolveParams& solve) const {
     if (shape_class_index(cls) < 0 || points.size() < 3) return std::nullopt;
     const Correspondences c = correspond(cls, points);
@@ -308,26 +334,31 @@ std::optional<Similarity3> ShapeModel::estimate_pose(ObjectClass cls, const std:
     return r->similarity;
 }
 
-std::vector<float> ShapeModel::sdf(ObjectClass cls, const Latent& z, const std::vector<Eigen::Vector3d>& points) const {
+std::vector<float> ShapeModel::sdf(ObjectClass cls, const Latent& z,
+                                   const std::vector<Eigen::Vector3d>& points) const {
     if (points.empty()) return {};
     torch::NoGradGuard no_grad;
     ClassNets& n = nets_of(*impl_, cls);
-    const torch::Tensor code = torch::from_blob(const_cast<float*>(z.data()), {1, kLatentDim}).clone();
-    const torch::Tensor in = torch::cat({code.expand({static_cast<long>(points.size()), -1}), points_tensor(points)}, 1);
+    const torch::Tensor code =
+        torch::from_blob(const_cast<float*>(z.data()), {1, kLatentDim}).clone();
+    const torch::Tensor in =
+        torch::cat({code.expand({static_cast<long>(points.size()), -1}), points_tensor(points)}, 1);
     const torch::Tensor out = n.f0->forward(in).contiguous();
     return std::vector<float>(out.data_ptr<float>(), out.data_ptr<float>() + out.numel());
 }
 
-Latent ShapeModel::fit_latent(ObjectClass cls, const std::vector<Eigen::Vector3d>& surface, const std::vector<Eigen::Vector3d>& free,
-                              int iterations) const {
+Latent ShapeModel::fit_latent(ObjectClass cls, const std::vector<Eigen::Vector3d>& surface,
+                              const std::vector<Eigen::Vector3d>& free, int iterations) const {
     ClassNets& n = nets_of(*impl_, cls);
     torch::Tensor code = n.mean_code.clone().unsqueeze(0).set_requires_grad(true);
     Latent out{};
     if (surface.empty() || iterations <= 0) {
-        std::copy(n.mean_code.data_ptr<float>(), n.mean_code.data_ptr<float>() + kLatentDim, out.begin());
+        std::copy(n.mean_code.data_ptr<float>(), n.mean_code.data_ptr<float>() + kLatentDim,
+                  out.begin());
         return out;
     }
-    const torch::Tensor ps = points_tensor(surface), pf = free.empty() ? torch::zeros({0, 3}) : points_tensor(free);
+    const torch::Tensor ps = points_tensor(surface),
+                        pf = free.empty() ? torch::zeros({0, 3}) : points_tensor(free);
     const auto clamp = static_cast<float>(params_.sdf_clamp);
     // Adam on the code alone. torch::autograd::grad asks for the code's gradient only, so the
     // shared decoder's parameters are never written (several threads may fit at once).
@@ -337,7 +368,8 @@ Latent ShapeModel::fit_latent(ObjectClass cls, const std::vector<Eigen::Vector3d
         const torch::Tensor ds = n.f0->forward(torch::cat({code.expand({ps.size(0), -1}), ps}, 1));
         torch::Tensor loss = ds.abs().mean() + 1e-3 * code.pow(2).sum();
         if (pf.size(0) > 0) {
-            const torch::Tensor df = n.f0->forward(torch::cat({code.expand({pf.size(0), -1}), pf}, 1));
+            const torch::Tensor df =
+                n.f0->forward(torch::cat({code.expand({pf.size(0), -1}), pf}, 1));
             loss = loss + torch::relu(clamp - df).mean();
         }
         const torch::Tensor g = torch::autograd::grad({loss}, {code})[0];
@@ -352,14 +384,18 @@ Latent ShapeModel::fit_latent(ObjectClass cls, const std::vector<Eigen::Vector3d
     return out;
 }
 
-std::vector<float> ShapeModel::occupancy(ObjectClass cls, const TsdfVolume& tsdf, const Latent& z, const std::vector<Eigen::Vector3d>& points) const {
+std::vector<float> ShapeModel::occupancy(ObjectClass cls, const TsdfVolume& tsdf, const Latent& z,
+                                         const std::vector<Eigen::Vector3d>& points) const {
     if (points.empty()) return {};
-    if (tsdf.grid().resolution != params_.grid.resolution) throw std::invalid_argument("TSDF volume on another grid than the model's");
+    if (tsdf.grid().resolution != params_.grid.resolution)
+        throw std::invalid_argument("TSDF volume on another grid than the model's");
     torch::NoGradGuard no_grad;
     ClassNets& n = nets_of(*impl_, cls);
     const torch::Tensor features = n.f1->encode(volume_tensor({&tsdf}));
-    const torch::Tensor code = torch::from_blob(const_cast<float*>(z.data()), {1, kLatentDim}).clone();
-    const torch::Tensor q = (points_tensor(points) / static_cast<float>(params_.grid.half_extent)).unsqueeze(0);
+    const torch::Tensor code =
+        torch::from_blob(const_cast<float*>(z.data()), {1, kLatentDim}).clone();
+    const torch::Tensor q =
+        (points_tensor(points) / static_cast<float>(params_.grid.half_extent)).unsqueeze(0);
     const torch::Tensor out = torch::sigmoid(n.f1->decode(features, code, q)).contiguous();
     return std::vector<float>(out.data_ptr<float>(), out.data_ptr<float>() + out.numel());
 }

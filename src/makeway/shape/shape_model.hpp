@@ -18,14 +18,13 @@
 // centroid of the object's points. The canonical frame: the object's box centre at the origin,
 // its axes (x forward, z up), lengths divided by the box's half diagonal, so the shape lies in
 // the unit ball; T_gravity_canonical is a similarity (scale = the half diagonal).
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "makeway/common/semantic_label.hpp"
 #include "makeway/shape/similarity.hpp"
@@ -40,25 +39,25 @@ using Latent = std::array<float, kLatentDim>;
 int shape_class_index(ObjectClass cls);  ///< -1 for a class without networks
 
 struct ShapeModelParams {
-    int points = 128;          ///< F_n's input size (clouds are resampled to it, seeded)
+    int points = 128;  ///< F_n's input size (clouds are resampled to it, seeded)
     int correspondence_width = 64;
     int sdf_width = 128;
     int occupancy_width = 64;
-    CubeGrid grid{32, 1.1};    ///< F_1's TSDF volume over the canonical cube
+    CubeGrid grid{32, 1.1};  ///< F_1's TSDF volume over the canonical cube
     double truncation_cells = 2.5;
-    double sdf_clamp = 0.1;    ///< DeepSDF's clamp (canonical units)
-    std::uint64_t seed = 0;    ///< weight initialisation
+    double sdf_clamp = 0.1;  ///< DeepSDF's clamp (canonical units)
+    std::uint64_t seed = 0;  ///< weight initialisation
 };
 
 /// F_n's answer for the points it saw (at most ShapeModelParams::points of the cloud).
 struct Correspondences {
-    std::vector<std::size_t> point;          ///< index into the input cloud
+    std::vector<std::size_t> point;  ///< index into the input cloud
     std::vector<Eigen::Vector3d> canonical;
-    std::vector<double> confidence;          ///< in (0, 1)
+    std::vector<double> confidence;  ///< in (0, 1)
 };
 
 class ShapeModel {
-public:
+  public:
     explicit ShapeModel(const ShapeModelParams& params = {});
     ~ShapeModel();
     ShapeModel(ShapeModel&&) noexcept;
@@ -70,21 +69,25 @@ public:
     void save(const std::filesystem::path& path) const;
 
     /// F_n on points of the gravity frame (any count >= 1; resampled to params().points, seeded).
-    Correspondences correspond(ObjectClass cls, const std::vector<Eigen::Vector3d>& points_gravity) const;
+    Correspondences correspond(ObjectClass cls,
+                               const std::vector<Eigen::Vector3d>& points_gravity) const;
     /// F_n and the robust upright solve: T_gravity_canonical, or nullopt when the solve finds no
     /// support (or the class has no networks).
-    std::optional<Similarity3> estimate_pose(ObjectClass cls, const std::vector<Eigen::Vector3d>& points_gravity,
+    std::optional<Similarity3> estimate_pose(ObjectClass cls,
+                                             const std::vector<Eigen::Vector3d>& points_gravity,
                                              const RobustSolveParams& solve = {}) const;
 
     /// F_0: signed distances (canonical units) at canonical points for a code.
-    std::vector<float> sdf(ObjectClass cls, const Latent& z, const std::vector<Eigen::Vector3d>& points) const;
+    std::vector<float> sdf(ObjectClass cls, const Latent& z,
+                           const std::vector<Eigen::Vector3d>& points) const;
     /// F_0's code fitted to an observation: surface points (SDF 0) and free points (SDF >= the
     /// clamp) in the canonical frame, Adam on the code only, from the mean training code.
-    Latent fit_latent(ObjectClass cls, const std::vector<Eigen::Vector3d>& surface, const std::vector<Eigen::Vector3d>& free,
-                      int iterations = 60) const;
+    Latent fit_latent(ObjectClass cls, const std::vector<Eigen::Vector3d>& surface,
+                      const std::vector<Eigen::Vector3d>& free, int iterations = 60) const;
     /// F_1: occupancy probabilities at canonical points given the TSDF and weight volumes (on
     /// params().grid) and F_0's code.
-    std::vector<float> occupancy(ObjectClass cls, const TsdfVolume& tsdf, const Latent& z, const std::vector<Eigen::Vector3d>& points) const;
+    std::vector<float> occupancy(ObjectClass cls, const TsdfVolume& tsdf, const Latent& z,
+                                 const std::vector<Eigen::Vector3d>& points) const;
 
     const ShapeModelParams& params() const { return params_; }
     std::size_t parameter_count() const;
@@ -92,7 +95,7 @@ public:
     struct Impl;  ///< torch internals (shape_model_impl.hpp)
     Impl& impl() const { return *impl_; }
 
-private:
+  private:
     ShapeModelParams params_;
     std::unique_ptr<Impl> impl_;
 };

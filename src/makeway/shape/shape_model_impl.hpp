@@ -26,8 +26,10 @@ TORCH_MODULE(SdfDecoder);
 /// (canonical, divided by the grid's half extent) -> [B, M] occupancy logits.
 struct OccupancyNetImpl : torch::nn::Module {
     explicit OccupancyNetImpl(int width);
-    torch::Tensor encode(const torch::Tensor& volumes);  ///< [B, 33, R/2, R/2, R/2]: 32 TSDF features + confidence
-    torch::Tensor decode(const torch::Tensor& features, const torch::Tensor& codes, const torch::Tensor& points);
+    torch::Tensor encode(
+        const torch::Tensor& volumes);  ///< [B, 33, R/2, R/2, R/2]: 32 TSDF features + confidence
+    torch::Tensor decode(const torch::Tensor& features, const torch::Tensor& codes,
+                         const torch::Tensor& points);
     torch::nn::Conv3d e1{nullptr}, e2{nullptr}, e3{nullptr};
     torch::nn::Linear fc_in{nullptr}, fc_out{nullptr};
     torch::nn::ModuleList blocks{nullptr};  ///< 3 ResNet blocks, two layers each
@@ -51,7 +53,8 @@ struct TorchSimilarity {
     torch::Tensor scale, rotation, translation;
     torch::Tensor apply(const torch::Tensor& v) const;  ///< [B, N, 3]
 };
-TorchSimilarity solve_upright_similarity(const torch::Tensor& v, const torch::Tensor& p, const torch::Tensor& w);
+TorchSimilarity solve_upright_similarity(const torch::Tensor& v, const torch::Tensor& p,
+                                         const torch::Tensor& w);
 
 /// [B, 2, R, R, R] from TSDF volumes.
 torch::Tensor volume_tensor(const std::vector<const TsdfVolume*>& volumes);

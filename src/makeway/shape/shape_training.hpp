@@ -26,11 +26,11 @@ struct ShapeExample {
 
 /// One partial observation of a shape, in its gravity frame.
 struct ShapeView {
-    int shape = 0;                          ///< index into ShapeTrainingSet::shapes
+    int shape = 0;  ///< index into ShapeTrainingSet::shapes
     std::vector<Eigen::Vector3d> points;
-    std::vector<std::uint8_t> outlier;      ///< injected depth outliers and other objects' points
+    std::vector<std::uint8_t> outlier;  ///< injected depth outliers and other objects' points
     Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< the sensor
-    Similarity3 truth;                      ///< T_gravity_canonical
+    Similarity3 truth;                                 ///< T_gravity_canonical
 };
 
 struct ShapeTrainingSet {
@@ -45,10 +45,10 @@ struct ShapeTrainParams {
     int correspondence_batch = 16;
     int sdf_batch_shapes = 16, sdf_samples = 256;
     int occupancy_batch = 8, occupancy_samples = 512;
-    int fusions_per_shape = 4;       ///< TSDF volumes fused per shape for F_1 (1-3 of its views each)
-    double learning_rate = 1e-3;     ///< Adam, cosine-decayed
+    int fusions_per_shape = 4;    ///< TSDF volumes fused per shape for F_1 (1-3 of its views each)
+    double learning_rate = 1e-3;  ///< Adam, cosine-decayed
     std::uint64_t seed = 0;
-    int threads = 0;                 ///< 0: torch's default
+    int threads = 0;  ///< 0: torch's default
     std::vector<std::string> validate() const;
 };
 
@@ -63,12 +63,14 @@ struct ShapeTrainReport {
 };
 
 /// Trains all six networks in place. `progress(stage, step, steps, loss)` after each step.
-ShapeTrainReport train_shape_model(ShapeModel& model, const ShapeTrainingSet& data, const ShapeTrainParams& params,
-                                   const std::function<void(const std::string&, int, int, double)>& progress = {});
+ShapeTrainReport train_shape_model(
+    ShapeModel& model, const ShapeTrainingSet& data, const ShapeTrainParams& params,
+    const std::function<void(const std::string&, int, int, double)>& progress = {});
 
 /// The yaw turns among multiples of 15 deg that map surface samples onto the surface (RMS distance
 /// under `tolerance`, canonical units), 0 first.
-std::vector<double> detect_symmetry_yaws(const std::vector<Eigen::Vector3d>& surface, const std::function<double(const Eigen::Vector3d&)>& distance,
-                                         double tolerance = 0.02);
+std::vector<double> detect_symmetry_yaws(
+    const std::vector<Eigen::Vector3d>& surface,
+    const std::function<double(const Eigen::Vector3d&)>& distance, double tolerance = 0.02);
 
 }  // namespace makeway::shape

@@ -1,9 +1,8 @@
 // Weighted Umeyama (full and upright) and its sample-and-refine wrapper.
 #include "makeway/shape/similarity.hpp"
 
-#include <cmath>
-
 #include <Eigen/SVD>
+#include <cmath>
 
 #include "makeway/common/random.hpp"
 #include "makeway/common/transforms.hpp"
@@ -12,14 +11,16 @@ namespace makeway::shape {
 
 double Similarity3::yaw_rad() const { return yaw_of(rotation); }
 
-std::optional<Similarity3> solve_similarity(const std::vector<Eigen::Vector3d>& v, const std::vector<Eigen::Vector3d>& p,
+std::optional<Similarity3> solve_similarity(const std::vector<Eigen::Vector3d>& v,
+                                            const std::vector<Eigen::Vector3d>& p,
                                             const std::vector<double>& w, bool upright) {
     if (v.size() != p.size() || v.size() != w.size()) return std::nullopt;
     double wsum = 0.0;
     std::size_t carrying = 0;
     Eigen::Vector3d vbar = Eigen::Vector3d::Zero(), pbar = Eigen::Vector3d::Zero();
     for (std::size_t i = 0; i < v.size(); ++i) {
-        if (!(w[i] >= 0.0) || !std::isfinite(w[i]) || !v[i].allFinite() || !p[i].allFinite()) return std::nullopt;
+        if (!(w[i] >= 0.0) || !std::isfinite(w[i]) || !v[i].allFinite() || !p[i].allFinite())
+            return std::nullopt;
         if (w[i] == 0.0) continue;
         ++carrying;
         wsum += w[i];
@@ -62,12 +63,15 @@ std::optional<Similarity3> solve_similarity(const std::vector<Eigen::Vector3d>& 
     return out;
 }
 
-std::optional<RobustSolveResult> solve_similarity_robust(const std::vector<Eigen::Vector3d>& v, const std::vector<Eigen::Vector3d>& p,
-                                                         const std::vector<double>& w, const RobustSolveParams& params) {
+std::optional<RobustSolveResult> solve_similarity_robust(const std::vector<Eigen::Vector3d>& v,
+                                                         const std::vector<Eigen::Vector3d>& p,
+                                                         const std::vector<double>& w,
+                                                         const RobustSolveParams& params) {
     if (v.size() != p.size() || v.size() != w.size()) return std::nullopt;
     std::vector<std::size_t> usable;
     for (std::size_t i = 0; i < v.size(); ++i) {
-        if (w[i] > 0.0 && std::isfinite(w[i]) && v[i].allFinite() && p[i].allFinite()) usable.push_back(i);
+        if (w[i] > 0.0 && std::isfinite(w[i]) && v[i].allFinite() && p[i].allFinite())
+            usable.push_back(i);
     }
     const std::size_t minimal = params.upright ? 2 : 3;
     if (usable.size() < 3) return std::nullopt;
@@ -113,7 +117,8 @@ std::optional<RobustSolveResult> solve_similarity_robust(const std::vector<Eigen
         if (score > best_score) best_score = score, best = T;
     }
     // The whole weighted set as one more hypothesis: with no outliers it is the answer.
-    if (const auto all = solve_similarity(v, p, w, params.upright); all && all->scale >= params.min_scale && all->scale <= params.max_scale) {
+    if (const auto all = solve_similarity(v, p, w, params.upright);
+        all && all->scale >= params.min_scale && all->scale <= params.max_scale) {
         if (support(*all, nullptr).first > best_score) best = all;
     }
     if (!best) return std::nullopt;

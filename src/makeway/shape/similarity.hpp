@@ -12,12 +12,11 @@
 // the weighted points whose residual is under the inlier distance, the best hypothesis is refined
 // by the weighted solve on its inliers, twice. It recovers the similarity as long as the inliers
 // outnumber what the sampling can miss: 50 % outliers at the default 200 hypotheses (tested).
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <optional>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 namespace makeway::shape {
 
@@ -25,9 +24,13 @@ struct Similarity3 {
     double scale = 1.0;
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
     Eigen::Vector3d translation = Eigen::Vector3d::Zero();
-    Eigen::Vector3d apply(const Eigen::Vector3d& v) const { return scale * (rotation * v) + translation; }
+    Eigen::Vector3d apply(const Eigen::Vector3d& v) const {
+        return scale * (rotation * v) + translation;
+    }
     /// The canonical point of an observed point.
-    Eigen::Vector3d inverse_apply(const Eigen::Vector3d& p) const { return rotation.transpose() * (p - translation) / scale; }
+    Eigen::Vector3d inverse_apply(const Eigen::Vector3d& p) const {
+        return rotation.transpose() * (p - translation) / scale;
+    }
     double yaw_rad() const;
 };
 
@@ -45,7 +48,8 @@ struct RobustSolveParams {
     /// median yaw error 10 deg with it, 78 deg with 200 hypotheses at 5 cm). Sampling is for
     /// correspondences that are exact or wrong.
     int hypotheses = 0;
-    double inlier_distance = 0.05;  ///< residual [units of `observed`] under which a pair supports a hypothesis
+    double inlier_distance =
+        0.05;  ///< residual [units of `observed`] under which a pair supports a hypothesis
     double min_scale = 0.05, max_scale = 20.0;  ///< hypotheses outside are discarded
     std::uint64_t seed = 0;
 };
@@ -57,9 +61,8 @@ struct RobustSolveResult {
 };
 
 /// Sample-and-refine solve (above). nullopt when no hypothesis finds enough support (3 pairs).
-std::optional<RobustSolveResult> solve_similarity_robust(const std::vector<Eigen::Vector3d>& canonical,
-                                                         const std::vector<Eigen::Vector3d>& observed,
-                                                         const std::vector<double>& weights,
-                                                         const RobustSolveParams& params = {});
+std::optional<RobustSolveResult> solve_similarity_robust(
+    const std::vector<Eigen::Vector3d>& canonical, const std::vector<Eigen::Vector3d>& observed,
+    const std::vector<double>& weights, const RobustSolveParams& params = {});
 
 }  // namespace makeway::shape

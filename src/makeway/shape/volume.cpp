@@ -1,13 +1,12 @@
 #include "makeway/shape/volume.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
-
-#include <Eigen/Geometry>
 #include <nanoflann.hpp>
+#include <unordered_map>
 
 namespace makeway::shape {
 
@@ -21,13 +20,18 @@ std::vector<Eigen::Vector3d> CubeGrid::centres() const {
 }
 
 TsdfVolume::TsdfVolume(const CubeGrid& grid, double truncation_cells)
-    : grid_(grid), truncation_(truncation_cells * grid.cell()), tsdf_(grid.size(), 1.0f), weight_(grid.size(), 0.0f) {}
+    : grid_(grid),
+      truncation_(truncation_cells * grid.cell()),
+      tsdf_(grid.size(), 1.0f),
+      weight_(grid.size(), 0.0f) {}
 
 std::size_t TsdfVolume::observed_cells() const {
-    return static_cast<std::size_t>(std::count_if(weight_.begin(), weight_.end(), [](float w) { return w > 0.0f; }));
+    return static_cast<std::size_t>(
+        std::count_if(weight_.begin(), weight_.end(), [](float w) { return w > 0.0f; }));
 }
 
-void TsdfVolume::integrate(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin) {
+void TsdfVolume::integrate(const std::vector<Eigen::Vector3d>& points,
+                           const Eigen::Vector3d& origin) {
     if (!origin.allFinite()) return;
     const double h = grid_.half_extent, step = 0.5 * grid_.cell();
     const int n = grid_.resolution;
@@ -57,7 +61,8 @@ void TsdfVolume::integrate(const std::vector<Eigen::Vector3d>& points, const Eig
             const Eigen::Array3i c = ((q.array() + h) / grid_.cell()).floor().cast<int>();
             if ((c < 0).any() || (c >= n).any()) continue;
             const std::size_t i = grid_.index(c.x(), c.y(), c.z());
-            if (std::find(touched.begin(), touched.end(), i) != touched.end()) continue;  // once per ray
+            if (std::find(touched.begin(), touched.end(), i) != touched.end())
+                continue;  // once per ray
             touched.push_back(i);
             // The signed distance along the ray from the cell's centre to the return.
             const double along = (grid_.centre(c.x(), c.y(), c.z()) - origin).dot(u);
@@ -74,17 +79,23 @@ void TsdfVolume::integrate(const std::vector<Eigen::Vector3d>& points, const Eig
 namespace {
 
 // Cube corners (x, y, z offsets) and the six tetrahedra around the 0-6 diagonal.
-constexpr std::array<std::array<int, 3>, 8> kCorner{{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
-constexpr std::array<std::array<int, 4>, 6> kTet{{{0, 5, 1, 6}, {0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}}};
+constexpr std::array<std::array<int, 3>, 8> kCorner{
+    {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
+constexpr std::array<std::array<int, 4>, 6> kTet{
+    {{0, 5, 1, 6}, {0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}}};
 
 }  // namespace
 
-TriangleMesh extract_isosurface(const std::vector<float>& values, const Eigen::Vector3i& dims, const Eigen::Vector3d& origin,
-                                double spacing, double level, bool inside_below) {
+TriangleMesh extract_isosurface(const std::vector<float>& values, const Eigen::Vector3i& dims,
+                                const Eigen::Vector3d& origin, double spacing, double level,
+                                bool inside_below) {
     TriangleMesh mesh;
-    if ((dims.array() < 2).any() || values.size() != static_cast<std::size_t>(dims.prod())) return mesh;
+    if ((dims.array() < 2).any() || values.size() != static_cast<std::size_t>(dims.prod()))
+        return mesh;
     auto node = [&](int x, int y, int z) {
-        return (static_cast<std::size_t>(z) * static_cast<std::size_t>(dims.y()) + static_cast<std::size_t>(y)) * static_cast<std::size_t>(dims.x()) +
+        return (static_cast<std::size_t>(z) * static_cast<std::size_t>(dims.y()) +
+                static_cast<std::size_t>(y)) *
+                   static_cast<std::size_t>(dims.x()) +
                static_cast<std::size_t>(x);
     };
     auto is_inside = [&](std::size_t i) {
@@ -94,8 +105,10 @@ TriangleMesh extract_isosurface(const std::vector<float>& values, const Eigen::V
     };
     auto position = [&](std::size_t i) {
         const auto x = static_cast<double>(i % static_cast<std::size_t>(dims.x()));
-        const auto y = static_cast<double>((i / static_cast<std::size_t>(dims.x())) % static_cast<std::size_t>(dims.y()));
-        const auto z = static_cast<double>(i / (static_cast<std::size_t>(dims.x()) * static_cast<std::size_t>(dims.y())));
+        const auto y = static_cast<double>((i / static_cast<std::size_t>(dims.x())) %
+                                           static_cast<std::size_t>(dims.y()));
+        const auto z = static_cast<double>(
+            i / (static_cast<std::size_t>(dims.x()) * static_cast<std::size_t>(dims.y())));
         return Eigen::Vector3d(origin + spacing * Eigen::Vector3d(x, y, z));
     };
     std::unordered_map<std::uint64_t, int> edge_vertex;
@@ -107,7 +120,8 @@ TriangleMesh extract_isosurface(const std::vector<float>& values, const Eigen::V
         const std::size_t lo = std::min(a, b), hi = std::max(a, b);
         const double vl = values[lo], vh = values[hi];
         double t = 0.5;
-        if (std::isfinite(vl) && std::isfinite(vh) && std::abs(vh - vl) > 1e-12) t = std::clamp((level - vl) / (vh - vl), 1e-3, 1.0 - 1e-3);
+        if (std::isfinite(vl) && std::isfinite(vh) && std::abs(vh - vl) > 1e-12)
+            t = std::clamp((level - vl) / (vh - vl), 1e-3, 1.0 - 1e-3);
         const std::uint64_t key = lo * static_cast<std::uint64_t>(values.size()) + hi;
         if (const auto it = edge_vertex.find(key); it != edge_vertex.end()) return it->second;
         const Eigen::Vector3d p = position(lo) + t * (position(hi) - position(lo));
@@ -118,7 +132,9 @@ TriangleMesh extract_isosurface(const std::vector<float>& values, const Eigen::V
     };
     auto add = [&](int a, int b, int c, const Eigen::Vector3d& towards_outside) {
         const Eigen::Vector3d pa = mesh.vertices_m[static_cast<std::size_t>(a)].cast<double>();
-        const Eigen::Vector3d n = (mesh.vertices_m[static_cast<std::size_t>(b)].cast<double>() - pa).cross(mesh.vertices_m[static_cast<std::size_t>(c)].cast<double>() - pa);
+        const Eigen::Vector3d n =
+            (mesh.vertices_m[static_cast<std::size_t>(b)].cast<double>() - pa)
+                .cross(mesh.vertices_m[static_cast<std::size_t>(c)].cast<double>() - pa);
         if (a == b || b == c || a == c) return;
         if (n.dot(towards_outside) < 0.0) std::swap(b, c);
         mesh.triangles.emplace_back(a, b, c);
@@ -127,24 +143,34 @@ TriangleMesh extract_isosurface(const std::vector<float>& values, const Eigen::V
         for (int y = 0; y + 1 < dims.y(); ++y) {
             for (int x = 0; x + 1 < dims.x(); ++x) {
                 std::array<std::size_t, 8> c{};
-                for (int k = 0; k < 8; ++k) c[static_cast<std::size_t>(k)] = node(x + kCorner[static_cast<std::size_t>(k)][0], y + kCorner[static_cast<std::size_t>(k)][1], z + kCorner[static_cast<std::size_t>(k)][2]);
+                for (int k = 0; k < 8; ++k)
+                    c[static_cast<std::size_t>(k)] =
+                        node(x + kCorner[static_cast<std::size_t>(k)][0],
+                             y + kCorner[static_cast<std::size_t>(k)][1],
+                             z + kCorner[static_cast<std::size_t>(k)][2]);
                 for (const auto& tet : kTet) {
                     std::array<std::size_t, 4> in{}, out{};
                     int ni = 0, no = 0;
                     for (const int k : tet) {
                         const std::size_t i = c[static_cast<std::size_t>(k)];
-                        if (is_inside(i)) in[static_cast<std::size_t>(ni++)] = i;
-                        else out[static_cast<std::size_t>(no++)] = i;
+                        if (is_inside(i))
+                            in[static_cast<std::size_t>(ni++)] = i;
+                        else
+                            out[static_cast<std::size_t>(no++)] = i;
                     }
                     if (ni == 0 || no == 0) continue;
                     Eigen::Vector3d ci = Eigen::Vector3d::Zero(), co = Eigen::Vector3d::Zero();
-                    for (int k = 0; k < ni; ++k) ci += position(in[static_cast<std::size_t>(k)]) / ni;
-                    for (int k = 0; k < no; ++k) co += position(out[static_cast<std::size_t>(k)]) / no;
+                    for (int k = 0; k < ni; ++k)
+                        ci += position(in[static_cast<std::size_t>(k)]) / ni;
+                    for (int k = 0; k < no; ++k)
+                        co += position(out[static_cast<std::size_t>(k)]) / no;
                     const Eigen::Vector3d dir = co - ci;
                     if (ni == 1) {
-                        add(vertex_on(in[0], out[0]), vertex_on(in[0], out[1]), vertex_on(in[0], out[2]), dir);
+                        add(vertex_on(in[0], out[0]), vertex_on(in[0], out[1]),
+                            vertex_on(in[0], out[2]), dir);
                     } else if (ni == 3) {
-                        add(vertex_on(in[0], out[0]), vertex_on(in[1], out[0]), vertex_on(in[2], out[0]), dir);
+                        add(vertex_on(in[0], out[0]), vertex_on(in[1], out[0]),
+                            vertex_on(in[2], out[0]), dir);
                     } else {  // two and two: a quad, split along one diagonal
                         const int a = vertex_on(in[0], out[0]), b = vertex_on(in[0], out[1]);
                         const int cc = vertex_on(in[1], out[1]), d = vertex_on(in[1], out[0]);
@@ -162,13 +188,20 @@ namespace {
 struct CloudAdaptor {
     const std::vector<Eigen::Vector3d>* pts;
     std::size_t kdtree_get_point_count() const { return pts->size(); }
-    double kdtree_get_pt(std::size_t i, std::size_t d) const { return (*pts)[i][static_cast<Eigen::Index>(d)]; }
+    double kdtree_get_pt(std::size_t i, std::size_t d) const {
+        return (*pts)[i][static_cast<Eigen::Index>(d)];
+    }
     template <class B>
-    bool kdtree_get_bbox(B&) const { return false; }
+    bool kdtree_get_bbox(B&) const {
+        return false;
+    }
 };
-using CloudTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>, CloudAdaptor, 3, std::size_t>;
+using CloudTree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>,
+                                        CloudAdaptor, 3, std::size_t>;
 
-double mean_nearest(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Vector3d>& to) {
+double mean_nearest(const std::vector<Eigen::Vector3d>& from,
+                    const std::vector<Eigen::Vector3d>& to) {
     const CloudAdaptor adaptor{&to};
     CloudTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(10));
     tree.buildIndex();

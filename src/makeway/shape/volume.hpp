@@ -3,10 +3,9 @@
 // for: the object's box centre at the origin, its half diagonal 1): the TSDF and weight volumes
 // that F_1 reads, and the isosurface extraction that turns a field sampled on such a grid into a
 // mesh.
+#include <Eigen/Core>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "makeway/common/triangle_mesh.hpp"
 
@@ -18,13 +17,19 @@ struct CubeGrid {
     double half_extent = 1.1;
     double cell() const { return 2.0 * half_extent / resolution; }
     Eigen::Vector3d centre(int x, int y, int z) const {
-        return Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5) * cell() - Eigen::Vector3d::Constant(half_extent);
+        return Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5) * cell() -
+               Eigen::Vector3d::Constant(half_extent);
     }
     std::size_t index(int x, int y, int z) const {
-        return (static_cast<std::size_t>(z) * static_cast<std::size_t>(resolution) + static_cast<std::size_t>(y)) * static_cast<std::size_t>(resolution) +
+        return (static_cast<std::size_t>(z) * static_cast<std::size_t>(resolution) +
+                static_cast<std::size_t>(y)) *
+                   static_cast<std::size_t>(resolution) +
                static_cast<std::size_t>(x);
     }
-    std::size_t size() const { return static_cast<std::size_t>(resolution) * static_cast<std::size_t>(resolution) * static_cast<std::size_t>(resolution); }
+    std::size_t size() const {
+        return static_cast<std::size_t>(resolution) * static_cast<std::size_t>(resolution) *
+               static_cast<std::size_t>(resolution);
+    }
     /// Every cell centre, in index order.
     std::vector<Eigen::Vector3d> centres() const;
 };
@@ -36,7 +41,7 @@ struct CubeGrid {
 /// running weighted means; the weight volume counts the rays that touched a cell (F_1's
 /// confidence input: 0 where nothing was seen).
 class TsdfVolume {
-public:
+  public:
     explicit TsdfVolume(const CubeGrid& grid = {}, double truncation_cells = 2.5);
     /// Returns and the sensor origin in the canonical frame (non-finite points are skipped).
     void integrate(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin);
@@ -45,7 +50,7 @@ public:
     const std::vector<float>& weight() const { return weight_; }
     std::size_t observed_cells() const;
 
-private:
+  private:
     CubeGrid grid_;
     double truncation_;
     std::vector<float> tsdf_, weight_;
@@ -57,8 +62,9 @@ private:
 /// neighbouring faces agree and the surface has no cracks), vertices on grid edges shared between
 /// cells. Triangles face the side where value > level when `inside_below` (an SDF), the side where
 /// value < level otherwise (an occupancy). Non-finite values count as outside.
-TriangleMesh extract_isosurface(const std::vector<float>& values, const Eigen::Vector3i& dims, const Eigen::Vector3d& origin,
-                                double spacing, double level, bool inside_below);
+TriangleMesh extract_isosurface(const std::vector<float>& values, const Eigen::Vector3i& dims,
+                                const Eigen::Vector3d& origin, double spacing, double level,
+                                bool inside_below);
 
 /// Bidirectional Chamfer-L1: the mean of the two directions' mean nearest-neighbour distances.
 /// Infinity when either set is empty.

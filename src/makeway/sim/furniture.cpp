@@ -13,15 +13,18 @@ namespace {
 using V3 = Eigen::Vector3d;
 
 constexpr std::array<std::string_view, kNumFurnitureStyles> kNames{
-    "four_leg_chair", "office_chair", "stool", "armchair", "rect_table", "round_table",
-    "conference_table", "stacking_chair", "sled_chair", "cantilever_chair", "bar_stool", "folding_chair",
-    "bench", "sofa", "lounge_chair", "pedestal_table", "coffee_table", "balcony_table", "desk",
-    "folding_table", "side_table"};
+    "four_leg_chair", "office_chair",     "stool",          "armchair",   "rect_table",
+    "round_table",    "conference_table", "stacking_chair", "sled_chair", "cantilever_chair",
+    "bar_stool",      "folding_chair",    "bench",          "sofa",       "lounge_chair",
+    "pedestal_table", "coffee_table",     "balcony_table",  "desk",       "folding_table",
+    "side_table"};
 constexpr std::array<ObjectClass, kNumFurnitureStyles> kClasses{
-    ObjectClass::kChair, ObjectClass::kChair, ObjectClass::kChair, ObjectClass::kChair, ObjectClass::kTable, ObjectClass::kTable,
-    ObjectClass::kTable, ObjectClass::kChair, ObjectClass::kChair, ObjectClass::kChair, ObjectClass::kChair, ObjectClass::kChair,
-    ObjectClass::kChair, ObjectClass::kChair, ObjectClass::kChair, ObjectClass::kTable, ObjectClass::kTable, ObjectClass::kTable,
-    ObjectClass::kTable, ObjectClass::kTable, ObjectClass::kTable};
+    ObjectClass::kChair, ObjectClass::kChair, ObjectClass::kChair, ObjectClass::kChair,
+    ObjectClass::kTable, ObjectClass::kTable, ObjectClass::kTable, ObjectClass::kChair,
+    ObjectClass::kChair, ObjectClass::kChair, ObjectClass::kChair, ObjectClass::kChair,
+    ObjectClass::kChair, ObjectClass::kChair, ObjectClass::kChair, ObjectClass::kTable,
+    ObjectClass::kTable, ObjectClass::kTable, ObjectClass::kTable, ObjectClass::kTable,
+    ObjectClass::kTable};
 
 // Four legs at the corners of a rectangle inset from the given half extents.
 void add_four_legs(TriangleMesh& m, double half_x, double half_y, double height, double leg) {
@@ -62,11 +65,13 @@ void office_chair(TriangleMesh& m, Rng& rng) {
     }
     add_cylinder(m, V3(0, 0, 0.09), uniform(rng, 0.025, 0.035), seat_h - seat_t - 0.09, 12);
     add_box(m, V3(0, 0, seat_h - seat_t / 2), V3(seat_d, seat_w, seat_t));
-    const double back_lo = seat_h + uniform(rng, 0.08, 0.14), back_hi = back_lo + uniform(rng, 0.40, 0.55);
+    const double back_lo = seat_h + uniform(rng, 0.08, 0.14),
+                 back_hi = back_lo + uniform(rng, 0.40, 0.55);
     const double back_t = uniform(rng, 0.05, 0.08);
     add_box(m, V3(-seat_d / 2 - 0.02, 0, (back_lo + back_hi) / 2),
             V3(back_t, uniform(rng, 0.40, 0.48), back_hi - back_lo));
-    add_strut(m, V3(-seat_d / 2 + 0.05, 0, seat_h - seat_t), V3(-seat_d / 2 - 0.02, 0, back_lo + 0.05), 0.04);
+    add_strut(m, V3(-seat_d / 2 + 0.05, 0, seat_h - seat_t),
+              V3(-seat_d / 2 - 0.02, 0, back_lo + 0.05), 0.04);
     if (bernoulli(rng, 0.6)) {  // armrests
         const double arm_h = seat_h + uniform(rng, 0.18, 0.24);
         for (double sy : {-1.0, 1.0}) {
@@ -109,7 +114,8 @@ void rect_table(TriangleMesh& m, Rng& rng, double l_lo, double l_hi, double w_lo
     const double leg = uniform(rng, 0.04, 0.06), inset = uniform(rng, 0.03, 0.08);
     add_box(m, V3(0, 0, h - top_t / 2), V3(l, w, top_t));
     add_four_legs(m, l / 2 - inset, w / 2 - inset, h - top_t, leg);
-    add_box(m, V3(0, w / 2 - inset - leg / 2, h - top_t - 0.05), V3(l - 2 * inset, 0.02, 0.1));  // apron
+    add_box(m, V3(0, w / 2 - inset - leg / 2, h - top_t - 0.05),
+            V3(l - 2 * inset, 0.02, 0.1));  // apron
     add_box(m, V3(0, -(w / 2 - inset - leg / 2), h - top_t - 0.05), V3(l - 2 * inset, 0.02, 0.1));
 }
 
@@ -132,7 +138,8 @@ void conference_table(TriangleMesh& m, Rng& rng) {
 }
 
 // A seat and a back rest, the back at -x (the chair faces +x).
-void seat_and_back(TriangleMesh& m, double d, double w, double seat_h, double seat_t, double top_h, double back_t, double tilt = 0.0) {
+void seat_and_back(TriangleMesh& m, double d, double w, double seat_h, double seat_t, double top_h,
+                   double back_t, double tilt = 0.0) {
     add_box(m, V3(0, 0, seat_h - seat_t / 2), V3(d, w, seat_t));
     const double lo = seat_h + 0.05;
     if (tilt == 0.0) {
@@ -143,27 +150,32 @@ void seat_and_back(TriangleMesh& m, double d, double w, double seat_h, double se
     const int steps = 6;
     for (int i = 0; i < steps; ++i) {
         const double z0 = lo + (top_h - lo) * i / steps, z1 = lo + (top_h - lo) * (i + 1) / steps;
-        add_box(m, V3(-d / 2 + back_t / 2 - tilt * (0.5 * (z0 + z1) - lo), 0, 0.5 * (z0 + z1)), V3(back_t, w, z1 - z0));
+        add_box(m, V3(-d / 2 + back_t / 2 - tilt * (0.5 * (z0 + z1) - lo), 0, 0.5 * (z0 + z1)),
+                V3(back_t, w, z1 - z0));
     }
 }
 
 void stacking_chair(TriangleMesh& m, Rng& rng) {
-    const double w = uniform(rng, 0.42, 0.50), d = uniform(rng, 0.42, 0.50), seat_h = uniform(rng, 0.44, 0.47);
+    const double w = uniform(rng, 0.42, 0.50), d = uniform(rng, 0.42, 0.50),
+                 seat_h = uniform(rng, 0.44, 0.47);
     const double tube = uniform(rng, 0.018, 0.025), splay = uniform(rng, 0.03, 0.06);
     for (double sx : {-1.0, 1.0}) {
         for (double sy : {-1.0, 1.0}) {
-            add_strut(m, V3(sx * (d / 2 - 0.03), sy * (w / 2 - 0.03), seat_h - 0.02), V3(sx * (d / 2 - 0.03 + splay), sy * (w / 2 - 0.03 + splay), 0), tube);
+            add_strut(m, V3(sx * (d / 2 - 0.03), sy * (w / 2 - 0.03), seat_h - 0.02),
+                      V3(sx * (d / 2 - 0.03 + splay), sy * (w / 2 - 0.03 + splay), 0), tube);
         }
     }
     seat_and_back(m, d, w, seat_h, 0.02, uniform(rng, 0.80, 0.86), 0.015, uniform(rng, 0.05, 0.15));
 }
 
 void sled_chair(TriangleMesh& m, Rng& rng) {
-    const double w = uniform(rng, 0.44, 0.52), d = uniform(rng, 0.45, 0.52), seat_h = uniform(rng, 0.44, 0.47);
+    const double w = uniform(rng, 0.44, 0.52), d = uniform(rng, 0.45, 0.52),
+                 seat_h = uniform(rng, 0.44, 0.47);
     const double tube = uniform(rng, 0.018, 0.022);
     for (double sy : {-1.0, 1.0}) {
         const double y = sy * (w / 2 - 0.02);
-        add_strut(m, V3(-d / 2, y, tube / 2), V3(d / 2 + 0.03, y, tube / 2), tube);  // the runner on the floor
+        add_strut(m, V3(-d / 2, y, tube / 2), V3(d / 2 + 0.03, y, tube / 2),
+                  tube);  // the runner on the floor
         add_strut(m, V3(d / 2 + 0.03, y, tube / 2), V3(d / 2 - 0.04, y, seat_h - 0.02), tube);
         add_strut(m, V3(-d / 2, y, tube / 2), V3(-d / 2 + 0.04, y, seat_h - 0.02), tube);
     }
@@ -171,32 +183,39 @@ void sled_chair(TriangleMesh& m, Rng& rng) {
 }
 
 void cantilever_chair(TriangleMesh& m, Rng& rng) {
-    const double w = uniform(rng, 0.45, 0.52), d = uniform(rng, 0.45, 0.52), seat_h = uniform(rng, 0.44, 0.48);
+    const double w = uniform(rng, 0.45, 0.52), d = uniform(rng, 0.45, 0.52),
+                 seat_h = uniform(rng, 0.44, 0.48);
     const double tube = uniform(rng, 0.022, 0.028);
     for (double sy : {-1.0, 1.0}) {
         const double y = sy * (w / 2 - 0.02);
-        add_strut(m, V3(-d / 2 + 0.05, y, tube / 2), V3(d / 2 + 0.02, y, tube / 2), tube);  // on the floor
-        add_strut(m, V3(d / 2 + 0.02, y, tube / 2), V3(d / 2 - 0.02, y, seat_h - 0.03), tube);  // the cantilever
+        add_strut(m, V3(-d / 2 + 0.05, y, tube / 2), V3(d / 2 + 0.02, y, tube / 2),
+                  tube);  // on the floor
+        add_strut(m, V3(d / 2 + 0.02, y, tube / 2), V3(d / 2 - 0.02, y, seat_h - 0.03),
+                  tube);  // the cantilever
     }
-    add_strut(m, V3(-d / 2 + 0.05, -(w / 2 - 0.02), tube / 2), V3(-d / 2 + 0.05, w / 2 - 0.02, tube / 2), tube);
+    add_strut(m, V3(-d / 2 + 0.05, -(w / 2 - 0.02), tube / 2),
+              V3(-d / 2 + 0.05, w / 2 - 0.02, tube / 2), tube);
     seat_and_back(m, d, w, seat_h, 0.03, uniform(rng, 0.80, 0.90), 0.025);
 }
 
 void bar_stool(TriangleMesh& m, Rng& rng) {
     const double h = uniform(rng, 0.65, 0.80), r = uniform(rng, 0.17, 0.21);
-    add_cylinder(m, V3(0, 0, 0), uniform(rng, 0.20, 0.24), 0.02, 24);       // base plate
-    add_cylinder(m, V3(0, 0, 0.02), 0.03, h - 0.08, 12);                     // column
-    add_cylinder(m, V3(0, 0, h - 0.06), r, 0.06, 24);                        // seat
+    add_cylinder(m, V3(0, 0, 0), uniform(rng, 0.20, 0.24), 0.02, 24);  // base plate
+    add_cylinder(m, V3(0, 0, 0.02), 0.03, h - 0.08, 12);               // column
+    add_cylinder(m, V3(0, 0, h - 0.06), r, 0.06, 24);                  // seat
     const double ring_h = uniform(rng, 0.25, 0.32), ring_r = uniform(rng, 0.18, 0.22);
     for (int i = 0; i < 8; ++i) {  // foot ring
         const double a0 = 2 * kPi * i / 8, a1 = 2 * kPi * (i + 1) / 8;
-        add_strut(m, V3(ring_r * std::cos(a0), ring_r * std::sin(a0), ring_h), V3(ring_r * std::cos(a1), ring_r * std::sin(a1), ring_h), 0.015);
+        add_strut(m, V3(ring_r * std::cos(a0), ring_r * std::sin(a0), ring_h),
+                  V3(ring_r * std::cos(a1), ring_r * std::sin(a1), ring_h), 0.015);
     }
-    if (bernoulli(rng, 0.5)) add_box(m, V3(-r + 0.02, 0, h + 0.15), V3(0.03, 0.3, 0.25));  // a low back
+    if (bernoulli(rng, 0.5))
+        add_box(m, V3(-r + 0.02, 0, h + 0.15), V3(0.03, 0.3, 0.25));  // a low back
 }
 
 void folding_chair(TriangleMesh& m, Rng& rng) {
-    const double w = uniform(rng, 0.42, 0.46), d = uniform(rng, 0.40, 0.45), seat_h = uniform(rng, 0.44, 0.47);
+    const double w = uniform(rng, 0.42, 0.46), d = uniform(rng, 0.40, 0.45),
+                 seat_h = uniform(rng, 0.44, 0.47);
     const double tube = 0.02;
     for (double sy : {-1.0, 1.0}) {  // the X of the side frames
         const double y = sy * (w / 2 - 0.01);
@@ -208,24 +227,31 @@ void folding_chair(TriangleMesh& m, Rng& rng) {
 }
 
 void bench(TriangleMesh& m, Rng& rng) {
-    const double l = uniform(rng, 1.2, 1.8), d = uniform(rng, 0.32, 0.42), h = uniform(rng, 0.43, 0.47);
+    const double l = uniform(rng, 1.2, 1.8), d = uniform(rng, 0.32, 0.42),
+                 h = uniform(rng, 0.43, 0.47);
     add_box(m, V3(0, 0, h - 0.02), V3(d, l, 0.04));  // a bench faces +x: its length runs along y
-    for (double sy : {-1.0, 1.0}) add_box(m, V3(0, sy * (l / 2 - 0.12), (h - 0.04) / 2), V3(d - 0.04, 0.04, h - 0.04));
+    for (double sy : {-1.0, 1.0})
+        add_box(m, V3(0, sy * (l / 2 - 0.12), (h - 0.04) / 2), V3(d - 0.04, 0.04, h - 0.04));
     if (bernoulli(rng, 0.5)) add_box(m, V3(-d / 2 + 0.02, 0, h + 0.2), V3(0.03, l, 0.25));
 }
 
 void sofa(TriangleMesh& m, Rng& rng) {
-    const double w = uniform(rng, 1.5, 2.2), d = uniform(rng, 0.80, 0.95), seat_h = uniform(rng, 0.40, 0.45);
-    const double back_h = uniform(rng, 0.75, 0.90), arm_w = uniform(rng, 0.12, 0.22), back_d = uniform(rng, 0.18, 0.25);
+    const double w = uniform(rng, 1.5, 2.2), d = uniform(rng, 0.80, 0.95),
+                 seat_h = uniform(rng, 0.40, 0.45);
+    const double back_h = uniform(rng, 0.75, 0.90), arm_w = uniform(rng, 0.12, 0.22),
+                 back_d = uniform(rng, 0.18, 0.25);
     add_four_legs(m, d / 2 - 0.03, w / 2 - 0.03, 0.08, 0.05);
     add_box(m, V3(0, 0, (0.08 + seat_h) / 2), V3(d, w, seat_h - 0.08));
     add_box(m, V3(-d / 2 + back_d / 2, 0, (seat_h + back_h) / 2), V3(back_d, w, back_h - seat_h));
     const double arm_h = uniform(rng, 0.58, 0.68);
-    for (double sy : {-1.0, 1.0}) add_box(m, V3(back_d / 2, sy * (w / 2 - arm_w / 2), (seat_h + arm_h) / 2), V3(d - back_d, arm_w, arm_h - seat_h));
+    for (double sy : {-1.0, 1.0})
+        add_box(m, V3(back_d / 2, sy * (w / 2 - arm_w / 2), (seat_h + arm_h) / 2),
+                V3(d - back_d, arm_w, arm_h - seat_h));
 }
 
 void lounge_chair(TriangleMesh& m, Rng& rng) {
-    const double w = uniform(rng, 0.65, 0.80), d = uniform(rng, 0.75, 0.90), seat_h = uniform(rng, 0.33, 0.40);
+    const double w = uniform(rng, 0.65, 0.80), d = uniform(rng, 0.75, 0.90),
+                 seat_h = uniform(rng, 0.33, 0.40);
     add_four_legs(m, d / 2 - 0.04, w / 2 - 0.04, seat_h - 0.08, 0.035);
     seat_and_back(m, d, w, seat_h, 0.08, uniform(rng, 0.80, 0.95), 0.08, uniform(rng, 0.3, 0.45));
 }
@@ -245,7 +271,8 @@ void pedestal_table(TriangleMesh& m, Rng& rng) {
 }
 
 void coffee_table(TriangleMesh& m, Rng& rng) {
-    const double l = uniform(rng, 0.9, 1.3), w = uniform(rng, 0.5, 0.7), h = uniform(rng, 0.35, 0.45);
+    const double l = uniform(rng, 0.9, 1.3), w = uniform(rng, 0.5, 0.7),
+                 h = uniform(rng, 0.35, 0.45);
     add_box(m, V3(0, 0, h - 0.02), V3(l, w, 0.04));
     add_four_legs(m, l / 2 - 0.04, w / 2 - 0.04, h - 0.04, 0.05);
     if (bernoulli(rng, 0.5)) add_box(m, V3(0, 0, 0.12), V3(l - 0.1, w - 0.1, 0.02));  // a shelf
@@ -262,21 +289,27 @@ void balcony_table(TriangleMesh& m, Rng& rng) {
 }
 
 void desk(TriangleMesh& m, Rng& rng) {
-    const double l = uniform(rng, 1.2, 1.6), w = uniform(rng, 0.6, 0.8), h = uniform(rng, 0.72, 0.76);
+    const double l = uniform(rng, 1.2, 1.6), w = uniform(rng, 0.6, 0.8),
+                 h = uniform(rng, 0.72, 0.76);
     add_box(m, V3(0, 0, h - 0.015), V3(l, w, 0.03));
     const double ped = uniform(rng, 0.38, 0.45);
-    add_box(m, V3(l / 2 - ped / 2, 0, (h - 0.03) / 2), V3(ped, w - 0.05, h - 0.03));  // drawer pedestal
+    add_box(m, V3(l / 2 - ped / 2, 0, (h - 0.03) / 2),
+            V3(ped, w - 0.05, h - 0.03));  // drawer pedestal
     add_box(m, V3(-l / 2 + 0.02, 0, (h - 0.03) / 2), V3(0.03, w - 0.05, h - 0.03));  // panel leg
-    add_box(m, V3(0, w / 2 - 0.05, h - 0.25), V3(l - 0.1, 0.02, 0.4));               // modesty panel
+    add_box(m, V3(0, w / 2 - 0.05, h - 0.25), V3(l - 0.1, 0.02, 0.4));  // modesty panel
 }
 
 void folding_table(TriangleMesh& m, Rng& rng) {
-    const double l = uniform(rng, 1.5, 1.9), w = uniform(rng, 0.7, 0.8), h = uniform(rng, 0.72, 0.75);
+    const double l = uniform(rng, 1.5, 1.9), w = uniform(rng, 0.7, 0.8),
+                 h = uniform(rng, 0.72, 0.75);
     add_box(m, V3(0, 0, h - 0.02), V3(l, w, 0.04));
     for (double sx : {-1.0, 1.0}) {  // a folding leg frame at each end: two legs and a floor bar
         const double x = sx * (l / 2 - 0.2);
-        for (double sy : {-1.0, 1.0}) add_strut(m, V3(x, sy * (w / 2 - 0.08), h - 0.04), V3(x + sx * 0.05, sy * (w / 2 - 0.08), 0.0), 0.025);
-        add_strut(m, V3(x + sx * 0.05, -(w / 2 - 0.08), 0.0125), V3(x + sx * 0.05, w / 2 - 0.08, 0.0125), 0.025);
+        for (double sy : {-1.0, 1.0})
+            add_strut(m, V3(x, sy * (w / 2 - 0.08), h - 0.04),
+                      V3(x + sx * 0.05, sy * (w / 2 - 0.08), 0.0), 0.025);
+        add_strut(m, V3(x + sx * 0.05, -(w / 2 - 0.08), 0.0125),
+                  V3(x + sx * 0.05, w / 2 - 0.08, 0.0125), 0.025);
     }
 }
 
@@ -312,7 +345,8 @@ std::vector<FurnitureStyle> styles_of(ObjectClass cls) {
 std::vector<FurnitureStyle> scene_styles_of(ObjectClass cls) {
     std::vector<FurnitureStyle> out;
     for (FurnitureStyle s : styles_of(cls)) {
-        if (static_cast<int>(s) <= static_cast<int>(FurnitureStyle::kConferenceTable)) out.push_back(s);
+        if (static_cast<int>(s) <= static_cast<int>(FurnitureStyle::kConferenceTable))
+            out.push_back(s);
     }
     return out;
 }
@@ -324,27 +358,69 @@ FurnitureModel make_furniture(FurnitureStyle style, std::uint64_t seed) {
     model.seed = seed;
     TriangleMesh& m = model.mesh_object;
     switch (style) {
-        case FurnitureStyle::kFourLegChair: four_leg_chair(m, rng); break;
-        case FurnitureStyle::kOfficeChair: office_chair(m, rng); break;
-        case FurnitureStyle::kStool: stool(m, rng); break;
-        case FurnitureStyle::kArmchair: armchair(m, rng); break;
-        case FurnitureStyle::kRectTable: rect_table(m, rng, 1.0, 1.8, 0.6, 0.9); break;
-        case FurnitureStyle::kRoundTable: round_table(m, rng); break;
-        case FurnitureStyle::kConferenceTable: conference_table(m, rng); break;
-        case FurnitureStyle::kStackingChair: stacking_chair(m, rng); break;
-        case FurnitureStyle::kSledChair: sled_chair(m, rng); break;
-        case FurnitureStyle::kCantileverChair: cantilever_chair(m, rng); break;
-        case FurnitureStyle::kBarStool: bar_stool(m, rng); break;
-        case FurnitureStyle::kFoldingChair: folding_chair(m, rng); break;
-        case FurnitureStyle::kBench: bench(m, rng); break;
-        case FurnitureStyle::kSofa: sofa(m, rng); break;
-        case FurnitureStyle::kLoungeChair: lounge_chair(m, rng); break;
-        case FurnitureStyle::kPedestalTable: pedestal_table(m, rng); break;
-        case FurnitureStyle::kCoffeeTable: coffee_table(m, rng); break;
-        case FurnitureStyle::kBalconyTable: balcony_table(m, rng); break;
-        case FurnitureStyle::kDesk: desk(m, rng); break;
-        case FurnitureStyle::kFoldingTable: folding_table(m, rng); break;
-        case FurnitureStyle::kSideTable: side_table(m, rng); break;
+        case FurnitureStyle::kFourLegChair:
+            four_leg_chair(m, rng);
+            break;
+        case FurnitureStyle::kOfficeChair:
+            office_chair(m, rng);
+            break;
+        case FurnitureStyle::kStool:
+            stool(m, rng);
+            break;
+        case FurnitureStyle::kArmchair:
+            armchair(m, rng);
+            break;
+        case FurnitureStyle::kRectTable:
+            rect_table(m, rng, 1.0, 1.8, 0.6, 0.9);
+            break;
+        case FurnitureStyle::kRoundTable:
+            round_table(m, rng);
+            break;
+        case FurnitureStyle::kConferenceTable:
+            conference_table(m, rng);
+            break;
+        case FurnitureStyle::kStackingChair:
+            stacking_chair(m, rng);
+            break;
+        case FurnitureStyle::kSledChair:
+            sled_chair(m, rng);
+            break;
+        case FurnitureStyle::kCantileverChair:
+            cantilever_chair(m, rng);
+            break;
+        case FurnitureStyle::kBarStool:
+            bar_stool(m, rng);
+            break;
+        case FurnitureStyle::kFoldingChair:
+            folding_chair(m, rng);
+            break;
+        case FurnitureStyle::kBench:
+            bench(m, rng);
+            break;
+        case FurnitureStyle::kSofa:
+            sofa(m, rng);
+            break;
+        case FurnitureStyle::kLoungeChair:
+            lounge_chair(m, rng);
+            break;
+        case FurnitureStyle::kPedestalTable:
+            pedestal_table(m, rng);
+            break;
+        case FurnitureStyle::kCoffeeTable:
+            coffee_table(m, rng);
+            break;
+        case FurnitureStyle::kBalconyTable:
+            balcony_table(m, rng);
+            break;
+        case FurnitureStyle::kDesk:
+            desk(m, rng);
+            break;
+        case FurnitureStyle::kFoldingTable:
+            folding_table(m, rng);
+            break;
+        case FurnitureStyle::kSideTable:
+            side_table(m, rng);
+            break;
     }
     // Centre the footprint on the origin, floor at z = 0.
     Eigen::Vector3d lo, hi;

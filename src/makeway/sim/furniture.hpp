@@ -33,9 +33,9 @@ enum class FurnitureStyle : std::uint8_t {
     kBench,
     kSofa,
     kLoungeChair,
-    kPedestalTable,    ///< a cafe table: one column on a cross foot
+    kPedestalTable,  ///< a cafe table: one column on a cross foot
     kCoffeeTable,
-    kBalconyTable,     ///< small, round, three thin legs
+    kBalconyTable,  ///< small, round, three thin legs
     kDesk,
     kFoldingTable,
     kSideTable,

@@ -1,7 +1,5 @@
 #include "makeway/sim/lidar.hpp"
 
-#include "makeway/sim/param_tables.hpp"
-
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -14,6 +12,7 @@
 
 #include "makeway/common/angles.hpp"
 #include "makeway/common/random.hpp"
+#include "makeway/sim/param_tables.hpp"
 
 namespace makeway::sim {
 namespace {
@@ -21,11 +20,13 @@ namespace {
 // The return's intensity as a Velodyne reports it (0..255): the surface's reflectivity, weakened
 // by the incidence angle (Lambertian) and by range beyond the sensor's near-field compensation,
 // with speckle (multiplicative) and electronic (additive) noise. Nothing here knows the class.
-float return_intensity(const RayHit& h, const LidarParams& p, double n_speckle, double n_electronic) {
+float return_intensity(const RayHit& h, const LidarParams& p, double n_speckle,
+                       double n_electronic) {
     const double range_gain = std::clamp(1.0 - h.range_m / p.intensity_falloff_m, 0.2, 1.0);
     const double lambert = std::max(0.05, static_cast<double>(h.cos_incidence));
-    const double value = h.reflectivity * lambert * range_gain * (1.0 + p.intensity_speckle * n_speckle) +
-                         p.intensity_noise * n_electronic;
+    const double value =
+        h.reflectivity * lambert * range_gain * (1.0 + p.intensity_speckle * n_speckle) +
+        p.intensity_noise * n_electronic;
     return static_cast<float>(std::clamp(std::round(value), 0.0, 255.0));
 }
 
@@ -40,7 +41,8 @@ struct RayResult {
 
 }  // namespace
 
-PoseAtTime sensor_pose_along(std::vector<Pose2> base_poses, double t0_s, double dt_s, const Isometry3& T_robot_sensor) {
+PoseAtTime sensor_pose_along(std::vector<Pose2> base_poses, double t0_s, double dt_s,
+                             const Isometry3& T_robot_sensor) {
     return [poses = std::move(base_poses), t0_s, dt_s, T_robot_sensor](double t_s) {
         const int steps = static_cast<int>(poses.size()) - 1;
         const double u = std::clamp((t_s - t0_s) / dt_s, 0.0, static_cast<double>(steps));
@@ -56,9 +58,9 @@ PoseAtTime sensor_pose_along(std::vector<Pose2> base_poses, double t0_s, double 
 
 const std::vector<double>& vlp32c_elevations_deg() {
     static const std::vector<double> kAngles{
-        -25.0,  -15.639, -11.31, -8.843, -7.254, -6.148, -5.333, -4.667, -4.0,  -3.667, -3.333,
-        -3.0,   -2.667,  -2.333, -2.0,   -1.667, -1.333, -1.0,   -0.667, -0.333, 0.0,   0.333,
-        0.667,  1.0,     1.333,  1.667,  2.333,  3.333,  4.667,  7.0,    10.333, 15.0};
+        -25.0, -15.639, -11.31, -8.843, -7.254, -6.148, -5.333, -4.667, -4.0,   -3.667, -3.333,
+        -3.0,  -2.667,  -2.333, -2.0,   -1.667, -1.333, -1.0,   -0.667, -0.333, 0.0,    0.333,
+        0.667, 1.0,     1.333,  1.667,  2.333,  3.333,  4.667,  7.0,    10.333, 15.0};
     return kAngles;
 }
 
@@ -68,16 +70,17 @@ int LidarParams::num_columns() const {
 
 std::vector<std::string> LidarParams::validate() const {
     std::vector<std::string> p = lidar_table().problems(*this);
-    if (elevations_deg.empty() || elevations_deg.size() > 256) p.push_back("elevations_deg must hold 1..256 angles");
+    if (elevations_deg.empty() || elevations_deg.size() > 256)
+        p.push_back("elevations_deg must hold 1..256 angles");
     for (double e : elevations_deg) {
         if (!(e > -90.0 && e < 90.0)) p.push_back("elevations_deg must lie in (-90, 90)");
     }
     return p;
 }
 
-PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtTime& T_world_sensor_at,
-                          double t_start_s, std::uint64_t seed, std::uint64_t sweep_index,
-                          SweepStats* stats) {
+PointCloud simulate_sweep(World& world, const LidarParams& params,
+                          const PoseAtTime& T_world_sensor_at, double t_start_s, std::uint64_t seed,
+                          std::uint64_t sweep_index, SweepStats* stats) {
     const int columns = params.num_columns();
     const int beams = params.num_beams();
     const double dt_column = params.sweep_duration_s() / columns;
@@ -134,12 +137,15 @@ PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtT
                 RayResult& r = o[b + k];
                 r.keep = false;
                 if (!h.hit) continue;
-                if (params.dropout > 0.0 && counter_uniform(stream, ~(ray_id + k)) < params.dropout) continue;
+                if (params.dropout > 0.0 && counter_uniform(stream, ~(ray_id + k)) < params.dropout)
+                    continue;
                 const double range = h.range_m + params.range_noise_m * (k == 0 ? n0 : n1);
                 if (range < params.min_range_m || range > params.max_range_m) continue;
                 r.keep = true;
                 r.xyz = static_cast<float>(range) * dirs_sensor[b + k];
-                r.intensity = params.intensity ? return_intensity(h, params, k == 0 ? m0 : m1, k == 0 ? e0 : e1) : 0.0f;
+                r.intensity = params.intensity
+                                  ? return_intensity(h, params, k == 0 ? m0 : m1, k == 0 ? e0 : e1)
+                                  : 0.0f;
                 r.label = static_cast<std::uint8_t>(h.label);
                 r.instance = h.instance;
             }
@@ -157,9 +163,10 @@ PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtT
         const int c0 = s * columns / slices, c1 = (s + 1) * columns / slices;
         world.set_time(t_start_s + 0.5 * (c0 + c1) * dt_column);
         if (params.num_threads > 1) {
-            tbb::parallel_for(tbb::blocked_range<int>(c0, c1, 16), [&](const tbb::blocked_range<int>& r) {
-                for (int c = r.begin(); c < r.end(); ++c) cast_column(c);
-            });
+            tbb::parallel_for(tbb::blocked_range<int>(c0, c1, 16),
+                              [&](const tbb::blocked_range<int>& r) {
+                                  for (int c = r.begin(); c < r.end(); ++c) cast_column(c);
+                              });
         } else {
             for (int c = c0; c < c1; ++c) cast_column(c);
         }
@@ -169,7 +176,11 @@ PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtT
     std::size_t n = 0;
     for (const RayResult& r : out) n += r.keep;
     PointCloud cloud;
-    cloud.resize(n, PointFields{.intensity = params.intensity, .ring = true, .time = true, .label = true, .instance = true});
+    cloud.resize(n, PointFields{.intensity = params.intensity,
+                                .ring = true,
+                                .time = true,
+                                .label = true,
+                                .instance = true});
     std::size_t i = 0;
     for (std::size_t k = 0; k < out.size(); ++k) {
         const RayResult& r = out[k];

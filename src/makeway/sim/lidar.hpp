@@ -21,14 +21,14 @@ struct LidarParams {
     double rate_hz = 10.0;          ///< turns per second
     double min_range_m = 0.4;
     double max_range_m = 100.0;
-    double range_noise_m = 0.015;   ///< Gaussian sigma (datasheet accuracy +-3 cm)
-    double dropout = 0.005;         ///< probability that a return is lost
+    double range_noise_m = 0.015;       ///< Gaussian sigma (datasheet accuracy +-3 cm)
+    double dropout = 0.005;             ///< probability that a return is lost
     double intensity_falloff_m = 60.0;  ///< intensity falls linearly to 20 % at this range
     double intensity_speckle = 0.1;     ///< relative sigma of the intensity's multiplicative noise
     double intensity_noise = 2.0;       ///< sigma of the additive intensity noise (0..255 scale)
-    int time_slices = 10;           ///< the world is moved this many times per sweep
-    int num_threads = 1;            ///< 1: serial; > 1: TBB with this many threads
-    bool use_packets = true;        ///< Embree 8-ray packets (false: one ray at a time)
+    int time_slices = 10;               ///< the world is moved this many times per sweep
+    int num_threads = 1;                ///< 1: serial; > 1: TBB with this many threads
+    bool use_packets = true;            ///< Embree 8-ray packets (false: one ray at a time)
     /// Each return's intensity, with its noise. false: the sweep has no intensity channel, and the
     /// surface model and two of the three noise draws per return are skipped (World's surface
     /// model is set to match), for runs where nothing reads it; positions, dropout, ranges, labels
@@ -47,7 +47,8 @@ using PoseAtTime = std::function<Isometry3(double t_s)>;
 /// The sensor's pose through a stretch of driving: the robot's base at `base_poses[i]` at time
 /// t0_s + i dt_s, linear in between (yaw along the shorter turn), held at the ends; the sensor
 /// mounted at T_robot_sensor. Needs at least two poses.
-PoseAtTime sensor_pose_along(std::vector<Pose2> base_poses, double t0_s, double dt_s, const Isometry3& T_robot_sensor);
+PoseAtTime sensor_pose_along(std::vector<Pose2> base_poses, double t0_s, double dt_s,
+                             const Isometry3& T_robot_sensor);
 
 struct SweepStats {
     std::size_t rays = 0;
@@ -58,8 +59,8 @@ struct SweepStats {
 /// (uncorrected, as a real sensor gives them), with ring, time since t_start_s, label and
 /// instance. The world is moved to the middle of each time slice. `seed` and `sweep_index` make
 /// noise and dropout reproducible, identical for any thread count.
-PointCloud simulate_sweep(World& world, const LidarParams& params, const PoseAtTime& T_world_sensor_at,
-                          double t_start_s, std::uint64_t seed, std::uint64_t sweep_index,
-                          SweepStats* stats = nullptr);
+PointCloud simulate_sweep(World& world, const LidarParams& params,
+                          const PoseAtTime& T_world_sensor_at, double t_start_s, std::uint64_t seed,
+                          std::uint64_t sweep_index, SweepStats* stats = nullptr);
 
 }  // namespace makeway::sim

@@ -47,7 +47,8 @@ void add_strut(TriangleMesh& mesh, const Eigen::Vector3d& a_m, const Eigen::Vect
     if (length <= 0.0) return;
     // Frame with z along the strut.
     const Eigen::Vector3d z = axis / length;
-    const Eigen::Vector3d helper = std::abs(z.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
+    const Eigen::Vector3d helper =
+        std::abs(z.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
     const Eigen::Vector3d x = helper.cross(z).normalized();
     const Eigen::Vector3d y = z.cross(x);
     const double h = 0.5 * thickness_m;
@@ -68,7 +69,8 @@ void add_cylinder(TriangleMesh& mesh, const Eigen::Vector3d& base_m, double radi
     const int ring = static_cast<int>(mesh.vertices_m.size());
     for (int i = 0; i < segments; ++i) {
         const double a = 2.0 * kPi * i / segments;
-        const Eigen::Vector3d p = base_m + radius_m * Eigen::Vector3d(std::cos(a), std::sin(a), 0.0);
+        const Eigen::Vector3d p =
+            base_m + radius_m * Eigen::Vector3d(std::cos(a), std::sin(a), 0.0);
         add_vertex(mesh, p);
         add_vertex(mesh, p + Eigen::Vector3d(0, 0, height_m));
     }
@@ -82,7 +84,8 @@ void add_cylinder(TriangleMesh& mesh, const Eigen::Vector3d& base_m, double radi
     }
 }
 
-void add_sphere(TriangleMesh& mesh, const Eigen::Vector3d& centre_m, double radius_m, int segments) {
+void add_sphere(TriangleMesh& mesh, const Eigen::Vector3d& centre_m, double radius_m,
+                int segments) {
     const int rings = segments / 2;
     const int o = static_cast<int>(mesh.vertices_m.size());
     for (int r = 0; r <= rings; ++r) {

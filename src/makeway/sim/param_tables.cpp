@@ -7,9 +7,13 @@ const ParamTable<SceneGenParams>& scene_gen_table() {
     static const ParamTable<S> table = [] {
         ParamTable<S> t;
         t.add("seed", &S::seed, closed(0.0, 1.8446744073709552e19), "")
-            .choice("density", &S::density, {{"sparse", Density::kSparse}, {"medium", Density::kMedium}, {"dense", Density::kDense}},
+            .choice("density", &S::density,
+                    {{"sparse", Density::kSparse},
+                     {"medium", Density::kMedium},
+                     {"dense", Density::kDense}},
                     "sparse | medium | dense (for layout: random)")
-            .choice("layout", &S::layout, {{"study_space", Layout::kStudySpace}, {"random", Layout::kRandom}},
+            .choice("layout", &S::layout,
+                    {{"study_space", Layout::kStudySpace}, {"random", Layout::kRandom}},
                     "study_space (the paper's room: 12 tables, 22 chairs) | random")
             .add("people", &S::people, "walkers and chair pushers");
         return t;
@@ -28,13 +32,18 @@ const ParamTable<LidarParams>& lidar_table() {
             .add("range_noise_m", &L::range_noise_m, closed(0.0, 1.0), "Gaussian sigma")
             .add("dropout", &L::dropout, closed(0.0, 1.0), "probability a return is lost")
             .add("intensity_falloff_m", &L::intensity_falloff_m, above(0.0, 1000.0),
-                 "intensity: each surface's reflectivity x |cos incidence|, falling linearly to 20 % at this range ...")
-            .add("intensity_speckle", &L::intensity_speckle, closed(0.0, 1.0), "... with this relative sigma ...")
-            .add("intensity_noise", &L::intensity_noise, closed(0.0, 50.0), "... and this additive sigma (0..255)")
-            .add("time_slices", &L::time_slices, closed(1, 3600), "the world moves this often per sweep")
+                 "intensity: each surface's reflectivity x |cos incidence|, falling linearly to 20 "
+                 "% at this range ...")
+            .add("intensity_speckle", &L::intensity_speckle, closed(0.0, 1.0),
+                 "... with this relative sigma ...")
+            .add("intensity_noise", &L::intensity_noise, closed(0.0, 50.0),
+                 "... and this additive sigma (0..255)")
+            .add("time_slices", &L::time_slices, closed(1, 3600),
+                 "the world moves this often per sweep")
             .add("num_threads", &L::num_threads, closed(1, 256), "ray-casting threads")
             .add("use_packets", &L::use_packets, "Embree 16-ray packets")
-            .require([](const L& l) { return l.min_range_m < l.max_range_m; }, "min_range_m must be in [0, max_range_m)");
+            .require([](const L& l) { return l.min_range_m < l.max_range_m; },
+                     "min_range_m must be in [0, max_range_m)");
         return t;
     }();
     return table;
@@ -44,9 +53,12 @@ const ParamTable<OdometryNoiseParams>& wheel_noise_table() {
     using O = OdometryNoiseParams;
     static const ParamTable<O> table = [] {
         ParamTable<O> t;
-        t.add("translation_noise_per_m", &O::translation_noise_per_m, closed(0.0, 1.0), "distance error sigma after 1 m [m]")
-            .add("heading_noise_per_rad", &O::heading_noise_per_rad, closed(0.0, 1.0), "heading error sigma after turning 1 rad [rad]")
-            .add("heading_noise_per_m", &O::heading_noise_per_m, closed(0.0, 1.0), "heading drift sigma after 1 m [rad]");
+        t.add("translation_noise_per_m", &O::translation_noise_per_m, closed(0.0, 1.0),
+              "distance error sigma after 1 m [m]")
+            .add("heading_noise_per_rad", &O::heading_noise_per_rad, closed(0.0, 1.0),
+                 "heading error sigma after turning 1 rad [rad]")
+            .add("heading_noise_per_m", &O::heading_noise_per_m, closed(0.0, 1.0),
+                 "heading drift sigma after 1 m [rad]");
         return t;
     }();
     return table;

@@ -1,7 +1,5 @@
 #include "makeway/sim/robot.hpp"
 
-#include "makeway/sim/param_tables.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -9,6 +7,7 @@
 #include <utility>
 
 #include "makeway/common/angles.hpp"
+#include "makeway/sim/param_tables.hpp"
 
 namespace makeway::sim {
 namespace {
@@ -22,34 +21,41 @@ void add_rectangle_outline(std::vector<Eigen::Vector2d>& out, const Eigen::Vecto
                            const Eigen::Vector2d& size, double yaw, double spacing_m) {
     const Eigen::Rotation2Dd R(yaw);
     const Eigen::Vector2d h = 0.5 * size;
-    const Eigen::Vector2d corners[4] = {{-h.x(), -h.y()}, {h.x(), -h.y()}, {h.x(), h.y()}, {-h.x(), h.y()}};
+    const Eigen::Vector2d corners[4] = {
+        {-h.x(), -h.y()}, {h.x(), -h.y()}, {h.x(), h.y()}, {-h.x(), h.y()}};
     for (int k = 0; k < 4; ++k) {
         const Eigen::Vector2d a = corners[k], b = corners[(k + 1) % 4];
         const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / spacing_m)));
-        for (int i = 0; i < n; ++i) out.push_back(centre + R * (a + (b - a) * (static_cast<double>(i) / n)));
+        for (int i = 0; i < n; ++i)
+            out.push_back(centre + R * (a + (b - a) * (static_cast<double>(i) / n)));
     }
 }
 
 // Surface samples of the mesh parts the body can hit (between its ground clearance and its top),
 // projected to the floor, thinned on a grid.
-std::vector<Eigen::Vector2d> low_surface_points(const TriangleMesh& mesh, const BodyHeights& body, double spacing_m) {
+std::vector<Eigen::Vector2d> low_surface_points(const TriangleMesh& mesh, const BodyHeights& body,
+                                                double spacing_m) {
     std::set<std::pair<long, long>> seen;
     std::vector<Eigen::Vector2d> out;
     auto keep = [&](const Eigen::Vector3d& p) {
         if (!body.can_hit(p.z())) return;
-        const auto key = std::make_pair(std::lround(p.x() / (0.5 * spacing_m)), std::lround(p.y() / (0.5 * spacing_m)));
+        const auto key = std::make_pair(std::lround(p.x() / (0.5 * spacing_m)),
+                                        std::lround(p.y() / (0.5 * spacing_m)));
         if (seen.insert(key).second) out.emplace_back(p.x(), p.y());
     };
     for (const auto& t : mesh.triangles) {
         const Eigen::Vector3d a = mesh.vertices_m[t[0]].cast<double>();
         const Eigen::Vector3d b = mesh.vertices_m[t[1]].cast<double>();
         const Eigen::Vector3d c = mesh.vertices_m[t[2]].cast<double>();
-        if (std::min({a.z(), b.z(), c.z()}) > body.top_m || std::max({a.z(), b.z(), c.z()}) < body.ground_clearance_m) continue;
+        if (std::min({a.z(), b.z(), c.z()}) > body.top_m ||
+            std::max({a.z(), b.z(), c.z()}) < body.ground_clearance_m)
+            continue;
         const double longest = std::max({(b - a).norm(), (c - a).norm(), (c - b).norm()});
         const int n = std::max(1, static_cast<int>(std::ceil(longest / spacing_m)));
         for (int i = 0; i <= n; ++i) {
             for (int j = 0; i + j <= n; ++j) {
-                keep(a + (b - a) * (static_cast<double>(i) / n) + (c - a) * (static_cast<double>(j) / n));
+                keep(a + (b - a) * (static_cast<double>(i) / n) +
+                     (c - a) * (static_cast<double>(j) / n));
             }
         }
     }
@@ -58,18 +64,21 @@ std::vector<Eigen::Vector2d> low_surface_points(const TriangleMesh& mesh, const 
 
 }  // namespace
 
-bool robot_caused_contact(const Pose2& pose, double v, double w, const Eigen::Vector2d& contact_world,
-                          double length_m, double width_m, double threshold) {
+bool robot_caused_contact(const Pose2& pose, double v, double w,
+                          const Eigen::Vector2d& contact_world, double length_m, double width_m,
+                          double threshold) {
     return speed_toward_contact(pose, v, w, contact_world, length_m, width_m) > threshold;
 }
 
-double speed_toward_contact(const Pose2& pose, double v, double w, const Eigen::Vector2d& contact_world,
-                            double length_m, double width_m) {
+double speed_toward_contact(const Pose2& pose, double v, double w,
+                            const Eigen::Vector2d& contact_world, double length_m, double width_m) {
     const Eigen::Vector2d r = to_isometry(pose).inverse() * contact_world;  // robot frame
     // The outward normal of the side nearest the contact (the point lies in or on the footprint).
-    const double to_front = 0.5 * length_m - std::abs(r.x()), to_side = 0.5 * width_m - std::abs(r.y());
-    const Eigen::Vector2d normal = to_front <= to_side ? Eigen::Vector2d(r.x() >= 0.0 ? 1.0 : -1.0, 0.0)
-                                                       : Eigen::Vector2d(0.0, r.y() >= 0.0 ? 1.0 : -1.0);
+    const double to_front = 0.5 * length_m - std::abs(r.x()),
+                 to_side = 0.5 * width_m - std::abs(r.y());
+    const Eigen::Vector2d normal = to_front <= to_side
+                                       ? Eigen::Vector2d(r.x() >= 0.0 ? 1.0 : -1.0, 0.0)
+                                       : Eigen::Vector2d(0.0, r.y() >= 0.0 ? 1.0 : -1.0);
     const Eigen::Vector2d body_velocity(v - w * r.y(), w * r.x());  // v x-hat + w z-hat x r
     return body_velocity.dot(normal);
 }
@@ -94,9 +103,12 @@ RobotState step_diff_drive(const RobotState& state, const VelocityCommand& comma
     return next;
 }
 
-std::vector<std::string> OdometryNoiseParams::validate() const { return wheel_noise_table().problems(*this); }
+std::vector<std::string> OdometryNoiseParams::validate() const {
+    return wheel_noise_table().problems(*this);
+}
 
-WheelOdometry::WheelOdometry(const Pose2& start, const OdometryNoiseParams& params, std::uint64_t seed)
+WheelOdometry::WheelOdometry(const Pose2& start, const OdometryNoiseParams& params,
+                             std::uint64_t seed)
     : pose_(start), params_(params), rng_(make_rng(seed, 7)) {}
 
 void WheelOdometry::update(const Pose2& before, const Pose2& after) {
@@ -107,9 +119,9 @@ void WheelOdometry::update(const Pose2& before, const Pose2& after) {
     // Random-walk drift: the variance of each error grows linearly with distance and angle.
     const double dist_error = normal(rng_, 0.0, params_.translation_noise_per_m * std::sqrt(dist));
     const double scale = dist > 1e-12 ? 1.0 + dist_error / dist : 1.0;
-    const double yaw_sigma = std::sqrt(params_.heading_noise_per_rad * params_.heading_noise_per_rad *
-                                           std::abs(d.yaw_rad) +
-                                       params_.heading_noise_per_m * params_.heading_noise_per_m * dist);
+    const double yaw_sigma = std::sqrt(
+        params_.heading_noise_per_rad * params_.heading_noise_per_rad * std::abs(d.yaw_rad) +
+        params_.heading_noise_per_m * params_.heading_noise_per_m * dist);
     const double dyaw = d.yaw_rad + normal(rng_, 0.0, yaw_sigma);
     const Pose2 noisy{d.x_m * scale, d.y_m * scale, dyaw};
     pose_ = to_pose2(to_isometry(pose_) * to_isometry(noisy));
@@ -124,7 +136,8 @@ CollisionChecker::CollisionChecker(const Scene& scene, const std::vector<ObjectM
                               Eigen::Vector2d(d.norm() + w.thickness_m, w.thickness_m),
                               std::atan2(d.y(), d.x()), spacing_m);
     }
-    for (const Pillar& p : scene.pillars) add_rectangle_outline(static_points_, p.centre_m, p.size_m, 0.0, spacing_m);
+    for (const Pillar& p : scene.pillars)
+        add_rectangle_outline(static_points_, p.centre_m, p.size_m, 0.0, spacing_m);
     for (const ObjectModel& m : models) {
         object_points_.push_back(low_surface_points(m.mesh_object, robot.body(), spacing_m));
         double r = 0.0;
@@ -165,24 +178,29 @@ bool CollisionChecker::collides(const Pose2& pose, double t_s, Against against) 
     const Isometry2 T_robot_world = to_isometry(pose).inverse();
     const double hl = 0.5 * robot_.length_m, hw = 0.5 * robot_.width_m;
     bool inside = false;
-    for_each_point_near(Eigen::Vector2d(pose.x_m, pose.y_m), robot_.circumscribed_radius_m() + 1e-9, t_s,
-                        [&](const Eigen::Vector2d& p_world) {
-                            const Eigen::Vector2d p = T_robot_world * p_world;
-                            inside |= std::abs(p.x()) <= hl && std::abs(p.y()) <= hw;
-                        }, against);
+    for_each_point_near(
+        Eigen::Vector2d(pose.x_m, pose.y_m), robot_.circumscribed_radius_m() + 1e-9, t_s,
+        [&](const Eigen::Vector2d& p_world) {
+            const Eigen::Vector2d p = T_robot_world * p_world;
+            inside |= std::abs(p.x()) <= hl && std::abs(p.y()) <= hw;
+        },
+        against);
     return inside;
 }
 
-std::optional<Eigen::Vector2d> CollisionChecker::contact_point(const Pose2& pose, double t_s, Against against) const {
+std::optional<Eigen::Vector2d> CollisionChecker::contact_point(const Pose2& pose, double t_s,
+                                                               Against against) const {
     const Isometry2 T_robot_world = to_isometry(pose).inverse();
     const double hl = 0.5 * robot_.length_m, hw = 0.5 * robot_.width_m;
     Eigen::Vector2d sum = Eigen::Vector2d::Zero();
     int n = 0;
-    for_each_point_near(Eigen::Vector2d(pose.x_m, pose.y_m), robot_.circumscribed_radius_m() + 1e-9, t_s,
-                        [&](const Eigen::Vector2d& p_world) {
-                            const Eigen::Vector2d p = T_robot_world * p_world;
-                            if (std::abs(p.x()) <= hl && std::abs(p.y()) <= hw) sum += p_world, ++n;
-                        }, against);
+    for_each_point_near(
+        Eigen::Vector2d(pose.x_m, pose.y_m), robot_.circumscribed_radius_m() + 1e-9, t_s,
+        [&](const Eigen::Vector2d& p_world) {
+            const Eigen::Vector2d p = T_robot_world * p_world;
+            if (std::abs(p.x()) <= hl && std::abs(p.y()) <= hw) sum += p_world, ++n;
+        },
+        against);
     if (n == 0) return std::nullopt;
     return Eigen::Vector2d(sum / n);
 }
@@ -192,7 +210,8 @@ double CollisionChecker::clearance_m(const Pose2& pose, double t_s, double max_m
     const double hl = 0.5 * robot_.length_m, hw = 0.5 * robot_.width_m;
     double best = max_m;
     bool inside = false;
-    for_each_point_near(Eigen::Vector2d(pose.x_m, pose.y_m), robot_.circumscribed_radius_m() + max_m + 1e-9, t_s,
+    for_each_point_near(Eigen::Vector2d(pose.x_m, pose.y_m),
+                        robot_.circumscribed_radius_m() + max_m + 1e-9, t_s,
                         [&](const Eigen::Vector2d& p_world) {
                             const Eigen::Vector2d p = T_robot_world * p_world;
                             const double dx = std::max(std::abs(p.x()) - hl, 0.0);
@@ -205,7 +224,8 @@ double CollisionChecker::clearance_m(const Pose2& pose, double t_s, double max_m
 
 std::vector<Eigen::Vector2d> CollisionChecker::obstacle_points(double t_s) const {
     std::vector<Eigen::Vector2d> out;
-    for_each_point_near(Eigen::Vector2d::Zero(), 1e9, t_s, [&](const Eigen::Vector2d& p) { out.push_back(p); });
+    for_each_point_near(Eigen::Vector2d::Zero(), 1e9, t_s,
+                        [&](const Eigen::Vector2d& p) { out.push_back(p); });
     return out;
 }
 

@@ -16,7 +16,8 @@
 
 namespace makeway::sim {
 
-/// The robot the simulator drives is the robot the system is told it has (common/robot_description.hpp).
+/// The robot the simulator drives is the robot the system is told it has
+/// (common/robot_description.hpp).
 using RobotParams = RobotDescription;
 
 struct RobotState {
@@ -33,31 +34,35 @@ RobotState step_diff_drive(const RobotState& state, const VelocityCommand& comma
 /// The body's speed toward a contact at `contact_world` [m/s]: the velocity of the body at the
 /// contact point (rigid body: v along the heading plus w x r) along the outward normal of the
 /// footprint side nearest the contact.
-double speed_toward_contact(const Pose2& pose, double v_mps, double w_radps, const Eigen::Vector2d& contact_world,
-                            double length_m, double width_m);
+double speed_toward_contact(const Pose2& pose, double v_mps, double w_radps,
+                            const Eigen::Vector2d& contact_world, double length_m, double width_m);
 
 /// Whether a contact at `contact_world` was the robot's doing: the velocity of the body at the
 /// contact point (rigid body: v along the heading plus w x r) has a component of more than
 /// `threshold_mps` along the outward normal of the footprint side nearest the contact.
-bool robot_caused_contact(const Pose2& pose, double v_mps, double w_radps, const Eigen::Vector2d& contact_world,
-                          double length_m, double width_m, double threshold_mps = 0.05);
+bool robot_caused_contact(const Pose2& pose, double v_mps, double w_radps,
+                          const Eigen::Vector2d& contact_world, double length_m, double width_m,
+                          double threshold_mps = 0.05);
 
 /// Wheel odometry drift: noise on each increment, proportional to the motion.
 struct OdometryNoiseParams {
-    double translation_noise_per_m = 0.02;  ///< distance error sigma after 1 m [m]; grows with sqrt(distance)
-    double heading_noise_per_rad = 0.03;    ///< heading error sigma after turning 1 rad [rad]; grows with sqrt
-    double heading_noise_per_m = 0.01;      ///< heading drift sigma after 1 m [rad]; grows with sqrt(distance)
+    double translation_noise_per_m =
+        0.02;  ///< distance error sigma after 1 m [m]; grows with sqrt(distance)
+    double heading_noise_per_rad =
+        0.03;  ///< heading error sigma after turning 1 rad [rad]; grows with sqrt
+    double heading_noise_per_m =
+        0.01;  ///< heading drift sigma after 1 m [rad]; grows with sqrt(distance)
     std::vector<std::string> validate() const;
 };
 
 class WheelOdometry {
-public:
+  public:
     WheelOdometry(const Pose2& start, const OdometryNoiseParams& params, std::uint64_t seed);
     /// Integrates the motion between two true poses, with noise.
     void update(const Pose2& true_before, const Pose2& true_after);
     const Pose2& pose() const { return pose_; }
 
-private:
+  private:
     Pose2 pose_;
     OdometryNoiseParams params_;
     Rng rng_;
@@ -66,9 +71,9 @@ private:
 /// Footprint collision checks against walls, pillars, furniture (the parts of its mesh below the
 /// robot's top) and people, at any time of the scene.
 class CollisionChecker {
-public:
-    CollisionChecker(const Scene& scene, const std::vector<ObjectModel>& models, const RobotParams& robot,
-                     double spacing_m = 0.02);
+  public:
+    CollisionChecker(const Scene& scene, const std::vector<ObjectModel>& models,
+                     const RobotParams& robot, double spacing_m = 0.02);
 
     /// What a check looks at.
     enum class Against { kEverything, kStructureAndFurniture, kPeople, kStructure, kFurniture };
@@ -76,13 +81,14 @@ public:
     bool collides(const Pose2& pose, double t_s, Against against = Against::kEverything) const;
     /// Where the footprint at `pose` overlaps something (of `against`) at t_s: the mean of the
     /// obstacle points inside it, world frame; nothing when it overlaps nothing.
-    std::optional<Eigen::Vector2d> contact_point(const Pose2& pose, double t_s, Against against) const;
+    std::optional<Eigen::Vector2d> contact_point(const Pose2& pose, double t_s,
+                                                 Against against) const;
     /// Distance from the footprint to the nearest obstacle at t_s [m], capped at max_m.
     double clearance_m(const Pose2& pose, double t_s, double max_m = 5.0) const;
     /// Every obstacle point at t_s, floor plane [m] (for rasterising).
     std::vector<Eigen::Vector2d> obstacle_points(double t_s) const;
 
-private:
+  private:
     template <typename Fn>
     void for_each_point_near(const Eigen::Vector2d& centre, double radius, double t_s, Fn&& fn,
                              Against against = Against::kEverything) const;

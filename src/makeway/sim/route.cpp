@@ -1,7 +1,7 @@
 #include "makeway/sim/route.hpp"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <queue>
 
@@ -35,7 +35,8 @@ NavGrid make_nav_grid(const Scene& scene, const CollisionChecker& checker, const
     std::vector<Eigen::Vector2i> disk;
     for (int dy = -r; dy <= r; ++dy) {
         for (int dx = -r; dx <= r; ++dx) {
-            if (std::hypot(dx, dy) * resolution_m <= inflation_m + 0.5 * resolution_m) disk.emplace_back(dx, dy);
+            if (std::hypot(dx, dy) * resolution_m <= inflation_m + 0.5 * resolution_m)
+                disk.emplace_back(dx, dy);
         }
     }
     g.blocked.assign(obstacle.size(), 0);
@@ -43,7 +44,8 @@ NavGrid make_nav_grid(const Scene& scene, const CollisionChecker& checker, const
         for (int x = 0; x < g.width; ++x) {
             if (!obstacle[y * g.width + x]) continue;
             for (const auto& d : disk) {
-                if (g.inside(x + d.x(), y + d.y())) g.blocked[(y + d.y()) * g.width + x + d.x()] = 1;
+                if (g.inside(x + d.x(), y + d.y()))
+                    g.blocked[(y + d.y()) * g.width + x + d.x()] = 1;
             }
         }
     }
@@ -55,7 +57,8 @@ namespace {
 bool line_of_sight(const NavGrid& g, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     const int steps = static_cast<int>(std::ceil((b - a).norm() / (0.5 * g.resolution_m)));
     for (int i = 0; i <= steps; ++i) {
-        const Eigen::Vector2i c = g.cell_of(a + (b - a) * (steps ? static_cast<double>(i) / steps : 0.0));
+        const Eigen::Vector2i c =
+            g.cell_of(a + (b - a) * (steps ? static_cast<double>(i) / steps : 0.0));
         if (g.is_blocked(c.x(), c.y())) return false;
     }
     return true;
@@ -63,7 +66,8 @@ bool line_of_sight(const NavGrid& g, const Eigen::Vector2d& a, const Eigen::Vect
 
 }  // namespace
 
-std::optional<std::vector<Eigen::Vector2d>> find_route(const NavGrid& g, const Eigen::Vector2d& from_m,
+std::optional<std::vector<Eigen::Vector2d>> find_route(const NavGrid& g,
+                                                       const Eigen::Vector2d& from_m,
                                                        const Eigen::Vector2d& to_m) {
     const Eigen::Vector2i s = g.cell_of(from_m), t = g.cell_of(to_m);
     if (g.is_blocked(s.x(), s.y()) || g.is_blocked(t.x(), t.y())) return std::nullopt;
@@ -98,7 +102,8 @@ std::optional<std::vector<Eigen::Vector2d>> find_route(const NavGrid& g, const E
     }
     if (parent[goal] < 0 && goal != start) return std::nullopt;
     std::vector<Eigen::Vector2d> cells;
-    for (int idx = goal; idx >= 0; idx = parent[idx]) cells.push_back(g.centre_of(idx % g.width, idx / g.width));
+    for (int idx = goal; idx >= 0; idx = parent[idx])
+        cells.push_back(g.centre_of(idx % g.width, idx / g.width));
     std::reverse(cells.begin(), cells.end());
     cells.front() = from_m;
     cells.back() = to_m;
@@ -126,10 +131,12 @@ std::optional<std::vector<Eigen::Vector2d>> mission_route(const Scene& scene, co
     return a;
 }
 
-std::optional<std::vector<Eigen::Vector2d>> drive_route(const Scene& scene, const CollisionChecker& checker,
+std::optional<std::vector<Eigen::Vector2d>> drive_route(const Scene& scene,
+                                                        const CollisionChecker& checker,
                                                         const RobotParams& robot) {
     for (double margin : {0.30, 0.20, 0.10, 0.05}) {
-        const NavGrid grid = make_nav_grid(scene, checker, robot, 0.0, 0.05, robot.circumscribed_radius_m() + margin);
+        const NavGrid grid = make_nav_grid(scene, checker, robot, 0.0, 0.05,
+                                           robot.circumscribed_radius_m() + margin);
         if (auto route = mission_route(scene, grid)) return route;
     }
     return std::nullopt;

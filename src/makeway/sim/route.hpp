@@ -17,7 +17,9 @@ struct NavGrid {
     std::vector<std::uint8_t> blocked;  ///< row-major, 1 = the robot centre cannot be here
 
     bool inside(int ix, int iy) const { return ix >= 0 && iy >= 0 && ix < width && iy < height; }
-    bool is_blocked(int ix, int iy) const { return !inside(ix, iy) || blocked[iy * width + ix] != 0; }
+    bool is_blocked(int ix, int iy) const {
+        return !inside(ix, iy) || blocked[iy * width + ix] != 0;
+    }
     Eigen::Vector2i cell_of(const Eigen::Vector2d& p_m) const;
     Eigen::Vector2d centre_of(int ix, int iy) const;
 };
@@ -28,7 +30,8 @@ NavGrid make_nav_grid(const Scene& scene, const CollisionChecker& checker, const
 
 /// Shortest route between two points (A*, 8-connected), shortened by line-of-sight; nullopt when
 /// either end is blocked or no route exists.
-std::optional<std::vector<Eigen::Vector2d>> find_route(const NavGrid& grid, const Eigen::Vector2d& from_m,
+std::optional<std::vector<Eigen::Vector2d>> find_route(const NavGrid& grid,
+                                                       const Eigen::Vector2d& from_m,
                                                        const Eigen::Vector2d& to_m);
 
 /// start -> waypoint -> goal, or nullopt.
@@ -37,7 +40,8 @@ std::optional<std::vector<Eigen::Vector2d>> mission_route(const Scene& scene, co
 /// The route the simulated robot drives on `--route auto`: the mission route with the widest
 /// clearance margin that still connects (margins of 0.30, 0.20, 0.10, 0.05 m beyond the
 /// circumscribed radius are tried), so that a path follower cutting corners stays clear.
-std::optional<std::vector<Eigen::Vector2d>> drive_route(const Scene& scene, const CollisionChecker& checker,
+std::optional<std::vector<Eigen::Vector2d>> drive_route(const Scene& scene,
+                                                        const CollisionChecker& checker,
                                                         const RobotParams& robot);
 
 /// Length of a polyline [m].

@@ -1,7 +1,7 @@
 #pragma once
-// An indoor scene as plain data: the building (floor, walls with door gaps, pillars), the furniture,
-// the people, and the robot's mission (start, waypoint, goal). Scenes are YAML files a person can
-// read and edit (io/scene_io); everything else in sim/ is computed from this.
+// An indoor scene as plain data: the building (floor, walls with door gaps, pillars), the
+// furniture, the people, and the robot's mission (start, waypoint, goal). Scenes are YAML files a
+// person can read and edit (io/scene_io); everything else in sim/ is computed from this.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -30,20 +30,23 @@ struct Pillar {
 
 /// A chair or table: either a procedural model (style + model_seed) or a user mesh.
 struct SceneObject {
-    std::uint32_t id = 0;          ///< instance id, > 0, unique in the scene
+    std::uint32_t id = 0;  ///< instance id, > 0, unique in the scene
     ObjectClass cls = ObjectClass::kChair;
     std::string style;             ///< furniture style name; empty for a user mesh
     std::uint64_t model_seed = 0;  ///< dimensions of the procedural model
     std::string mesh_file;         ///< user mesh (OBJ/PLY/STL/DAE), relative to the scene file
     double scale = 1.0;            ///< applied to a user mesh (on top of its units)
     std::string units = "m";       ///< a user mesh's length unit: m, cm, mm, in, ft
-    std::string up_axis = "z";     ///< a user mesh's up (Collada files are turned Z-up by their own declaration first)
-    std::string forward_axis = "x";  ///< a user mesh's front (where a sitter faces; a table's length)
-    bool recentre = true;          ///< a user mesh's footprint centred on its origin, its lowest point on the floor
+    std::string up_axis =
+        "z";  ///< a user mesh's up (Collada files are turned Z-up by their own declaration first)
+    std::string forward_axis =
+        "x";  ///< a user mesh's front (where a sitter faces; a table's length)
+    bool recentre =
+        true;  ///< a user mesh's footprint centred on its origin, its lowest point on the floor
     /// The loaded user mesh in its object frame (scaled); filled by io when the scene is read.
     std::shared_ptr<const TriangleMesh> user_mesh;
-    Pose2 pose;                    ///< T_world_object on the floor at time 0
-    std::uint32_t table_id = 0;    ///< the table a chair belongs to, 0 for none
+    Pose2 pose;                  ///< T_world_object on the floor at time 0
+    std::uint32_t table_id = 0;  ///< the table a chair belongs to, 0 for none
 };
 
 /// A person walking a closed route at constant speed.
@@ -85,7 +88,8 @@ struct Scene {
 
     /// Whether (x, y) lies on the room's floor (floor_min_m .. floor_max_m, inclusive).
     bool on_floor(const Eigen::Vector2d& xy) const {
-        return (xy.array() >= floor_min_m.array()).all() && (xy.array() <= floor_max_m.array()).all();
+        return (xy.array() >= floor_min_m.array()).all() &&
+               (xy.array() <= floor_max_m.array()).all();
     }
 
     /// Every structural problem (duplicate ids, a pusher of a missing chair, ...); empty if valid.

@@ -34,7 +34,8 @@ std::vector<ObjectModel> models_of(const Scene& scene) {
     return models;
 }
 
-Pose2 object_pose_at(const Scene& scene, std::size_t index, double t_s, Eigen::Vector2d* velocity_mps) {
+Pose2 object_pose_at(const Scene& scene, std::size_t index, double t_s,
+                     Eigen::Vector2d* velocity_mps) {
     const SceneObject& o = scene.objects[index];
     Pose2 pose = o.pose;
     if (velocity_mps) velocity_mps->setZero();
@@ -52,8 +53,8 @@ Pose2 object_pose_at(const Scene& scene, std::size_t index, double t_s, Eigen::V
     return pose;
 }
 
-std::vector<ObjectState> object_states_at(const Scene& scene, const std::vector<ObjectModel>& models,
-                                          double t_s) {
+std::vector<ObjectState> object_states_at(const Scene& scene,
+                                          const std::vector<ObjectModel>& models, double t_s) {
     std::vector<ObjectState> out;
     out.reserve(scene.objects.size());
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
@@ -94,7 +95,9 @@ TriangleMesh make_person_mesh() {
     return m;
 }
 
-std::vector<ObjectEstimate> object_estimates_at(const Scene& scene, const std::vector<ObjectModel>& models, double t_s) {
+std::vector<ObjectEstimate> object_estimates_at(const Scene& scene,
+                                                const std::vector<ObjectModel>& models,
+                                                double t_s) {
     std::vector<ObjectEstimate> out;
     for (const ObjectState& s : object_states_at(scene, models, t_s)) {
         ObjectEstimate o;

@@ -36,12 +36,13 @@ Pose2 object_pose_at(const Scene& scene, std::size_t index, double t_s,
                      Eigen::Vector2d* velocity_mps = nullptr);
 
 /// Every object at t_s; `models` is model_of() of each object, in order.
-std::vector<ObjectState> object_states_at(const Scene& scene, const std::vector<ObjectModel>& models,
-                                          double t_s);
+std::vector<ObjectState> object_states_at(const Scene& scene,
+                                          const std::vector<ObjectModel>& models, double t_s);
 
 /// object_states_at() as the object map's type (id, class, box, velocity; existence 1): the truth
 /// the benchmark's risk metrics and the truth-fed baselines use.
-std::vector<ObjectEstimate> object_estimates_at(const Scene& scene, const std::vector<ObjectModel>& models, double t_s);
+std::vector<ObjectEstimate> object_estimates_at(const Scene& scene,
+                                                const std::vector<ObjectModel>& models, double t_s);
 
 /// Position of a walker at t_s [m] and heading [rad].
 Eigen::Vector2d walker_position_at(const Walker& walker, double t_s, double* heading_rad = nullptr);

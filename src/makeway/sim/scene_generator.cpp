@@ -22,16 +22,19 @@ struct Counts {
 
 Counts counts_for(Density d) {
     switch (d) {
-        case Density::kSparse: return {12, 15, 9, 11, 2, 3, 2, 3, 1, 0, 0.10};
-        case Density::kMedium: return {14, 17, 10, 12, 4, 5, 4, 6, 2, 1, 0.15};
-        case Density::kDense: return {16, 19, 11, 13, 6, 8, 7, 10, 3, 1, 0.25};
+        case Density::kSparse:
+            return {12, 15, 9, 11, 2, 3, 2, 3, 1, 0, 0.10};
+        case Density::kMedium:
+            return {14, 17, 10, 12, 4, 5, 4, 6, 2, 1, 0.15};
+        case Density::kDense:
+            return {16, 19, 11, 13, 6, 8, 7, 10, 3, 1, 0.25};
     }
     return counts_for(Density::kMedium);
 }
 
 // Builds scenes one object at a time, refusing overlaps.
 class Builder {
-public:
+  public:
     Builder(Scene& scene, Rng& rng) : scene_(scene), rng_(rng) {}
 
     OrientedBox footprint(const SceneObject& o) const {
@@ -46,18 +49,21 @@ public:
         }
         const V2 c = box.centre_m.head<2>();
         const double reach = 0.5 * box.size_m.head<2>().norm() + margin;
-        if (c.x() - reach < wall_min_.x() || c.x() + reach > wall_max_.x() || c.y() - reach < wall_min_.y() ||
-            c.y() + reach > wall_max_.y()) {
+        if (c.x() - reach < wall_min_.x() || c.x() + reach > wall_max_.x() ||
+            c.y() - reach < wall_min_.y() || c.y() + reach > wall_max_.y()) {
             return false;
         }
         for (const Pillar& p : scene_.pillars) {
-            OrientedBox pb{{p.centre_m.x(), p.centre_m.y(), 1.0}, {p.size_m.x() + 2 * margin, p.size_m.y() + 2 * margin, 2.0}, 0.0};
+            OrientedBox pb{{p.centre_m.x(), p.centre_m.y(), 1.0},
+                           {p.size_m.x() + 2 * margin, p.size_m.y() + 2 * margin, 2.0},
+                           0.0};
             if (iou_bev(box, pb) > 0.0) return false;
         }
         for (const Wall& w : scene_.walls) {
             const V2 d = w.b_m - w.a_m;
             const V2 mid = 0.5 * (w.a_m + w.b_m);
-            OrientedBox wb{{mid.x(), mid.y(), 1.0}, {d.norm() + w.thickness_m + 2 * margin, w.thickness_m + 2 * margin, 2.0},
+            OrientedBox wb{{mid.x(), mid.y(), 1.0},
+                           {d.norm() + w.thickness_m + 2 * margin, w.thickness_m + 2 * margin, 2.0},
                            std::atan2(d.y(), d.x())};
             if (iou_bev(box, wb) > 0.0) return false;
         }
@@ -91,7 +97,8 @@ public:
 };
 
 // A wall from a to b with door gaps (centre offset along the wall, width).
-void add_wall_with_doors(Scene& s, const V2& a, const V2& b, std::vector<std::pair<double, double>> doors) {
+void add_wall_with_doors(Scene& s, const V2& a, const V2& b,
+                         std::vector<std::pair<double, double>> doors) {
     std::sort(doors.begin(), doors.end());
     const V2 dir = (b - a).normalized();
     double pos = 0.0;
@@ -131,14 +138,20 @@ FurnitureStyle pick_table_style(Rng& rng, bool allow_conference) {
 
 FurnitureStyle pick_chair_style(Rng& rng, bool at_table) {
     const double u = uniform(rng, 0, 1);
-    if (at_table) return u < 0.5 ? FurnitureStyle::kFourLegChair : u < 0.9 ? FurnitureStyle::kOfficeChair : FurnitureStyle::kStool;
-    return u < 0.3 ? FurnitureStyle::kFourLegChair : u < 0.6 ? FurnitureStyle::kOfficeChair
-                                                             : u < 0.8 ? FurnitureStyle::kStool : FurnitureStyle::kArmchair;
+    if (at_table)
+        return u < 0.5   ? FurnitureStyle::kFourLegChair
+               : u < 0.9 ? FurnitureStyle::kOfficeChair
+                         : FurnitureStyle::kStool;
+    return u < 0.3   ? FurnitureStyle::kFourLegChair
+           : u < 0.6 ? FurnitureStyle::kOfficeChair
+           : u < 0.8 ? FurnitureStyle::kStool
+                     : FurnitureStyle::kArmchair;
 }
 
 // Chairs around a table the way people leave them: at seats along the sitting sides, some pulled
 // out, slightly off-centre and turned; some seats empty.
-void seat_chairs(Builder& b, const SceneObject table, double occupancy, int max_chairs = 100) {  // a copy: adding chairs reallocates the object list
+void seat_chairs(Builder& b, const SceneObject table, double occupancy,
+                 int max_chairs = 100) {  // a copy: adding chairs reallocates the object list
     Rng& rng = b.rng_;
     const FurnitureModel tm = make_furniture(*parse_furniture_style(table.style), table.model_seed);
     const Isometry2 T_world_table = to_isometry(table.pose);
@@ -171,18 +184,22 @@ void seat_chairs(Builder& b, const SceneObject table, double occupancy, int max_
         if (placed >= max_chairs || !bernoulli(rng, occupancy)) continue;
         SceneObject chair;
         chair.cls = ObjectClass::kChair;
-        chair.style = std::string(to_string(bernoulli(rng, 0.8) ? table_chairs : pick_chair_style(rng, true)));
+        chair.style = std::string(
+            to_string(bernoulli(rng, 0.8) ? table_chairs : pick_chair_style(rng, true)));
         chair.model_seed = static_cast<std::uint64_t>(uniform_int(rng, 0, 1 << 30));
-        const FurnitureModel cm = make_furniture(*parse_furniture_style(chair.style), chair.model_seed);
+        const FurnitureModel cm =
+            make_furniture(*parse_furniture_style(chair.style), chair.model_seed);
         const double depth = cm.box_object.size_m.x();
         double gap = std::clamp(normal(rng, 0.05, 0.08), -0.2, 0.5);
         if (bernoulli(rng, 0.25)) gap += uniform(rng, 0.3, 0.6);  // pulled out
         const V2 tangent(-seat.normal_table.y(), seat.normal_table.x());
-        const V2 centre_table =
-            seat.edge_table + seat.normal_table * (depth / 2 + gap) + tangent * normal(rng, 0.0, 0.06);
+        const V2 centre_table = seat.edge_table + seat.normal_table * (depth / 2 + gap) +
+                                tangent * normal(rng, 0.0, 0.06);
         const V2 centre = T_world_table * centre_table;
         const V2 facing = T_world_table.linear() * (-seat.normal_table);
-        chair.pose = {centre.x(), centre.y(), wrap_angle(std::atan2(facing.y(), facing.x()) + normal(rng, 0, deg_to_rad(8)))};
+        chair.pose = {
+            centre.x(), centre.y(),
+            wrap_angle(std::atan2(facing.y(), facing.x()) + normal(rng, 0, deg_to_rad(8)))};
         chair.table_id = table.id;
         if (b.try_add(chair, 0.02, table.id)) ++placed;
     }
@@ -201,11 +218,15 @@ void add_table_rows(Builder& b, double x_centre, double y_first, int rows, int t
         probe.model_seed = static_cast<std::uint64_t>(uniform_int(rng, 0, 1 << 30));
         const FurnitureModel tm = make_furniture(FurnitureStyle::kRectTable, probe.model_seed);
         const double L = tm.box_object.size_m.x(), W = tm.box_object.size_m.y();
-        const double row_depth = W + 2 * (0.5 + 0.05);  // the table and a chair tucked in on each side
+        const double row_depth =
+            W + 2 * (0.5 + 0.05);  // the table and a chair tucked in on each side
         for (int t = 0; t < tables_per_row; ++t) {
             SceneObject table = probe;
-            if (t > 0) table.model_seed = probe.model_seed + static_cast<std::uint64_t>(t);  // a row of one model's copies
-            table.pose = {x_centre + (t - 0.5 * (tables_per_row - 1)) * (L + 0.02), y + 0.5 * row_depth, normal(rng, 0, deg_to_rad(1))};
+            if (t > 0)
+                table.model_seed = probe.model_seed +
+                                   static_cast<std::uint64_t>(t);  // a row of one model's copies
+            table.pose = {x_centre + (t - 0.5 * (tables_per_row - 1)) * (L + 0.02),
+                          y + 0.5 * row_depth, normal(rng, 0, deg_to_rad(1))};
             if (b.try_add(table, 0.0)) seat_chairs(b, b.scene_.objects.back(), 0.85);
         }
         y += row_depth + uniform(rng, 0.8, 1.5);
@@ -215,7 +236,8 @@ void add_table_rows(Builder& b, double x_centre, double y_first, int rows, int t
 // Rows of chairs facing one way (a lecture or waiting area), `passage` (0.8-1.5 m) between rows.
 void add_chair_rows(Builder& b, double x_centre, double y_first, int rows, int per_row) {
     Rng& rng = b.rng_;
-    const FurnitureStyle style = bernoulli(rng, 0.5) ? FurnitureStyle::kFourLegChair : FurnitureStyle::kOfficeChair;
+    const FurnitureStyle style =
+        bernoulli(rng, 0.5) ? FurnitureStyle::kFourLegChair : FurnitureStyle::kOfficeChair;
     double y = y_first;
     for (int r = 0; r < rows; ++r) {
         for (int k = 0; k < per_row; ++k) {
@@ -223,8 +245,8 @@ void add_chair_rows(Builder& b, double x_centre, double y_first, int rows, int p
             chair.cls = ObjectClass::kChair;
             chair.style = std::string(to_string(style));
             chair.model_seed = static_cast<std::uint64_t>(uniform_int(rng, 0, 1 << 30));
-            chair.pose = {x_centre + (k - 0.5 * (per_row - 1)) * 0.62 + normal(rng, 0, 0.03), y + 0.25 + normal(rng, 0, 0.03),
-                          kPi / 2 + normal(rng, 0, deg_to_rad(6))};
+            chair.pose = {x_centre + (k - 0.5 * (per_row - 1)) * 0.62 + normal(rng, 0, 0.03),
+                          y + 0.25 + normal(rng, 0, 0.03), kPi / 2 + normal(rng, 0, deg_to_rad(6))};
             b.try_add(chair, 0.0);
         }
         y += 0.5 + uniform(rng, 0.8, 1.5);
@@ -234,12 +256,15 @@ void add_chair_rows(Builder& b, double x_centre, double y_first, int rows, int p
 Scene random_layout(const SceneGenParams& params, Rng& rng) {
     const Counts k = counts_for(params.density);
     Scene s;
-    const double w = uniform(rng, k.room_w_lo, k.room_w_hi), h = uniform(rng, k.room_h_lo, k.room_h_hi);
+    const double w = uniform(rng, k.room_w_lo, k.room_w_hi),
+                 h = uniform(rng, k.room_h_lo, k.room_h_hi);
     add_room(s, rng, w, h, params.density != Density::kSparse && bernoulli(rng, 0.5));
     const int pillars = static_cast<int>(uniform_int(rng, 0, k.pillars_hi));
     for (int i = 0; i < pillars; ++i) {
         const double side = uniform(rng, 0.35, 0.6);
-        s.pillars.push_back({V2(uniform(rng, -w / 2 + 2, w / 2 - 2), uniform(rng, -h / 2 + 1.5, h / 2 - 1.5)), V2(side, side), 2.8});
+        s.pillars.push_back(
+            {V2(uniform(rng, -w / 2 + 2, w / 2 - 2), uniform(rng, -h / 2 + 1.5, h / 2 - 1.5)),
+             V2(side, side), 2.8});
     }
     s.start = {-w / 2 + 1.0, uniform(rng, -h / 4, h / 4), 0.0};
     s.goal = {w / 2 - 1.0, uniform(rng, -h / 4, h / 4), 0.0};
@@ -250,9 +275,12 @@ Scene random_layout(const SceneGenParams& params, Rng& rng) {
     if (params.density == Density::kDense) {
         // As in the paper's dense rooms: a block of table rows on one side of the room and rows of
         // chairs on the other, with passages of 0.8-1.5 m between rows.
-        const double side = bernoulli(rng, 0.5) ? -1.0 : 1.0;  // the blocks stand across the way from start to goal
-        add_table_rows(b, side * w / 4 + normal(rng, 0, 0.3), -h / 2 + uniform(rng, 0.4, 1.4), 4, static_cast<int>(uniform_int(rng, 1, 2)));
-        add_chair_rows(b, -side * w / 4 + normal(rng, 0, 0.3), -h / 2 + uniform(rng, 0.6, 1.6), 5, static_cast<int>(uniform_int(rng, 4, 6)));
+        const double side =
+            bernoulli(rng, 0.5) ? -1.0 : 1.0;  // the blocks stand across the way from start to goal
+        add_table_rows(b, side * w / 4 + normal(rng, 0, 0.3), -h / 2 + uniform(rng, 0.4, 1.4), 4,
+                       static_cast<int>(uniform_int(rng, 1, 2)));
+        add_chair_rows(b, -side * w / 4 + normal(rng, 0, 0.3), -h / 2 + uniform(rng, 0.6, 1.6), 5,
+                       static_cast<int>(uniform_int(rng, 4, 6)));
     }
     const int tables = static_cast<int>(uniform_int(rng, k.tables_lo, k.tables_hi));
     for (int t = 0, tries = 0; t < tables && tries < 400; ++tries) {
@@ -260,9 +288,11 @@ Scene random_layout(const SceneGenParams& params, Rng& rng) {
         table.cls = ObjectClass::kTable;
         table.style = std::string(to_string(pick_table_style(rng, w > 14)));
         table.model_seed = static_cast<std::uint64_t>(uniform_int(rng, 0, 1 << 30));
-        const double yaw = bernoulli(rng, 0.8) ? (bernoulli(rng, 0.5) ? 0.0 : kPi / 2) + normal(rng, 0, deg_to_rad(4))
+        const double yaw = bernoulli(rng, 0.8) ? (bernoulli(rng, 0.5) ? 0.0 : kPi / 2) +
+                                                     normal(rng, 0, deg_to_rad(4))
                                                : uniform(rng, -kPi, kPi);
-        table.pose = {uniform(rng, -w / 2 + 1.5, w / 2 - 1.5), uniform(rng, -h / 2 + 1.5, h / 2 - 1.5), wrap_angle(yaw)};
+        table.pose = {uniform(rng, -w / 2 + 1.5, w / 2 - 1.5),
+                      uniform(rng, -h / 2 + 1.5, h / 2 - 1.5), wrap_angle(yaw)};
         // Room for the chairs and an aisle around the group.
         if (!b.try_add(table, 1.3)) continue;
         ++t;
@@ -274,14 +304,16 @@ Scene random_layout(const SceneGenParams& params, Rng& rng) {
         chair.cls = ObjectClass::kChair;
         chair.style = std::string(to_string(pick_chair_style(rng, false)));
         chair.model_seed = static_cast<std::uint64_t>(uniform_int(rng, 0, 1 << 30));
-        chair.pose = {uniform(rng, -w / 2 + 0.6, w / 2 - 0.6), uniform(rng, -h / 2 + 0.6, h / 2 - 0.6), uniform(rng, -kPi, kPi)};
+        chair.pose = {uniform(rng, -w / 2 + 0.6, w / 2 - 0.6),
+                      uniform(rng, -h / 2 + 0.6, h / 2 - 0.6), uniform(rng, -kPi, kPi)};
         if (b.try_add(chair, 0.15)) ++c;
     }
     if (params.people) {
         for (const SceneObject& o : s.objects) {
             if (o.table_id != 0 && bernoulli(rng, k.pusher_share)) {
                 const double period = uniform(rng, 6.0, 12.0);
-                s.pushers.push_back({o.id, period, uniform(rng, 0.3, 0.5), uniform(rng, 0.0, period)});
+                s.pushers.push_back(
+                    {o.id, period, uniform(rng, 0.3, 0.5), uniform(rng, 0.0, period)});
             }
         }
     }
@@ -299,7 +331,9 @@ Scene study_space(Rng& rng) {
     b.set_walls(V2(-w / 2, -h / 2), V2(w / 2, h / 2));
     // 12 tables in 3 rows of 4; 22 chairs: two at ten tables, one at the other two.
     std::vector<int> chairs_at{2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 1, 1};
-    for (std::size_t i = chairs_at.size(); i > 1; --i) std::swap(chairs_at[i - 1], chairs_at[uniform_int(rng, 0, static_cast<std::int64_t>(i) - 1)]);
+    for (std::size_t i = chairs_at.size(); i > 1; --i)
+        std::swap(chairs_at[i - 1],
+                  chairs_at[uniform_int(rng, 0, static_cast<std::int64_t>(i) - 1)]);
     int t = 0;
     for (double y : {-3.5, 0.0, 3.5}) {
         for (double x : {-5.4, -1.8, 1.8, 5.4}) {
@@ -307,13 +341,17 @@ Scene study_space(Rng& rng) {
             table.cls = ObjectClass::kTable;
             table.style = "rect_table";
             table.model_seed = static_cast<std::uint64_t>(uniform_int(rng, 0, 1 << 30));
-            table.pose = {x + normal(rng, 0, 0.05), y + normal(rng, 0, 0.05), normal(rng, 0, deg_to_rad(2))};
+            table.pose = {x + normal(rng, 0, 0.05), y + normal(rng, 0, 0.05),
+                          normal(rng, 0, deg_to_rad(2))};
             s.objects.push_back(table);
             s.objects.back().id = static_cast<std::uint32_t>(s.objects.size());
             b.boxes_.push_back(b.footprint(s.objects.back()));
             const std::size_t before = s.objects.size();
-            for (int tries = 0; tries < 20 && s.objects.size() - before < static_cast<std::size_t>(chairs_at[t]); ++tries) {
-                seat_chairs(b, s.objects[before - 1], 0.5, chairs_at[t] - static_cast<int>(s.objects.size() - before));
+            for (int tries = 0;
+                 tries < 20 && s.objects.size() - before < static_cast<std::size_t>(chairs_at[t]);
+                 ++tries) {
+                seat_chairs(b, s.objects[before - 1], 0.5,
+                            chairs_at[t] - static_cast<int>(s.objects.size() - before));
             }
             ++t;
         }
@@ -351,11 +389,14 @@ bool is_navigable(const Scene& scene, const RobotParams& robot) {
 Scene generate_scene(const SceneGenParams& params) {
     for (int attempt = 0; attempt < params.max_attempts; ++attempt) {
         Rng rng = make_rng(params.seed, 1000 + static_cast<std::uint64_t>(attempt));
-        Scene s = params.layout == Layout::kStudySpace ? study_space(rng) : random_layout(params, rng);
+        Scene s =
+            params.layout == Layout::kStudySpace ? study_space(rng) : random_layout(params, rng);
         s.seed = params.seed;
-        s.density = params.layout == Layout::kStudySpace ? "study_space" : std::string(to_string(params.density));
+        s.density = params.layout == Layout::kStudySpace ? "study_space"
+                                                         : std::string(to_string(params.density));
         s.name = s.density + "_" + std::to_string(params.seed);
-        if (params.layout == Layout::kStudySpace && s.objects.size() != 12 + 22) continue;  // seats were blocked
+        if (params.layout == Layout::kStudySpace && s.objects.size() != 12 + 22)
+            continue;  // seats were blocked
         if (!is_navigable(s, params.robot)) continue;
         if (params.people && params.layout == Layout::kRandom) {
             // Walkers loop between two reachable points, away from the robot's start and goal.
@@ -364,7 +405,8 @@ Scene generate_scene(const SceneGenParams& params) {
             RobotParams person;
             person.length_m = person.width_m = 2 * kPersonRadius_m;
             const CollisionChecker checker(s, models, person);
-            const NavGrid grid = make_nav_grid(s, checker, person, 0.0, 0.05, kPersonRadius_m + 0.1);
+            const NavGrid grid =
+                make_nav_grid(s, checker, person, 0.0, 0.05, kPersonRadius_m + 0.1);
             for (int k = 0, tries = 0; k < walkers && tries < 50; ++tries) {
                 const Eigen::Vector2d a(uniform(rng, s.floor_min_m.x() + 2, s.floor_max_m.x() - 2),
                                         uniform(rng, s.floor_min_m.y() + 1, s.floor_max_m.y() - 1));
@@ -412,10 +454,12 @@ Scene make_session(const Scene& base, int session, const RobotParams& robot) {
         // No two objects may overlap (a chair may tuck under its own table).
         bool overlap = false;
         std::vector<OrientedBox> boxes;
-        for (const SceneObject& o : s.objects) boxes.push_back(model_of(o).box_object.transformed(lift_to_3d(o.pose)));
+        for (const SceneObject& o : s.objects)
+            boxes.push_back(model_of(o).box_object.transformed(lift_to_3d(o.pose)));
         for (std::size_t i = 0; i < boxes.size() && !overlap; ++i) {
             for (std::size_t j = i + 1; j < boxes.size() && !overlap; ++j) {
-                const bool related = s.objects[i].table_id == s.objects[j].id || s.objects[j].table_id == s.objects[i].id;
+                const bool related = s.objects[i].table_id == s.objects[j].id ||
+                                     s.objects[j].table_id == s.objects[i].id;
                 overlap = !related && iou_bev(boxes[i], boxes[j]) > 0.0;
             }
         }

@@ -11,9 +11,11 @@ std::vector<std::string> SequenceParams::validate() const {
     for (const auto& m : lidar.validate()) p.push_back("lidar." + m);
     for (const auto& m : robot.validate()) p.push_back("robot." + m);
     for (const auto& m : odometry.validate()) p.push_back("odometry." + m);
-    if (!(physics_rate_hz >= lidar.rate_hz && physics_rate_hz <= 10000)) p.push_back("physics_rate_hz must be in [lidar rate, 10000]");
+    if (!(physics_rate_hz >= lidar.rate_hz && physics_rate_hz <= 10000))
+        p.push_back("physics_rate_hz must be in [lidar rate, 10000]");
     if (!(lookahead_m > 0.05 && lookahead_m < 5.0)) p.push_back("lookahead_m must be in (0.05, 5)");
-    if (!(goal_tolerance_m > 0.0 && goal_tolerance_m < 2.0)) p.push_back("goal_tolerance_m must be in (0, 2)");
+    if (!(goal_tolerance_m > 0.0 && goal_tolerance_m < 2.0))
+        p.push_back("goal_tolerance_m must be in (0, 2)");
     return p;
 }
 
@@ -31,23 +33,28 @@ SequenceSimulator::SequenceSimulator(const Scene& scene, std::vector<Eigen::Vect
         state_.pose.yaw_rad = std::atan2(next.y() - scene.start.y_m, next.x() - scene.start.x_m);
     }
     start_pose_ = state_.pose;
-    odometry_ = WheelOdometry(start_pose_, params.odometry, params.seed);  // the odometry frame is the world at the start
+    odometry_ = WheelOdometry(start_pose_, params.odometry,
+                              params.seed);  // the odometry frame is the world at the start
 }
 
 VelocityCommand SequenceSimulator::pure_pursuit(const RobotState& state) {
     if (route_.empty() || reached_goal_) return {};
     const Eigen::Vector2d p(state.pose.x_m, state.pose.y_m);
     // Advance along the route past points already within the lookahead.
-    while (route_index_ + 1 < route_.size() && (route_[route_index_] - p).norm() < params_.lookahead_m) ++route_index_;
+    while (route_index_ + 1 < route_.size() &&
+           (route_[route_index_] - p).norm() < params_.lookahead_m)
+        ++route_index_;
     const Eigen::Vector2d target = route_[route_index_];
     const double dist_goal = (route_.back() - p).norm();
     if (route_index_ + 1 == route_.size() && dist_goal < params_.goal_tolerance_m) {
         reached_goal_ = true;
         return {};
     }
-    const double alpha = angle_diff(std::atan2(target.y() - p.y(), target.x() - p.x()), state.pose.yaw_rad);
+    const double alpha =
+        angle_diff(std::atan2(target.y() - p.y(), target.x() - p.x()), state.pose.yaw_rad);
     const double max_v = params_.robot.max_v_mps;
-    if (std::abs(alpha) > deg_to_rad(60)) return {0.0, std::copysign(0.8 * params_.robot.max_w_radps, alpha)};
+    if (std::abs(alpha) > deg_to_rad(60))
+        return {0.0, std::copysign(0.8 * params_.robot.max_w_radps, alpha)};
     double v = max_v * std::clamp(1.0 - std::abs(alpha) / (kPi / 2), 0.2, 1.0);
     if (route_index_ + 1 == route_.size()) v = std::min(v, 0.8 * dist_goal + 0.1);
     const double ld = std::max((target - p).norm(), 1e-3);
@@ -79,7 +86,8 @@ SimFrame SequenceSimulator::next() {
     }
     f.odometry_end_pose = odometry_.pose();
     const double t0 = f.stamp_s;
-    const PoseAtTime T_world_sensor_at = sensor_pose_along(std::move(poses), t0, dt, params_.robot.T_robot_sensor());
+    const PoseAtTime T_world_sensor_at =
+        sensor_pose_along(std::move(poses), t0, dt, params_.robot.T_robot_sensor());
     f.T_world_sensor = T_world_sensor_at(t0);
     f.points_sensor = simulate_sweep(world_, params_.lidar, T_world_sensor_at, t0, params_.seed,
                                      static_cast<std::uint64_t>(frame_index_), &f.sweep);

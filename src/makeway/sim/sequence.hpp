@@ -16,7 +16,7 @@ struct SequenceParams {
     OdometryNoiseParams odometry;
     std::uint64_t seed = 0;
     double physics_rate_hz = 100.0;
-    double lookahead_m = 0.4;      ///< pure-pursuit lookahead
+    double lookahead_m = 0.4;  ///< pure-pursuit lookahead
     double goal_tolerance_m = 0.15;
 
     std::vector<std::string> validate() const;
@@ -37,9 +37,10 @@ struct SimFrame {
 };
 
 class SequenceSimulator {
-public:
+  public:
     /// `route` runs from the scene's start (e.g. mission_route()); the robot starts at scene.start.
-    SequenceSimulator(const Scene& scene, std::vector<Eigen::Vector2d> route, const SequenceParams& params);
+    SequenceSimulator(const Scene& scene, std::vector<Eigen::Vector2d> route,
+                      const SequenceParams& params);
 
     /// Simulates the next sweep period and returns its frame.
     SimFrame next();
@@ -49,7 +50,7 @@ public:
     /// Where the robot starts: the scene's start, turned to face the route (what a robot is told).
     const Pose2& start_pose() const { return start_pose_; }
 
-private:
+  private:
     VelocityCommand pure_pursuit(const RobotState& state);
 
     const Scene& scene_;

@@ -14,15 +14,18 @@ namespace {
 
 RTCGeometry make_triangle_geometry(RTCDevice device, const TriangleMesh& mesh) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices_m.size()));
-    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangles.size()));
+    auto* vertices = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), mesh.vertices_m.size()));
+    auto* indices = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(unsigned), mesh.triangles.size()));
     for (std::size_t i = 0; i < mesh.vertices_m.size(); ++i) {
         for (int k = 0; k < 3; ++k) vertices[3 * i + k] = mesh.vertices_m[i][k];
     }
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-        for (int k = 0; k < 3; ++k) indices[3 * t + k] = static_cast<unsigned>(mesh.triangles[t][k]);
+        for (int k = 0; k < 3; ++k)
+            indices[3 * t + k] = static_cast<unsigned>(mesh.triangles[t][k]);
     }
     rtcCommitGeometry(geom);
     return geom;
@@ -44,7 +47,9 @@ constexpr unsigned kTrianglesPerPart = 12;
 // Surface keys for the material draws: one range per kind of surface, so no two collide.
 constexpr std::uint64_t kFloorSurface = 1, kCeilingSurface = 2;
 std::uint64_t structure_surface(unsigned part) { return (1ULL << 32) + part; }
-std::uint64_t object_surface(std::uint32_t instance, int which) { return (2ULL << 32) + 2ULL * instance + static_cast<std::uint64_t>(which); }
+std::uint64_t object_surface(std::uint32_t instance, int which) {
+    return (2ULL << 32) + 2ULL * instance + static_cast<std::uint64_t>(which);
+}
 
 }  // namespace
 
@@ -63,7 +68,8 @@ float draw_reflectivity(std::uint64_t seed, std::uint64_t surface) {
         {60.0f, 120.0f},  // light paint, bare and brushed metal
     };
     constexpr int kCount = static_cast<int>(sizeof(kMaterials) / sizeof(kMaterials[0]));
-    const int type = std::min(kCount - 1, static_cast<int>(counter_uniform(seed, 2 * surface) * kCount));
+    const int type =
+        std::min(kCount - 1, static_cast<int>(counter_uniform(seed, 2 * surface) * kCount));
     const Material& m = kMaterials[type];
     return m.lo + static_cast<float>(counter_uniform(seed, 2 * surface + 1)) * (m.hi - m.lo);
 }
@@ -91,15 +97,16 @@ struct World::Impl {
     RTCScene person_scene = nullptr;
     std::vector<unsigned> object_inst_ids;
     std::vector<unsigned> person_inst_ids;
-    std::vector<SemanticLabel> geom_labels;              // static geometry id -> label
-    std::vector<std::pair<SemanticLabel, std::uint32_t>> inst_labels;  // instance geometry id -> label
-    std::vector<Eigen::Matrix3f> inst_rotation;          // instance geometry id -> R_world_object now
+    std::vector<SemanticLabel> geom_labels;  // static geometry id -> label
+    std::vector<std::pair<SemanticLabel, std::uint32_t>>
+        inst_labels;                             // instance geometry id -> label
+    std::vector<Eigen::Matrix3f> inst_rotation;  // instance geometry id -> R_world_object now
     std::uint64_t material_seed = 0;
     bool surface_model = true;
 
     // Ng is Embree's unnormalised geometric normal, in the object frame for instances.
-    RayHit to_hit(unsigned geom_id, unsigned inst_id, unsigned prim_id, float t, const Eigen::Vector3f& Ng,
-                  const Eigen::Vector3f& direction) const {
+    RayHit to_hit(unsigned geom_id, unsigned inst_id, unsigned prim_id, float t,
+                  const Eigen::Vector3f& Ng, const Eigen::Vector3f& direction) const {
         RayHit h;
         if (geom_id == RTC_INVALID_GEOMETRY_ID) return h;
         h.hit = true;
@@ -112,14 +119,16 @@ struct World::Impl {
             if (!surface_model) return h;
             normal = inst_rotation[inst_id] * Ng;
             // A part takes the frame or the surface material of its object.
-            const int which = static_cast<int>(counter_uniform(material_seed ^ h.instance, part) < 0.5);
+            const int which =
+                static_cast<int>(counter_uniform(material_seed ^ h.instance, part) < 0.5);
             h.reflectivity = draw_reflectivity(material_seed, object_surface(h.instance, which));
         } else {
             h.label = geom_labels[geom_id];
             if (!surface_model) return h;
-            const std::uint64_t surface = h.label == SemanticLabel::kGround    ? kFloorSurface
-                                          : h.label == SemanticLabel::kCeiling ? kCeilingSurface
-                                                                               : structure_surface(part);
+            const std::uint64_t surface = h.label == SemanticLabel::kGround ? kFloorSurface
+                                          : h.label == SemanticLabel::kCeiling
+                                              ? kCeilingSurface
+                                              : structure_surface(part);
             h.reflectivity = draw_reflectivity(material_seed, surface);
         }
         const float n = normal.norm(), d = direction.norm();
@@ -130,7 +139,8 @@ struct World::Impl {
 
 World::World(const Scene& scene, std::vector<ObjectModel> models)
     : impl_(std::make_unique<Impl>()), scene_(scene), models_(std::move(models)) {
-    if (models_.size() != scene_.objects.size()) throw std::invalid_argument("World: one model per object");
+    if (models_.size() != scene_.objects.size())
+        throw std::invalid_argument("World: one model per object");
     Impl& w = *impl_;
     w.material_seed = scene_.seed * 0x9E3779B97F4A7C15ULL + 0x6D617465726961ULL;  // "materia"
     w.device = rtcNewDevice(nullptr);
@@ -152,8 +162,9 @@ World::World(const Scene& scene, std::vector<ObjectModel> models)
     TriangleMesh floor, ceiling;
     add_box(floor, Eigen::Vector3d((lo.x() + hi.x()) / 2, (lo.y() + hi.y()) / 2, -0.05),
             Eigen::Vector3d(hi.x() - lo.x(), hi.y() - lo.y(), 0.1));
-    add_box(ceiling, Eigen::Vector3d((lo.x() + hi.x()) / 2, (lo.y() + hi.y()) / 2,
-                                     scene_.ceiling_height_m + 0.05),
+    add_box(ceiling,
+            Eigen::Vector3d((lo.x() + hi.x()) / 2, (lo.y() + hi.y()) / 2,
+                            scene_.ceiling_height_m + 0.05),
             Eigen::Vector3d(hi.x() - lo.x(), hi.y() - lo.y(), 0.1));
     attach_static(floor, SemanticLabel::kGround);
     attach_static(ceiling, SemanticLabel::kCeiling);
@@ -174,7 +185,8 @@ World::World(const Scene& scene, std::vector<ObjectModel> models)
     };
     for (std::size_t i = 0; i < models_.size(); ++i) {
         RTCScene child = rtcNewScene(w.device);
-        rtcSetSceneBuildQuality(child, RTC_BUILD_QUALITY_HIGH);  // built once, traversed millions of times
+        rtcSetSceneBuildQuality(child,
+                                RTC_BUILD_QUALITY_HIGH);  // built once, traversed millions of times
         RTCGeometry g = make_triangle_geometry(w.device, models_[i].mesh_object);
         rtcAttachGeometry(child, g);
         rtcReleaseGeometry(g);
@@ -192,8 +204,9 @@ World::World(const Scene& scene, std::vector<ObjectModel> models)
         rtcReleaseGeometry(g);
         rtcCommitScene(w.person_scene);
         for (std::size_t k = 0; k < scene_.walkers.size(); ++k) {
-            w.person_inst_ids.push_back(attach_instance(
-                w.person_scene, SemanticLabel::kPerson, kPersonInstanceBase + static_cast<std::uint32_t>(k)));
+            w.person_inst_ids.push_back(
+                attach_instance(w.person_scene, SemanticLabel::kPerson,
+                                kPersonInstanceBase + static_cast<std::uint32_t>(k)));
             num_triangles_ += person.triangles.size();
         }
     }
@@ -224,7 +237,8 @@ void World::set_time(double t_s) {
     for (std::size_t k = 0; k < scene_.walkers.size(); ++k) {
         double heading = 0.0;
         const Eigen::Vector2d p = walker_position_at(scene_.walkers[k], t_s, &heading);
-        const Isometry3 T_world_person = make_T_xyz_yaw(Eigen::Vector3d(p.x(), p.y(), 0.0), heading);
+        const Isometry3 T_world_person =
+            make_T_xyz_yaw(Eigen::Vector3d(p.x(), p.y(), 0.0), heading);
         set_instance_pose(rtcGetGeometry(w.top, w.person_inst_ids[k]), T_world_person);
         w.inst_rotation[w.person_inst_ids[k]] = T_world_person.linear().cast<float>();
     }
@@ -253,8 +267,8 @@ RayHit World::cast(const Eigen::Vector3f& origin_m, const Eigen::Vector3f& direc
                          {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z}, d);
 }
 
-void World::cast_packet(const Eigen::Vector3f& origin_m, const Eigen::Vector3f* directions, float max_range_m,
-                        const bool* valid, RayHit* hits) const {
+void World::cast_packet(const Eigen::Vector3f& origin_m, const Eigen::Vector3f* directions,
+                        float max_range_m, const bool* valid, RayHit* hits) const {
     static_assert(kPacketSize == 16, "the packet type below is RTCRayHit16");
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -280,9 +294,11 @@ void World::cast_packet(const Eigen::Vector3f& origin_m, const Eigen::Vector3f* 
     }
     rtcIntersect16(valid_mask, impl_->top, &context, &rh);
     for (int i = 0; i < kPacketSize; ++i) {
-        hits[i] = valid[i] ? impl_->to_hit(rh.hit.geomID[i], rh.hit.instID[0][i], rh.hit.primID[i], rh.ray.tfar[i],
-                                           {rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]}, directions[i])
-                           : RayHit{};
+        hits[i] = valid[i]
+                      ? impl_->to_hit(
+                            rh.hit.geomID[i], rh.hit.instID[0][i], rh.hit.primID[i], rh.ray.tfar[i],
+                            {rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]}, directions[i])
+                      : RayHit{};
     }
 }
 

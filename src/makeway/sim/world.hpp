@@ -36,7 +36,7 @@ struct RayHit {
 float draw_reflectivity(std::uint64_t seed, std::uint64_t surface);
 
 class World {
-public:
+  public:
     /// `models[i]` is the model of scene.objects[i] (model_of()).
     World(const Scene& scene, std::vector<ObjectModel> models);
     ~World();
@@ -58,14 +58,14 @@ public:
     /// kPacketSize rays from one origin at once (an Embree ray packet); `directions` must be unit
     /// vectors; `valid[i]` false skips ray i.
     static constexpr int kPacketSize = 16;
-    void cast_packet(const Eigen::Vector3f& origin_m, const Eigen::Vector3f* directions, float max_range_m,
-                     const bool* valid, RayHit* hits) const;
+    void cast_packet(const Eigen::Vector3f& origin_m, const Eigen::Vector3f* directions,
+                     float max_range_m, const bool* valid, RayHit* hits) const;
 
     const Scene& scene() const { return scene_; }
     const std::vector<ObjectModel>& models() const { return models_; }
     std::size_t num_triangles() const { return num_triangles_; }
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
     Scene scene_;

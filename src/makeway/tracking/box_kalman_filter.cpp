@@ -1,12 +1,11 @@
 #include "makeway/tracking/box_kalman_filter.hpp"
 
-#include "makeway/tracking/param_tables.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "makeway/common/angles.hpp"
+#include "makeway/tracking/param_tables.hpp"
 
 namespace makeway::tracking {
 
@@ -14,16 +13,21 @@ const ParamTable<KalmanParams>& kalman_table() {
     using K = KalmanParams;
     static const ParamTable<K> table = [] {
         ParamTable<K> t;
-        t.add("accel_sigma_mps2", &K::accel_sigma_mps2, open(0.0, 100.0), "the box filter (centre, yaw, size, velocity): white-noise acceleration")
+        t.add("accel_sigma_mps2", &K::accel_sigma_mps2, open(0.0, 100.0),
+              "the box filter (centre, yaw, size, velocity): white-noise acceleration")
             .add("position_sigma_mps", &K::position_sigma_mps, below(0.0, 100.0),
                  "position random walk [m/sqrt(s)] (traffic boxes jump; furniture's do not)")
-            .add("yaw_rate_sigma_radps", &K::yaw_rate_sigma_radps, open(0.0, 100.0), "yaw random walk")
+            .add("yaw_rate_sigma_radps", &K::yaw_rate_sigma_radps, open(0.0, 100.0),
+                 "yaw random walk")
             .add("size_sigma_mps", &K::size_sigma_mps, open(0.0, 100.0), "size random walk")
-            .add("meas_position_sigma_m", &K::meas_position_sigma_m, open(0.0, 100.0), "a detection's centre ...")
+            .add("meas_position_sigma_m", &K::meas_position_sigma_m, open(0.0, 100.0),
+                 "a detection's centre ...")
             .add("meas_yaw_sigma_rad", &K::meas_yaw_sigma_rad, open(0.0, 100.0), "... yaw ...")
             .add("meas_size_sigma_m", &K::meas_size_sigma_m, open(0.0, 100.0), "... and size noise")
-            .add("initial_velocity_sigma_mps", &K::initial_velocity_sigma_mps, open(0.0, 100.0), "a new object's velocity: 0 +- this")
-            .add("heading_votes_to_turn", &K::heading_votes_to_turn, closed(1, 1000), "net detections for another quarter turn that turn a track");
+            .add("initial_velocity_sigma_mps", &K::initial_velocity_sigma_mps, open(0.0, 100.0),
+                 "a new object's velocity: 0 +- this")
+            .add("heading_votes_to_turn", &K::heading_votes_to_turn, closed(1, 1000),
+                 "net detections for another quarter turn that turn a track");
         return t;
     }();
     return table;
@@ -31,12 +35,14 @@ const ParamTable<KalmanParams>& kalman_table() {
 
 std::vector<std::string> KalmanParams::validate() const { return kalman_table().problems(*this); }
 
-BoxKalmanFilter::BoxKalmanFilter(const OrientedBox& b, const KalmanParams& params) : params_(params) {
+BoxKalmanFilter::BoxKalmanFilter(const OrientedBox& b, const KalmanParams& params)
+    : params_(params) {
     x_ << b.centre_m, b.yaw_rad, b.size_m, Eigen::Vector3d::Zero();
     P_.setZero();
-    const double sp = params.meas_position_sigma_m, sy = params.meas_yaw_sigma_rad, ss = params.meas_size_sigma_m,
-                 sv = params.initial_velocity_sigma_mps;
-    P_.diagonal() << sp * sp, sp * sp, sp * sp, sy * sy, ss * ss, ss * ss, ss * ss, sv * sv, sv * sv, sv * sv;
+    const double sp = params.meas_position_sigma_m, sy = params.meas_yaw_sigma_rad,
+                 ss = params.meas_size_sigma_m, sv = params.initial_velocity_sigma_mps;
+    P_.diagonal() << sp * sp, sp * sp, sp * sp, sy * sy, ss * ss, ss * ss, ss * ss, sv * sv,
+        sv * sv, sv * sv;
 }
 
 void BoxKalmanFilter::predict(double dt) {
@@ -54,7 +60,8 @@ void BoxKalmanFilter::predict(double dt) {
         P_(7 + a, a) += qa * dt2 * dt / 2;
         P_(7 + a, 7 + a) += qa * dt2;
     }
-    const double qp = params_.position_sigma_mps * params_.position_sigma_mps * dt;  // position random walk
+    const double qp =
+        params_.position_sigma_mps * params_.position_sigma_mps * dt;  // position random walk
     for (int a = 0; a < 3; ++a) P_(a, a) += qp;
     P_(3, 3) += params_.yaw_rate_sigma_radps * params_.yaw_rate_sigma_radps * dt2;
     for (int a = 4; a < 7; ++a) P_(a, a) += params_.size_sigma_mps * params_.size_sigma_mps * dt2;
@@ -70,12 +77,17 @@ int BoxKalmanFilter::update(const OrientedBox& det, double weight) {
     // Heading votes: decayed, so the track follows a persistent turn but not single flips.
     for (double& v : votes_) v *= 0.9;
     votes_[static_cast<std::size_t>(k)] += weight;
-    const auto best = static_cast<int>(std::max_element(votes_.begin(), votes_.end()) - votes_.begin());
-    if (best != 0 && votes_[static_cast<std::size_t>(best)] - votes_[0] >= params_.heading_votes_to_turn) {
-        x_[3] = wrap_angle(x_[3] + best * kPi / 2);  // turn the track to the quarter the detections agree on
+    const auto best =
+        static_cast<int>(std::max_element(votes_.begin(), votes_.end()) - votes_.begin());
+    if (best != 0 &&
+        votes_[static_cast<std::size_t>(best)] - votes_[0] >= params_.heading_votes_to_turn) {
+        x_[3] = wrap_angle(x_[3] + best * kPi /
+                                       2);  // turn the track to the quarter the detections agree on
         if (best % 2 == 1) std::swap(x_[4], x_[5]), std::swap(P_(4, 4), P_(5, 5));
         std::array<double, 4> turned{};
-        for (int j = 0; j < 4; ++j) turned[static_cast<std::size_t>((j - best + 4) & 3)] = votes_[static_cast<std::size_t>(j)];
+        for (int j = 0; j < 4; ++j)
+            turned[static_cast<std::size_t>((j - best + 4) & 3)] =
+                votes_[static_cast<std::size_t>(j)];
         votes_ = turned;
         return update(det, 0.0);
     }
@@ -83,11 +95,13 @@ int BoxKalmanFilter::update(const OrientedBox& det, double weight) {
     innovation << det.centre_m - x_.head<3>(), yaw_innovation, size - x_.segment<3>(4);
     // H selects the first 7 states: H P = P's top rows, H P H^T its top-left block.
     Eigen::Matrix<double, 7, 1> r;
-    const double sp = params_.meas_position_sigma_m, sy = params_.meas_yaw_sigma_rad, ss = params_.meas_size_sigma_m;
+    const double sp = params_.meas_position_sigma_m, sy = params_.meas_yaw_sigma_rad,
+                 ss = params_.meas_size_sigma_m;
     r << sp * sp, sp * sp, sp * sp, sy * sy, ss * ss, ss * ss, ss * ss;
     Eigen::Matrix<double, 7, 7> S = P_.topLeftCorner<7, 7>();
     S.diagonal() += r;
-    const Eigen::Matrix<double, 10, 7> K = S.llt().solve(P_.topRows<7>()).transpose();  // P H^T S^-1 (S, P symmetric)
+    const Eigen::Matrix<double, 10, 7> K =
+        S.llt().solve(P_.topRows<7>()).transpose();  // P H^T S^-1 (S, P symmetric)
     x_ += K * innovation;
     x_[3] = wrap_angle(x_[3]);
     x_.segment<3>(4) = x_.segment<3>(4).cwiseMax(0.01);
@@ -117,6 +131,8 @@ void BoxKalmanFilter::clamp_speed(double max_mps) {
     if (speed > max_mps) x_.segment<2>(7) *= max_mps / speed;
 }
 
-OrientedBox BoxKalmanFilter::box() const { return OrientedBox{x_.head<3>(), x_.segment<3>(4), x_[3]}; }
+OrientedBox BoxKalmanFilter::box() const {
+    return OrientedBox{x_.head<3>(), x_.segment<3>(4), x_[3]};
+}
 
 }  // namespace makeway::tracking

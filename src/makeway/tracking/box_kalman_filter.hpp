@@ -3,36 +3,37 @@
 // the published description: state [x, y, z, yaw, l, w, h, vx, vy, vz], constant velocity,
 // observation of the first seven.
 //
-// A box with yaw theta and size (l, w) is the same box as one with yaw theta + pi/2 and size (w, l),
-// and detectors trained on rotated IoU confuse the two (and theta with theta + pi). Each detection
-// is therefore re-expressed as the equivalent box within pi/4 of the predicted yaw before the
-// update (AB3DMOT flips the prediction by pi for the same reason), so a flipped detection does not
-// turn the track. The track's heading among the four quarter turns is decided by votes: when most
-// recent detections agree on another quarter turn, the state turns to it.
+// A box with yaw theta and size (l, w) is the same box as one with yaw theta + pi/2 and size (w,
+// l), and detectors trained on rotated IoU confuse the two (and theta with theta + pi). Each
+// detection is therefore re-expressed as the equivalent box within pi/4 of the predicted yaw before
+// the update (AB3DMOT flips the prediction by pi for the same reason), so a flipped detection does
+// not turn the track. The track's heading among the four quarter turns is decided by votes: when
+// most recent detections agree on another quarter turn, the state turns to it.
+#include <Eigen/Core>
 #include <array>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "makeway/common/oriented_box.hpp"
 
 namespace makeway::tracking {
 
 /// The motion model's noise. The defaults are furniture's (still most of the time, pushed at a
-/// walk, boxes from a few centimetres of noise); traffic's are in `traffic_preset` (object_map.hpp).
+/// walk, boxes from a few centimetres of noise); traffic's are in `traffic_preset`
+/// (object_map.hpp).
 struct KalmanParams {
-    double accel_sigma_mps2 = 0.5;     ///< white-noise acceleration (x, y, z)
+    double accel_sigma_mps2 = 0.5;  ///< white-noise acceleration (x, y, z)
     /// Position random walk [m/sqrt(s)]: variance sigma^2 dt added per prediction, for boxes that
     /// jump between frames by more than any acceleration explains. 0 by default and in the traffic
     /// presets (1 m/sqrt(s) scored no better on KITTI's training sequences: README).
     double position_sigma_mps = 0.0;
-    double yaw_rate_sigma_radps = 0.5; ///< yaw random walk
-    double size_sigma_mps = 0.02;      ///< size random walk [m/s]
+    double yaw_rate_sigma_radps = 0.5;  ///< yaw random walk
+    double size_sigma_mps = 0.02;       ///< size random walk [m/s]
     double meas_position_sigma_m = 0.05;
     double meas_yaw_sigma_rad = 0.1;
     double meas_size_sigma_m = 0.05;
-    double initial_velocity_sigma_mps = 0.2;  ///< a new track's velocity: 0 +- this (traffic: unknown, metres per frame)
-    int heading_votes_to_turn = 3;     ///< net votes for another quarter turn that turn the track
+    double initial_velocity_sigma_mps =
+        0.2;  ///< a new track's velocity: 0 +- this (traffic: unknown, metres per frame)
+    int heading_votes_to_turn = 3;  ///< net votes for another quarter turn that turn the track
     std::vector<std::string> validate() const;
 };
 
@@ -40,7 +41,7 @@ using BoxState = Eigen::Matrix<double, 10, 1>;
 using BoxCovariance = Eigen::Matrix<double, 10, 10>;
 
 class BoxKalmanFilter {
-public:
+  public:
     BoxKalmanFilter(const OrientedBox& first_world, const KalmanParams& params);
 
     void predict(double dt_s);
@@ -52,9 +53,9 @@ public:
     void scale_velocity(const Eigen::Vector3d& factors);
     /// Horizontal velocity replaced (an estimate from outside the filter: the window fit).
     void set_planar_velocity(const Eigen::Vector2d& v_mps) { x_.segment<2>(7) = v_mps; }
-    /// Velocity set to zero with the uncertainty of a new object (initial_velocity_sigma_mps) and no
-    /// correlation: "at rest, as far as we know". Scaling by 0 instead would make the filter certain
-    /// of rest, and a pushed chair would outrun its own track.
+    /// Velocity set to zero with the uncertainty of a new object (initial_velocity_sigma_mps) and
+    /// no correlation: "at rest, as far as we know". Scaling by 0 instead would make the filter
+    /// certain of rest, and a pushed chair would outrun its own track.
     void hold_at_rest();
     /// Horizontal speed clamped to max_mps (the state only: a bound, not a measurement).
     void clamp_speed(double max_mps);
@@ -64,7 +65,7 @@ public:
     const BoxState& state() const { return x_; }
     const BoxCovariance& covariance() const { return P_; }
 
-private:
+  private:
     KalmanParams params_;
     BoxState x_ = BoxState::Zero();
     BoxCovariance P_ = BoxCovariance::Identity();

@@ -13,7 +13,8 @@ std::vector<int> min_cost_assignment(const Eigen::MatrixXd& cost_in) {
         // Shortest augmenting paths with row potentials u and column potentials v; column 0 is
         // the virtual start of each path.
         const double inf = std::numeric_limits<double>::infinity();
-        std::vector<double> u(static_cast<std::size_t>(n) + 1, 0.0), v(static_cast<std::size_t>(m) + 1, 0.0);
+        std::vector<double> u(static_cast<std::size_t>(n) + 1, 0.0),
+            v(static_cast<std::size_t>(m) + 1, 0.0);
         std::vector<int> way(static_cast<std::size_t>(m) + 1, 0);
         for (int i = 1; i <= n; ++i) {
             row_of_col[0] = i;
@@ -28,7 +29,8 @@ std::vector<int> min_cost_assignment(const Eigen::MatrixXd& cost_in) {
                 for (int j = 1; j <= m; ++j) {
                     const auto sj = static_cast<std::size_t>(j);
                     if (used[sj]) continue;
-                    const double cur = cost(i0 - 1, j - 1) - u[static_cast<std::size_t>(i0)] - v[sj];
+                    const double cur =
+                        cost(i0 - 1, j - 1) - u[static_cast<std::size_t>(i0)] - v[sj];
                     if (cur < minv[sj]) minv[sj] = cur, way[sj] = j0;
                     if (minv[sj] < delta) delta = minv[sj], j1 = j;
                 }
@@ -52,12 +54,15 @@ std::vector<int> min_cost_assignment(const Eigen::MatrixXd& cost_in) {
     }
     std::vector<int> col_of_row(static_cast<std::size_t>(n), -1);
     for (int j = 1; j <= m; ++j) {
-        if (row_of_col[static_cast<std::size_t>(j)] > 0) col_of_row[static_cast<std::size_t>(row_of_col[static_cast<std::size_t>(j)] - 1)] = j - 1;
+        if (row_of_col[static_cast<std::size_t>(j)] > 0)
+            col_of_row[static_cast<std::size_t>(row_of_col[static_cast<std::size_t>(j)] - 1)] =
+                j - 1;
     }
     if (!transposed) return col_of_row;
     std::vector<int> out(static_cast<std::size_t>(cost_in.rows()), -1);
     for (int r = 0; r < n; ++r) {
-        if (col_of_row[static_cast<std::size_t>(r)] >= 0) out[static_cast<std::size_t>(col_of_row[static_cast<std::size_t>(r)])] = r;
+        if (col_of_row[static_cast<std::size_t>(r)] >= 0)
+            out[static_cast<std::size_t>(col_of_row[static_cast<std::size_t>(r)])] = r;
     }
     return out;
 }

@@ -1,8 +1,7 @@
 #pragma once
 // Optimal assignment (Kuhn-Munkres with potentials, O(n^2 m)) for rectangular cost matrices.
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 namespace makeway::tracking {
 

@@ -1,7 +1,5 @@
 #include "makeway/tracking/object_map.hpp"
 
-#include "makeway/tracking/param_tables.hpp"
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -11,6 +9,7 @@
 
 #include "makeway/common/box_overlap.hpp"
 #include "makeway/tracking/hungarian.hpp"
+#include "makeway/tracking/param_tables.hpp"
 
 namespace makeway::tracking {
 
@@ -20,10 +19,13 @@ const ParamTable<MotionPrior>& motion_prior_table() {
         ParamTable<M> t;
         t.add("velocity_decay_s", &M::velocity_decay_s, closed(0.0, 3600.0).or_infinity(),
               "an unobserved object's velocity decays with this time constant (.inf: never)")
-            .add("max_speed_mps", &M::max_speed_mps, above(0.0, 100.0), "horizontal speed estimates are clamped to this")
+            .add("max_speed_mps", &M::max_speed_mps, above(0.0, 100.0),
+                 "horizontal speed estimates are clamped to this")
             .add("planar", &M::planar, "no vertical motion")
-            .add("min_displacement_m", &M::min_displacement_m, closed(0.0, 100.0), "held at rest until its detections moved this far ...")
-            .add("motion_window_s", &M::motion_window_s, above(0.0, 3600.0), "... within this window (3+ boxes over half of it)");
+            .add("min_displacement_m", &M::min_displacement_m, closed(0.0, 100.0),
+                 "held at rest until its detections moved this far ...")
+            .add("motion_window_s", &M::motion_window_s, above(0.0, 3600.0),
+                 "... within this window (3+ boxes over half of it)");
         return t;
     }();
     return table;
@@ -33,72 +35,98 @@ const ParamTable<TrackerParams>& tracker_table() {
     using T = TrackerParams;
     static const ParamTable<T> table = [] {
         ParamTable<T> t;
-        t.add_choice("classes",
-                     [](T& p) {
-                         ParamChoice c;
-                         c.list = true;
-                         for (ObjectClass cls : kAllObjectClasses) c.names.emplace_back(to_string(cls));
-                         c.get = [&p] {
-                             std::vector<std::string> on;
-                             for (ObjectClass cls : kAllObjectClasses) {
-                                 if (p.tracked_classes[static_cast<std::size_t>(cls)]) on.emplace_back(to_string(cls));
-                             }
-                             return on;
-                         };
-                         c.set = [&p](const std::vector<std::string>& names) {
-                             p.tracked_classes.fill(false);
-                             for (const std::string& n : names) p.tracked_classes[static_cast<std::size_t>(*parse_object_class(n))] = true;
-                         };
-                         return c;
-                     },
-                     "detections of other classes are not used")
-            .add("min_score", &T::min_score, closed(0.0, 1.0), "detections scoring below this (after the transform) are not used")
-            .choice("score_transform", &T::score_transform, {{"none", ScoreTransform::kNone}, {"sigmoid", ScoreTransform::kSigmoid}},
+        t.add_choice(
+             "classes",
+             [](T& p) {
+                 ParamChoice c;
+                 c.list = true;
+                 for (ObjectClass cls : kAllObjectClasses) c.names.emplace_back(to_string(cls));
+                 c.get = [&p] {
+                     std::vector<std::string> on;
+                     for (ObjectClass cls : kAllObjectClasses) {
+                         if (p.tracked_classes[static_cast<std::size_t>(cls)])
+                             on.emplace_back(to_string(cls));
+                     }
+                     return on;
+                 };
+                 c.set = [&p](const std::vector<std::string>& names) {
+                     p.tracked_classes.fill(false);
+                     for (const std::string& n : names)
+                         p.tracked_classes[static_cast<std::size_t>(*parse_object_class(n))] = true;
+                 };
+                 return c;
+             },
+             "detections of other classes are not used")
+            .add("min_score", &T::min_score, closed(0.0, 1.0),
+                 "detections scoring below this (after the transform) are not used")
+            .choice("score_transform", &T::score_transform,
+                    {{"none", ScoreTransform::kNone}, {"sigmoid", ScoreTransform::kSigmoid}},
                     "none (probabilities) or sigmoid (raw logits)")
-            .add("min_giou", &T::min_giou, closed(-1.0, 1.0), "associated pairs need at least this 3D GIoU")
-            .add("sensor_range_m", &T::sensor_range_m, above(0.0, 1000.0), "objects farther from the sensor are neither matched nor penalised")
-            .choice("out_of_range", &T::out_of_range, {{"freeze", OutOfRange::kFreeze}, {"drop", OutOfRange::kDrop}},
+            .add("min_giou", &T::min_giou, closed(-1.0, 1.0),
+                 "associated pairs need at least this 3D GIoU")
+            .add("sensor_range_m", &T::sensor_range_m, above(0.0, 1000.0),
+                 "objects farther from the sensor are neither matched nor penalised")
+            .choice("out_of_range", &T::out_of_range,
+                    {{"freeze", OutOfRange::kFreeze}, {"drop", OutOfRange::kDrop}},
                     "freeze (remember where last seen) or drop")
-            .add("max_unobserved_s", &T::max_unobserved_s, above(0.0, 1e9).or_infinity(), "any object unseen this long leaves the map (.inf: never)")
+            .add("max_unobserved_s", &T::max_unobserved_s, above(0.0, 1e9).or_infinity(),
+                 "any object unseen this long leaves the map (.inf: never)")
             .add("max_floor_gap_m", &T::max_floor_gap_m, above(0.0, 100.0).or_infinity(),
-                 "detections whose bottom is farther from the floor plane are not used (.inf: no floor prior)")
-            .add("merge_iou", &T::merge_iou, above(0.0, 1.0), "two confirmed objects of a class overlapping more (BEV IoU) are one")
+                 "detections whose bottom is farther from the floor plane are not used (.inf: no "
+                 "floor prior)")
+            .add("merge_iou", &T::merge_iou, above(0.0, 1.0),
+                 "two confirmed objects of a class overlapping more (BEV IoU) are one")
             .add("motion_gate_sigma", &T::motion_gate_sigma, above(0.0, 100.0).or_infinity(),
-                 "detections farther than max speed x dt + this many sigmas are not associated (.inf: no gate)");
+                 "detections farther than max speed x dt + this many sigmas are not associated "
+                 "(.inf: no gate)");
         for (ObjectClass cls : kAllObjectClasses) {
             const auto i = static_cast<std::size_t>(cls);
-            t.include(std::string(to_string(cls)) + "_", [i](T& p) -> MotionPrior& { return p.motion[i]; }, motion_prior_table());
+            t.include(
+                std::string(to_string(cls)) + "_",
+                [i](T& p) -> MotionPrior& { return p.motion[i]; }, motion_prior_table());
         }
         t.add("association_gate_m", &T::association_gate_m, closed(0.0, 100.0), "")
             .add("max_centre_distance_m", &T::max_centre_distance_m, closed(0.0, 100.0),
                  "> 0: pairs scored by centre distance (at most this) instead of min_giou")
-            .include("", [](T& p) -> KalmanParams& { return p.kalman; }, kalman_table())
-            .add("min_hits", &T::min_hits, closed(1, 1000), "detections before an object enters the map's output")
-            .add("max_misses", &T::max_misses, closed(1, 100000), "consecutive unexplained misses that remove an object")
-            .add("min_existence", &T::min_existence, closed(0.0, 1.0), "fused existence below this removes an object ...")
-            .add("existence_grace_frames", &T::existence_grace_frames, closed(1, 1000), "... once it has been judged on this many frames")
-            .add("same_view_m", &T::same_view_m, closed(0.0, 100.0), "frames seeing an object from within this of one place ...")
+            .include(
+                "", [](T& p) -> KalmanParams& { return p.kalman; }, kalman_table())
+            .add("min_hits", &T::min_hits, closed(1, 1000),
+                 "detections before an object enters the map's output")
+            .add("max_misses", &T::max_misses, closed(1, 100000),
+                 "consecutive unexplained misses that remove an object")
+            .add("min_existence", &T::min_existence, closed(0.0, 1.0),
+                 "fused existence below this removes an object ...")
+            .add("existence_grace_frames", &T::existence_grace_frames, closed(1, 1000),
+                 "... once it has been judged on this many frames")
+            .add("same_view_m", &T::same_view_m, closed(0.0, 100.0),
+                 "frames seeing an object from within this of one place ...")
             .add("same_view_period_s", &T::same_view_period_s, above(0.0, 3600.0),
-                 "... and this long are one view: a still robot's repeated frames are one vote (0 m: every frame)");
+                 "... and this long are one view: a still robot's repeated frames are one vote (0 "
+                 "m: every frame)");
         return t;
     }();
     return table;
 }
 
-std::vector<std::string> MotionPrior::validate() const { return motion_prior_table().problems(*this); }
+std::vector<std::string> MotionPrior::validate() const {
+    return motion_prior_table().problems(*this);
+}
 
 std::vector<std::string> TrackerParams::validate() const {
     std::vector<std::string> p = tracker_table().problems(*this);
-    if (std::none_of(tracked_classes.begin(), tracked_classes.end(), [](bool b) { return b; })) p.push_back("no class is tracked");
+    if (std::none_of(tracked_classes.begin(), tracked_classes.end(), [](bool b) { return b; }))
+        p.push_back("no class is tracked");
     if (!(miss_range_m >= 0.0)) p.push_back("miss_range_m must be >= 0");
-    if (!(occlusion.blocked_fraction > 0.0 && occlusion.blocked_fraction <= 1.0)) p.push_back("blocked_fraction must be in (0, 1]");
+    if (!(occlusion.blocked_fraction > 0.0 && occlusion.blocked_fraction <= 1.0))
+        p.push_back("blocked_fraction must be in (0, 1]");
     return p;
 }
 
 std::array<double, kNumObjectClasses> Track::class_distribution() const {
     std::array<double, kNumObjectClasses> p{};
     for (int c = 0; c < kNumObjectClasses; ++c) {
-        p[static_cast<std::size_t>(c)] = class_frames ? class_probability_sum[static_cast<std::size_t>(c)] / class_frames : 0.0;
+        p[static_cast<std::size_t>(c)] =
+            class_frames ? class_probability_sum[static_cast<std::size_t>(c)] / class_frames : 0.0;
     }
     return p;
 }
@@ -131,7 +159,8 @@ struct WindowFit {
     bool significant = false;
 };
 
-WindowFit fit_window(const std::deque<std::pair<double, Eigen::Vector2d>>& seen, double min_sigma_m) {
+WindowFit fit_window(const std::deque<std::pair<double, Eigen::Vector2d>>& seen,
+                     double min_sigma_m) {
     WindowFit fit;
     const auto n = static_cast<double>(seen.size());
     if (seen.size() < 3) return fit;
@@ -142,7 +171,8 @@ WindowFit fit_window(const std::deque<std::pair<double, Eigen::Vector2d>>& seen,
     p_mean /= n;
     double stt = 0.0;
     Eigen::Vector2d stp = Eigen::Vector2d::Zero();
-    for (const auto& [t, p] : seen) stt += (t - t_mean) * (t - t_mean), stp += (t - t_mean) * (p - p_mean);
+    for (const auto& [t, p] : seen)
+        stt += (t - t_mean) * (t - t_mean), stp += (t - t_mean) * (p - p_mean);
     if (!(stt > 0.0)) return fit;
     fit.velocity = stp / stt;
     double ssr = 0.0;
@@ -158,8 +188,10 @@ bool ObjectMap::in_range(const OrientedBox& b, const Eigen::Vector3d& sensor) co
     return (b.centre_m - sensor).head<2>().norm() <= params_.sensor_range_m;
 }
 
-std::vector<bool> ObjectMap::usable_detections(const std::vector<Detection>& dets, const std::vector<double>& scores,
-                                               const std::vector<OrientedBox>& det_world, const Eigen::Vector3d& sensor,
+std::vector<bool> ObjectMap::usable_detections(const std::vector<Detection>& dets,
+                                               const std::vector<double>& scores,
+                                               const std::vector<OrientedBox>& det_world,
+                                               const Eigen::Vector3d& sensor,
                                                const Eigen::Vector4d* floor) const {
     std::vector<bool> usable(dets.size());
     for (std::size_t i = 0; i < dets.size(); ++i) {
@@ -167,7 +199,8 @@ std::vector<bool> ObjectMap::usable_detections(const std::vector<Detection>& det
         // Beyond the range an object born could never be judged; off the floor it is not furniture
         // a robot could hit (or it is a part of the furniture below it).
         bool ok = b.is_valid() && in_range(b, sensor) && scores[i] >= params_.min_score &&
-                  params_.tracked_classes[static_cast<std::size_t>(dets[i].cls)] && (!region_ || region_(b.centre_m.head<2>()));
+                  params_.tracked_classes[static_cast<std::size_t>(dets[i].cls)] &&
+                  (!region_ || region_(b.centre_m.head<2>()));
         if (ok && floor && std::isfinite(params_.max_floor_gap_m)) {
             const Eigen::Vector3d bottom = b.centre_m - Eigen::Vector3d(0, 0, b.size_m.z() / 2);
             ok = std::abs(floor->head<3>().dot(bottom) + floor->w()) <= params_.max_floor_gap_m;
@@ -177,9 +210,11 @@ std::vector<bool> ObjectMap::usable_detections(const std::vector<Detection>& det
     return usable;
 }
 
-void ObjectMap::judge(Track& t, double evidence, bool miss, const Eigen::Vector3d& sensor, double stamp_s) const {
+void ObjectMap::judge(Track& t, double evidence, bool miss, const Eigen::Vector3d& sensor,
+                      double stamp_s) const {
     const Eigen::Vector2d offset = (sensor - t.filter.box().centre_m).head<2>();
-    const bool same_view = params_.same_view_m > 0.0 && t.view_frames > 0 && (offset - t.view_offset).norm() < params_.same_view_m &&
+    const bool same_view = params_.same_view_m > 0.0 && t.view_frames > 0 &&
+                           (offset - t.view_offset).norm() < params_.same_view_m &&
                            stamp_s - t.view_start_s < params_.same_view_period_s;
     if (!same_view) {
         if (t.view_frames > 0) {  // close the open view: one vote, its frames' mean
@@ -226,12 +261,16 @@ void ObjectMap::apply_motion_prior(double stamp_s, double dt) {
     for (auto& [id, t] : tracks_) {
         const MotionPrior& m = params_.motion[static_cast<std::size_t>(t.cls())];
         const bool observed = t.last_stamp_s == stamp_s;
-        while (!t.seen_at.empty() && t.seen_at.front().first < stamp_s - m.motion_window_s) t.seen_at.pop_front();
+        while (!t.seen_at.empty() && t.seen_at.front().first < stamp_s - m.motion_window_s)
+            t.seen_at.pop_front();
         // Moved: 3+ boxes over at least half the window, displaced by min_displacement_m, along a
         // significant slope (two boxes a frame apart, or boxes hopping, say nothing about motion).
-        const bool spans = t.seen_at.size() >= 3 && t.seen_at.back().first - t.seen_at.front().first >= m.motion_window_s / 2 &&
-                           (t.seen_at.back().second - t.seen_at.front().second).norm() >= m.min_displacement_m;
-        const WindowFit fit = spans ? fit_window(t.seen_at, params_.kalman.meas_position_sigma_m) : WindowFit{};
+        const bool spans =
+            t.seen_at.size() >= 3 &&
+            t.seen_at.back().first - t.seen_at.front().first >= m.motion_window_s / 2 &&
+            (t.seen_at.back().second - t.seen_at.front().second).norm() >= m.min_displacement_m;
+        const WindowFit fit =
+            spans ? fit_window(t.seen_at, params_.kalman.meas_position_sigma_m) : WindowFit{};
         if (m.min_displacement_m > 0.0 && !fit.significant) {
             t.filter.hold_at_rest();  // until the detections move it
         } else if (m.min_displacement_m > 0.0 && observed) {
@@ -255,14 +294,19 @@ void ObjectMap::merge_duplicates(TrackerFrameResult& out) {
     for (const auto& [id, t] : tracks_) {
         if (t.confirmed(params_.min_hits)) confirmed.push_back({&t, t.filter.box(), t.cls()});
     }
-    std::sort(confirmed.begin(), confirmed.end(), [](const Confirmed& a, const Confirmed& b) { return a.track->id < b.track->id; });
+    std::sort(confirmed.begin(), confirmed.end(),
+              [](const Confirmed& a, const Confirmed& b) { return a.track->id < b.track->id; });
     std::vector<std::uint32_t> gone;
     for (std::size_t i = 0; i < confirmed.size(); ++i) {
         for (std::size_t j = i + 1; j < confirmed.size(); ++j) {
             const Confirmed &a = confirmed[i], &b = confirmed[j];
-            if (a.cls != b.cls || (a.box.centre_m - b.box.centre_m).head<2>().norm() > footprint_radius(a.box) + footprint_radius(b.box)) continue;
+            if (a.cls != b.cls || (a.box.centre_m - b.box.centre_m).head<2>().norm() >
+                                      footprint_radius(a.box) + footprint_radius(b.box))
+                continue;
             if (iou_bev(a.box, b.box) <= params_.merge_iou) continue;
-            gone.push_back(b.track->hits > a.track->hits ? a.track->id : b.track->id);  // the better-supported one stays; ties: the older
+            gone.push_back(b.track->hits > a.track->hits
+                               ? a.track->id
+                               : b.track->id);  // the better-supported one stays; ties: the older
         }
     }
     std::sort(gone.begin(), gone.end());
@@ -273,20 +317,29 @@ void ObjectMap::merge_duplicates(TrackerFrameResult& out) {
     }
 }
 
-TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const Isometry3& T_world_sensor, double stamp_s,
-                                     const PointCloud* keyframe_sensor, const Eigen::Vector4d* floor_plane_world) {
+TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets,
+                                     const Isometry3& T_world_sensor, double stamp_s,
+                                     const PointCloud* keyframe_sensor,
+                                     const Eigen::Vector4d* floor_plane_world) {
     if (started_ && stamp_s < last_stamp_s_) {
-        throw std::invalid_argument("tracker: frame stamp " + std::to_string(stamp_s) + " s is before the previous " + std::to_string(last_stamp_s_) + " s");
+        throw std::invalid_argument("tracker: frame stamp " + std::to_string(stamp_s) +
+                                    " s is before the previous " + std::to_string(last_stamp_s_) +
+                                    " s");
     }
     // Scores first: a bad one is refused before the map changes.
     std::vector<OrientedBox> det_world;
     std::vector<double> scores;
     for (const Detection& d : dets) {
         det_world.push_back(d.box_sensor.transformed(T_world_sensor));
-        const double s = params_.score_transform == ScoreTransform::kSigmoid ? 1.0 / (1.0 + std::exp(-d.score)) : d.score;
+        const double s = params_.score_transform == ScoreTransform::kSigmoid
+                             ? 1.0 / (1.0 + std::exp(-d.score))
+                             : d.score;
         if (!(s >= 0.0 && s <= 1.0)) {
-            throw std::invalid_argument("tracker: detection score " + std::to_string(d.score) + " is not in [0, 1]" +
-                                        (params_.score_transform == ScoreTransform::kNone ? " (raw logits need the sigmoid score transform)" : ""));
+            throw std::invalid_argument("tracker: detection score " + std::to_string(d.score) +
+                                        " is not in [0, 1]" +
+                                        (params_.score_transform == ScoreTransform::kNone
+                                             ? " (raw logits need the sigmoid score transform)"
+                                             : ""));
         }
         scores.push_back(s);
     }
@@ -301,8 +354,10 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
     std::vector<std::uint32_t> ids;
     for (const auto& [id, t] : tracks_) ids.push_back(id);
     std::sort(ids.begin(), ids.end());  // deterministic order
-    const std::vector<bool> usable = usable_detections(dets, scores, det_world, sensor, floor_plane_world);
-    out.unused_detections = static_cast<std::size_t>(std::count(usable.begin(), usable.end(), false));
+    const std::vector<bool> usable =
+        usable_detections(dets, scores, det_world, sensor, floor_plane_world);
+    out.unused_detections =
+        static_cast<std::size_t>(std::count(usable.begin(), usable.end(), false));
 
     // Associate: GIoU between every detection and every predicted object in range; Hungarian on
     // 1 - GIoU; pairs below the threshold are rejected afterwards. With max_centre_distance_m the
@@ -318,24 +373,32 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
     if (!dets.empty() && !candidates.empty()) {
         std::vector<OrientedBox> predicted;
         std::vector<double> reach;  // how far each object's centre can be from its prediction
-        const double r2 = 2 * params_.kalman.meas_position_sigma_m * params_.kalman.meas_position_sigma_m;
+        const double r2 =
+            2 * params_.kalman.meas_position_sigma_m * params_.kalman.meas_position_sigma_m;
         for (std::uint32_t id : candidates) {
             const Track& t = tracks_.at(id);
             predicted.push_back(t.filter.box());
-            const double sigma = std::sqrt(t.filter.covariance()(0, 0) + t.filter.covariance()(1, 1) + r2);
-            reach.push_back(params_.motion[static_cast<std::size_t>(t.cls())].max_speed_mps * dt + params_.motion_gate_sigma * sigma);
+            const double sigma =
+                std::sqrt(t.filter.covariance()(0, 0) + t.filter.covariance()(1, 1) + r2);
+            reach.push_back(params_.motion[static_cast<std::size_t>(t.cls())].max_speed_mps * dt +
+                            params_.motion_gate_sigma * sigma);
         }
-        Eigen::MatrixXd giou = Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(dets.size()), static_cast<Eigen::Index>(candidates.size()),
-                                                         by_distance ? -1e6 : -1.0);
+        Eigen::MatrixXd giou = Eigen::MatrixXd::Constant(
+            static_cast<Eigen::Index>(dets.size()), static_cast<Eigen::Index>(candidates.size()),
+            by_distance ? -1e6 : -1.0);
         for (std::size_t i = 0; i < dets.size(); ++i) {
             if (!usable[i]) continue;
             for (std::size_t j = 0; j < candidates.size(); ++j) {
-                // Gate: footprints farther apart than the gate have a GIoU far below any useful threshold.
-                const double distance = (det_world[i].centre_m - predicted[j].centre_m).head<2>().norm();
-                const double gap = distance - footprint_radius(det_world[i]) - footprint_radius(predicted[j]);
+                // Gate: footprints farther apart than the gate have a GIoU far below any useful
+                // threshold.
+                const double distance =
+                    (det_world[i].centre_m - predicted[j].centre_m).head<2>().norm();
+                const double gap =
+                    distance - footprint_radius(det_world[i]) - footprint_radius(predicted[j]);
                 if (gap > params_.association_gate_m || distance > reach[j]) continue;
                 giou(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
-                    by_distance ? -(det_world[i].centre_m - predicted[j].centre_m).norm() : giou_3d(det_world[i], predicted[j]);
+                    by_distance ? -(det_world[i].centre_m - predicted[j].centre_m).norm()
+                                : giou_3d(det_world[i], predicted[j]);
             }
         }
         const std::vector<int> col = min_cost_assignment(1.0 - giou.array());
@@ -345,7 +408,8 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
             Track& t = tracks_.at(candidates[static_cast<std::size_t>(j)]);
             t.filter.update(det_world[i]);
             for (int c = 0; c < kNumObjectClasses; ++c) {
-                t.class_probability_sum[static_cast<std::size_t>(c)] += dets[i].class_probabilities[static_cast<std::size_t>(c)];
+                t.class_probability_sum[static_cast<std::size_t>(c)] +=
+                    dets[i].class_probabilities[static_cast<std::size_t>(c)];
             }
             ++t.class_frames;
             judge(t, scores[i], false, sensor, stamp_s);
@@ -365,19 +429,28 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
         if (out.track_of_detection[i] < 0 && usable[i]) all_boxes.push_back(det_world[i]);
     }
     std::optional<ScanOcclusion> scan;  // binned only when an object needs it
-    const double miss_range_m = params_.miss_range_m > 0.0 ? std::min(params_.miss_range_m, params_.sensor_range_m) : params_.sensor_range_m;
+    const double miss_range_m = params_.miss_range_m > 0.0
+                                    ? std::min(params_.miss_range_m, params_.sensor_range_m)
+                                    : params_.sensor_range_m;
     for (std::size_t j = 0; j < candidates.size(); ++j) {
         if (matched_track[j]) continue;
-        if ((tracks_.at(candidates[j]).filter.box().centre_m - sensor).head<2>().norm() > miss_range_m) continue;  // the detector can't see it
-        if (keyframe_sensor && !scan) scan.emplace(*keyframe_sensor, T_world_sensor, params_.occlusion);
+        if ((tracks_.at(candidates[j]).filter.box().centre_m - sensor).head<2>().norm() >
+            miss_range_m)
+            continue;  // the detector can't see it
+        if (keyframe_sensor && !scan)
+            scan.emplace(*keyframe_sensor, T_world_sensor, params_.occlusion);
         Track& t = tracks_.at(candidates[j]);
         std::vector<OrientedBox> others;
-        const auto own = static_cast<std::size_t>(std::find(ids.begin(), ids.end(), t.id) - ids.begin());
+        const auto own =
+            static_cast<std::size_t>(std::find(ids.begin(), ids.end(), t.id) - ids.begin());
         for (std::size_t k = 0; k < all_boxes.size(); ++k) {
             if (k != own) others.push_back(all_boxes[k]);
         }
-        // Only confirmed objects are protected: a tentative track hidden at once is most likely false.
-        if (t.confirmed(params_.min_hits) && is_occluded(sensor, t.filter.box(), others, params_.occlusion, scan ? &*scan : nullptr)) {
+        // Only confirmed objects are protected: a tentative track hidden at once is most likely
+        // false.
+        if (t.confirmed(params_.min_hits) &&
+            is_occluded(sensor, t.filter.box(), others, params_.occlusion,
+                        scan ? &*scan : nullptr)) {
             out.occluded.push_back(t.id);
             continue;
         }
@@ -390,7 +463,8 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets, const I
         const Track& t = tracks_.at(id);
         const bool judged = t.existence_frames >= params_.existence_grace_frames;
         if (t.misses >= params_.max_misses || (judged && t.existence() < params_.min_existence) ||
-            stamp_s - t.last_stamp_s > params_.max_unobserved_s || (region_ && !region_(t.filter.box().centre_m.head<2>()))) {
+            stamp_s - t.last_stamp_s > params_.max_unobserved_s ||
+            (region_ && !region_(t.filter.box().centre_m.head<2>()))) {
             out.removed.push_back(id);
             tracks_.erase(id);
         }
@@ -435,7 +509,8 @@ TrackerParams traffic_preset(std::string_view type) {
     p.min_hits = 2;
     p.max_misses = 3;
     std::string t(type);
-    std::transform(t.begin(), t.end(), t.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    std::transform(t.begin(), t.end(), t.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
     if (t == "pedestrian" || t == "cyclist") {
         // Small boxes overlap little from frame to frame (GIoU -0.4), are missed more often (one
         // more frame of coasting), and their false positives are isolated boxes (three hits).

@@ -9,8 +9,8 @@
 // object unobserved for max_unobserved_s leaves, detections off the floor are not used, and two
 // confirmed objects on one footprint are merged.
 #include <array>
-#include <deque>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -35,12 +35,12 @@ struct MotionPrior {
     /// 0: zeroed at the first unobserved frame; infinity: kept (constant velocity, as AB3DMOT).
     double velocity_decay_s = 0.5;
     double max_speed_mps = 1.5;  ///< horizontal speed estimates are clamped to this
-    bool planar = true;          ///< no vertical motion (vz held at 0): things that stand on a floor
+    bool planar = true;  ///< no vertical motion (vz held at 0): things that stand on a floor
     /// Static until it moved: the object is held at rest (velocity 0) unless its detections within
-    /// the last motion_window_s (spanning at least half of it) moved it at least this far, and then its velocity is the
-    /// least-squares slope of those detections (the filter's velocity, driven by the last few boxes
-    /// of partial views, overshoots). Detection noise otherwise reads as motion. 0: the filter's
-    /// velocity, always free (traffic).
+    /// the last motion_window_s (spanning at least half of it) moved it at least this far, and then
+    /// its velocity is the least-squares slope of those detections (the filter's velocity, driven
+    /// by the last few boxes of partial views, overshoots). Detection noise otherwise reads as
+    /// motion. 0: the filter's velocity, always free (traffic).
     double min_displacement_m = 0.3;
     double motion_window_s = 2.0;
     std::vector<std::string> validate() const;
@@ -61,15 +61,18 @@ struct TrackerParams {
     /// Indexed by ObjectClass (chair, table). Chairs roll or are carried at up to a brisk walk;
     /// tables are heavy, dragged at a slow walk, and their boxes shift more with the view (half a
     /// table's length), so they need a larger displacement over a longer window before they move.
-    std::array<MotionPrior, kNumObjectClasses> motion{MotionPrior{0.5, 1.5, true, 0.3, 2.0}, MotionPrior{0.5, 0.5, true, 0.6, 3.0}};
-    std::array<bool, kNumObjectClasses> tracked_classes{true, true};  ///< detections of other classes are not used
+    std::array<MotionPrior, kNumObjectClasses> motion{MotionPrior{0.5, 1.5, true, 0.3, 2.0},
+                                                      MotionPrior{0.5, 0.5, true, 0.6, 3.0}};
+    std::array<bool, kNumObjectClasses> tracked_classes{
+        true, true};  ///< detections of other classes are not used
     ScoreTransform score_transform = ScoreTransform::kNone;
-    double min_score = 0.0;          ///< detections scoring below this (after the transform) are not used
-    double min_giou = -0.1;          ///< associated pairs need at least this 3D GIoU ...
+    double min_score = 0.0;  ///< detections scoring below this (after the transform) are not used
+    double min_giou = -0.1;  ///< associated pairs need at least this 3D GIoU ...
     /// ... or, when > 0, pairs are scored by the distance between their centres instead of GIoU
     /// and need at most this (thin boxes like cyclists overlap little from frame to frame).
     double max_centre_distance_m = 0.0;
-    double sensor_range_m = 10.0;    ///< objects farther from the sensor are neither matched nor penalised
+    double sensor_range_m =
+        10.0;  ///< objects farther from the sensor are neither matched nor penalised
     OutOfRange out_of_range = OutOfRange::kFreeze;
     /// Unmatched objects farther than this are not penalised either: where the detector cannot see
     /// (its grid's reach), a miss says nothing. 0: sensor_range_m.
@@ -119,12 +122,14 @@ TrackerParams traffic_preset(std::string_view type);
 struct Track {
     std::uint32_t id = 0;
     BoxKalmanFilter filter;
-    Isometry3 T_world_object_birth = Isometry3::Identity();  ///< the object's own frame, anchored at birth
-    std::array<double, kNumObjectClasses> class_probability_sum{};  ///< eq. (3): sum over the k frames
+    Isometry3 T_world_object_birth =
+        Isometry3::Identity();  ///< the object's own frame, anchored at birth
+    std::array<double, kNumObjectClasses>
+        class_probability_sum{};  ///< eq. (3): sum over the k frames
     int class_frames = 0;
-    double existence_sum = 0.0;      ///< over closed views where the object was visible and in range
-    int existence_views = 0;         ///< closed views (TrackerParams::same_view_m)
-    int existence_frames = 0;        ///< frames judged (existence_grace_frames)
+    double existence_sum = 0.0;  ///< over closed views where the object was visible and in range
+    int existence_views = 0;     ///< closed views (TrackerParams::same_view_m)
+    int existence_frames = 0;    ///< frames judged (existence_grace_frames)
     /// The open view: evidence summed over its frames, where it was seen from, when it began,
     /// whether it counted a miss.
     double view_sum = 0.0;
@@ -133,13 +138,14 @@ struct Track {
     double view_start_s = 0.0;
     bool view_missed = false;
     int hits = 0;
-    int misses = 0;                  ///< consecutive unexplained misses
+    int misses = 0;  ///< consecutive unexplained misses
     int age_frames = 0;
     double last_stamp_s = 0.0;
-    std::deque<std::pair<double, Eigen::Vector2d>> seen_at;  ///< (stamp, centre) of recent detections
+    std::deque<std::pair<double, Eigen::Vector2d>>
+        seen_at;  ///< (stamp, centre) of recent detections
 
-    ObjectClass cls() const;                                        ///< eq. (4)
-    double class_confidence() const;                                ///< eq. (5)
+    ObjectClass cls() const;                                           ///< eq. (4)
+    double class_confidence() const;                                   ///< eq. (5)
     std::array<double, kNumObjectClasses> class_distribution() const;  ///< eq. (3)
     double existence() const;  ///< the mean over views, the open one included
     int views() const { return existence_views + (view_frames > 0 ? 1 : 0); }
@@ -148,48 +154,58 @@ struct Track {
 
 /// What one update did, for diagnostics and evaluation.
 struct TrackerFrameResult {
-    std::vector<int> track_of_detection;       ///< track id per detection (new or matched; -1: out of range or invalid)
+    std::vector<int> track_of_detection;  ///< track id per detection (new or matched; -1: out of
+                                          ///< range or invalid)
     std::vector<std::uint32_t> born, removed, occluded;
-    std::vector<std::uint32_t> frozen;          ///< out of range and held in place this frame
-    std::size_t unused_detections = 0;          ///< below min_score, untracked class, out of range, invalid or off the floor
+    std::vector<std::uint32_t> frozen;  ///< out of range and held in place this frame
+    std::size_t unused_detections =
+        0;  ///< below min_score, untracked class, out of range, invalid or off the floor
     std::vector<ObjectEstimate> objects_world;  ///< the confirmed map after the update
 };
 
 class ObjectMap {
-public:
+  public:
     explicit ObjectMap(const TrackerParams& params = {}) : params_(params) {}
 
     /// One keyframe: detections in the sensor frame, the sensor pose, the keyframe's time.
     /// Detection scores are the per-frame existence evidence (verified p_exist where available).
-    /// With the keyframe cloud (sensor frame), returns in front of an object also count as occlusion.
-    /// With the floor plane (world frame, n . p + d = 0, n up), detections must stand on it.
-    /// Throws std::invalid_argument when stamp_s goes back in time or a score is not in [0, 1]
+    /// With the keyframe cloud (sensor frame), returns in front of an object also count as
+    /// occlusion. With the floor plane (world frame, n . p + d = 0, n up), detections must stand on
+    /// it. Throws std::invalid_argument when stamp_s goes back in time or a score is not in [0, 1]
     /// after the score transform (never clamped: a logit read as a probability is a setup error).
-    TrackerFrameResult update(const std::vector<Detection>& detections_sensor, const Isometry3& T_world_sensor, double stamp_s,
-                              const PointCloud* keyframe_sensor = nullptr, const Eigen::Vector4d* floor_plane_world = nullptr);
+    TrackerFrameResult update(const std::vector<Detection>& detections_sensor,
+                              const Isometry3& T_world_sensor, double stamp_s,
+                              const PointCloud* keyframe_sensor = nullptr,
+                              const Eigen::Vector4d* floor_plane_world = nullptr);
 
     /// Where objects can stand (world x, y), e.g. the free space of the prebuilt map of walls:
     /// detections centred elsewhere are not used and objects predicted elsewhere leave. Default:
     /// anywhere.
-    void set_region(std::function<bool(const Eigen::Vector2d&)> allowed) { region_ = std::move(allowed); }
+    void set_region(std::function<bool(const Eigen::Vector2d&)> allowed) {
+        region_ = std::move(allowed);
+    }
 
     /// Confirmed objects, world frame.
     std::vector<ObjectEstimate> objects() const;
     const std::unordered_map<std::uint32_t, Track>& tracks() const { return tracks_; }
     const TrackerParams& params() const { return params_; }
 
-private:
-    std::vector<bool> usable_detections(const std::vector<Detection>& dets, const std::vector<double>& scores,
-                                        const std::vector<OrientedBox>& det_world, const Eigen::Vector3d& sensor,
+  private:
+    std::vector<bool> usable_detections(const std::vector<Detection>& dets,
+                                        const std::vector<double>& scores,
+                                        const std::vector<OrientedBox>& det_world,
+                                        const Eigen::Vector3d& sensor,
                                         const Eigen::Vector4d* floor) const;
     void predict(double dt, const Eigen::Vector3d& sensor, TrackerFrameResult& out);
-    void apply_motion_prior(double stamp_s, double dt);  ///< objects not associated at stamp_s decay
+    void apply_motion_prior(double stamp_s,
+                            double dt);  ///< objects not associated at stamp_s decay
     void merge_duplicates(TrackerFrameResult& out);
     bool in_range(const OrientedBox& box, const Eigen::Vector3d& sensor) const;
     /// One frame's existence evidence for `t` (a detection's score, or 0 for an unexplained
     /// miss), folded into its open view or opening a new one; a miss adds to t.misses once per
     /// view, a detection ends the run of misses.
-    void judge(Track& t, double evidence, bool miss, const Eigen::Vector3d& sensor, double stamp_s) const;
+    void judge(Track& t, double evidence, bool miss, const Eigen::Vector3d& sensor,
+               double stamp_s) const;
 
     TrackerParams params_;
     std::function<bool(const Eigen::Vector2d&)> region_;

@@ -1,10 +1,9 @@
 #include "makeway/verification/cad_library.hpp"
 
-#include <nanoflann.hpp>
-
 #include <cmath>
 #include <limits>
 #include <map>
+#include <nanoflann.hpp>
 #include <tuple>
 
 #include "makeway/common/angles.hpp"
@@ -16,21 +15,27 @@ struct ModelLevel::Index {
     struct Adaptor {
         const std::vector<Eigen::Vector3d>* pts;
         std::size_t kdtree_get_point_count() const { return pts->size(); }
-        double kdtree_get_pt(std::size_t i, std::size_t d) const { return (*pts)[i][static_cast<int>(d)]; }
+        double kdtree_get_pt(std::size_t i, std::size_t d) const {
+            return (*pts)[i][static_cast<int>(d)];
+        }
         template <class Bbox>
         bool kdtree_get_bbox(Bbox&) const {
             return false;
         }
     };
-    using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Adaptor>, Adaptor, 3, std::size_t>;
+    using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Adaptor>,
+                                                     Adaptor, 3, std::size_t>;
     explicit Index(const std::vector<Eigen::Vector3d>& points)
-        : owned(points), adaptor{&owned}, tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
+        : owned(points),
+          adaptor{&owned},
+          tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
     std::vector<Eigen::Vector3d> owned;
     Adaptor adaptor;
     Tree tree;
 };
 
-std::size_t ModelLevel::nearest(const Eigen::Vector3d& q, double max_distance_m, double* distance2) const {
+std::size_t ModelLevel::nearest(const Eigen::Vector3d& q, double max_distance_m,
+                                double* distance2) const {
     // A 1-NN search whose ball starts at max_distance: branches farther away are never visited.
     if (grid) {
         double d2 = 0.0;
@@ -54,18 +59,23 @@ std::size_t ModelLevel::nearest(const Eigen::Vector3d& q, double max_distance_m,
 
 std::vector<std::string> CadLibraryParams::validate() const {
     std::vector<std::string> p;
-    if (voxel_sizes_m.empty() || voxel_sizes_m.size() > 6) p.push_back("voxel_sizes_m must hold 1..6 sizes");
+    if (voxel_sizes_m.empty() || voxel_sizes_m.size() > 6)
+        p.push_back("voxel_sizes_m must hold 1..6 sizes");
     for (double v : voxel_sizes_m) {
         if (!(v > 0.0 && v < 1.0)) p.push_back("voxel sizes must be in (0, 1)");
     }
-    if (!(sample_spacing_m > 0.0 && sample_spacing_m < 0.5)) p.push_back("sample_spacing_m must be in (0, 0.5)");
-    if (lookup_margin_m.size() > voxel_sizes_m.size()) p.push_back("lookup_margin_m has more entries than voxel_sizes_m");
+    if (!(sample_spacing_m > 0.0 && sample_spacing_m < 0.5))
+        p.push_back("sample_spacing_m must be in (0, 0.5)");
+    if (lookup_margin_m.size() > voxel_sizes_m.size())
+        p.push_back("lookup_margin_m has more entries than voxel_sizes_m");
     for (double m : lookup_margin_m) {
         if (!(m >= 0.0 && m <= 1.0)) p.push_back("lookup margins must be in [0, 1] m");
     }
-    if (lookup_cell_fraction.size() < lookup_margin_m.size()) p.push_back("lookup_cell_fraction needs an entry per lookup margin");
+    if (lookup_cell_fraction.size() < lookup_margin_m.size())
+        p.push_back("lookup_cell_fraction needs an entry per lookup margin");
     for (double f : lookup_cell_fraction) {
-        if (!(f >= 0.1 && f <= 2.0)) p.push_back("lookup_cell_fraction entries must be in [0.1, 2]");
+        if (!(f >= 0.1 && f <= 2.0))
+            p.push_back("lookup_cell_fraction entries must be in [0.1, 2]");
     }
     return p;
 }
@@ -79,7 +89,8 @@ void CadLibrary::add(const std::string& name, ObjectClass cls, const TriangleMes
     std::vector<Eigen::Vector3d> pts, nrm;
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = -lo;
     for (const auto& t : mesh.triangles) {
-        const Eigen::Vector3d a = mesh.vertices_m[t[0]].cast<double>(), b = mesh.vertices_m[t[1]].cast<double>(),
+        const Eigen::Vector3d a = mesh.vertices_m[t[0]].cast<double>(),
+                              b = mesh.vertices_m[t[1]].cast<double>(),
                               c = mesh.vertices_m[t[2]].cast<double>();
         lo = lo.cwiseMin(a).cwiseMin(b).cwiseMin(c);
         hi = hi.cwiseMax(a).cwiseMax(b).cwiseMax(c);
@@ -104,12 +115,17 @@ void CadLibrary::add(const std::string& name, ObjectClass cls, const TriangleMes
         const double voxel = params_.voxel_sizes_m[l];
         std::map<std::tuple<long, long, long>, std::size_t> cells;
         for (std::size_t i = 0; i < pts.size(); ++i) {
-            const auto key = std::make_tuple(std::lround(std::floor(pts[i].x() / voxel)), std::lround(std::floor(pts[i].y() / voxel)),
+            const auto key = std::make_tuple(std::lround(std::floor(pts[i].x() / voxel)),
+                                             std::lround(std::floor(pts[i].y() / voxel)),
                                              std::lround(std::floor(pts[i].z() / voxel)));
-            const Eigen::Vector3d centre = (Eigen::Vector3d(std::get<0>(key), std::get<1>(key), std::get<2>(key)) +
-                                            Eigen::Vector3d::Constant(0.5)) * voxel;
+            const Eigen::Vector3d centre =
+                (Eigen::Vector3d(std::get<0>(key), std::get<1>(key), std::get<2>(key)) +
+                 Eigen::Vector3d::Constant(0.5)) *
+                voxel;
             auto [it, inserted] = cells.emplace(key, i);
-            if (!inserted && (pts[i] - centre).squaredNorm() < (pts[it->second] - centre).squaredNorm()) it->second = i;
+            if (!inserted &&
+                (pts[i] - centre).squaredNorm() < (pts[it->second] - centre).squaredNorm())
+                it->second = i;
         }
         ModelLevel level;
         level.voxel_m = voxel;
@@ -118,8 +134,10 @@ void CadLibrary::add(const std::string& name, ObjectClass cls, const TriangleMes
             level.normals_object.push_back(nrm[i]);
         }
         level.index = std::make_shared<ModelLevel::Index>(level.points_object);
-        if (l < params_.lookup_margin_m.size() && l < params_.lookup_cell_fraction.size()) {  // validate() says when not
-            level.grid = std::make_shared<ClosestPointGrid>(level.points_object, params_.lookup_cell_fraction[l] * voxel,
+        if (l < params_.lookup_margin_m.size() &&
+            l < params_.lookup_cell_fraction.size()) {  // validate() says when not
+            level.grid = std::make_shared<ClosestPointGrid>(level.points_object,
+                                                            params_.lookup_cell_fraction[l] * voxel,
                                                             params_.lookup_margin_m[l]);
         }
         model.levels.push_back(std::move(level));
@@ -128,7 +146,8 @@ void CadLibrary::add(const std::string& name, ObjectClass cls, const TriangleMes
         const ModelLevel& fine = model.levels.back();
         const Eigen::Vector3d c(model.box_object.centre_m.x(), model.box_object.centre_m.y(), 0.0);
         for (int k = 1; k < 4; ++k) {
-            const Eigen::Matrix3d R = Eigen::AngleAxisd(k * kPi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+            const Eigen::Matrix3d R =
+                Eigen::AngleAxisd(k * kPi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
             const double cap_m = 0.2;
             double sum2 = 0.0;
             for (const auto& p : fine.points_object) {
@@ -137,7 +156,9 @@ void CadLibrary::add(const std::string& name, ObjectClass cls, const TriangleMes
                 sum2 += std::min(d2, cap_m * cap_m);
             }
             model.quarter_turn_symmetric[static_cast<std::size_t>(k)] =
-                !fine.points_object.empty() && std::sqrt(sum2 / static_cast<double>(fine.points_object.size())) <= params_.symmetry_rms_m;
+                !fine.points_object.empty() &&
+                std::sqrt(sum2 / static_cast<double>(fine.points_object.size())) <=
+                    params_.symmetry_rms_m;
         }
     }
     models_.push_back(std::move(model));

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "makeway/common/oriented_box.hpp"
-#include "makeway/common/transforms.hpp"
 #include "makeway/common/semantic_label.hpp"
+#include "makeway/common/transforms.hpp"
 #include "makeway/common/triangle_mesh.hpp"
 #include "makeway/verification/closest_point_grid.hpp"
 
@@ -20,7 +20,8 @@ struct ModelLevel {
     std::vector<Eigen::Vector3d> normals_object;
     struct Index;
     std::shared_ptr<const Index> index;  ///< k-d tree over points_object
-    std::shared_ptr<const ClosestPointGrid> grid;  ///< optional lookup near the model (null: k-d tree only)
+    std::shared_ptr<const ClosestPointGrid>
+        grid;  ///< optional lookup near the model (null: k-d tree only)
     static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
     /// Index of the nearest model point within max_distance_m [m] of q (object frame) and its
     /// squared distance, or kNone (distance2 = inf) when there is none that close. Inside the
@@ -31,8 +32,8 @@ struct ModelLevel {
 struct CadModel {
     std::string name;
     ObjectClass cls = ObjectClass::kChair;
-    OrientedBox box_object;            ///< extent of the mesh in the object frame
-    std::vector<ModelLevel> levels;    ///< coarse to fine
+    OrientedBox box_object;          ///< extent of the mesh in the object frame
+    std::vector<ModelLevel> levels;  ///< coarse to fine
     /// Whether turning the model by k quarter turns about its box centre's vertical axis leaves its
     /// surface in place (k = 0 always; a rectangular table k = 2; a round one every k): yaw
     /// candidates that differ by such a turn are the same fit, not rivals.
@@ -41,7 +42,7 @@ struct CadModel {
 
 struct CadLibraryParams {
     std::vector<double> voxel_sizes_m{0.08, 0.04, 0.02};  ///< one level each, coarse to fine
-    double sample_spacing_m = 0.01;                         ///< surface sampling before thinning
+    double sample_spacing_m = 0.01;                       ///< surface sampling before thinning
     /// Closest-point lookup grids, one entry per level (coarse to fine), reaching this far around
     /// the model [m] (the ICP's correspondence distances); queries beyond, and levels without an
     /// entry, use the exact k-d tree. The finest level has one too: every accepted fit is refined
@@ -59,7 +60,7 @@ struct CadLibraryParams {
 };
 
 class CadLibrary {
-public:
+  public:
     explicit CadLibrary(const CadLibraryParams& params = {}) : params_(params) {}
     /// Samples and indexes a mesh given in its object frame (origin on the floor, x forward).
     void add(const std::string& name, ObjectClass cls, const TriangleMesh& mesh_object);
@@ -70,7 +71,7 @@ public:
     CadLibrary only(std::size_t index) const;
     const CadLibraryParams& params() const { return params_; }
 
-private:
+  private:
     CadLibraryParams params_;
     std::vector<CadModel> models_;
 };

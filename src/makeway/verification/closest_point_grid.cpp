@@ -10,8 +10,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // One line of the separable transform: d[q] = min_p (q - p)^2 + f[p], and the site carried by the
 // minimising p. v, z are the envelope's parabola vertices and boundaries (scratch).
-void transform_line(const double* f, const std::uint32_t* site, std::size_t n, double* d, std::uint32_t* site_out,
-                    std::vector<int>& v, std::vector<double>& z) {
+void transform_line(const double* f, const std::uint32_t* site, std::size_t n, double* d,
+                    std::uint32_t* site_out, std::vector<int>& v, std::vector<double>& z) {
     v.resize(n);
     z.resize(n + 1);
     int k = -1;
@@ -44,14 +44,16 @@ void transform_line(const double* f, const std::uint32_t* site, std::size_t n, d
 
 }  // namespace
 
-ClosestPointGrid::ClosestPointGrid(const std::vector<Eigen::Vector3d>& points, double cell_m, double margin_m)
+ClosestPointGrid::ClosestPointGrid(const std::vector<Eigen::Vector3d>& points, double cell_m,
+                                   double margin_m)
     : cell_m_(cell_m) {
     if (points.empty() || !(cell_m > 0.0) || !(margin_m >= 0.0)) return;
     Eigen::Vector3d lo = points.front(), hi = points.front();
     for (const auto& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     origin_m_ = lo - Eigen::Vector3d::Constant(margin_m);
     dims_ = ((hi - lo).array() / cell_m + 2.0 * margin_m / cell_m).ceil().cast<int>() + 1;
-    const std::size_t nx = static_cast<std::size_t>(dims_.x()), ny = static_cast<std::size_t>(dims_.y()),
+    const std::size_t nx = static_cast<std::size_t>(dims_.x()),
+                      ny = static_cast<std::size_t>(dims_.y()),
                       nz = static_cast<std::size_t>(dims_.z());
     const std::size_t cells = nx * ny * nz;
     // Sites: each occupied cell keeps the point nearest its centre; squared distance 0 there.
@@ -61,9 +63,12 @@ ClosestPointGrid::ClosestPointGrid(const std::vector<Eigen::Vector3d>& points, d
     for (std::size_t i = 0; i < points.size(); ++i) {
         const Eigen::Array3d f = (points[i] - origin_m_).array() / cell_m;
         const Eigen::Array3i c = f.cast<int>().min(dims_ - 1).max(0);
-        const std::size_t idx = (static_cast<std::size_t>(c.z()) * ny + static_cast<std::size_t>(c.y())) * nx + static_cast<std::size_t>(c.x());
+        const std::size_t idx =
+            (static_cast<std::size_t>(c.z()) * ny + static_cast<std::size_t>(c.y())) * nx +
+            static_cast<std::size_t>(c.x());
         const double off = (f - (c.cast<double>() + 0.5)).matrix().squaredNorm();
-        if (off < best[idx]) best[idx] = off, nearest_[idx] = static_cast<std::uint32_t>(i), dist[idx] = 0.0;
+        if (off < best[idx])
+            best[idx] = off, nearest_[idx] = static_cast<std::uint32_t>(i), dist[idx] = 0.0;
     }
     // Separable passes along x, y, z (squared distances in cell units between cell centres).
     const std::size_t longest = std::max({nx, ny, nz});
@@ -78,9 +83,11 @@ ClosestPointGrid::ClosestPointGrid(const std::vector<Eigen::Vector3d>& points, d
         for (std::size_t start = 0; start < cells; ++start) {
             // `start` runs over the first cell of every line along this axis.
             if ((start / step) % n != 0) continue;
-            for (std::size_t q = 0; q < n; ++q) f[q] = dist[start + q * step], s[q] = nearest_[start + q * step];
+            for (std::size_t q = 0; q < n; ++q)
+                f[q] = dist[start + q * step], s[q] = nearest_[start + q * step];
             transform_line(f.data(), s.data(), n, d.data(), s_out.data(), v, z);
-            for (std::size_t q = 0; q < n; ++q) dist[start + q * step] = d[q], nearest_[start + q * step] = s_out[q];
+            for (std::size_t q = 0; q < n; ++q)
+                dist[start + q * step] = d[q], nearest_[start + q * step] = s_out[q];
         }
     }
 }

@@ -5,19 +5,19 @@
 // nearest-neighbour query becomes one memory read instead of a k-d tree descent; the answer is the
 // true nearest neighbour of the cell's centre, so it can differ from the query's own nearest
 // neighbour by at most the cell's half diagonal.
+#include <Eigen/Core>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace makeway::verification {
 
 class ClosestPointGrid {
-public:
+  public:
     static constexpr std::uint32_t kOutside = UINT32_MAX;
 
     ClosestPointGrid() = default;
-    /// Covers the points' bounding box grown by margin_m [m] on every side with cells of cell_m [m].
+    /// Covers the points' bounding box grown by margin_m [m] on every side with cells of cell_m
+    /// [m].
     ClosestPointGrid(const std::vector<Eigen::Vector3d>& points, double cell_m, double margin_m);
 
     /// Index of the point nearest the centre of q's cell, or kOutside when q is off the grid
@@ -31,15 +31,20 @@ public:
 
     /// The nearest of the points held by the 8 cells whose centres surround q: exact unless two
     /// surfaces meet within a cell of q. kOutside off the grid's interior.
-    std::uint32_t nearest(const Eigen::Vector3d& q, const std::vector<Eigen::Vector3d>& points, double* distance2) const {
+    std::uint32_t nearest(const Eigen::Vector3d& q, const std::vector<Eigen::Vector3d>& points,
+                          double* distance2) const {
         const Eigen::Array3d f = (q - origin_m_).array() / cell_m_ - 0.5;
-        if (!(f >= 0.0).all() || !(f < (dims_ - 1).cast<double>()).all()) return kOutside;  // also NaN
+        if (!(f >= 0.0).all() || !(f < (dims_ - 1).cast<double>()).all())
+            return kOutside;  // also NaN
         const Eigen::Array3i c = f.cast<int>();
-        const std::size_t base = static_cast<std::size_t>((c.z() * dims_.y() + c.y()) * dims_.x() + c.x());
-        const std::size_t dy = static_cast<std::size_t>(dims_.x()), dz = dy * static_cast<std::size_t>(dims_.y());
+        const std::size_t base =
+            static_cast<std::size_t>((c.z() * dims_.y() + c.y()) * dims_.x() + c.x());
+        const std::size_t dy = static_cast<std::size_t>(dims_.x()),
+                          dz = dy * static_cast<std::size_t>(dims_.y());
         std::uint32_t best = kOutside;
         double best_d2 = 0.0;
-        for (const std::size_t off : {std::size_t{0}, std::size_t{1}, dy, dy + 1, dz, dz + 1, dz + dy, dz + dy + 1}) {
+        for (const std::size_t off :
+             {std::size_t{0}, std::size_t{1}, dy, dy + 1, dz, dz + 1, dz + dy, dz + dy + 1}) {
             const std::uint32_t j = nearest_[base + off];
             if (j == best) continue;
             const double d2 = (points[j] - q).squaredNorm();
@@ -53,7 +58,7 @@ public:
     Eigen::Array3i dims() const { return dims_; }
     std::size_t memory_bytes() const { return nearest_.size() * sizeof(std::uint32_t); }
 
-private:
+  private:
     Eigen::Vector3d origin_m_ = Eigen::Vector3d::Zero();
     double cell_m_ = 1.0;
     Eigen::Array3i dims_ = Eigen::Array3i::Zero();

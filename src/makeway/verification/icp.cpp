@@ -13,7 +13,8 @@ Isometry3 Pose4::matrix() const { return make_T_xyz_yaw(t_m, yaw_rad); }
 std::vector<std::string> IcpParams::validate(std::size_t levels) const {
     std::vector<std::string> p;
     if (iterations.size() != levels || max_correspondence_m.size() != levels) {
-        p.push_back("iterations and max_correspondence_m need one entry per CAD level (" + std::to_string(levels) + ")");
+        p.push_back("iterations and max_correspondence_m need one entry per CAD level (" +
+                    std::to_string(levels) + ")");
     }
     for (double d : max_correspondence_m) {
         if (!(d > 0.0 && d < 5.0)) p.push_back("max_correspondence_m must be in (0, 5)");
@@ -24,17 +25,18 @@ std::vector<std::string> IcpParams::validate(std::size_t levels) const {
 
 LevelledSegment thin_to_levels(const std::vector<Eigen::Vector3d>& segment, const CadModel& model) {
     LevelledSegment out;
-    for (const ModelLevel& level : model.levels) out.per_level_sensor.push_back(voxel_thin(segment, level.voxel_m));
+    for (const ModelLevel& level : model.levels)
+        out.per_level_sensor.push_back(voxel_thin(segment, level.voxel_m));
     return out;
 }
 
-IcpResult align(const std::vector<Eigen::Vector3d>& segment, const CadModel& model, const Pose4& initial,
-                const IcpParams& params, int first_level, int last_level) {
+IcpResult align(const std::vector<Eigen::Vector3d>& segment, const CadModel& model,
+                const Pose4& initial, const IcpParams& params, int first_level, int last_level) {
     return align(thin_to_levels(segment, model), model, initial, params, first_level, last_level);
 }
 
-double geometric_residual(const std::vector<Eigen::Vector3d>& seg, const CadModel& model, int level, const Pose4& pose,
-                          double max_corr, double keep_fraction) {
+double geometric_residual(const std::vector<Eigen::Vector3d>& seg, const CadModel& model, int level,
+                          const Pose4& pose, double max_corr, double keep_fraction) {
     if (seg.empty()) return max_corr;
     const ModelLevel& m = model.levels[static_cast<std::size_t>(level)];
     const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
@@ -42,22 +44,26 @@ double geometric_residual(const std::vector<Eigen::Vector3d>& seg, const CadMode
     r2.reserve(seg.size());
     for (const auto& p : seg) {
         const Eigen::Vector3d d = p - pose.t_m;
-        const Eigen::Vector3d q(c * d.x() + s * d.y(), -s * d.x() + c * d.y(), d.z());  // R^T (p - t)
+        const Eigen::Vector3d q(c * d.x() + s * d.y(), -s * d.x() + c * d.y(),
+                                d.z());  // R^T (p - t)
         double d2 = 0.0;
         const std::size_t j = m.nearest(q, max_corr, &d2);
-        const double r = j == ModelLevel::kNone ? max_corr : std::abs(m.normals_object[j].dot(q - m.points_object[j]));
+        const double r = j == ModelLevel::kNone
+                             ? max_corr
+                             : std::abs(m.normals_object[j].dot(q - m.points_object[j]));
         r2.push_back(std::min(r * r, max_corr * max_corr));
     }
     // Trimmed: the worst points are often other objects inside the enlarged box.
-    const auto keep = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(keep_fraction * r2.size())));
+    const auto keep =
+        std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(keep_fraction * r2.size())));
     std::nth_element(r2.begin(), r2.begin() + static_cast<long>(keep - 1), r2.end());
     double sum = 0.0;
     for (std::size_t i = 0; i < keep; ++i) sum += r2[i];
     return std::sqrt(sum / static_cast<double>(keep));
 }
 
-IcpResult align(const LevelledSegment& segment, const CadModel& model, const Pose4& initial, const IcpParams& params,
-                int first_level, int last_level) {
+IcpResult align(const LevelledSegment& segment, const CadModel& model, const Pose4& initial,
+                const IcpParams& params, int first_level, int last_level) {
     IcpResult result;
     result.pose = initial;
     const int n_levels = static_cast<int>(model.levels.size());
@@ -71,7 +77,8 @@ IcpResult align(const LevelledSegment& segment, const CadModel& model, const Pos
         // The robust scale follows the level: coarse levels tolerate coarse residuals.
         const double c = std::max(params.cauchy_scale_m, m.voxel_m);
         const double c2 = c * c;
-        const std::vector<Eigen::Vector3d>& seg = segment.per_level_sensor[static_cast<std::size_t>(level)];
+        const std::vector<Eigen::Vector3d>& seg =
+            segment.per_level_sensor[static_cast<std::size_t>(level)];
         const double max_corr = params.max_correspondence_m[static_cast<std::size_t>(level)];
         result.converged = false;
         for (int it = 0; it < params.iterations[static_cast<std::size_t>(level)]; ++it) {
@@ -91,10 +98,12 @@ IcpResult align(const LevelledSegment& segment, const CadModel& model, const Pos
                 const double r = n.dot(q - m.points_object[j]);  // eq. (1), in the object frame
                 // q = R^T (p - t): dq/dt = -R^T, dq/dyaw = dR^T/dyaw (p - t).
                 const Eigen::Vector3d Rn(cy * n.x() - s * n.y(), s * n.x() + cy * n.y(), n.z());
-                const Eigen::Vector3d dq_dyaw(-s * d.x() + cy * d.y(), -cy * d.x() - s * d.y(), 0.0);
+                const Eigen::Vector3d dq_dyaw(-s * d.x() + cy * d.y(), -cy * d.x() - s * d.y(),
+                                              0.0);
                 Eigen::Vector4d J;
                 J << -Rn, n.dot(dq_dyaw);
-                const double w = 1.0 / (1.0 + r * r / c2);  // Cauchy: rho(r) = c^2/2 log(1 + r^2/c^2)
+                const double w =
+                    1.0 / (1.0 + r * r / c2);  // Cauchy: rho(r) = c^2/2 log(1 + r^2/c^2)
                 H += w * J * J.transpose();
                 g += w * J * r;
                 ++used;
@@ -108,16 +117,17 @@ IcpResult align(const LevelledSegment& segment, const CadModel& model, const Pos
             if (!delta.allFinite()) break;
             x.t_m += delta.head<3>();
             x.yaw_rad = wrap_angle(x.yaw_rad + delta[3]);
-            if (delta.head<3>().norm() < params.convergence_m && std::abs(delta[3]) < params.convergence_rad) {
+            if (delta.head<3>().norm() < params.convergence_m &&
+                std::abs(delta[3]) < params.convergence_rad) {
                 result.converged = true;
                 break;
             }
         }
     }
-    result.residual_m = geometric_residual(segment.per_level_sensor[static_cast<std::size_t>(last_level)], model,
-                                           last_level, result.pose,
-                                           params.max_correspondence_m[static_cast<std::size_t>(last_level)],
-                                           params.residual_keep_fraction);
+    result.residual_m = geometric_residual(
+        segment.per_level_sensor[static_cast<std::size_t>(last_level)], model, last_level,
+        result.pose, params.max_correspondence_m[static_cast<std::size_t>(last_level)],
+        params.residual_keep_fraction);
     return result;
 }
 

@@ -18,10 +18,11 @@ struct Pose4 {
 };
 
 struct IcpParams {
-    std::vector<int> iterations{15, 10, 10};                 ///< per level, coarse to fine
+    std::vector<int> iterations{15, 10, 10};  ///< per level, coarse to fine
     std::vector<double> max_correspondence_m{0.30, 0.15, 0.08};
-    double cauchy_scale_m = 0.03;  ///< c in rho(r) = c^2/2 log(1 + (r/c)^2); at least the level's voxel
-    double convergence_m = 5e-4;                             ///< stop a level when the step is smaller
+    double cauchy_scale_m =
+        0.03;  ///< c in rho(r) = c^2/2 log(1 + (r/c)^2); at least the level's voxel
+    double convergence_m = 5e-4;  ///< stop a level when the step is smaller
     double convergence_rad = 5e-4;
     /// Objects stand on the ground, and a LiDAR at seat height sees chairs' vertical parts (legs,
     /// backs) far better than their horizontal ones, so z is weakly observed: a prior keeps it at
@@ -42,22 +43,25 @@ struct IcpResult {
 /// the best keep_fraction of per-point distances, each truncated at max_correspondence_m (points
 /// without a model surface nearby count fully). The quantity the yaw candidates and the
 /// rejection test compare.
-double geometric_residual(const std::vector<Eigen::Vector3d>& segment_sensor, const CadModel& model, int level,
-                          const Pose4& pose, double max_correspondence_m, double keep_fraction = 1.0);
+double geometric_residual(const std::vector<Eigen::Vector3d>& segment_sensor, const CadModel& model,
+                          int level, const Pose4& pose, double max_correspondence_m,
+                          double keep_fraction = 1.0);
 
 /// A scan segment thinned to one point per voxel of every level of a library (accumulated
 /// keyframes repeat surfaces five times over); computed once and shared by every candidate.
 struct LevelledSegment {
     std::vector<std::vector<Eigen::Vector3d>> per_level_sensor;  ///< coarse to fine
 };
-LevelledSegment thin_to_levels(const std::vector<Eigen::Vector3d>& segment_sensor, const CadModel& model);
+LevelledSegment thin_to_levels(const std::vector<Eigen::Vector3d>& segment_sensor,
+                               const CadModel& model);
 
 /// Gauss-Newton with Cauchy weights at levels [first_level, last_level] (inclusive; -1: finest).
 /// The segment must have been thinned for a model with the same voxel sizes.
-IcpResult align(const LevelledSegment& segment, const CadModel& model, const Pose4& initial, const IcpParams& params,
-                int first_level = 0, int last_level = -1);
-/// The same, thinning the segment first.
-IcpResult align(const std::vector<Eigen::Vector3d>& segment_sensor, const CadModel& model, const Pose4& initial,
+IcpResult align(const LevelledSegment& segment, const CadModel& model, const Pose4& initial,
                 const IcpParams& params, int first_level = 0, int last_level = -1);
+/// The same, thinning the segment first.
+IcpResult align(const std::vector<Eigen::Vector3d>& segment_sensor, const CadModel& model,
+                const Pose4& initial, const IcpParams& params, int first_level = 0,
+                int last_level = -1);
 
 }  // namespace makeway::verification

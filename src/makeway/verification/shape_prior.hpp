@@ -12,10 +12,11 @@
 namespace makeway::verification {
 
 class ShapePrior {
-public:
+  public:
     virtual ~ShapePrior() = default;
     struct Estimate {
-        TriangleMesh mesh_object;  ///< in an object frame: origin on the floor under the shape, x forward, z up
+        TriangleMesh mesh_object;  ///< in an object frame: origin on the floor under the shape, x
+                                   ///< forward, z up
         Isometry3 T_sensor_object = Isometry3::Identity();
         /// The object frame from the prior's own (canonical) frame: p_object = scale p_canonical +
         /// offset_m. complete() takes views in the object frame and hands them back through it.
@@ -29,11 +30,13 @@ public:
     };
     /// From the segment (sensor frame, the floor at floor_z_m under it, the sensor at the origin);
     /// nullopt when no pose or no shape was found. Must be safe to call from several threads.
-    virtual std::optional<Estimate> estimate(const std::vector<Eigen::Vector3d>& segment_sensor, ObjectClass cls, double floor_z_m) const = 0;
+    virtual std::optional<Estimate> estimate(const std::vector<Eigen::Vector3d>& segment_sensor,
+                                             ObjectClass cls, double floor_z_m) const = 0;
     /// The shape completed from several views of one object, all in the object frame of an
     /// earlier estimate() (its scale and offset_m); the mesh in that frame. nullopt: no shape, or a
     /// prior that cannot fuse views (the default), whose first shape then stays.
-    virtual std::optional<TriangleMesh> complete(const std::vector<View>& /*views*/, ObjectClass /*cls*/, double /*scale*/,
+    virtual std::optional<TriangleMesh> complete(const std::vector<View>& /*views*/,
+                                                 ObjectClass /*cls*/, double /*scale*/,
                                                  const Eigen::Vector3d& /*offset_m*/) const {
         return std::nullopt;
     }

@@ -1,7 +1,5 @@
 #include "makeway/verification/verifier.hpp"
 
-#include "makeway/verification/param_tables.hpp"
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -13,6 +11,7 @@
 #include <thread>
 
 #include "makeway/common/angles.hpp"
+#include "makeway/verification/param_tables.hpp"
 
 namespace makeway::verification {
 
@@ -20,28 +19,45 @@ const ParamTable<VerifyParams>& verify_table() {
     using V = VerifyParams;
     static const ParamTable<V> table = [] {
         ParamTable<V> t;
-        t.add("box_margin_m", &V::box_margin_m, below(0.0, 2.0), "the box grown by this on every side cuts the segment")
-            .add("max_size_mismatch", &V::max_size_mismatch, above(0.0, 10.0), "|log(model / detected size)| per dimension for a model to be tried")
-            .add("max_models", &V::max_models, closed(1, 1000), "at most this many models (closest in size) are tried")
-            .add("refined_candidates", &V::refined_candidates, closed(1, 1000), "best-ranked candidates aligned fully; the lowest residual wins")
+        t.add("box_margin_m", &V::box_margin_m, below(0.0, 2.0),
+              "the box grown by this on every side cuts the segment")
+            .add("max_size_mismatch", &V::max_size_mismatch, above(0.0, 10.0),
+                 "|log(model / detected size)| per dimension for a model to be tried")
+            .add("max_models", &V::max_models, closed(1, 1000),
+                 "at most this many models (closest in size) are tried")
+            .add("refined_candidates", &V::refined_candidates, closed(1, 1000),
+                 "best-ranked candidates aligned fully; the lowest residual wins")
             .add("reseed_tolerance_m", &V::reseed_tolerance_m, below(0.0, 1.0),
-                 "> 0: a tracked object verified lately gets one ICP from its last fit, kept when its residual ends within this of "
-                 "that fit's (0: always the full search; 0.005 is faster but lost 7 of 200 bench runs) ...")
-            .add("reseed_radius_m", &V::reseed_radius_m, closed(0.0, 5.0), "... for a detection this close to the fit ...")
-            .add("reseed_max_age_s", &V::reseed_max_age_s, closed(0.0, 3600.0), "... of at most this age")
+                 "> 0: a tracked object verified lately gets one ICP from its last fit, kept when "
+                 "its residual ends within this of "
+                 "that fit's (0: always the full search; 0.005 is faster but lost 7 of 200 bench "
+                 "runs) ...")
+            .add("reseed_radius_m", &V::reseed_radius_m, closed(0.0, 5.0),
+                 "... for a detection this close to the fit ...")
+            .add("reseed_max_age_s", &V::reseed_max_age_s, closed(0.0, 3600.0),
+                 "... of at most this age")
             .add("min_yaw_margin", &V::min_yaw_margin, closed(0.0, 10.0),
-                 "rejected when another yaw's residual is within this fraction of the winner's (0: off)")
+                 "rejected when another yaw's residual is within this fraction of the winner's (0: "
+                 "off)")
             .add("e_min_m", &V::e_min_m, closed(0.0, 1.0), "residual at or below which p_exist = 1")
-            .add("e_max_m", &V::e_max_m, above(0.0, 1.0), "residual above which a detection is rejected ...")
+            .add("e_max_m", &V::e_max_m, above(0.0, 1.0),
+                 "residual above which a detection is rejected ...")
             .add("approx_e_max_m", &V::approx_e_max_m, below(0.0, 1.0),
-                 "... unless at most this: an approximate fit places the box, the network's score stays (0: off)")
-            .add("shape_e_max_m", &V::shape_e_max_m, open(0.0, 1.0), "the same for a learned shape prior's completed mesh (--shape-model)")
-            .add("min_points", &V::min_points, closed(0.0, 1e9), "fewer segment points: rejected without fitting")
-            .add("num_threads", &V::num_threads, closed(1, 256), "detections verified side by side on this many threads (1: in turn)")
-            .require([](const V& v) { return v.e_min_m < v.e_max_m; }, "need 0 <= e_min_m < e_max_m")
-            .require([](const V& v) { return v.shape_e_max_m > v.e_min_m; }, "need e_min_m < shape_e_max_m < 1")
-            .require([](const V& v) { return v.approx_e_max_m == 0.0 || v.approx_e_max_m > v.e_max_m; },
-                     "need approx_e_max_m 0 (off) or e_max_m < approx_e_max_m < 1");
+                 "... unless at most this: an approximate fit places the box, the network's score "
+                 "stays (0: off)")
+            .add("shape_e_max_m", &V::shape_e_max_m, open(0.0, 1.0),
+                 "the same for a learned shape prior's completed mesh (--shape-model)")
+            .add("min_points", &V::min_points, closed(0.0, 1e9),
+                 "fewer segment points: rejected without fitting")
+            .add("num_threads", &V::num_threads, closed(1, 256),
+                 "detections verified side by side on this many threads (1: in turn)")
+            .require([](const V& v) { return v.e_min_m < v.e_max_m; },
+                     "need 0 <= e_min_m < e_max_m")
+            .require([](const V& v) { return v.shape_e_max_m > v.e_min_m; },
+                     "need e_min_m < shape_e_max_m < 1")
+            .require(
+                [](const V& v) { return v.approx_e_max_m == 0.0 || v.approx_e_max_m > v.e_max_m; },
+                "need approx_e_max_m 0 (off) or e_max_m < approx_e_max_m < 1");
         return t;
     }();
     return table;
@@ -49,11 +65,13 @@ const ParamTable<VerifyParams>& verify_table() {
 
 std::vector<std::string> VerifyParams::validate() const {
     std::vector<std::string> p = verify_table().problems(*this);
-    if (candidate_iterations < 0 || candidate_iterations > 100) p.push_back("candidate_iterations must be in [0, 100]");
+    if (candidate_iterations < 0 || candidate_iterations > 100)
+        p.push_back("candidate_iterations must be in [0, 100]");
     return p;
 }
 
-std::vector<Eigen::Vector3d> segment_points(const PointCloud& cloud, const OrientedBox& box, double margin) {
+std::vector<Eigen::Vector3d> segment_points(const PointCloud& cloud, const OrientedBox& box,
+                                            double margin) {
     std::vector<Eigen::Vector3d> out;
     const double c = std::cos(box.yaw_rad), s = std::sin(box.yaw_rad);
     const Eigen::Vector3d half = 0.5 * box.size_m + Eigen::Vector3d::Constant(margin);
@@ -61,8 +79,8 @@ std::vector<Eigen::Vector3d> segment_points(const PointCloud& cloud, const Orien
     for (const auto& p : cloud.xyz) {
         const Eigen::Vector3d d = p.cast<double>() - box.centre_m;
         if (!(d.head<2>().squaredNorm() <= reach2)) continue;  // cheap reject (and NaN)
-        if (std::abs(c * d.x() + s * d.y()) <= half.x() && std::abs(-s * d.x() + c * d.y()) <= half.y() &&
-            std::abs(d.z()) <= half.z()) {
+        if (std::abs(c * d.x() + s * d.y()) <= half.x() &&
+            std::abs(-s * d.x() + c * d.y()) <= half.y() && std::abs(d.z()) <= half.z()) {
             out.push_back(p.cast<double>());
         }
     }
@@ -85,11 +103,13 @@ void take_fit(VerifiedDetection& out, const CadModel& model, const IcpResult& fi
     out.box_sensor = model.box_object.transformed(out.T_sensor_object);
 }
 
-VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det, const CadLibrary& library, const VerifyParams& params,
+VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det,
+                                  const CadLibrary& library, const VerifyParams& params,
                                   std::optional<double> floor_z_m) {
     VerifiedDetection out;
     out.detection = det;
-    const std::vector<Eigen::Vector3d> segment = segment_points(cloud, det.box_sensor, params.box_margin_m);
+    const std::vector<Eigen::Vector3d> segment =
+        segment_points(cloud, det.box_sensor, params.box_margin_m);
     out.segment_points = segment.size();
     const auto models = library.models_of(det.cls);
     if (models.empty()) {
@@ -97,25 +117,31 @@ VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det,
         return out;
     }
     if (segment.size() < params.min_points) {
-        out.reason = "segment has " + std::to_string(segment.size()) + " points (< " + std::to_string(params.min_points) + ")";
+        out.reason = "segment has " + std::to_string(segment.size()) + " points (< " +
+                     std::to_string(params.min_points) + ")";
         return out;
     }
     // Models whose size agrees with the detected box (length and width compared unordered: the yaw
     // may be off by pi/2): a large model would otherwise explain clutter around a small object.
     auto size_mismatch = [&](const CadModel* m) {
         const Eigen::Vector3d a = m->box_object.size_m, b = det.box_sensor.size_m.cwiseMax(1e-3);
-        const double straight = std::max({std::abs(std::log(a.x() / b.x())), std::abs(std::log(a.y() / b.y()))});
-        const double turned = std::max({std::abs(std::log(a.x() / b.y())), std::abs(std::log(a.y() / b.x()))});
+        const double straight =
+            std::max({std::abs(std::log(a.x() / b.x())), std::abs(std::log(a.y() / b.y()))});
+        const double turned =
+            std::max({std::abs(std::log(a.x() / b.y())), std::abs(std::log(a.y() / b.x()))});
         return std::max(std::min(straight, turned), std::abs(std::log(a.z() / b.z())));
     };
     // Closest in size first; a room's library may hold many variants of one style, and only the
     // `max_models` closest are worth the alignments.
     std::vector<std::pair<double, const CadModel*>> by_size;
     for (const CadModel* m : models) by_size.emplace_back(size_mismatch(m), m);
-    std::stable_sort(by_size.begin(), by_size.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::stable_sort(by_size.begin(), by_size.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
     std::vector<const CadModel*> sized;
     for (const auto& [mismatch, m] : by_size) {
-        if (mismatch <= params.max_size_mismatch && static_cast<int>(sized.size()) < params.max_models) sized.push_back(m);
+        if (mismatch <= params.max_size_mismatch &&
+            static_cast<int>(sized.size()) < params.max_models)
+            sized.push_back(m);
     }
     if (sized.empty()) sized.push_back(by_size.front().second);
     // The four yaw candidates of every model, ranked by their residual after a short coarse
@@ -126,38 +152,53 @@ VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det,
         double e;
     };
     std::vector<Candidate> candidates;
-    const LevelledSegment levelled = thin_to_levels(segment, *sized.front());  // every model has the library's levels
+    const LevelledSegment levelled =
+        thin_to_levels(segment, *sized.front());  // every model has the library's levels
     const std::vector<Eigen::Vector3d>& coarse = levelled.per_level_sensor.front();
     for (const CadModel* m : sized) {
         for (int k = 0; k < 4; ++k) {
             Pose4 init;
             init.yaw_rad = wrap_angle(det.box_sensor.yaw_rad + k * kPi / 2);
             // Put the model's box centre on the detection's box centre.
-            init.t_m = det.box_sensor.centre_m - make_T_xyz_yaw({0, 0, 0}, init.yaw_rad).linear() * m->box_object.centre_m;
-            init.t_m.z() = floor_z_m.value_or(det.box_sensor.z_min_m());  // the object stands on the floor
+            init.t_m = det.box_sensor.centre_m -
+                       make_T_xyz_yaw({0, 0, 0}, init.yaw_rad).linear() * m->box_object.centre_m;
+            init.t_m.z() =
+                floor_z_m.value_or(det.box_sensor.z_min_m());  // the object stands on the floor
             Pose4 pose = init;
             if (params.candidate_iterations > 0) {
                 IcpParams short_run = params.icp;
-                short_run.iterations.assign(short_run.iterations.size(), params.candidate_iterations);
+                short_run.iterations.assign(short_run.iterations.size(),
+                                            params.candidate_iterations);
                 pose = align(levelled, *m, init, short_run, 0, 0).pose;
             }
-            // Ranked on every point: a back rest seen by few points is what tells the yaw flips apart.
-            candidates.push_back({m, pose, geometric_residual(coarse, *m, 0, pose, params.icp.max_correspondence_m.front())});
+            // Ranked on every point: a back rest seen by few points is what tells the yaw flips
+            // apart.
+            candidates.push_back(
+                {m, pose,
+                 geometric_residual(coarse, *m, 0, pose, params.icp.max_correspondence_m.front())});
         }
     }
-    std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.e < b.e; });
+    std::sort(candidates.begin(), candidates.end(),
+              [](const auto& a, const auto& b) { return a.e < b.e; });
     const CadModel* best_model = nullptr;
     double best_e = std::numeric_limits<double>::infinity();
     Pose4 best_pose;
     const int levels = static_cast<int>(sized.front()->levels.size());
-    const int rank_level = std::max(0, levels - 2);  // candidates compete at the second-finest level
-    const std::vector<Eigen::Vector3d>& ranked_points = levelled.per_level_sensor[static_cast<std::size_t>(rank_level)];
+    const int rank_level =
+        std::max(0, levels - 2);  // candidates compete at the second-finest level
+    const std::vector<Eigen::Vector3d>& ranked_points =
+        levelled.per_level_sensor[static_cast<std::size_t>(rank_level)];
     std::vector<Candidate> refined;
-    for (std::size_t i = 0; i < std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(params.refined_candidates)); ++i) {
-        const IcpResult r = align(levelled, *candidates[i].model, candidates[i].pose, params.icp, 0, rank_level);
+    for (std::size_t i = 0;
+         i < std::min<std::size_t>(candidates.size(),
+                                   static_cast<std::size_t>(params.refined_candidates));
+         ++i) {
+        const IcpResult r =
+            align(levelled, *candidates[i].model, candidates[i].pose, params.icp, 0, rank_level);
         // Ranked on every point: a back rest seen by few points tells the yaw flips apart.
-        const double e = geometric_residual(ranked_points, *candidates[i].model, rank_level, r.pose,
-                                            params.icp.max_correspondence_m[static_cast<std::size_t>(rank_level)]);
+        const double e = geometric_residual(
+            ranked_points, *candidates[i].model, rank_level, r.pose,
+            params.icp.max_correspondence_m[static_cast<std::size_t>(rank_level)]);
         refined.push_back({candidates[i].model, r.pose, e});
         if (e < best_e) best_e = e, best_pose = r.pose, best_model = candidates[i].model;
     }
@@ -172,19 +213,26 @@ VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det,
     }
     out.yaw_margin = rival_e / std::max(best_e, 1e-9) - 1.0;
     // Only the winner is refined at the finest level; acceptance uses its trimmed residual.
-    take_fit(out, *best_model, align(levelled, *best_model, best_pose, params.icp, rank_level + 1 < levels ? rank_level + 1 : rank_level));
-    const bool approximate = out.residual_m > params.e_max_m && out.residual_m <= params.approx_e_max_m;
+    take_fit(out, *best_model,
+             align(levelled, *best_model, best_pose, params.icp,
+                   rank_level + 1 < levels ? rank_level + 1 : rank_level));
+    const bool approximate =
+        out.residual_m > params.e_max_m && out.residual_m <= params.approx_e_max_m;
     if (out.residual_m > params.e_max_m && !approximate) {
-        out.reason = "residual " + std::to_string(out.residual_m) + " m above e_max" + (params.approx_e_max_m > 0.0 ? " and approx_e_max" : "");
+        out.reason = "residual " + std::to_string(out.residual_m) + " m above e_max" +
+                     (params.approx_e_max_m > 0.0 ? " and approx_e_max" : "");
         return out;
     }
     if (out.yaw_margin < params.min_yaw_margin) {
-        out.reason = "ambiguous yaw: another orientation fits within " + std::to_string(100.0 * out.yaw_margin) + " %";
+        out.reason = "ambiguous yaw: another orientation fits within " +
+                     std::to_string(100.0 * out.yaw_margin) + " %";
         return out;
     }
     out.accepted = true;
     out.approximate = approximate;
-    out.p_exist = approximate ? std::clamp(det.score, 0.0, 1.0) : existence_probability(out.residual_m, params.e_min_m, params.e_max_m);
+    out.p_exist = approximate
+                      ? std::clamp(det.score, 0.0, 1.0)
+                      : existence_probability(out.residual_m, params.e_min_m, params.e_max_m);
     if (approximate) {
         // The model is not the object: its orientation is what the fit gives; its extent (a model
         // 30 % narrower fits into a corner of the scan) is not. The network's box, turned.
@@ -201,12 +249,16 @@ VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det,
 // model and yaw are known; the full search (every model, four yaw candidates, four refined) is
 // for objects seen anew or turned since. The seed's own residual bounds the answer, so a chair
 // turned half round, whose old yaw still fits it loosely, goes to the full search.
-std::optional<VerifiedDetection> verify_from_seed(const PointCloud& cloud, const Detection& det, const VerifySeed& seed,
+std::optional<VerifiedDetection> verify_from_seed(const PointCloud& cloud, const Detection& det,
+                                                  const VerifySeed& seed,
                                                   const VerifyParams& params) {
-    std::vector<Eigen::Vector3d> segment = segment_points(cloud, det.box_sensor, params.box_margin_m);
+    std::vector<Eigen::Vector3d> segment =
+        segment_points(cloud, det.box_sensor, params.box_margin_m);
     if (segment.size() < params.min_points) return std::nullopt;
-    const IcpResult fit = align(segment, *seed.model, seed.pose, params.icp, 1);  // a seed is within the 4 cm level's reach
-    if (!(fit.residual_m <= std::min(params.e_max_m, seed.residual_m + params.reseed_tolerance_m))) return std::nullopt;
+    const IcpResult fit = align(segment, *seed.model, seed.pose, params.icp,
+                                1);  // a seed is within the 4 cm level's reach
+    if (!(fit.residual_m <= std::min(params.e_max_m, seed.residual_m + params.reseed_tolerance_m)))
+        return std::nullopt;
     VerifiedDetection out;
     out.detection = det;
     out.segment_points = segment.size();
@@ -220,15 +272,18 @@ std::optional<VerifiedDetection> verify_from_seed(const PointCloud& cloud, const
 
 }  // namespace
 
-VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det, const CadLibrary& library, const VerifyParams& params,
-                                   std::optional<double> floor_z_m, const ShapePrior* prior, const VerifySeed* seed) {
+VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det,
+                                   const CadLibrary& library, const VerifyParams& params,
+                                   std::optional<double> floor_z_m, const ShapePrior* prior,
+                                   const VerifySeed* seed) {
     if (seed && seed->model && params.reseed_tolerance_m > 0.0 && params.min_yaw_margin <= 0.0) {
         if (auto seeded = verify_from_seed(cloud, det, *seed, params)) return std::move(*seeded);
     }
     VerifiedDetection cad = verify_with_cad(cloud, det, library, params, floor_z_m);
     if (cad.accepted || !prior || cad.segment_points < params.min_points) return cad;
     // No CAD model fits: the prior's model of this object, verified the same way from its pose.
-    const std::vector<Eigen::Vector3d> segment = segment_points(cloud, det.box_sensor, params.box_margin_m);
+    const std::vector<Eigen::Vector3d> segment =
+        segment_points(cloud, det.box_sensor, params.box_margin_m);
     const double floor_z = floor_z_m.value_or(det.box_sensor.z_min_m());
     auto estimate = prior->estimate(segment, det.cls, floor_z);
     if (!estimate || estimate->mesh_object.triangles.empty()) {
@@ -252,16 +307,22 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
     return shaped;
 }
 
-std::vector<VerifiedDetection> verify_detections(const PointCloud& cloud, const std::vector<Detection>& detections, const CadLibrary& library,
-                                                 const VerifyParams& params, const std::function<std::optional<double>(double, double)>& floor_z_at,
-                                                 const ShapePrior* prior, const std::vector<std::optional<VerifySeed>>& seeds) {
+std::vector<VerifiedDetection> verify_detections(
+    const PointCloud& cloud, const std::vector<Detection>& detections, const CadLibrary& library,
+    const VerifyParams& params,
+    const std::function<std::optional<double>(double, double)>& floor_z_at, const ShapePrior* prior,
+    const std::vector<std::optional<VerifySeed>>& seeds) {
     if (!seeds.empty() && seeds.size() != detections.size()) {
-        throw std::invalid_argument("verify_detections: " + std::to_string(seeds.size()) + " seeds for " + std::to_string(detections.size()) + " detections");
+        throw std::invalid_argument("verify_detections: " + std::to_string(seeds.size()) +
+                                    " seeds for " + std::to_string(detections.size()) +
+                                    " detections");
     }
     std::vector<VerifiedDetection> out(detections.size());
     auto verify_one = [&](std::size_t i) {
         const Detection& d = detections[i];
-        const std::optional<double> floor_z = floor_z_at ? floor_z_at(d.box_sensor.centre_m.x(), d.box_sensor.centre_m.y()) : std::nullopt;
+        const std::optional<double> floor_z =
+            floor_z_at ? floor_z_at(d.box_sensor.centre_m.x(), d.box_sensor.centre_m.y())
+                       : std::nullopt;
         const VerifySeed* seed = seeds.empty() || !seeds[i] ? nullptr : &*seeds[i];
         out[i] = verify_detection(cloud, d, library, params, floor_z, prior, seed);
     };
@@ -287,7 +348,8 @@ std::vector<VerifiedDetection> verify_detections(const PointCloud& cloud, const 
         }
     };
     std::vector<std::thread> helpers;
-    const std::size_t n_helpers = std::min<std::size_t>(static_cast<std::size_t>(params.num_threads), detections.size()) - 1;
+    const std::size_t n_helpers =
+        std::min<std::size_t>(static_cast<std::size_t>(params.num_threads), detections.size()) - 1;
     try {
         for (std::size_t h = 0; h < n_helpers; ++h) helpers.emplace_back(work);
     } catch (const std::system_error&) {
@@ -299,7 +361,8 @@ std::vector<VerifiedDetection> verify_detections(const PointCloud& cloud, const 
     return out;
 }
 
-std::vector<Detection> accepted_detections(const std::vector<VerifiedDetection>& verified, ScoreFrom score) {
+std::vector<Detection> accepted_detections(const std::vector<VerifiedDetection>& verified,
+                                           ScoreFrom score) {
     std::vector<Detection> out;
     for (const VerifiedDetection& v : verified) {
         if (!v.accepted) continue;
