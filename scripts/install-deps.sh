@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages makeway builds against. A no-op when they are all present.
-# Usage: scripts/install-deps.sh [--fuzz | --bench | --ros]
-#   --fuzz adds clang and its libFuzzer runtime; --bench adds Open3D (the ICP comparison only);
+# Usage: scripts/install-deps.sh [--fuzz | --bench | --ros | --format]
+#   --fuzz adds clang and its libFuzzer runtime; --format adds clang-format (`make format-check`); --bench adds Open3D (the ICP comparison only);
 #   --ros adds roscpp and the ROS master for the node (`make ros`). ROS 1 bags (rosbag_storage and
 #   the message headers) are always in: `makeway run --bag` and `simulate --format bag` use them.
 set -euo pipefail
@@ -19,6 +19,8 @@ if [[ "${1:-}" == "--fuzz" ]]; then
     packages+=(clang libclang-rt-14-dev)
 elif [[ "${1:-}" == "--bench" ]]; then
     packages+=(libopen3d-dev)
+elif [[ "${1:-}" == "--format" ]]; then
+    packages+=(clang-format)
 elif [[ "${1:-}" == "--ros" ]]; then
     packages+=(libroscpp-dev ros-core python3-rosmaster)
 fi
