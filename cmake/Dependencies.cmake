@@ -36,6 +36,13 @@ pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 # libzip: model files are checked before torch reads them (its CMake config needs the zip tools).
 pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET libzip)
 
+# The bag preflight (ros/bag_check.cpp) inflates compressed chunks itself: bzip2 and rosbag's lz4
+# framing, both packages rosbag_storage depends on (so also in the fuzz build, which compiles it).
+find_package(BZip2 REQUIRED)
+find_library(ROS_LZ4_LIBRARY roslz4 REQUIRED)
+add_library(makeway_bag_codecs INTERFACE)
+target_link_libraries(makeway_bag_codecs INTERFACE BZip2::BZip2 ${ROS_LZ4_LIBRARY})
+
 # ROS 1 bags (Debian's ros packages, no catkin): rosbag_storage's config, the message headers (in
 # /usr/include, header-only) and ros::Time. The messages' own CMake configs need catkin: not used.
 # Not in the fuzz build (clang 14 parsers only).
@@ -53,7 +60,7 @@ if(NOT MAKEWAY_FUZZ)
     find_path(ROS_SENSOR_MSGS_INCLUDE_DIR sensor_msgs/PointCloud2.h REQUIRED)
     add_library(makeway_ros_bag_deps INTERFACE)
     target_include_directories(makeway_ros_bag_deps SYSTEM INTERFACE ${rosbag_storage_INCLUDE_DIRS} ${ROS_SENSOR_MSGS_INCLUDE_DIR})
-    target_link_libraries(makeway_ros_bag_deps INTERFACE ${rosbag_storage_LIBRARIES} ${ROS_ROSTIME_LIBRARY}
+    target_link_libraries(makeway_ros_bag_deps INTERFACE makeway_bag_codecs ${rosbag_storage_LIBRARIES} ${ROS_ROSTIME_LIBRARY}
                                                          ${ROS_SERIALIZATION_LIBRARY} ${ROS_CPP_COMMON_LIBRARY} ${ROS_CONSOLE_BRIDGE_LIBRARY})
 endif()# roscpp (the node) is found in ros/CMakeLists.txt: its config adds compile definitions to the
 # directory it is found in, which would recompile everything when `make ros` turns the node on.

@@ -1,8 +1,12 @@
 #include "ros/bag_check.hpp"
 
+#include <bzlib.h>
+#include <roslz4/lz4s.h>
+
 #include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -63,9 +67,14 @@ class Walker {
         : path_(path), size_(size), in_(path, std::ios::binary) {
         if (!in_) fail("cannot open for reading");
     }
+    // The records of an inflated chunk (its first `size` bytes of `chunk_data`, which must outlive
+    // the walker), their bytes counted from the chunk's data; each problem starts with `context`.
+    Walker(const fs::path& path, const std::string& chunk_data, std::uint64_t size,
+           std::string context)
+        : path_(path), size_(size), memory_(&chunk_data), context_(std::move(context)) {}
 
     [[noreturn]] void fail(const std::string& problem) const {
-        throw io::FileError(path_.string(), problem);
+        throw io::FileError(path_.string(), context_ + problem);
     }
     [[noreturn]] void fail_at(const Record& r, const std::string& problem) const {
         fail("record at byte " + std::to_string(r.pos) + " (" + kind_of(r.op) + "): " + problem);
@@ -81,11 +90,18 @@ class Walker {
                       ? "the end of the file (" + std::to_string(size_) + " bytes; cut short?)"
                       : "the end of its chunk"));
         }
-        std::string out(static_cast<std::size_t>(n), '\0');
+        if (memory_)
+            return memory_->substr(static_cast<std::size_t>(pos), static_cast<std::size_t>(n));
+        std::string out;
+        read_into(pos, n, out);
+        return out;
+    }
+    // The same from the file into `out` (its capacity reused: chunks are read one after another).
+    void read_into(std::uint64_t pos, std::uint64_t n, std::string& out) {
+        out.resize(static_cast<std::size_t>(n));
         in_.seekg(static_cast<std::streamoff>(pos));
         if (!in_.read(out.data(), static_cast<std::streamsize>(n)))
             fail("read error at byte " + std::to_string(pos));
-        return out;
     }
 
     // name=value fields, each behind its 4-byte length, filling `text` exactly.
@@ -152,8 +168,53 @@ class Walker {
   private:
     fs::path path_;
     std::uint64_t size_;
+    const std::string* memory_ = nullptr;
+    std::string context_;
     std::ifstream in_;
 };
+
+// A chunk's records, [begin, end) in `w`: messages and connections only; each start (from
+// `begin`) into `starts`.
+void walk_chunk(Walker& w, std::uint64_t begin, std::uint64_t end, std::set<std::uint32_t>& starts,
+                BagCheckResult& out) {
+    for (std::uint64_t inner = begin; inner < end;) {
+        const Record m = w.record(inner, end);
+        if (m.op != kMessageData && m.op != kConnection)
+            w.fail_at(m, "not a message or connection inside a chunk");
+        if (m.op == kMessageData) ++out.messages;
+        starts.insert(static_cast<std::uint32_t>(inner - begin));
+        inner = m.data_pos + m.data_len;
+    }
+}
+
+// A compressed chunk's data inflated into `raw` (its first `size` bytes; the buffer only grows, one
+// allocation for the whole bag), exactly the `size` it declares (the caller bounded it). lz4
+// cannot expand more than 255-fold: a larger declared size is refused before any allocation.
+void decompress(const std::string& compression, std::string& packed, std::uint64_t size,
+                std::string& raw, const std::function<void(const std::string&)>& fail) {
+    if (compression == "lz4" && size > 255 * static_cast<std::uint64_t>(packed.size()) + 64) {
+        fail("declares " + std::to_string(size) + " bytes from " + std::to_string(packed.size()) +
+             " lz4 bytes, more than lz4 expands to");
+    }
+    if (raw.size() < size + 1)
+        raw.resize(static_cast<std::size_t>(size) + 1);  // one spare: a longer stream shows
+    unsigned int got = static_cast<unsigned int>(size) + 1;
+    const int rc =
+        compression == "bz2"
+            ? BZ2_bzBuffToBuffDecompress(raw.data(), &got, packed.data(),
+                                         static_cast<unsigned int>(packed.size()), 0, 0)
+            : roslz4_buffToBuffDecompress(packed.data(), static_cast<unsigned int>(packed.size()),
+                                          raw.data(), &got);
+    const bool full = compression == "bz2" ? rc == BZ_OUTBUFF_FULL : rc == ROSLZ4_OUTPUT_SMALL;
+    if (full || (rc == (compression == "bz2" ? BZ_OK : ROSLZ4_OK) && got != size)) {
+        fail("its " + compression + " data does not inflate to the " + std::to_string(size) +
+             " bytes it declares" + (full ? " (more)" : " (" + std::to_string(got) + ")"));
+    }
+    if (rc != (compression == "bz2" ? BZ_OK : ROSLZ4_OK)) {
+        fail("its " + compression + " data is damaged (the decompressor's error " +
+             std::to_string(rc) + ")");
+    }
+}
 
 // Serialized ROS message bytes, read against the lengths they declare.
 class Cursor {
@@ -248,6 +309,7 @@ BagCheckResult check_bag_structure(const fs::path& path, const BagCheckParams& p
     std::uint64_t chunk_size = 0;         // the last chunk's uncompressed size
     std::set<std::uint32_t> chunk_inner;  // its records' offsets, when it is uncompressed
     bool chunk_seen = false, chunk_compressed = false;
+    std::string packed, raw;  // a compressed chunk's bytes and what they inflate to
     for (std::uint64_t pos = magic.size(); pos < size;) {
         const Record r = w.record(pos, size);
         op_at[pos] = r.op;
@@ -281,14 +343,17 @@ BagCheckResult check_bag_structure(const fs::path& path, const BagCheckParams& p
                     w.fail_at(r, "uncompressed, holds " + std::to_string(r.data_len) +
                                      " bytes but declares " + std::to_string(chunk_size));
                 }
-                const std::uint64_t end = r.data_pos + r.data_len;
-                for (std::uint64_t inner = r.data_pos; inner < end;) {
-                    const Record m = w.record(inner, end);
-                    if (m.op != kMessageData && m.op != kConnection)
-                        w.fail_at(m, "not a message or connection inside a chunk");
-                    chunk_inner.insert(static_cast<std::uint32_t>(inner - r.data_pos));
-                    inner = m.data_pos + m.data_len;
-                }
+                walk_chunk(w, r.data_pos, r.data_pos + r.data_len, chunk_inner, out);
+            } else if (params.walk_compressed) {
+                // rosbag trusts the lengths inside a chunk as much as outside: inflated here first
+                // (each chunk a second time: what it costs is in the README).
+                w.read_into(r.data_pos, r.data_len, packed);  // record() bounded it by the file
+                decompress(compression, packed, chunk_size, raw,
+                           [&](const std::string& p) { w.fail_at(r, p); });
+                Walker inner(path, raw, chunk_size,
+                             "chunk at byte " + std::to_string(pos) + ", inflated: ");
+                walk_chunk(inner, 0, chunk_size, chunk_inner, out);
+                ++out.compressed_chunks;
             }
         } else if (r.op == kIndexData) {
             if (!chunk_seen) w.fail_at(r, "an index before any chunk");
@@ -303,7 +368,8 @@ BagCheckResult check_bag_structure(const fs::path& path, const BagCheckParams& p
             for (std::uint64_t k = 0; k < count; ++k) {
                 const auto offset =
                     little<std::uint32_t>(entries.substr(static_cast<std::size_t>(k * 12 + 8), 4));
-                if (offset >= chunk_size || (!chunk_compressed && !chunk_inner.count(offset))) {
+                const bool walked = !chunk_compressed || params.walk_compressed;
+                if (offset >= chunk_size || (walked && !chunk_inner.count(offset))) {
                     w.fail_at(r, "entry " + std::to_string(k) + " points to byte " +
                                      std::to_string(offset) +
                                      " of its chunk, where no message starts");

@@ -7,8 +7,8 @@
 // make it allocate what the length says: on a machine with less memory its Buffer asserts and the
 // process aborts (exit 134, a staging folder left behind); elsewhere it reads gigabytes for
 // nothing. This walk seeks from record to record, reading only headers and index records, and
-// bounds every length by the file's size before rosbag sees the file. What it cannot see: the
-// records inside compressed chunks (rosbag's decompressor reports those itself).
+// bounds every length by the file's size before rosbag sees the file. A compressed chunk (bz2, lz4)
+// is inflated to the size it declares (bounded first) and its records walked the same way.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -19,12 +19,17 @@ struct BagCheckParams {
     /// A chunk's declared uncompressed size above this is refused: rosbag writes chunks of 768 KB
     /// (one message may exceed that: a 64-beam sweep is ~4 MB); 1 GiB is no real chunk.
     std::uint64_t max_chunk_bytes = std::uint64_t{1} << 30;
+    /// Inflate compressed chunks and walk their records too (rosbag inflates each again to read
+    /// it).
+    bool walk_compressed = true;
 };
 
 struct BagCheckResult {
     std::uint64_t records = 0;  ///< top-level records walked
     std::uint64_t chunks = 0;
-    std::uint64_t connections = 0;  ///< in the index (those inside chunks are not counted)
+    std::uint64_t connections = 0;        ///< in the index (those inside chunks are not counted)
+    std::uint64_t compressed_chunks = 0;  ///< inflated and walked
+    std::uint64_t messages = 0;           ///< message records walked inside chunks
 };
 
 /// Throws io::FileError("PATH: record at byte N (KIND): problem") for the first length, offset or

@@ -1,5 +1,6 @@
 // PointCloud2 layouts of real drivers (Velodyne, Ouster, Hesai) and malformed ones, the costmap's
 // OccupancyGrid mapping, markers, and bags written then read back.
+#include <bzlib.h>
 #include <gtest/gtest.h>
 #include <rosbag/bag.h>
 #include <sys/stat.h>
@@ -380,6 +381,98 @@ TEST(BagCheck, DamagedStructuresAreRefusedWithTheirByte) {
     // The reader walks first: the same damage is the same one line, not rosbag's abort.
     expect_file_error([&] { BagReader r(dir / "header_len.bag", {}, false); },
                       "declares a header of 4294967280 bytes");
+}
+
+// Compressed chunks are inflated and walked as uncompressed ones are: rosbag trusts the lengths
+// inside them as much as those outside.
+TEST(BagCheck, CompressedChunksAreInflatedAndWalked) {
+    const auto dir = fresh_dir("bag_check_compressed");
+    BagCheckParams no_walk;  // the last pass's walk: compressed chunks skipped
+    no_walk.walk_compressed = false;
+    for (const auto& [name, kind] :
+         {std::pair{"bz2", rosbag::compression::BZ2}, std::pair{"lz4", rosbag::compression::LZ4}}) {
+        {
+            rosbag::Bag bag((dir / (std::string(name) + ".bag")).string(), rosbag::bagmode::Write);
+            bag.setCompression(kind);
+            for (int k = 0; k < 3; ++k) {
+                bag.write("/velodyne_points", ros::Time(100.0 + 0.1 * k),
+                          to_point_cloud2(sample_cloud(), 100.0 + 0.1 * k, "velodyne"));
+            }
+        }
+        const BagCheckResult ok = check_bag_structure(dir / (std::string(name) + ".bag"));
+        EXPECT_EQ(ok.compressed_chunks, 1u) << name;
+        EXPECT_EQ(ok.messages, 3u) << name;
+        EXPECT_EQ(check_bag_structure(dir / (std::string(name) + ".bag"), no_walk).messages, 0u)
+            << name;
+    }
+    const std::string good = slurp(dir / "bz2.bag");
+    const std::size_t header_len = u32_at(good, 13);
+    const std::size_t chunk = 13 + 4 + header_len + 4 + u32_at(good, 13 + 4 + header_len);
+    const std::size_t chunk_header_len = u32_at(good, chunk);
+    const std::string chunk_header = good.substr(chunk + 4, chunk_header_len);
+    const std::size_t data_len_at = chunk + 4 + chunk_header_len, data_at = data_len_at + 4;
+    const std::size_t packed_len = u32_at(good, data_len_at);
+    const std::size_t size_field = chunk + 4 + chunk_header.find("size=") + 5;
+    const std::uint32_t raw_len = u32_at(good, size_field);
+    const std::size_t index_pos_at =
+        13 + 4 + std::string(good.data() + 17, header_len).find("index_pos=") + 10;
+    const auto write = [&](const std::string& file, const std::string& bytes) {
+        std::ofstream(dir / file, std::ios::binary) << bytes;
+        return dir / file;
+    };
+    const auto put32 = [](std::string& b, std::size_t at, std::uint32_t v) {
+        std::memcpy(b.data() + at, &v, 4);
+    };
+    const auto fails = [&](const std::filesystem::path& p, const std::string& part) {
+        expect_file_error([p] { check_bag_structure(p); }, part);
+    };
+    const std::string at_chunk = "record at byte " + std::to_string(chunk) + " (chunk): ";
+    // Damaged compressed bytes: bz2's own checks refuse them.
+    std::string b = good;
+    for (std::size_t i = data_at + packed_len / 2; i < data_at + packed_len / 2 + 16; ++i)
+        b[i] = static_cast<char>(b[i] ^ 0x5A);
+    fails(write("flipped.bag", b), at_chunk + "its bz2 data ");  // damaged, or inflating to more
+    // A declared size the data does not inflate to.
+    b = good;
+    put32(b, size_field, raw_len - 1);
+    fails(write("short.bag", b), at_chunk + "its bz2 data does not inflate to the " +
+                                     std::to_string(raw_len - 1) + " bytes it declares (" +
+                                     std::to_string(raw_len) + ")");
+    // A record inside the chunk declaring a 4 GB header: the chunk inflated, damaged, packed again
+    // (the bag's index moved by the new length).
+    std::string raw(raw_len, '\0');
+    unsigned int got = raw_len;
+    std::string packed = good.substr(data_at, packed_len);
+    ASSERT_EQ(BZ2_bzBuffToBuffDecompress(raw.data(), &got, packed.data(),
+                                         static_cast<unsigned int>(packed_len), 0, 0),
+              BZ_OK);
+    put32(raw, 0, 0xFFFFFFF0u);
+    std::string repacked(raw_len + raw_len / 100 + 600, '\0');
+    unsigned int repacked_len = static_cast<unsigned int>(repacked.size());
+    ASSERT_EQ(
+        BZ2_bzBuffToBuffCompress(repacked.data(), &repacked_len, raw.data(), raw_len, 9, 0, 0),
+        BZ_OK);
+    b = good.substr(0, data_at) + repacked.substr(0, repacked_len) +
+        good.substr(data_at + packed_len);
+    put32(b, data_len_at, repacked_len);
+    std::uint64_t index_pos = 0;
+    std::memcpy(&index_pos, b.data() + index_pos_at, 8);
+    index_pos = index_pos + repacked_len - packed_len;
+    std::memcpy(b.data() + index_pos_at, &index_pos, 8);
+    fails(write("inner.bag", b),
+          "chunk at byte " + std::to_string(chunk) +
+              ", inflated: record at byte 0: declares a header of 4294967280 bytes");
+    EXPECT_NO_THROW(
+        check_bag_structure(dir / "inner.bag", no_walk));  // what the walk alone used to see
+    // An index entry pointing into a message of the compressed chunk.
+    b = good;
+    const std::size_t index_record = data_at + packed_len;
+    const std::size_t index_header_len = u32_at(b, index_record);
+    const std::size_t first_offset = index_record + 4 + index_header_len + 4 + 8;
+    put32(b, first_offset, u32_at(b, first_offset) + 1);
+    fails(write("index.bag", b), "entry 0 points to byte " +
+                                     std::to_string(u32_at(good, first_offset) + 1) +
+                                     " of its chunk, where no message starts");
 }
 
 // Messages that deserialise to nothing sane are named (topic, index, bag time); with
