@@ -141,16 +141,19 @@ void YamlSection::finish() {
     }
 }
 
-namespace {
-
-YAML::Node parse_yaml_root(std::string_view yaml_text) {
-    YAML::Node root;
+YAML::Node load_yaml(std::string_view text) {
     try {
-        root = YAML::Load(std::string(yaml_text));
+        return YAML::Load(std::string(text));
     } catch (const YAML::Exception& e) {
         throw FormatError("YAML syntax error at line " + std::to_string(e.mark.line + 1) + ": " +
                           e.msg);
     }
+}
+
+namespace {
+
+YAML::Node parse_yaml_root(std::string_view yaml_text) {
+    const YAML::Node root = load_yaml(yaml_text);
     if (root && !root.IsNull() && !root.IsMap()) {
         throw FormatError("the top level must be a mapping of section names");
     }

@@ -21,6 +21,9 @@ class Node;
 
 namespace makeway::io {
 
+/// A YAML document; throws FormatError("YAML syntax error at line N: ...") on a syntax error.
+YAML::Node load_yaml(std::string_view text);
+
 /// Reads the keys of one YAML mapping; missing keys keep the struct's defaults.
 class YamlSection {
   public:

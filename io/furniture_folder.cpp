@@ -55,10 +55,9 @@ std::vector<FurnitureMesh> read_index(const std::filesystem::path& dir,
                                       const std::filesystem::path& index, const Warn& warn) {
     YAML::Node root;
     try {
-        root = YAML::Load(read_file(index));
-    } catch (const YAML::Exception& e) {
-        throw FileError(index.string(), "YAML syntax error at line " +
-                                            std::to_string(e.mark.line + 1) + ": " + e.msg);
+        root = load_yaml(read_file(index));
+    } catch (const FormatError& e) {
+        throw FileError(index.string(), e.what());
     }
     std::vector<std::string> problems;
     if (!root.IsMap()) throw FileError(index.string(), "must be a mapping with a 'furniture' list");

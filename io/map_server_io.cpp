@@ -92,10 +92,9 @@ Costmap read_map_server(const std::filesystem::path& yaml_path) {
     std::vector<double> origin;
     YAML::Node root;
     try {
-        root = YAML::Load(text);
-    } catch (const YAML::Exception& e) {
-        throw FileError(yaml_path.string(), "YAML syntax error at line " +
-                                                std::to_string(e.mark.line + 1) + ": " + e.msg);
+        root = load_yaml(text);
+    } catch (const FormatError& e) {
+        throw FileError(yaml_path.string(), e.what());
     }
     {
         YamlSection s(root, "map", problems);

@@ -103,13 +103,7 @@ sim::SceneObject read_object(const YAML::Node& node, const std::string& prefix,
 
 sim::Scene parse_scene(std::string_view yaml_text, const std::filesystem::path& mesh_base_dir,
                        const SceneReadOptions& options) {
-    YAML::Node root;
-    try {
-        root = YAML::Load(std::string(yaml_text));
-    } catch (const YAML::Exception& e) {
-        throw FormatError("YAML syntax error at line " + std::to_string(e.mark.line + 1) + ": " +
-                          e.msg);
-    }
+    const YAML::Node root = load_yaml(yaml_text);
     if (!root.IsMap()) throw FormatError("a scene must be a mapping (name, walls, objects, ...)");
     std::vector<std::string> problems;
     sim::Scene scene;

@@ -2,7 +2,7 @@
 // A stage's configurable parameters declared once, next to the code that uses them: key, member,
 // admissible range and a one-line doc per parameter, in the way a nav2 layer declares its
 // parameters with a descriptor. The one table drives the bounds half of the stage's validate(),
-// the YAML reader (io/config_reader.cpp), config/default.yaml (`makeway config --default`, checked
+// the YAML reader (io/config_sections.cpp), config/default.yaml (`makeway config`, checked
 // by a test) and `makeway config --describe`. No YAML here: the library stays free of file formats.
 //
 // Keys are the members' names; a section that gathers several structs prefixes an included
@@ -25,7 +25,7 @@ struct ParamRange {
     bool infinity = false;
 
     bool contains(double v) const;
-    std::string text() const;  ///< "[0, 2]", "(0, 10)", "(0, .inf]"
+    std::string text() const;  ///< "[0, 2]", "(0, 10)", "[0, 3600] or .inf"
     ParamRange or_infinity() const {
         ParamRange r = *this;
         r.infinity = true;
