@@ -86,7 +86,7 @@ class Walker {
         if (pos > end || n > end - pos) {
             fail("at byte " + std::to_string(pos) + ": " + what + " of " + std::to_string(n) +
                  " bytes runs past " +
-                 (end == size_
+                 (end == size_ && !memory_
                       ? "the end of the file (" + std::to_string(size_) + " bytes; cut short?)"
                       : "the end of its chunk"));
         }
@@ -144,10 +144,11 @@ class Walker {
         r.data_pos = pos + 4 + header_len + 4;
         r.data_len = little<std::uint32_t>(bytes(pos + 4 + header_len, 4, end, "the data length"));
         if (r.data_len > end - std::min(end, r.data_pos)) {
-            fail_at(r,
-                    "declares " + std::to_string(r.data_len) + " bytes of data, past the end of " +
-                        (end == size_ ? "the file (" + std::to_string(size_) + " bytes; cut short?)"
-                                      : "its chunk"));
+            fail_at(r, "declares " + std::to_string(r.data_len) +
+                           " bytes of data, past the end of " +
+                           (end == size_ && !memory_
+                                ? "the file (" + std::to_string(size_) + " bytes; cut short?)"
+                                : "its chunk"));
         }
         return r;
     }
@@ -307,7 +308,7 @@ BagCheckResult check_bag_structure(const fs::path& path, const BagCheckParams& p
     std::map<std::uint64_t, std::uint8_t> op_at;  // every top-level record's start
     std::set<std::uint64_t> chunk_starts;
     std::uint64_t chunk_size = 0;         // the last chunk's uncompressed size
-    std::set<std::uint32_t> chunk_inner;  // its records' offsets, when it is uncompressed
+    std::set<std::uint32_t> chunk_inner;  // its records' offsets, when walked
     bool chunk_seen = false, chunk_compressed = false;
     std::string packed, raw;  // a compressed chunk's bytes and what they inflate to
     for (std::uint64_t pos = magic.size(); pos < size;) {

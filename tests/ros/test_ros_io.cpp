@@ -438,32 +438,40 @@ TEST(BagCheck, CompressedChunksAreInflatedAndWalked) {
     fails(write("short.bag", b), at_chunk + "its bz2 data does not inflate to the " +
                                      std::to_string(raw_len - 1) + " bytes it declares (" +
                                      std::to_string(raw_len) + ")");
-    // A record inside the chunk declaring a 4 GB header: the chunk inflated, damaged, packed again
-    // (the bag's index moved by the new length).
+    // Records inside the chunk declaring a 4 GB header, or data past the chunk's end: the chunk
+    // inflated, damaged, packed again (the bag's index moved by the new length).
     std::string raw(raw_len, '\0');
     unsigned int got = raw_len;
     std::string packed = good.substr(data_at, packed_len);
     ASSERT_EQ(BZ2_bzBuffToBuffDecompress(raw.data(), &got, packed.data(),
                                          static_cast<unsigned int>(packed_len), 0, 0),
               BZ_OK);
-    put32(raw, 0, 0xFFFFFFF0u);
-    std::string repacked(raw_len + raw_len / 100 + 600, '\0');
-    unsigned int repacked_len = static_cast<unsigned int>(repacked.size());
-    ASSERT_EQ(
-        BZ2_bzBuffToBuffCompress(repacked.data(), &repacked_len, raw.data(), raw_len, 9, 0, 0),
-        BZ_OK);
-    b = good.substr(0, data_at) + repacked.substr(0, repacked_len) +
-        good.substr(data_at + packed_len);
-    put32(b, data_len_at, repacked_len);
-    std::uint64_t index_pos = 0;
-    std::memcpy(&index_pos, b.data() + index_pos_at, 8);
-    index_pos = index_pos + repacked_len - packed_len;
-    std::memcpy(b.data() + index_pos_at, &index_pos, 8);
-    fails(write("inner.bag", b),
-          "chunk at byte " + std::to_string(chunk) +
-              ", inflated: record at byte 0: declares a header of 4294967280 bytes");
+    const auto repacked_with = [&](std::size_t at, std::uint32_t value) {
+        std::string damaged = raw;
+        put32(damaged, at, value);
+        std::string repacked(raw_len + raw_len / 100 + 600, '\0');
+        unsigned int repacked_len = static_cast<unsigned int>(repacked.size());
+        EXPECT_EQ(BZ2_bzBuffToBuffCompress(repacked.data(), &repacked_len, damaged.data(), raw_len,
+                                           9, 0, 0),
+                  BZ_OK);
+        std::string out = good.substr(0, data_at) + repacked.substr(0, repacked_len) +
+                          good.substr(data_at + packed_len);
+        put32(out, data_len_at, repacked_len);
+        std::uint64_t index_pos = 0;
+        std::memcpy(&index_pos, out.data() + index_pos_at, 8);
+        index_pos = index_pos + repacked_len - packed_len;
+        std::memcpy(out.data() + index_pos_at, &index_pos, 8);
+        return out;
+    };
+    const std::string inflated = "chunk at byte " + std::to_string(chunk) + ", inflated: ";
+    fails(write("inner.bag", repacked_with(0, 0xFFFFFFF0u)),
+          inflated + "record at byte 0: declares a header of 4294967280 bytes");
     EXPECT_NO_THROW(
         check_bag_structure(dir / "inner.bag", no_walk));  // what the walk alone used to see
+    fails(write("inner_data.bag", repacked_with(4 + u32_at(raw, 0), 0xFFFFFFF0u)),
+          inflated +
+              "record at byte 0 (connection): declares 4294967280 bytes of data, past the "
+              "end of its chunk");
     // An index entry pointing into a message of the compressed chunk.
     b = good;
     const std::size_t index_record = data_at + packed_len;
