@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -49,15 +50,16 @@ void read_sim_sections(const YAML::Node& root, SimConfig& cfg, std::vector<std::
 }  // namespace
 
 std::vector<BoundSection> sim_config_sections(SimConfig& c) {
-    std::vector<BoundSection> sim = simulator_sections(c), ours = config_sections(c);
-    // scene, lidar, robot, odometry, simulation, then the robot's software.
-    std::vector<BoundSection> all;
-    all.push_back(std::move(sim[0]));
-    all.push_back(std::move(sim[1]));
-    all.push_back(std::move(ours[0]));
-    all.push_back(std::move(sim[2]));
-    all.push_back(std::move(sim[3]));
-    for (std::size_t i = 1; i < ours.size(); ++i) all.push_back(std::move(ours[i]));
+    // The simulator's sections with the robot after the LiDAR (the simulated robot is the described
+    // one), then the robot's software: the order config/default.yaml lists them in.
+    std::vector<BoundSection> all = simulator_sections(c), ours = config_sections(c);
+    const auto named = [](const char* name) {
+        return [name](const BoundSection& s) { return s.name == name; };
+    };
+    const auto robot = std::find_if(ours.begin(), ours.end(), named("robot"));
+    all.insert(std::find_if(all.begin(), all.end(), named("lidar")) + 1, std::move(*robot));
+    ours.erase(robot);
+    for (BoundSection& s : ours) all.push_back(std::move(s));
     return all;
 }
 

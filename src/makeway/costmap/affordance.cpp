@@ -25,45 +25,6 @@ Eigen::Vector2d zone_half_extent(const ObjectEstimate& o, const AffordanceParams
 
 }  // namespace
 
-const ParamTable<AffordanceParams>& affordance_table() {
-    using A = AffordanceParams;
-    static const ParamTable<A> table = [] {
-        ParamTable<ChairZoneParams> chair;
-        chair
-            .add("forward_back_m", &ChairZoneParams::forward_back_m, closed(0.0, 5.0),
-                 "an ellipse along the chair's axis: reach beyond the chair, both ways")
-            .add("side_m", &ChairZoneParams::side_m, closed(0.0, 5.0),
-                 "reach beyond the chair sideways")
-            .add("peak_cost", &ChairZoneParams::peak_cost, closed(0.0, 252.0),
-                 "on the chair; soft costs are 1..252")
-            .add("edge_cost", &ChairZoneParams::edge_cost, closed(0.0, 252.0),
-                 "at the zone boundary")
-            .require([](const ChairZoneParams& c) { return c.edge_cost <= c.peak_cost; },
-                     "edge_cost must be at most peak_cost");
-        ParamTable<TableZoneParams> tab;
-        tab.add("sides_m", &TableZoneParams::sides_m, closed(0.0, 5.0),
-                "a rectangle padded on the long (sitting) sides by this ...")
-            .add("ends_m", &TableZoneParams::ends_m, closed(0.0, 5.0),
-                 "... and at the ends by this")
-            .add("square_tolerance_m", &TableZoneParams::square_tolerance_m, closed(0.0, 5.0),
-                 "|length - width| below this: padded all round")
-            .add("peak_cost", &TableZoneParams::peak_cost, closed(0.0, 252.0), "on the table")
-            .add("edge_cost", &TableZoneParams::edge_cost, closed(0.0, 252.0),
-                 "at the zone boundary")
-            .require([](const TableZoneParams& t) { return t.edge_cost <= t.peak_cost; },
-                     "edge_cost must be at most peak_cost");
-        ParamTable<A> t;
-        t.add("min_existence", &A::min_existence, closed(0.0, 1.0),
-              "objects less likely than this get no zone")
-            .include(
-                "chair.", [](A& a) -> ChairZoneParams& { return a.chair; }, chair)
-            .include(
-                "table.", [](A& a) -> TableZoneParams& { return a.table; }, tab);
-        return t;
-    }();
-    return table;
-}
-
 std::vector<std::string> AffordanceParams::validate() const {
     return affordance_table().problems(*this);
 }

@@ -39,16 +39,6 @@ void dt1d(const std::vector<double>& f, std::vector<double>& d, std::vector<int>
 
 }  // namespace
 
-const ParamTable<InflationParams>& inflation_table() {
-    static const ParamTable<InflationParams> table = [] {
-        ParamTable<InflationParams> t;
-        t.add("cost_scaling", &InflationParams::cost_scaling, open(0.0, 100.0),
-              "k [1/m]: costs decay as exp(-k (d - inscribed))");
-        return t;
-    }();
-    return table;
-}
-
 std::vector<std::string> InflationParams::validate() const {
     std::vector<std::string> out = inflation_table().problems(*this);
     if (!(inscribed_radius_m > 0.0 && inscribed_radius_m < 5.0))

@@ -8,31 +8,6 @@
 
 namespace makeway::costmap {
 
-const ParamTable<ObstacleLayerParams>& obstacle_layer_table() {
-    using O = ObstacleLayerParams;
-    static const ParamTable<O> table = [] {
-        ParamTable<O> t;
-        t.add("low_mark_range_m", &O::low_mark_range_m, closed(0.0, 100.0),
-              "returns below 5 cm mark only this close (a tilted pose estimate lifts the far "
-              "floor) ...")
-            .renamed_from("low_obstacle_range_m")
-            .add("low_min_returns", &O::low_min_returns, closed(1, 65535),
-                 "... and only when this many fall in a cell ...")
-            .renamed_from("low_obstacle_min_returns")
-            .add("low_min_share", &O::low_min_share, closed(0.0, 1.0),
-                 "... and this share of the cell's low returns stand above the clearance (floor "
-                 "noise lifts a few)")
-            .renamed_from("low_obstacle_min_share")
-            .add("mark_range_m", &O::mark_range_m, above(0.0, 100.0), "returns farther do not mark")
-            .add("clear_range_m", &O::clear_range_m, above(0.0, 100.0),
-                 "rays clear free space this far")
-            .require([](const O& o) { return o.mark_range_m <= o.clear_range_m; },
-                     "mark_range_m must be in (0, clear_range_m]");
-        return t;
-    }();
-    return table;
-}
-
 std::vector<std::string> ObstacleLayerParams::validate() const {
     std::vector<std::string> out = obstacle_layer_table().problems(*this);
     if (!(body.ground_clearance_m >= 0.0 && body.ground_clearance_m < body.top_m))

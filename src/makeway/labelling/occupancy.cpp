@@ -23,28 +23,6 @@ std::string_view to_string(PointClass c) {
     return "?";
 }
 
-const ParamTable<OccupancyParams>& occupancy_table() {
-    using O = OccupancyParams;
-    static const ParamTable<O> table = [] {
-        ParamTable<O> t;
-        t.add("voxel_m", &O::voxel_m, above(0.0, 10.0), "the multi-session occupancy grid")
-            .add("end_margin_m", &O::end_margin_m, closed(0.0, 10.0),
-                 "free space stops this short of a return ...")
-            .add("range_margin", &O::range_margin, closed(0.0, 1.0),
-                 "... plus this share of its range (grazing rays do not carve surfaces)")
-            .add("min_free_sweeps", &O::min_free_sweeps, closed(1, 100000),
-                 "movable: another session saw the voxel free in this many sweeps ...")
-            .add("absent_hit_ratio", &O::absent_hit_ratio, below(0.0, 1.0),
-                 "... and hit it in at most this share of them")
-            .add("dynamic_min_free", &O::dynamic_min_free, closed(1, 100000),
-                 "dynamic: its own session saw it free this often ...")
-            .add("dynamic_hit_ratio", &O::dynamic_hit_ratio, below(0.0, 1.0),
-                 "... and hit it in fewer than this share of them");
-        return t;
-    }();
-    return table;
-}
-
 std::vector<std::string> OccupancyParams::validate() const {
     std::vector<std::string> e;
     for (const std::string& s : occupancy_table().problems(*this)) e.push_back("labelling." + s);

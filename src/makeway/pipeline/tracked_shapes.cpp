@@ -7,21 +7,6 @@
 
 namespace makeway::pipeline {
 
-const ParamTable<TrackedShapeParams>& tracked_shape_table() {
-    using T = TrackedShapeParams;
-    static const ParamTable<T> table = [] {
-        ParamTable<T> t;
-        t.add("match_distance_m", &T::match_distance_m, above(0.0, 10.0),
-              "a segment this close to a tracked object's learned shape is verified against it")
-            .add("max_views", &T::max_views, closed(1, 1000),
-                 "the latest views of a tracked object fused into its learned shape")
-            .add("view_margin_m", &T::view_margin_m, closed(0.0, 2.0),
-                 "a view: the keyframe's returns in the fitted box grown by this");
-        return t;
-    }();
-    return table;
-}
-
 std::vector<std::string> TrackedShapeParams::validate() const {
     std::vector<std::string> problems = tracked_shape_table().problems(*this);
     if (!(ground_band_m >= 0.0 && ground_band_m <= 10.0))

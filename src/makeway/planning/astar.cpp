@@ -9,17 +9,6 @@
 
 namespace makeway::planning {
 
-const ParamTable<AStarParams>& astar_table() {
-    static const ParamTable<AStarParams> table = [] {
-        ParamTable<AStarParams> t;
-        t.add("cost_weight", &AStarParams::cost_weight, closed(0.0, 100.0),
-              "a step costs its length x (1 + this x cost / 252)")
-            .add("allow_unknown", &AStarParams::allow_unknown, "plans may cross cells never seen");
-        return t;
-    }();
-    return table;
-}
-
 std::vector<std::string> AStarParams::validate() const {
     std::vector<std::string> out = astar_table().problems(*this);
     if (blocked_cost == 0) out.push_back("blocked_cost must be > 0");

@@ -78,25 +78,6 @@ Eigen::Vector2d carrot(const Costmap& map, const std::vector<Eigen::Vector2d>& p
 
 }  // namespace
 
-const ParamTable<DwaParams>& dwa_table() {
-    using D = DwaParams;
-    static const ParamTable<D> table = [] {
-        ParamTable<D> t;
-        t.add("horizon_s", &D::horizon_s, above(0.0, 10.0), "rollouts this long")
-            .add("lookahead_m", &D::lookahead_m, above(0.0, 20.0),
-                 "carrot distance along the global path")
-            .add("plan_envelope", &D::plan_envelope,
-                 "DWA keeps to the costs the global plan accepts (no cutting through zones the "
-                 "plan went around)")
-            .add("envelope_margin", &D::envelope_margin, closed(0.0, 252.0),
-                 "cost units above the plan's highest cost still inside the envelope")
-            .require([](const D& d) { return d.horizon_s >= d.rollout_dt_s; },
-                     "need 0 < rollout_dt_s <= horizon_s");
-        return t;
-    }();
-    return table;
-}
-
 std::vector<std::string> DwaParams::validate() const {
     std::vector<std::string> out = dwa_table().problems(*this);
     if (!(max_v_mps > 0.0 && min_v_mps <= max_v_mps && min_v_mps >= -max_v_mps))

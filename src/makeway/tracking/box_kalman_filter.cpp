@@ -9,30 +9,6 @@
 
 namespace makeway::tracking {
 
-const ParamTable<KalmanParams>& kalman_table() {
-    using K = KalmanParams;
-    static const ParamTable<K> table = [] {
-        ParamTable<K> t;
-        t.add("accel_sigma_mps2", &K::accel_sigma_mps2, open(0.0, 100.0),
-              "the box filter (centre, yaw, size, velocity): white-noise acceleration")
-            .add("position_sigma_mps", &K::position_sigma_mps, below(0.0, 100.0),
-                 "position random walk [m/sqrt(s)] (traffic boxes jump; furniture's do not)")
-            .add("yaw_rate_sigma_radps", &K::yaw_rate_sigma_radps, open(0.0, 100.0),
-                 "yaw random walk")
-            .add("size_sigma_mps", &K::size_sigma_mps, open(0.0, 100.0), "size random walk")
-            .add("meas_position_sigma_m", &K::meas_position_sigma_m, open(0.0, 100.0),
-                 "a detection's centre ...")
-            .add("meas_yaw_sigma_rad", &K::meas_yaw_sigma_rad, open(0.0, 100.0), "... yaw ...")
-            .add("meas_size_sigma_m", &K::meas_size_sigma_m, open(0.0, 100.0), "... and size noise")
-            .add("initial_velocity_sigma_mps", &K::initial_velocity_sigma_mps, open(0.0, 100.0),
-                 "a new object's velocity: 0 +- this")
-            .add("heading_votes_to_turn", &K::heading_votes_to_turn, closed(1, 1000),
-                 "net detections for another quarter turn that turn a track");
-        return t;
-    }();
-    return table;
-}
-
 std::vector<std::string> KalmanParams::validate() const { return kalman_table().problems(*this); }
 
 BoxKalmanFilter::BoxKalmanFilter(const OrientedBox& b, const KalmanParams& params)
