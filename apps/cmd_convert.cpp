@@ -1,8 +1,17 @@
-#include "apps/commands.hpp"
+#include "apps/command.hpp"
 #include "io/error.hpp"
 #include "io/point_cloud_io.hpp"
 
 namespace makeway::apps {
+
+struct ConvertOptions {
+    std::string input;
+    std::string output;
+    std::string pcd_encoding = "binary";
+    std::string ply_encoding = "binary";
+    std::string non_finite = "reject";
+};
+
 namespace {
 
 io::NonFinitePolicy parse_policy(const std::string& name) {
@@ -43,5 +52,29 @@ int run_convert(const ConvertOptions& options) {
     }
     return 0;
 }
+
+// The subcommands of this file, as --help lists them.
+namespace {
+
+void declare_convert(CommandSpec& c, ConvertOptions& o) {
+    c.option("IN", o.input, "Input cloud (.pcd, .ply, .bin)").required();
+    c.option("OUT", o.output, "Output cloud (.pcd, .ply, .bin); written atomically").required();
+    c.option("--pcd-encoding", o.pcd_encoding, "PCD DATA encoding")
+        .choices({"ascii", "binary", "binary_compressed"})
+        .show_default();
+    c.option("--ply-encoding", o.ply_encoding, "PLY encoding (binary = little endian)")
+        .choices({"ascii", "binary"})
+        .show_default();
+    c.option("--non-finite", o.non_finite,
+             "Points with NaN/inf coordinates: reject the file, keep them, or drop them")
+        .choices({"reject", "keep", "drop"})
+        .show_default();
+}
+const Registration<ConvertOptions> kConvert{"convert", Group::kPointClouds,
+                                            "Convert a point cloud between PCD, PLY and KITTI .bin "
+                                            "by file extension, keeping every field both hold",
+                                            declare_convert, run_convert};
+
+}  // namespace
 
 }  // namespace makeway::apps

@@ -6,7 +6,7 @@
 #include <iostream>
 #include <optional>
 
-#include "apps/commands.hpp"
+#include "apps/command.hpp"
 #include "apps/model_path.hpp"
 #include "apps/nav_report.hpp"
 #include "apps/nav_run.hpp"
@@ -20,6 +20,12 @@
 #include "io/staged_output.hpp"
 
 namespace makeway::apps {
+
+struct DemoOptions {
+    std::string config;  ///< empty: built-in defaults
+    std::string out_dir = "out/demo";
+};
+
 namespace {
 
 template <typename T>
@@ -141,5 +147,21 @@ int run_demo(const DemoOptions& options) {
               << "/, " << (shown / "summary.json").string() << "\n";
     return exact ? 0 : 1;
 }
+
+// The subcommands of this file, as --help lists them.
+namespace {
+
+void declare_demo(CommandSpec& c, DemoOptions& o) {
+    c.option("--config", o.config,
+             "YAML configuration (default: built-in defaults; see "
+             "config/default.yaml)");
+    c.option("--out", o.out_dir, "Output folder").show_default();
+}
+const Registration<DemoOptions> kDemo{"demo", Group::kSetup,
+                                      "Run the longest end-to-end path that exists on the "
+                                      "built-in default scene and write its outputs",
+                                      declare_demo, run_demo};
+
+}  // namespace
 
 }  // namespace makeway::apps

@@ -4,7 +4,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "apps/commands.hpp"
+#include "apps/command.hpp"
 #include "apps/model_path.hpp"
 #include "io/dataset_io.hpp"
 #include "io/error.hpp"
@@ -13,11 +13,60 @@
 #include "io/point_cloud_io.hpp"
 #include "io/progress.hpp"
 #include "io/staged_output.hpp"
+#include "makeway/eval/detection_dataset.hpp"
 #include "makeway/eval/detection_eval.hpp"
 #include "makeway/pipeline/keyframe.hpp"
 #include "makeway/shape/learned_prior.hpp"
 
 namespace makeway::apps {
+
+struct DatasetOptions {
+    /// The generator's parameters, filled by the options directly; the command line's defaults
+    /// are 20 scenes with two styles held out of training.
+    eval::DatasetParams params = [] {
+        eval::DatasetParams p;
+        p.scenes = 20;
+        p.exclude_styles = {"armchair", "round_table"};
+        return p;
+    }();
+    std::string
+        furniture;  ///< a folder of the user's own furniture meshes (io/furniture_folder.hpp)
+    std::string out;
+};
+
+struct TrainDetectorOptions {
+    std::vector<std::string> data;
+    int epochs = 20;
+    int batch = 8;
+    double learning_rate = 2e-3;
+    std::uint64_t seed = 0;
+    int threads = 0;
+    int width = 32;
+    bool intensity = false;
+    bool resume = false;
+    std::string out;
+};
+
+struct DetectOptions {
+    std::string model;  ///< empty: the default weights
+    std::string cloud;
+    std::string non_finite =
+        "reject";  ///< points with NaN/inf coordinates: reject the file or drop them
+    std::string out;
+};
+
+struct EvalDetectionOptions {
+    std::string model;
+    int scenes = 6;
+    std::uint64_t seed = 1000000;
+    std::string out_dir = "out/eval_detection";
+    bool default_cad =
+        false;            ///< verify against default-dimension models instead of the scene's own
+    bool no_cad = false;  ///< no CAD models at all
+    std::string shape_model;     ///< learned shapes for what no CAD model fits
+    double shape_e_max = 0.035;  ///< verification's residual bound for completed shapes [m]
+};
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -41,20 +90,13 @@ io::Json metrics_json(const eval::DetectionMetrics& m) {
 }  // namespace
 
 int run_dataset(const DatasetOptions& o) {
-    eval::DatasetParams p;
-    p.scenes = o.scenes;
-    p.seed = o.seed;
-    p.exclude_styles = o.exclude_styles;
-    p.keyframe_every = o.keyframe_every;
-    p.max_keyframes_per_scene = o.max_keyframes;
-    p.furniture_share = o.furniture_share;
-    p.all_styles = o.all_styles;
+    eval::DatasetParams p = o.params;
     if (!o.furniture.empty()) {
         for (io::FurnitureMesh& m : io::read_furniture_folder(o.furniture, io::print_warning)) {
             p.furniture.push_back({m.name, m.cls, std::move(m.mesh_object)});
         }
     }
-    io::ProgressBar bar("dataset", static_cast<std::size_t>(o.scenes));
+    io::ProgressBar bar("dataset", static_cast<std::size_t>(p.scenes));
     const auto kfs = eval::generate_detection_dataset(
         p, [&](int d, int) { bar.update(static_cast<std::size_t>(d)); });
     bar.finish();
@@ -64,12 +106,12 @@ int run_dataset(const DatasetOptions& o) {
         io::write_labelled_keyframe(staged.staging(), k, kfs[k]);
         objects += kfs[k].objects.size();
     }
-    io::write_json(staged.staging() / "meta.json", {{"scenes", o.scenes},
-                                                    {"seed", o.seed},
-                                                    {"exclude_styles", o.exclude_styles},
+    io::write_json(staged.staging() / "meta.json", {{"scenes", p.scenes},
+                                                    {"seed", p.seed},
+                                                    {"exclude_styles", p.exclude_styles},
                                                     {"keyframes", kfs.size()},
                                                     {"objects", objects},
-                                                    {"all_styles", o.all_styles},
+                                                    {"all_styles", p.all_styles},
                                                     {"furniture", o.furniture},
                                                     {"furniture_meshes", p.furniture.size()}});
     staged.commit();
@@ -207,5 +249,109 @@ int run_eval_detection(const EvalDetectionOptions& o) {
               << "\n";
     return 0;
 }
+
+// The subcommands of this file, as --help lists them.
+namespace {
+
+void declare_dataset(CommandSpec& c, DatasetOptions& ds) {
+    c.option("--scenes", ds.params.scenes, "Scenes (sparse, medium, dense in turn)")
+        .range(1, 100000)
+        .show_default();
+    c.option("--seed", ds.params.seed, "Seed of the first scene").show_default();
+    c.option("--exclude-styles", ds.params.exclude_styles,
+             "Styles replaced by another of their class (held out of training)")
+        .delimiter(',')
+        .show_default();
+    c.option("--keyframe-every", ds.params.keyframe_every, "Sweeps between keyframes")
+        .range(1, 1000)
+        .show_default();
+    c.option("--max-keyframes", ds.params.max_keyframes_per_scene, "Keyframes per scene at most")
+        .range(1, 10000)
+        .show_default();
+    c.flag("--all-styles", ds.params.all_styles,
+           "The wider world: every object a random style of its class among all twelve "
+           "chair and nine table styles (stacking, sled and cantilever chairs, bar stools, "
+           "benches, sofas, lounge chairs, pedestal, coffee, balcony, folding and side "
+           "tables, desks), less --exclude-styles");
+    c.option("--furniture", ds.furniture,
+             "A folder of your own furniture meshes (OBJ/PLY/STL/DAE): furniture.yaml gives "
+             "each file's class, units, up_axis and forward_axis, else chair_*/table_* names")
+        .existing_directory();
+    c.option("--furniture-share", ds.params.furniture_share,
+             "Share of the objects of a class drawn with your meshes")
+        .range(0.0, 1.0)
+        .show_default();
+    c.option("--out", ds.out, "Output folder (clouds/, labels/, meta.json)").required();
+}
+const Registration<DatasetOptions> kDataset{
+    "dataset", Group::kLearning,
+    "Simulated, labelled keyframes for the detector: drives through generated "
+    "scenes, 5 sweeps per keyframe, ground and ceiling removed",
+    declare_dataset, run_dataset};
+
+void declare_train_detector(CommandSpec& c, TrainDetectorOptions& tr) {
+    c.option("--data", tr.data, "Dataset folders (makeway dataset, or auto-labelled data)")
+        .required();
+    c.option("--epochs", tr.epochs, "Epochs").range(1, 10000).show_default();
+    c.option("--batch", tr.batch, "Keyframes per batch").range(1, 512).show_default();
+    c.option("--lr", tr.learning_rate, "Peak learning rate").range(1e-6, 1.0).show_default();
+    c.option("--seed", tr.seed, "Seed of initialisation, shuffling and augmentation")
+        .show_default();
+    c.option("--threads", tr.threads, "Torch threads (0: default)").range(0, 256).show_default();
+    c.option("--width", tr.width, "Channels of the first network stage")
+        .range(4, 256)
+        .show_default();
+    c.flag("--intensity", tr.intensity, "Add a mean-intensity input channel (off: geometry only)");
+    c.flag("--resume", tr.resume, "Continue from OUT.ckpt when it exists");
+    c.option("--out", tr.out, "Model file (.pt)").required();
+}
+const Registration<TrainDetectorOptions> kTrainDetector{
+    "train-detector", Group::kLearning,
+    "Train the detector from C++ (libtorch, CPU): augmentation, AdamW, "
+    "warm-up + cosine schedule, checkpoints every epoch",
+    declare_train_detector, run_train_detector};
+
+void declare_detect(CommandSpec& c, DetectOptions& dt) {
+    c.option("--model", dt.model, "Model file (default: models/detector.pt)");
+    c.option("--cloud", dt.cloud, "Keyframe cloud (.pcd, .ply, .bin)").required();
+    c.option("--non-finite", dt.non_finite,
+             "Points with NaN/inf coordinates: reject the file (bad input) or drop them")
+        .choices({"reject", "drop"})
+        .show_default();
+    c.option("--out", dt.out, "Detections JSON (class, box, score, class_probabilities)")
+        .required();
+}
+const Registration<DetectOptions> kDetect{
+    "detect", Group::kPointClouds,
+    "Detect chairs and tables in a keyframe cloud (sensor frame); the ground "
+    "plane and ceiling are removed first when found",
+    declare_detect, run_detect};
+
+void declare_eval_detection(CommandSpec& c, EvalDetectionOptions& ev) {
+    c.option("--model", ev.model, "Model file (default: models/detector.pt)");
+    c.option("--scenes", ev.scenes, "Held-out scenes per set").range(1, 1000).show_default();
+    c.option("--seed", ev.seed, "Seed of the held-out scenes (training uses smaller seeds)")
+        .show_default();
+    c.option("--out", ev.out_dir, "Output folder (summary.json)").show_default();
+    c.flag("--no-cad", ev.no_cad,
+           "No CAD models at all (with --shape-model: the learned shapes alone)");
+    c.option("--shape-model", ev.shape_model,
+             "Shape networks (models/shape.pt) for detections no CAD model fits")
+        .existing_file();
+    c.option("--shape-e-max", ev.shape_e_max,
+             "Verification's residual bound for completed shapes [m]")
+        .range(0.005, 0.5)
+        .show_default();
+    c.flag("--default-cad", ev.default_cad,
+           "Verify against one default-dimension model per style instead of the "
+           "CAD models of each scene's own furniture");
+}
+const Registration<EvalDetectionOptions> kEvalDetection{
+    "eval-detection", Group::kEvaluation,
+    "AP/AR at 3D IoU 0.25 and 0.5, orientation accuracy and latency on "
+    "held-out simulated scenes, and on styles left out of training",
+    declare_eval_detection, run_eval_detection};
+
+}  // namespace
 
 }  // namespace makeway::apps

@@ -1,12 +1,14 @@
 #include <iostream>
 
-#include "apps/commands.hpp"
+#include "apps/command.hpp"
 #include "io/json_io.hpp"
 #include "io/point_cloud_io.hpp"
 
 namespace makeway::apps {
 
-void print_error(const std::string& message) { std::cerr << "makeway: " << message << "\n"; }
+struct InfoOptions {
+    std::string path;
+};
 
 int run_info(const InfoOptions& options) {
     const io::CloudFile file =
@@ -23,5 +25,19 @@ int run_info(const InfoOptions& options) {
     std::cout << io::dump_json(j) << "\n";
     return 0;
 }
+
+// The subcommands of this file, as --help lists them.
+namespace {
+
+void declare_info(CommandSpec& c, InfoOptions& o) {
+    c.option("FILE", o.path, "Point cloud (.pcd, .ply, or KITTI .bin)").required();
+}
+const Registration<InfoOptions> kInfo{"info", Group::kPointClouds,
+                                      "Print one JSON object describing a point-cloud file: "
+                                      "format, encoding, point count, fields, bounds [m], "
+                                      "count of points with NaN/inf coordinates",
+                                      declare_info, run_info};
+
+}  // namespace
 
 }  // namespace makeway::apps

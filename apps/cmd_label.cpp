@@ -6,7 +6,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "apps/commands.hpp"
+#include "apps/command.hpp"
 #include "apps/model_path.hpp"
 #include "io/cad_folder.hpp"
 #include "io/config_reader.hpp"
@@ -24,6 +24,45 @@
 #include "ros/sweep_source.hpp"
 
 namespace makeway::apps {
+
+struct LabelOptions {
+    std::vector<std::string>
+        sessions;       ///< one folder per session (makeway simulate output or recorded sweeps)
+    std::string cad;    ///< CAD folder; empty: PCA boxes only
+    std::string model;  ///< the previous round's detector: classes of model-less clusters
+    std::string config;
+    std::string odometry_name = "odometry.txt";
+    std::string poses_name;  ///< external poses (TUM T_world_sensor) in every session folder; the
+                             ///< odometry does not run
+    std::string out;
+    int max_sweeps = 0;  ///< per session; 0: all
+};
+
+struct BenchSessionsOptions {
+    std::string model;  ///< the detector to start from (default weights when empty)
+    int rounds = 2;
+    int scenes_per_round = 4;
+    int sessions = 3;
+    int max_sweeps = 300;
+    int epochs = 6;
+    int eval_scenes = 3;
+    int replay_scenes = 16;
+    int threads = 2;
+    std::uint64_t seed = 0;
+    std::vector<std::string> left_out_styles{"armchair", "round_table", "lounge_chair",
+                                             "pedestal_table"};
+    std::string out_dir = "out/bench_sessions";
+};
+
+struct BenchLabelOptions {
+    int scenes = 10;
+    int sessions = 3;
+    std::uint64_t seed = 0;
+    int max_sweeps = 600;
+    bool no_cad = false;
+    std::string out_dir = "out/bench_label";
+};
+
 namespace fs = std::filesystem;
 namespace {
 
@@ -390,5 +429,103 @@ int run_bench_sessions(const BenchSessionsOptions& o) {
     std::cout << table;
     return 0;
 }
+
+// The subcommands of this file, as --help lists them.
+namespace {
+
+void declare_label(CommandSpec& c, LabelOptions& o) {
+    c.option("--sessions", o.sessions,
+             "Session folders (makeway simulate output: clouds/ and odometry.txt; or a "
+             "folder of sweeps with odometry.txt) or .bag files, the first one the reference")
+        .required()
+        .expected(1, -1);
+    c.option("--cad", o.cad,
+             "CAD models of the room's furniture (chair_*.obj, table_*.obj, ...); without: "
+             "PCA boxes, unknown classes");
+    c.option("--model", o.model,
+             "Detector weights of the previous round: the class of objects no CAD model fits");
+    c.option("--config", o.config, "YAML configuration (the front end's sections)");
+    c.option("--odometry-name", o.odometry_name,
+             "Wheel odometry file name in each session folder (TUM)")
+        .show_default();
+    c.option("--poses-name", o.poses_name,
+             "External poses in each session folder (TUM T_world_sensor at each sweep's "
+             "start, e.g. makeway run's poses.txt): the odometry does not run");
+    c.option("--max-sweeps", o.max_sweeps, "Sweeps per session at most (0: all)")
+        .range(0, 10000000)
+        .show_default();
+    c.option("--out", o.out,
+             "Output folder: clouds/, labels/ (as makeway dataset), point_labels/ (uint32: "
+             "semantic low 16 bits, instance high 16), objects.json, meta.json")
+        .required();
+}
+const Registration<LabelOptions> kLabel{
+    "label", Group::kRecordedData,
+    "Automatic annotation of recorded sessions of one place (the paper's six steps): "
+    "sessions aligned, points classified by ray tracing (ground, permanent, "
+    "movable, dynamic), movable points clustered, boxes by PCA and CAD alignment, "
+    "per-point labels; writes a detector dataset",
+    declare_label, run_label};
+
+void declare_bench_sessions(CommandSpec& c, BenchSessionsOptions& ses_o) {
+    c.option("--model", ses_o.model,
+             "Detector to start from (default: models/detector.pt, trained without "
+             "armchairs and round tables)");
+    c.option("--rounds", ses_o.rounds, "Rounds of label + fine-tune").range(1, 20).show_default();
+    c.option("--scenes-per-round", ses_o.scenes_per_round, "Rooms driven and labelled per round")
+        .range(1, 100)
+        .show_default();
+    c.option("--sessions", ses_o.sessions, "Sessions per room").range(2, 20).show_default();
+    c.option("--max-sweeps", ses_o.max_sweeps, "Sweeps per session at most")
+        .range(10, 100000)
+        .show_default();
+    c.option("--epochs", ses_o.epochs, "Fine-tuning epochs per round")
+        .range(1, 1000)
+        .show_default();
+    c.option("--replay-scenes", ses_o.replay_scenes,
+             "Simulated scenes of the trained styles replayed in fine-tuning")
+        .range(0, 1000)
+        .show_default();
+    c.option("--eval-scenes", ses_o.eval_scenes, "Held-out scenes per scored set")
+        .range(1, 100)
+        .show_default();
+    c.option("--left-out-styles", ses_o.left_out_styles, "Styles the detector never saw")
+        .delimiter(',')
+        .show_default();
+    c.option("--threads", ses_o.threads, "Torch threads").range(1, 256).show_default();
+    c.option("--seed", ses_o.seed, "Seed of rooms, replay data and fine-tuning").show_default();
+    c.option("--out", ses_o.out_dir,
+             "Output folder (summary.json, table.md, model.pt: the fine-tuned detector)")
+        .show_default();
+}
+const Registration<BenchSessionsOptions> kBenchSessions{
+    "bench sessions", Group::kEvaluation,
+    "Session after session: a detector trained without some styles is fine-tuned "
+    "on auto-labels of multi-session drives of rooms furnished with them; the "
+    "left-out and trained styles' mAP after each round",
+    declare_bench_sessions, run_bench_sessions};
+
+void declare_bench_label(CommandSpec& c, BenchLabelOptions& lab_o) {
+    c.option("--scenes", lab_o.scenes, "Scenes (alternating medium and dense)")
+        .range(1, 1000)
+        .show_default();
+    c.option("--sessions", lab_o.sessions, "Sessions per scene").range(2, 20).show_default();
+    c.option("--seed", lab_o.seed, "Seed of scenes, sessions, sensor noise and wheel drift")
+        .show_default();
+    c.option("--max-sweeps", lab_o.max_sweeps, "Sweeps per session at most (10 per second)")
+        .range(10, 100000)
+        .show_default();
+    c.flag("--no-cad", lab_o.no_cad,
+           "Without CAD models: every object keeps its PCA box, unknown class");
+    c.option("--out", lab_o.out_dir, "Output folder (summary.json)").show_default();
+}
+const Registration<BenchLabelOptions> kBenchLabel{
+    "bench label", Group::kEvaluation,
+    "The automatic annotation against the simulator's truth: multi-session "
+    "drives (furniture moved between sessions), point-class IoU, panoptic "
+    "quality, box AP@0.25/0.5 and yaw within 10 deg of the auto-labels",
+    declare_bench_label, run_bench_label};
+
+}  // namespace
 
 }  // namespace makeway::apps

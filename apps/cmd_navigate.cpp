@@ -11,7 +11,7 @@
 #include <mutex>
 #include <optional>
 
-#include "apps/commands.hpp"
+#include "apps/command.hpp"
 #include "apps/model_path.hpp"
 #include "apps/nav_report.hpp"
 #include "apps/nav_run.hpp"
@@ -27,6 +27,40 @@
 #include "makeway/sim/scene_generator.hpp"
 
 namespace makeway::apps {
+
+struct NavigateOptions {
+    std::string config;  ///< lidar, robot and affordance sections; empty: built-in defaults
+    std::string scene;
+    std::string method = "gt-perc";
+    std::string map;    ///< optional map_server YAML for the static layer
+    std::string model;  ///< detector weights for `ours`; empty: the default ones
+    std::string out_dir;
+    std::uint64_t seed = 0;
+    double time_limit_s = 180.0;
+    bool allow_outside_paths = false;  ///< the scene's meshes may lie outside its folder
+};
+
+struct BenchNavOptions {
+    std::string config;
+    int scenes = 25;
+    std::uint64_t seed = 0;
+    std::string out_dir = "out/bench_nav";
+    std::string model;  ///< detector weights for `ours`; empty: the default ones when present
+    int threads = 2;
+    double time_limit_s = 180.0;
+    std::vector<std::string> methods;  ///< empty: every method (ours when weights are there)
+    std::string shard;  ///< "K/N": run scenes K, K + N, ... and write partial.json (empty: every
+                        ///< scene, the results)
+    std::string layout =
+        "random";  ///< random (densities cycle) or study_space (the paper's room, seeded)
+    std::string shape_model;  ///< `ours` verifies against these learned shapes instead of the
+                              ///< scenes' CAD models
+};
+
+struct BenchMergeOptions {
+    std::vector<std::string> dirs;  ///< folders holding partial.json (one per shard)
+    std::string out_dir = "out/bench_nav";
+};
 
 int run_navigate(const NavigateOptions& options) {
     const io::SimConfig cfg = io::load_sim_config(options.config);
@@ -310,5 +344,100 @@ int run_bench_merge(const BenchMergeOptions& options) {
     staged.commit();
     return 0;
 }
+
+// The subcommands of this file, as --help lists them.
+namespace {
+
+void declare_navigate(CommandSpec& c, NavigateOptions& o) {
+    c.option("--scene", o.scene, "Scene file (.yaml)").required();
+    c.option("--method", o.method,
+             "con (no semantics, inflation 3x robot radius), oppo (no semantics, "
+             "inflation = robot radius), gt-perc (affordance zones from ground truth), "
+             "ours (the online system on its own pose from wheel odometry: detector, "
+             "verification, object map)")
+        .choices({"con", "oppo", "gt-perc", "ours"})
+        .show_default();
+    c.option("--model", o.model, "Detector weights for ours (default: models/detector.pt)");
+    c.option("--config", o.config,
+             "YAML configuration: lidar, robot and affordance sections "
+             "(default: built-in; see config/default.yaml)");
+    c.option("--map", o.map,
+             "Static map in map_server format (YAML + PGM) instead of the scene's walls "
+             "and pillars; its resolution and origin become the costmap's");
+    c.option("--out", o.out_dir,
+             "Output folder: run.json, route.png, costmap.yaml/.pgm (master grid, "
+             "map_server format)")
+        .required();
+    c.option("--seed", o.seed, "Sensor-noise seed").show_default();
+    c.option("--time-limit", o.time_limit_s, "Seconds before the run counts as failed [s]")
+        .range(1.0, 3600.0)
+        .show_default();
+    c.flag("--allow-outside-paths", o.allow_outside_paths,
+           "Let the scene's `mesh:` paths leave the scene's folder (absolute, ../); off: a "
+           "scene reads only "
+           "files beside it");
+}
+const Registration<NavigateOptions> kNavigate{
+    "navigate", Group::kSimulation,
+    "Drive the simulated Jackal start -> waypoint -> goal with the "
+    "layered costmap, A* and DWA at 10 Hz; writes run.json and route.png",
+    declare_navigate, run_navigate};
+
+void declare_bench_nav(CommandSpec& c, BenchNavOptions& nav_o) {
+    c.option("--config", nav_o.config, "YAML configuration: lidar, robot and affordance sections");
+    c.option("--scenes", nav_o.scenes, "Number of scenes (density cycles sparse, medium, dense)")
+        .range(1, 1000)
+        .show_default();
+    c.option("--seed", nav_o.seed, "Seed of the first scene").show_default();
+    c.option("--out", nav_o.out_dir, "Output folder").show_default();
+    c.option("--threads", nav_o.threads, "Runs in parallel").range(1, 256).show_default();
+    c.option("--model", nav_o.model,
+             "Detector weights for the full system ours (default: models/detector.pt "
+             "when present; without weights ours is left out)");
+    c.option("--shape-model", nav_o.shape_model,
+             "Shape networks: `ours` verifies against its learned shapes instead of "
+             "the scenes' CAD models")
+        .existing_file();
+    c.option("--methods", nav_o.methods,
+             "Only these methods (con, oppo, gt-perc, ours), comma-separated")
+        .delimiter(',')
+        .choices({"con", "oppo", "gt-perc", "ours"});
+    c.option("--time-limit", nav_o.time_limit_s, "Seconds per run before it counts as failed [s]")
+        .range(1.0, 3600.0)
+        .show_default();
+    c.option("--layout", nav_o.layout,
+             "random (densities cycle sparse, medium, dense) or study_space (the paper's "
+             "room of 12 tables and 22 chairs, one per seed)")
+        .choices({"random", "study_space"})
+        .show_default();
+    c.option("--shard", nav_o.shard,
+             "K/N: run only scenes K, K+N, K+2N, ... (0 <= K < N) and write partial.json; "
+             "`makeway bench merge` joins the N partials into the unsharded results")
+        .check(
+            [](const std::string& v) {
+                return parse_shard(v) ? std::string() : "expected K/N with 0 <= K < N";
+            },
+            "K/N");
+}
+const Registration<BenchNavOptions> kBenchNav{
+    "bench nav", Group::kEvaluation,
+    "The navigation benchmark (the paper's Table II): every method on "
+    "generated scenes of varied density; writes results.json, table.md "
+    "and one PNG per scene",
+    declare_bench_nav, run_bench_nav};
+
+void declare_bench_merge(CommandSpec& c, BenchMergeOptions& merge_o) {
+    c.option("dirs", merge_o.dirs, "Folders holding partial.json, one per shard, in any order")
+        .required()
+        .existing_directory();
+    c.option("--out", merge_o.out_dir, "Output folder").show_default();
+}
+const Registration<BenchMergeOptions> kBenchMerge{
+    "bench merge", Group::kEvaluation,
+    "Join `bench nav --shard K/N` partial results (one folder per shard) into "
+    "exactly the results one unsharded run writes",
+    declare_bench_merge, run_bench_merge};
+
+}  // namespace
 
 }  // namespace makeway::apps

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <iostream>
 
-#include "apps/commands.hpp"
+#include "apps/command.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
 #include "io/json_io.hpp"
@@ -19,6 +19,24 @@
 #include "makeway/odometry/lidar_odometry.hpp"
 
 namespace makeway::apps {
+
+struct OdometryOptions {
+    std::string clouds;    ///< folder of sweeps (.pcd/.ply/.bin), in name order
+    std::string odometry;  ///< optional TUM wheel odometry, one pose per sweep start
+    std::string config;    ///< lidar_odometry and robot (mount) sections
+    std::vector<double> start{0.0, 0.0, 0.0};  ///< x, y, yaw of the base at the first sweep
+    double rate_hz = 10.0;                     ///< sweep rate without odometry stamps
+    std::string out;
+};
+
+struct BenchOdometryOptions {
+    std::string config;
+    int scenes = 10;
+    std::uint64_t seed = 0;
+    int max_sweeps = 600;
+    std::string out_dir = "out/bench_odometry";
+};
+
 namespace fs = std::filesystem;
 
 int run_odometry(const OdometryOptions& o) {
@@ -124,5 +142,52 @@ int run_bench_odometry(const BenchOdometryOptions& o) {
     std::cout << table;
     return 0;
 }
+
+// The subcommands of this file, as --help lists them.
+namespace {
+
+void declare_odometry(CommandSpec& c, OdometryOptions& o) {
+    c.option("--clouds", o.clouds,
+             "Folder of sweeps (.pcd with a time/t field, .ply, .bin), taken in name order")
+        .required();
+    c.option("--odometry", o.odometry,
+             "Wheel odometry (TUM, one base pose per sweep start, its stamps the sweeps'); "
+             "without it: constant velocity");
+    c.option("--config", o.config,
+             "YAML configuration: lidar_odometry and robot (sensor mount) sections");
+    c.option("--start", o.start, "The base's pose at the first sweep: x y yaw [m, m, rad]")
+        .expected(3)
+        .show_default();
+    c.option("--rate", o.rate_hz, "Sweeps per second without odometry stamps")
+        .range(0.1, 100.0)
+        .show_default();
+    c.option("--out", o.out, "Poses (TUM: stamp x y z qx qy qz qw)").required();
+}
+const Registration<OdometryOptions> kOdometry{
+    "odometry", Group::kRecordedData,
+    "LiDAR odometry fused with wheel odometry on recorded sweeps (per-point "
+    "time de-skews them); writes the sensor pose at each sweep's start (TUM)",
+    declare_odometry, run_odometry};
+
+void declare_bench_odometry(CommandSpec& c, BenchOdometryOptions& odo_o) {
+    c.option("--config", odo_o.config,
+             "YAML configuration: lidar, robot, wheel_noise and lidar_odometry sections");
+    c.option("--scenes", odo_o.scenes, "Drives (every fifth a corridor)")
+        .range(1, 1000)
+        .show_default();
+    c.option("--seed", odo_o.seed, "Seed of scenes, sensor noise and wheel drift").show_default();
+    c.option("--max-sweeps", odo_o.max_sweeps, "Sweeps per drive at most")
+        .range(10, 100000)
+        .show_default();
+    c.option("--out", odo_o.out_dir, "Output folder (summary.json, table.md)").show_default();
+}
+const Registration<BenchOdometryOptions> kBenchOdometry{
+    "bench odometry", Group::kEvaluation,
+    "LiDAR odometry on simulated drives (medium and dense scenes with people "
+    "and pulled chairs, corridors): ATE, RPE over 1 m and 5 m, sweeps per second; "
+    "writes summary.json and table.md",
+    declare_bench_odometry, run_bench_odometry};
+
+}  // namespace
 
 }  // namespace makeway::apps

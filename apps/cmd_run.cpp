@@ -9,7 +9,7 @@
 #include <map>
 #include <optional>
 
-#include "apps/commands.hpp"
+#include "apps/command.hpp"
 #include "apps/model_path.hpp"
 #include "apps/nav_report.hpp"
 #include "io/cad_folder.hpp"
@@ -30,6 +30,31 @@
 #include "ros/sweep_source.hpp"
 
 namespace makeway::apps {
+
+struct RunOptions {
+    std::string clouds, bag;  ///< one of them: a folder of sweeps, or a ROS 1 bag
+    std::string odometry;     ///< folders: TUM wheel odometry of the base, line k at sweep k
+    std::string poses;        ///< TUM T_world_sensor per sweep start: external poses, no odometry
+    std::string cloud_topic = "/velodyne_points", odom_topic = "/odom";
+    std::string map;                 ///< map_server YAML: the static layer (optional)
+    std::string cad;                 ///< CAD folder for verification (optional: skipped without)
+    std::string shape_model;         ///< shape networks for what no CAD model fits (optional)
+    std::vector<double> extrinsics;  ///< x y z roll pitch yaw of the sensor on the base (default:
+                                     ///< the config's robot)
+    std::vector<double>
+        start;  ///< x y yaw of the base at the first sweep (default: the first pose)
+    std::string config, model;
+    std::string out = "out/run", out_bag;
+    double rate_hz = 10.0;
+    double costmap_size_m = 40.0,
+           resolution_m = 0.05;  ///< without --map: a free square around the start
+    int png_every = 1;           ///< a picture every n-th keyframe (0: none)
+    int max_sweeps = 0;          ///< 0: all
+    std::string non_finite = "reject";
+    bool instantaneous = false;      ///< accept sweeps without per-point time (not de-skewed)
+    bool skip_bad_messages = false;  ///< bags: skip and count damaged messages instead of stopping
+};
+
 namespace fs = std::filesystem;
 namespace {
 
@@ -67,6 +92,10 @@ void view_bounds(const std::vector<Pose2>& trajectory, const std::vector<ObjectE
 }  // namespace
 
 int run_run(const RunOptions& o) {
+    if (o.clouds.empty() && o.bag.empty()) {
+        print_error("run: give --clouds DIR or --bag FILE");
+        return kExitBadInput;
+    }
     const io::Config cfg = io::load_config(o.config);
     std::optional<Isometry3> extrinsics;
     if (const std::string p = o.extrinsics.empty() ? "" : io::extrinsics_problem(o.extrinsics);
@@ -262,5 +291,89 @@ int run_run(const RunOptions& o) {
               << "\n";
     return 0;
 }
+
+// The subcommands of this file, as --help lists them.
+namespace {
+
+void declare_run(CommandSpec& c, RunOptions& o) {
+    auto& clouds =
+        c.option("--clouds", o.clouds,
+                 "Folder of sweeps (.pcd with a time/t field, .ply, .bin), in name order");
+    auto& bag = c.option("--bag", o.bag,
+                         "ROS 1 bag with sensor_msgs/PointCloud2 sweeps and nav_msgs/Odometry");
+    clouds.excludes(bag);
+    auto& wheels =
+        c.option("--odometry", o.odometry,
+                 "With --clouds: wheel odometry of the base (TUM, line k at sweep k's start)")
+            .needs(clouds);
+    auto& poses =
+        c.option("--poses", o.poses,
+                 "External poses (TUM T_world_sensor at each sweep's start, as `makeway odometry` "
+                 "writes them): used as they are, the odometry does not run");
+    poses.excludes(wheels);
+    c.option("--cloud-topic", o.cloud_topic, "With --bag: the PointCloud2 topic").show_default();
+    c.option("--odom-topic", o.odom_topic,
+             "With --bag: the wheel odometry topic (optional in the bag)")
+        .show_default();
+    c.option("--map", o.map,
+             "Static map (map_server YAML + PGM) for the costmap's static layer; objects "
+             "stand in its free space");
+    c.option(
+        "--cad", o.cad,
+        "Folder of CAD meshes (chair_*/table_*) for verification; without it the stage is skipped");
+    c.option("--shape-model", o.shape_model,
+             "Shape networks (models/shape.pt): detections no CAD model fits (all, without "
+             "--cad) are verified against their completed shape")
+        .existing_file();
+    c.option("--extrinsics", o.extrinsics,
+             "The sensor on the base: x y z roll pitch yaw [m, rad] (default: the "
+             "config's robot section, 0.4 m above the base)")
+        .expected(6);
+    c.option("--start", o.start,
+             "The base's pose at the first sweep in the map: x y yaw (default: the first "
+             "odometry or external pose, else 0 0 0)")
+        .expected(3);
+    c.option("--config", o.config, "YAML configuration (config/default.yaml's sections)");
+    c.option("--model", o.model, "Detector weights (default: models/detector.pt)");
+    c.option("--rate", o.rate_hz, "Sweeps per second when nothing gives stamps")
+        .range(0.1, 100.0)
+        .show_default();
+    c.option("--size", o.costmap_size_m,
+             "Without --map: side of the square costmap around the start [m]")
+        .range(2.0, 1000.0)
+        .show_default();
+    c.option("--png-every", o.png_every, "A picture every n-th keyframe (0: none)")
+        .range(0, 100000)
+        .show_default();
+    c.option("--max-sweeps", o.max_sweeps, "Stop after this many sweeps (0: all)")
+        .range(0, 100000000)
+        .show_default();
+    c.option("--non-finite", o.non_finite,
+             "Points with NaN/inf coordinates: reject (error) or drop")
+        .choices({"reject", "drop"})
+        .show_default();
+    c.flag("--instantaneous", o.instantaneous,
+           "Accept sweeps without a per-point time field, each taken at its "
+           "stamp (not de-skewed); off: such a sweep is an error");
+    c.flag("--skip-bad-messages", o.skip_bad_messages,
+           "With --bag: skip messages that do not deserialise or hold "
+           "nonsense, and sweeps stamped before the previous one (counted in "
+           "summary.json); off: the first one is an error")
+        .needs(bag);
+    c.option("--out", o.out,
+             "Output folder: objects/ per keyframe, objects.json, costmap.yaml/.pgm, poses.txt, "
+             "keyframes/ and keyframes.png, map.png, summary.json")
+        .show_default();
+    c.option("--out-bag", o.out_bag,
+             "Also a ROS 1 bag: /makeway/costmap (OccupancyGrid), /makeway/objects "
+             "(MarkerArray), /makeway/object_map (String, JSON), /makeway/odometry, /tf");
+}
+const Registration<RunOptions> kRun{
+    "run", Group::kRecordedData,
+    "The whole system on recorded data (a folder of sweeps or a ROS 1 bag): pose, "
+    "keyframes, detection, verification, object map, object-aware costmap",
+    declare_run, run_run};
+
+}  // namespace
 
 }  // namespace makeway::apps

@@ -1,7 +1,7 @@
 // makeway cad / makeway scene: CAD models and procedural scenes.
 #include <iostream>
 
-#include "apps/commands.hpp"
+#include "apps/command.hpp"
 #include "apps/recording.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
@@ -14,6 +14,21 @@
 #include "makeway/sim/scene_generator.hpp"
 
 namespace makeway::apps {
+
+struct CadOptions {
+    std::string style;
+    std::uint64_t seed = 0;
+    std::string out;
+};
+
+struct SceneOptions {
+    std::uint64_t seed = 0;
+    std::string density = "medium";
+    std::string layout = "random";
+    int sessions = 1;
+    bool no_people = false;
+    std::string out = "scene.yaml";
+};
 
 int run_cad(const CadOptions& options) {
     const auto style = sim::parse_furniture_style(options.style);
@@ -59,5 +74,51 @@ int run_scene(const SceneOptions& options) {
     for (const auto& line : lines) std::cout << line << "\n";
     return 0;
 }
+
+// The subcommands of this file, as --help lists them.
+namespace {
+
+void declare_cad(CommandSpec& c, CadOptions& o) {
+    std::vector<std::string> styles;
+    std::string names;
+    for (int i = 0; i < makeway::sim::kNumFurnitureStyles; ++i) {
+        styles.emplace_back(makeway::sim::to_string(static_cast<makeway::sim::FurnitureStyle>(i)));
+        names += (i ? ", " : "") + styles.back();
+    }
+    c.option("--style", o.style, "One of " + names).required().choices(styles);
+    c.option("--seed", o.seed, "Seed of the dimensions (real furniture ranges)").show_default();
+    c.option("--out", o.out,
+             "Mesh file (.obj, .ply, .stl); the object frame has its origin on the "
+             "floor at the footprint centre, x forward, z up")
+        .required();
+}
+const Registration<CadOptions> kCad{"cad", Group::kSimulation,
+                                    "Write a procedural chair or table model (OBJ, PLY or STL)",
+                                    declare_cad, run_cad};
+
+void declare_scene(CommandSpec& c, SceneOptions& o) {
+    c.option("--seed", o.seed, "Scene seed").show_default();
+    c.option("--density", o.density, "Number of objects and clutter")
+        .choices({"sparse", "medium", "dense"})
+        .show_default();
+    c.option("--layout", o.layout, "random, or study_space: one room with 12 tables and 22 chairs")
+        .choices({"random", "study_space"})
+        .show_default();
+    c.option("--sessions", o.sessions,
+             "Recording sessions of the same building with furniture moved "
+             "between them; session k > 0 goes to NAME_sessionK.yaml")
+        .range(1, 100)
+        .show_default();
+    c.flag("--no-people", o.no_people, "No walkers and no chair pushers");
+    c.option("--out", o.out, "Scene file (.yaml)").show_default();
+}
+const Registration<SceneOptions> kScene{
+    "scene", Group::kSimulation,
+    "Generate an indoor scene (YAML) and its top-down picture (PNG "
+    "beside it); every scene has a collision-free route start -> "
+    "waypoint -> goal for the robot footprint",
+    declare_scene, run_scene};
+
+}  // namespace
 
 }  // namespace makeway::apps

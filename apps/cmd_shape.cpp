@@ -6,7 +6,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "apps/commands.hpp"
+#include "apps/command.hpp"
 #include "apps/model_path.hpp"
 #include "io/canvas.hpp"
 #include "io/error.hpp"
@@ -21,6 +21,36 @@
 #include "makeway/shape/shape_training.hpp"
 
 namespace makeway::apps {
+
+struct TrainShapeOptions {
+    int scenes = 24;
+    std::uint64_t seed = 0;
+    std::vector<std::string> exclude_styles{"armchair", "round_table"};
+    double steps_scale = 1.0;  ///< every stage's step count times this
+    int threads = 2;
+    std::string out = "models/shape.pt";
+};
+
+struct CompleteOptions {
+    std::string model;  ///< empty: models/shape.pt
+    std::string cloud;
+    std::string box;  ///< "cx,cy,cz,length,width,height,yaw" in the cloud's frame
+    std::string cls;
+    std::string sensor = "0,0,0";  ///< where the returns were seen from, in the cloud's frame
+    std::string out;
+};
+
+struct BenchShapeOptions {
+    std::string model;  ///< empty: models/shape.pt
+    int scenes = 6;
+    std::uint64_t seed = 1000;
+    std::vector<std::string> left_out{"armchair", "round_table"};
+    int threads = 1;
+    double inlier_distance = 0.05;  ///< the robust solve's inlier residual [m]
+    int hypotheses = 0;  ///< the robust solve's minimal samples (0: the weighted solve alone)
+    bool pose_only = false;
+    std::string out_dir = "out/bench_shape";
+};
 
 namespace fs = std::filesystem;
 
@@ -361,5 +391,80 @@ int run_complete(const CompleteOptions& o) {
               << "\n";
     return 0;
 }
+
+// The subcommands of this file, as --help lists them.
+namespace {
+
+void declare_train_shape(CommandSpec& c, TrainShapeOptions& tr) {
+    c.option("--scenes", tr.scenes, "Rooms rendered for training").range(1, 10000).show_default();
+    c.option("--seed", tr.seed, "Seed of rooms, initialisation and sampling").show_default();
+    c.option("--exclude-styles", tr.exclude_styles,
+             "Styles left out of training (bench shape scores them apart)")
+        .delimiter(',')
+        .show_default();
+    c.option("--steps-scale", tr.steps_scale, "Every stage's step count times this")
+        .range(0.001, 100.0)
+        .show_default();
+    c.option("--threads", tr.threads, "Threads (torch and the targets)")
+        .range(1, 256)
+        .show_default();
+    c.option("--out", tr.out, "Model file (.pt); a report beside it (.pt.json)").show_default();
+}
+const Registration<TrainShapeOptions> kTrainShape{
+    "train-shape", Group::kLearning,
+    "Train the shape networks (F_n correspondences + 7-DoF solve, F_0 DeepSDF prior, "
+    "F_1 TSDF-to-occupancy completion) on the simulator's furniture, from a fixed seed",
+    declare_train_shape, run_train_shape};
+
+void declare_complete(CommandSpec& c, CompleteOptions& co) {
+    c.option("--model", co.model, "Shape model (default: models/shape.pt)");
+    c.option("--cloud", co.cloud,
+             "Cloud holding the object (.pcd, .ply, .bin), ground not removed is fine")
+        .required();
+    c.option(
+         "--box", co.box,
+         "The object's box in the cloud's frame: cx,cy,cz,length,width,height,yaw (a detection)")
+        .required();
+    c.option("--class", co.cls, "chair or table").required();
+    c.option("--sensor", co.sensor, "Where the cloud was seen from, in its frame: x,y,z")
+        .show_default();
+    c.option("--out", co.out, "Mesh file (.obj, .ply, .stl)").required();
+}
+const Registration<CompleteOptions> kComplete{
+    "complete", Group::kPointClouds,
+    "Pose one object with F_n and complete its shape with F_1 (F_0's code as prior); "
+    "writes the mesh in the cloud's frame",
+    declare_complete, run_complete};
+
+void declare_bench_shape(CommandSpec& c, BenchShapeOptions& shape_o) {
+    c.option("--model", shape_o.model, "Shape model (default: models/shape.pt)");
+    c.option("--scenes", shape_o.scenes, "Rooms per set").range(1, 1000).show_default();
+    c.option("--seed", shape_o.seed, "Seed of the rooms (training uses small seeds)")
+        .show_default();
+    c.option("--left-out", shape_o.left_out,
+             "Styles left out of training: a second set furnished only with them")
+        .delimiter(',')
+        .show_default();
+    c.option("--threads", shape_o.threads, "Torch threads (timing is per object on these)")
+        .range(1, 256)
+        .show_default();
+    c.option("--inlier-distance", shape_o.inlier_distance, "The 7-DoF solve's inlier residual [m]")
+        .range(0.001, 1.0)
+        .show_default();
+    c.option("--hypotheses", shape_o.hypotheses,
+             "The 7-DoF solve's minimal samples (0: the weighted least squares alone)")
+        .range(0, 100000)
+        .show_default();
+    c.flag("--pose-only", shape_o.pose_only, "Score F_n's pose only (no completion)");
+    c.option("--out", shape_o.out_dir, "Output folder").show_default();
+}
+const Registration<BenchShapeOptions> kBenchShape{
+    "bench shape", Group::kEvaluation,
+    "The shape networks on held-out rooms and on the styles left out of training: "
+    "F_n pose accuracy, completion (Chamfer-L1, IoU) of the partial cloud, F_0 and F_1, "
+    "timing; writes summary.json, table.md, gallery.png",
+    declare_bench_shape, run_bench_shape};
+
+}  // namespace
 
 }  // namespace makeway::apps

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "apps/commands.hpp"
+#include "apps/command.hpp"
 #include "io/config_reader.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
@@ -25,6 +25,48 @@
 #include "makeway/tracking/object_map.hpp"
 
 namespace makeway::apps {
+
+struct TrackOptions {
+    std::string detections;  ///< folder of per-frame JSON (makeway) or KITTI file / folder of files
+    std::string format = "makeway";
+    std::string poses;   ///< TUM sensor poses per frame (makeway format, optional)
+    std::string config;  ///< YAML; its tracking section (default: built-in, KITTI preset for kitti)
+    double rate_hz = 10.0;  ///< frame rate for KITTI files (stamps = frame / rate)
+    std::optional<double> range_m, min_score;
+    std::vector<std::string>
+        classes;  ///< empty: every class in the input (kitti), chair and table (makeway)
+    std::string score_transform = "auto";  ///< auto, none or sigmoid
+    std::string out_of_range;              ///< freeze or drop; empty: the configuration's
+    double fov_deg = 0.0;  ///< > 0: KITTI output only within this horizontal field of view
+    std::string output_score = "detection";  ///< kitti: detection, existence or track-mean
+    bool coasting = false;    ///< kitti: boxes of confirmed tracks not detected in the frame, every
+                              ///< type (default: the type's preset)
+    int coasting_frames = 0;  ///< kitti, with coasting: at most this many frames after the last
+                              ///< detection (0: until dropped)
+    bool no_coasting = false;  ///< kitti: no such boxes for any type
+    bool backfill = true;      ///< kitti: a confirmed track's output starts at its first detection
+    std::string out;
+};
+
+struct EvalTrackingOptions {
+    std::string gt;
+    std::string tracks;
+    std::string format = "makeway";
+    std::vector<std::string> classes;  ///< kitti: classes evaluated (default: those in the tracks)
+    double min_iou = 0.25;             ///< kitti: 3D IoU of a match
+    double fov_deg = 0.0;              ///< kitti: > 0 scores only this horizontal field of view
+    bool devkit_rounding = false;      ///< kitti: AB3DMOT's script's re-averaged scores, to the bit
+    std::string out;                   ///< optional JSON
+};
+
+struct BenchTrackOptions {
+    std::string config;  ///< YAML whose tracking section replaces the defaults (empty: none)
+    bool scan_occlusion = false;
+    int scenes = 5;
+    std::uint64_t seed = 0;
+    std::string out_dir = "out/bench_track";
+};
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -665,5 +707,123 @@ int run_bench_track(const BenchTrackOptions& o) {
               << " %; wrote " << (fs::path(o.out_dir) / "summary.json").string() << "\n";
     return 0;
 }
+
+// The subcommands of this file, as --help lists them.
+namespace {
+
+void declare_track(CommandSpec& c, TrackOptions& o) {
+    c.option("--detections", o.detections,
+             "makeway: folder of per-frame JSON ({\"stamp_s\", \"T_world_sensor\", "
+             "\"detections\"}); kitti: a tracking-format file or a folder of them")
+        .required();
+    c.option("--format", o.format, "makeway or kitti").choices({"makeway", "kitti"}).show_default();
+    c.option("--poses", o.poses, "TUM file of T_world_sensor, one per frame (makeway format)");
+    c.option("--config", o.config,
+             "YAML configuration: its tracking section (default: built-in; for kitti a "
+             "traffic preset per type: 80 m range, drop out of range, constant velocity, "
+             "README \"Tracking on KITTI\")");
+    c.option("--rate", o.rate_hz, "Frame rate of KITTI sequences [Hz]")
+        .range(0.1, 1000.0)
+        .show_default();
+    c.option("--range", o.range_m,
+             "Sensor range [m]: farther objects are neither matched nor judged")
+        .range(0.1, 10000.0);
+    c.option("--classes", o.classes,
+             "Classes to track, comma separated (kitti: any type names, default every "
+             "type in the input but DontCare; makeway: chair, table)")
+        .delimiter(',');
+    c.option("--min-score", o.min_score,
+             "Detections scoring below this (after --score-transform) are not used");
+    c.option("--score-transform", o.score_transform,
+             "How scores become probabilities: none, sigmoid (raw "
+             "logits), or auto (sigmoid when any score is outside [0, 1])")
+        .choices({"auto", "none", "sigmoid"})
+        .show_default();
+    c.option("--out-of-range", o.out_of_range,
+             "Objects leaving the range: freeze (kept where last seen) or drop")
+        .choices({"freeze", "drop"});
+    c.option("--fov-deg", o.fov_deg,
+             "kitti: write only objects within this horizontal field of view of the "
+             "sensor's x axis (KITTI's camera: 81.4)")
+        .range(0.0, 360.0);
+    c.option("--output-score", o.output_score,
+             "kitti: the score written per box: detection (the matched "
+             "detection's, as given), existence (the track's fused "
+             "existence) or track-mean (the mean of its detections' so far)")
+        .choices({"detection", "existence", "track-mean"})
+        .show_default();
+    auto& coast = c.flag("--coasting", o.coasting,
+                         "kitti: also write confirmed tracks of every type in frames "
+                         "without a detection (their predicted boxes); default: each "
+                         "type's preset (Pedestrian one frame, the others none)");
+    c.flag("--no-coasting", o.no_coasting,
+           "kitti: only boxes updated by a detection, for every type")
+        .excludes(coast);
+    c.option("--coasting-frames", o.coasting_frames,
+             "kitti, with --coasting: write a track's predicted box "
+             "at most this many frames after its last detection (0: "
+             "until the track is dropped)")
+        .range(0, 1000)
+        .needs(coast);
+    c.flag("!--no-backfill", o.backfill,
+           "kitti: a track's output starts at the frame that confirms it (default: "
+           "at its first detection, the frames that led to it written too, as AB3DMOT)");
+    c.option("--out", o.out,
+             "Output folder: per-frame JSON objects, or one KITTI file per sequence; and "
+             "summary.json (frames per second, settings)")
+        .required();
+}
+const Registration<TrackOptions> kTrack{
+    "track", Group::kRecordedData,
+    "Track objects across frames (GIoU + Hungarian, Kalman filters, class and "
+    "existence fusion, occlusion) and write the object map per frame",
+    declare_track, run_track};
+
+void declare_eval_tracking(CommandSpec& c, EvalTrackingOptions& e) {
+    c.option("--gt", e.gt,
+             "Ground truth: folder of per-frame object JSON (as makeway simulate writes), or KITTI")
+        .required();
+    c.option("--tracks", e.tracks, "Tracks in the same format").required();
+    c.option("--format", e.format, "makeway or kitti").choices({"makeway", "kitti"}).show_default();
+    c.option("--classes", e.classes,
+             "kitti: classes to evaluate, comma separated (default: those in the tracks)")
+        .delimiter(',');
+    c.option("--iou", e.min_iou, "kitti: 3D IoU a match needs").range(0.01, 1.0).show_default();
+    c.option("--fov-deg", e.fov_deg,
+             "kitti: score only boxes within this horizontal field of view (0: all)")
+        .range(0.0, 360.0);
+    c.flag("--devkit-rounding", e.devkit_rounding,
+           "kitti: AB3DMOT's evaluate.py's score handling, to the bit: it averages "
+           "each track's already averaged scores again at every threshold (a "
+           "track can drop out an ulp under its own score); off: one mean per track");
+    c.option("--out", e.out, "Also write the metrics as JSON");
+}
+const Registration<EvalTrackingOptions> kEvalTracking{
+    "eval-tracking", Group::kEvaluation,
+    "Tracking metrics. makeway format: CLEAR MOT (MOTA, MOTP, ID switches, fragmentations) and "
+    "HOTA (DetA, AssA) per class, 3D IoU; kitti: the KITTI protocol as "
+    "AB3DMOT reports it (sAMOTA, AMOTA, AMOTP; DontCare, neighbouring classes)",
+    declare_eval_tracking, run_eval_tracking};
+
+void declare_bench_track(CommandSpec& c, BenchTrackOptions& trk_o) {
+    c.option("--scenes", trk_o.scenes, "Scenes (alternating medium and dense)")
+        .range(1, 1000)
+        .show_default();
+    c.option("--seed", trk_o.seed, "Seed of scenes and corruption").show_default();
+    c.option("--config", trk_o.config,
+             "YAML configuration: its tracking section replaces the defaults");
+    c.option("--out", trk_o.out_dir, "Output folder (summary.json)").show_default();
+    c.flag("--scan-occlusion", trk_o.scan_occlusion,
+           "Also treat LiDAR returns in front of an object as occlusion "
+           "(walls, people), beyond the paper's object boxes");
+}
+const Registration<BenchTrackOptions> kBenchTrack{
+    "bench track", Group::kEvaluation,
+    "Tracking on simulated drives: visible objects' ground truth corrupted "
+    "(20 % missed, 10 % false positives, noise, yaw flips); MOTA, HOTA, "
+    "map yaw accuracy, frames per second",
+    declare_bench_track, run_bench_track};
+
+}  // namespace
 
 }  // namespace makeway::apps

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "apps/commands.hpp"
+#include "apps/command.hpp"
 #include "io/cad_folder.hpp"
 #include "io/error.hpp"
 #include "io/file_util.hpp"
@@ -17,6 +17,23 @@
 #include "makeway/pipeline/keyframe.hpp"
 
 namespace makeway::apps {
+
+struct VerifyOptions {
+    std::string cloud;
+    std::string detections;
+    std::string cad_dir;
+    std::string out;
+    std::string non_finite = "reject";  ///< as detect: NaN points are bad input unless dropped
+};
+
+struct BenchVerifyOptions {
+    int scenes = 5;
+    std::uint64_t seed = 0;
+    std::string out_dir = "out/bench_verify";
+    double min_yaw_margin = 0.0;  ///< VerifyParams::min_yaw_margin
+    double approx_e_max_m = 0.0;  ///< VerifyParams::approx_e_max_m
+};
+
 namespace {
 
 io::Json to_json(const eval::OrientationStats& s) {
@@ -109,5 +126,61 @@ int run_bench_verify(const BenchVerifyOptions& options) {
     std::cout << io::dump_json(j, 2) << "\n";
     return 0;
 }
+
+// The subcommands of this file, as --help lists them.
+namespace {
+
+void declare_verify(CommandSpec& c, VerifyOptions& o) {
+    c.option("--cloud", o.cloud,
+             "Keyframe cloud in the sensor frame (.pcd, .ply, .bin); the floor under "
+             "each object comes from its ground plane when it has one")
+        .required();
+    c.option("--detections", o.detections,
+             "JSON: [{\"class\": \"chair\", \"box\": {\"centre_m\": [x, y, z], "
+             "\"size_m\": [l, w, h], \"yaw_rad\": a}, \"score\": s}, ...]")
+        .required();
+    c.option("--cad", o.cad_dir,
+             "Folder of CAD meshes named chair_*.obj / table_*.obj (also .ply, .stl, "
+             ".dae), in their object frame: origin on the floor, x forward")
+        .required();
+    c.option("--non-finite", o.non_finite,
+             "Points with NaN/inf coordinates: reject the file (bad input) or drop them")
+        .choices({"reject", "drop"})
+        .show_default();
+    c.option("--out", o.out, "Result JSON (refined pose and box, residual [m], p_exist, model)")
+        .required();
+}
+const Registration<VerifyOptions> kVerify{
+    "verify", Group::kPointClouds,
+    "Verify detections against CAD models: yaw + translation "
+    "point-to-plane ICP from 4 yaw candidates, rejection by residual, "
+    "existence probability (paper eq. 2)",
+    declare_verify, run_verify};
+
+void declare_bench_verify(CommandSpec& c, BenchVerifyOptions& ver_o) {
+    c.option("--scenes", ver_o.scenes, "Scenes (alternating medium and dense)")
+        .range(1, 1000)
+        .show_default();
+    c.option("--seed", ver_o.seed, "Seed of scenes and corruption").show_default();
+    c.option("--out", ver_o.out_dir, "Output folder (summary.json)").show_default();
+    c.option("--min-yaw-margin", ver_o.min_yaw_margin,
+             "Reject fits whose best rival orientation is within this "
+             "fraction of the winner's residual (0: off)")
+        .range(0.0, 10.0)
+        .show_default();
+    c.option("--approx-e-max", ver_o.approx_e_max_m,
+             "Accept fits up to this residual [m] as approximate (the network's "
+             "score stays; 0: off, else above e_max 0.035)")
+        .range(0.0, 0.999)
+        .show_default();
+}
+const Registration<BenchVerifyOptions> kBenchVerify{
+    "bench verify", Group::kEvaluation,
+    "CAD verification on simulated keyframes: ground-truth boxes "
+    "corrupted like detector output (noise, yaw flips) and false "
+    "boxes on walls, with matching, non-matching and scaled CAD models",
+    declare_bench_verify, run_bench_verify};
+
+}  // namespace
 
 }  // namespace makeway::apps

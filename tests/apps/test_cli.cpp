@@ -2,8 +2,12 @@
 // simulation chain, benchmarks, navigation, verification and the detector's commands.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "../io/io_test_util.hpp"
 #include "cli_test_util.hpp"
@@ -156,13 +160,68 @@ TEST(Cli, BadInputGivesExitTwoOneLineAndNoOutput) {
     EXPECT_EQ(io::read_point_cloud(dir / "ok.pcd").cloud.size(), 9u);
 }
 
+namespace {
+
+// The subcommands a --help lists (every heading but "Options:" and "Positionals:" lists them).
+std::vector<std::string> listed_subcommands(const std::string& help) {
+    std::vector<std::string> names;
+    std::istringstream in(help);
+    bool in_list = false;
+    for (std::string line; std::getline(in, line);) {
+        if (!line.empty() && line.back() == ':' && line[0] != ' ')
+            in_list = line != "Options:" && line != "Positionals:";
+        else if (in_list && line.rfind("  ", 0) == 0 && line.size() > 2 && line[2] != ' ')
+            names.push_back(line.substr(2, line.find(' ', 2) - 2));
+    }
+    return names;
+}
+
+}  // namespace
+
+// Every subcommand's --help (found by walking the lists, `bench`'s too): it runs, says what the
+// subcommand does, and every option and positional has a description (CLI11 writes it from column
+// 30 of the option's line, or on the next line when the name is longer).
 TEST(Cli, HelpDescribesEveryOption) {
     const auto dir = testing_util::fresh_dir("help");
     const CliRun top = run_makeway("--help", dir);
     EXPECT_EQ(top.exit_code, 0);
-    for (const char* sub :
-         {"info", "convert", "demo", "cad", "scene", "simulate", "navigate", "bench"})
-        EXPECT_NE(top.out.find(sub), std::string::npos);
+    std::vector<std::string> pending = listed_subcommands(top.out), leaves;
+    while (!pending.empty()) {
+        const std::string path = pending.back();
+        pending.pop_back();
+        const CliRun r = run_makeway(path + " --help", dir);
+        ASSERT_EQ(r.exit_code, 0) << path << "\n" << r.err;
+        EXPECT_NE(r.out.find("Usage: "), std::string::npos) << path;
+        EXPECT_GT(r.out.find("Usage: "), 20u) << path << ": no description";
+        EXPECT_NE(r.out.find("makeway " + path + " [OPTIONS]"), std::string::npos) << r.out;
+        const std::vector<std::string> children = listed_subcommands(r.out);
+        for (const std::string& child : children) pending.push_back(path + " " + child);
+        if (!children.empty()) continue;
+        leaves.push_back(path);
+        std::vector<std::string> lines;
+        std::istringstream in(r.out);
+        for (std::string line; std::getline(in, line);) lines.push_back(line);
+        for (std::size_t i = 0; i < lines.size(); ++i) {
+            const std::string& line = lines[i];
+            if (line.rfind("  ", 0) != 0 || line.size() < 3 || line[2] == ' ') continue;
+            const bool described_here = line.size() > 30 &&
+                                        line.find_first_not_of(' ', 30) != std::string::npos &&
+                                        line[29] == ' ';
+            const bool described_below = i + 1 < lines.size() &&
+                                         lines[i + 1].rfind(std::string(30, ' '), 0) == 0 &&
+                                         lines[i + 1].size() > 30;
+            EXPECT_TRUE(described_here || described_below) << path << ": " << line;
+        }
+    }
+    for (const char* known :
+         {"info",           "config",         "convert",        "demo",        "cad",
+          "scene",          "simulate",       "navigate",       "verify",      "label",
+          "track",          "eval-tracking",  "odometry",       "run",         "dataset",
+          "train-detector", "detect",         "eval-detection", "train-shape", "complete",
+          "bench nav",      "bench merge",    "bench verify",   "bench track", "bench odometry",
+          "bench label",    "bench sessions", "bench shape",    "bench sim"}) {
+        EXPECT_NE(std::find(leaves.begin(), leaves.end(), known), leaves.end()) << known;
+    }
     const CliRun conv = run_makeway("convert --help", dir);
     EXPECT_EQ(conv.exit_code, 0);
     for (const char* opt :
