@@ -42,12 +42,14 @@ struct CompleteOptions {
 
 struct BenchShapeOptions {
     std::string model;  ///< empty: models/shape.pt
-    int scenes = 6;
-    std::uint64_t seed = 1000;
-    std::vector<std::string> left_out{"armchair", "round_table"};
+    /// The benchmark's parameters, filled by the options directly (`completion` by --pose-only);
+    /// the command line leaves out the two styles models/shape.pt was trained without.
+    eval::ShapeBenchParams params = [] {
+        eval::ShapeBenchParams p;
+        p.left_out_styles = {"armchair", "round_table"};
+        return p;
+    }();
     int threads = 1;
-    double inlier_distance = 0.05;  ///< the robust solve's inlier residual [m]
-    int hypotheses = 0;  ///< the robust solve's minimal samples (0: the weighted solve alone)
     bool pose_only = false;
     std::string out_dir = "out/bench_shape";
 };
@@ -208,12 +210,7 @@ int run_train_shape(const TrainShapeOptions& o) {
 int run_bench_shape(const BenchShapeOptions& o) {
     const shape::ShapeModel model = load_shape_model(o.model);
     if (o.threads > 0) shape::set_threads(o.threads);
-    eval::ShapeBenchParams p;
-    p.scenes = o.scenes;
-    p.seed = o.seed;
-    p.left_out_styles = o.left_out;
-    p.solve.inlier_distance = o.inlier_distance;
-    p.solve.hypotheses = o.hypotheses;
+    eval::ShapeBenchParams p = o.params;
     p.completion = !o.pose_only;
     std::unique_ptr<io::ProgressBar> bar;
     std::string current;
@@ -229,9 +226,9 @@ int run_bench_shape(const BenchShapeOptions& o) {
     if (bar) bar->finish();
     io::StagedOutput staged(o.out_dir);  // summary, table and gallery: all or none
     const fs::path out = staged.staging();
-    io::Json j = {{"scenes", o.scenes},
-                  {"seed", o.seed},
-                  {"left_out_styles", o.left_out},
+    io::Json j = {{"scenes", p.scenes},
+                  {"seed", p.seed},
+                  {"left_out_styles", p.left_out_styles},
                   {"min_points", p.min_points}};
     std::ostringstream md;
     md << "| set | class | views | yaw <= 10 deg | centre <= 5 cm | median yaw err | median centre "
@@ -438,20 +435,21 @@ const Registration<CompleteOptions> kComplete{
 
 void declare_bench_shape(CommandSpec& c, BenchShapeOptions& shape_o) {
     c.option("--model", shape_o.model, "Shape model (default: models/shape.pt)");
-    c.option("--scenes", shape_o.scenes, "Rooms per set").range(1, 1000).show_default();
-    c.option("--seed", shape_o.seed, "Seed of the rooms (training uses small seeds)")
+    c.option("--scenes", shape_o.params.scenes, "Rooms per set").range(1, 1000).show_default();
+    c.option("--seed", shape_o.params.seed, "Seed of the rooms (training uses small seeds)")
         .show_default();
-    c.option("--left-out", shape_o.left_out,
+    c.option("--left-out", shape_o.params.left_out_styles,
              "Styles left out of training: a second set furnished only with them")
         .delimiter(',')
         .show_default();
     c.option("--threads", shape_o.threads, "Torch threads (timing is per object on these)")
         .range(1, 256)
         .show_default();
-    c.option("--inlier-distance", shape_o.inlier_distance, "The 7-DoF solve's inlier residual [m]")
+    c.option("--inlier-distance", shape_o.params.solve.inlier_distance,
+             "The 7-DoF solve's inlier residual [m]")
         .range(0.001, 1.0)
         .show_default();
-    c.option("--hypotheses", shape_o.hypotheses,
+    c.option("--hypotheses", shape_o.params.solve.hypotheses,
              "The 7-DoF solve's minimal samples (0: the weighted least squares alone)")
         .range(0, 100000)
         .show_default();
