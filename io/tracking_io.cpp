@@ -352,4 +352,9 @@ std::vector<std::filesystem::path> frame_files(const std::filesystem::path& dir,
     return out;
 }
 
+std::vector<std::filesystem::path> kitti_sequence_files(const std::filesystem::path& path) {
+    if (std::filesystem::is_regular_file(path)) return {path};
+    return frame_files(path, "txt");
+}
+
 }  // namespace makeway::io

@@ -74,5 +74,7 @@ Json objects_to_json(int frame, double stamp_s, const std::vector<ObjectEstimate
 /// The frame files of a folder (*.json or *.txt), sorted by name; throws FileError when none.
 std::vector<std::filesystem::path> frame_files(const std::filesystem::path& dir,
                                                const std::string& extension);
+/// KITTI tracking input: one file, or every .txt of a folder (one sequence each), by name.
+std::vector<std::filesystem::path> kitti_sequence_files(const std::filesystem::path& path);
 
 }  // namespace makeway::io

@@ -68,6 +68,11 @@ TEST(Cli, HostileInputsAtTheBoundary) {
     // Outputs in the way: a folder where navigate's picture and scene's third session go.
     std::filesystem::create_directories(dir / "o9" / "route.png");
     std::filesystem::create_directories(dir / "o10" / "s_session2.png");
+    // Labelling sessions whose --odometry-name is a folder (was ignored: the sessions ran without
+    // odometry; issue 34).
+    std::filesystem::create_directories(dir / "s1" / "clouds");
+    std::filesystem::create_directories(dir / "s1" / "odo");
+    std::filesystem::create_directories(dir / "s2" / "clouds");
     const std::vector<std::pair<std::string, std::string>> cases = {
         {"simulate --scene " + (dir / "good.yaml").string() + " --frames 1000000 --out " +
              (dir / "o11").string(),
@@ -116,6 +121,9 @@ TEST(Cli, HostileInputsAtTheBoundary) {
         {"complete --cloud " + (dir / "allnan.bin").string() +
              " --box 0,0,0.5,50,0.5,1,0 --class chair --out " + (dir / "o13.obj").string(),
          "--box: length, width and height must be at most 10 m (furniture)"},
+        {"label --sessions " + (dir / "s1").string() + " " + (dir / "s2").string() +
+             " --odometry-name odo --out " + (dir / "o15").string(),
+         (dir / "s1" / "odo").string() + ": is not a file: --odometry-name"},
     };
     for (const auto& [args, expected] : cases) {
         const CliRun r = run_makeway(args, dir);
@@ -123,8 +131,8 @@ TEST(Cli, HostileInputsAtTheBoundary) {
         EXPECT_EQ(lines(r.err), 1u) << args << "\n" << r.err;
         EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
     }
-    for (const char* out :
-         {"o1.bin", "o2", "o3", "o4", "o5", "o6", "o7", "o8", "o11", "o12", "o13.obj", "o14"}) {
+    for (const char* out : {"o1.bin", "o2", "o3", "o4", "o5", "o6", "o7", "o8", "o11", "o12",
+                            "o13.obj", "o14", "o15"}) {
         EXPECT_FALSE(std::filesystem::exists(dir / out)) << out;
     }
     // Where an output was in the way, nothing else was delivered beside it.

@@ -174,5 +174,21 @@ TEST(ObjectRules, FurnitureSizeMovablePartsAndClusters) {
     EXPECT_EQ(joined.front().depth, 2);
 }
 
+// The residual bound a file sets (labelling.verify_e_max_m) is reported once, under its key; the
+// verifier's own checks still speak for the members no file sets.
+TEST(ObjectRules, ABadResidualBoundIsReportedOnce) {
+    LabelParams p;
+    EXPECT_TRUE(p.validate().empty());
+    p.verify.e_max_m = -1.0;
+    const std::vector<std::string> e = p.validate();
+    ASSERT_EQ(e.size(), 1u) << ::testing::PrintToString(e);
+    EXPECT_NE(e[0].find("labelling.verify_e_max_m"), std::string::npos) << e[0];
+    p = LabelParams();
+    p.verify.max_models = 0;  // not a key of the file: the verifier's check
+    const std::vector<std::string> v = p.validate();
+    ASSERT_EQ(v.size(), 1u) << ::testing::PrintToString(v);
+    EXPECT_EQ(v[0].rfind("labelling.verify: ", 0), 0u) << v[0];
+}
+
 }  // namespace
 }  // namespace makeway::labelling

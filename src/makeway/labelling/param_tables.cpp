@@ -54,8 +54,12 @@ const ParamTable<LabelParams>& label_table() {
                  "keyframe objects farther (|x| or |y|) are not listed")
             .require([](const L& l) { return l.min_object_height_m < l.max_object_height_m; },
                      "min_object_height_m must be below max_object_height_m")
-            .require([](const L& l) { return l.verify.e_min_m < l.verify.e_max_m; },
-                     "verify_e_max_m must exceed the verifier's e_min_m");
+            // A bound outside its own range is reported by the range alone.
+            .require(
+                [](const L& l) {
+                    return !(l.verify.e_max_m > 0.0) || l.verify.e_min_m < l.verify.e_max_m;
+                },
+                "verify_e_max_m must exceed the verifier's e_min_m");
         return t;
     }();
     return table;
