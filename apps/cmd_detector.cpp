@@ -13,6 +13,7 @@
 #include "io/point_cloud_io.hpp"
 #include "io/progress.hpp"
 #include "io/staged_output.hpp"
+#include "io/top_down_png.hpp"
 #include "makeway/eval/detection_dataset.hpp"
 #include "makeway/eval/detection_eval.hpp"
 #include "makeway/pipeline/keyframe.hpp"
@@ -50,6 +51,7 @@ struct TrainDetectorOptions {
 struct DetectOptions {
     std::string model;  ///< empty: the default weights
     std::string cloud;
+    std::string png;  ///< optional picture of the detections
     std::string non_finite =
         "reject";  ///< points with NaN/inf coordinates: reject the file or drop them
     std::string out;
@@ -187,8 +189,14 @@ int run_detect(const DetectOptions& o) {
                         {"score", d.score},
                         {"class_probabilities", d.class_probabilities}});
     }
+    if (!o.png.empty()) {
+        io::write_detections_png(o.png, raw, cloud, found, detector.reach_m(),
+                                 fs::path(o.cloud).filename().string() + ": " +
+                                     std::to_string(found.size()) + " detections");
+    }
     io::write_json(o.out, {{"cloud", o.cloud}, {"detections", dets}});
-    std::cout << found.size() << " detections; wrote " << o.out << "\n";
+    std::cout << found.size() << " detections; wrote " << o.out
+              << (o.png.empty() ? "" : " and " + o.png) << "\n";
     return 0;
 }
 
@@ -320,6 +328,10 @@ void declare_detect(CommandSpec& c, DetectOptions& dt) {
         .show_default();
     c.option("--out", dt.out, "Detections JSON (class, box, score, class_probabilities)")
         .required();
+    c.option("--png", dt.png,
+             "Also a picture from above: the points within the detector's reach (grey: ground "
+             "and ceiling), each box with its class and score")
+        .output();
 }
 const Registration<DetectOptions> kDetect{
     "detect", Group::kPointClouds,

@@ -55,6 +55,9 @@ class OptionSpec {
         return excludes_.push_back(other.name_), *this;
     }
     OptionSpec& needs(const OptionSpec& other) { return needs_.push_back(other.name_), *this; }
+    /// A file the command writes (besides --out, --out-bag and OUT, which are outputs by name): it
+    /// may not name one of the inputs.
+    OptionSpec& output() { return output_ = true, *this; }
     /// A check of its own; `what` names it in --help (e.g. "K/N").
     OptionSpec& check(Check check, std::string what) {
         return check_ = std::move(check), check_name_ = std::move(what), *this;
@@ -64,6 +67,9 @@ class OptionSpec {
     const std::string& help() const { return help_; }
     const Target& target() const { return target_; }
     bool is_flag() const { return flag_; }
+    bool is_output() const {
+        return output_ || name_ == "--out" || name_ == "--out-bag" || name_ == "OUT";
+    }
     bool is_required() const { return required_; }
     bool shows_default() const { return show_default_; }
     const std::vector<std::string>& admitted() const { return choices_; }
@@ -82,7 +88,7 @@ class OptionSpec {
   private:
     std::string name_, help_;
     Target target_;
-    bool flag_ = false, required_ = false, show_default_ = false;
+    bool flag_ = false, required_ = false, show_default_ = false, output_ = false;
     std::vector<std::string> choices_;
     std::variant<std::monostate, std::pair<int, int>, std::pair<double, double>> range_;
     Path path_ = Path::kAny;

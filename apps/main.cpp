@@ -13,6 +13,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <set>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -58,8 +59,10 @@ CLI::Option* add_option(CLI::App& sub, const OptionSpec& spec) {
     return o;
 }
 
-// Every registered subcommand into `app`; what runs for each of them into `runs`.
-void add_commands(CLI::App& app, std::map<const CLI::App*, std::function<int()>>& runs) {
+// Every registered subcommand into `app`; what runs for each of them into `runs`, the options that
+// name outputs into `outputs`.
+void add_commands(CLI::App& app, std::map<const CLI::App*, std::function<int()>>& runs,
+                  std::set<const CLI::Option*>& outputs) {
     std::map<std::string, CLI::App*> parents;
     for (const Command& command : registered_commands()) {
         CLI::App* parent = &app;
@@ -80,7 +83,10 @@ void add_commands(CLI::App& app, std::map<const CLI::App*, std::function<int()>>
         sub->group(parent == &app ? to_string(command.group) : "Subcommands");
         CommandSpec spec;
         runs[sub] = command.make(spec);
-        for (const OptionSpec& option : spec.options()) add_option(*sub, option);
+        for (const OptionSpec& option : spec.options()) {
+            const CLI::Option* added = add_option(*sub, option);
+            if (option.is_output()) outputs.insert(added);
+        }
         for (const OptionSpec& option : spec.options()) {
             for (const std::string& other : option.excluded())
                 sub->get_option(option.name())->excludes(sub->get_option(other));
@@ -120,23 +126,24 @@ void check_numbers(CLI::App& app) {
     for (CLI::App* sub : app.get_subcommands({})) check_numbers(*sub);
 }
 
-// Every path option of the chosen subcommand: outputs (--out, --out-bag, OUT) and the inputs
-// (any other value naming something that exists), for refuse_outputs_over_inputs.
-void collect_paths(const CLI::App& app, std::vector<std::pair<std::string, std::string>>& outputs,
+// Every path option of the chosen subcommand: outputs and the inputs (any other value naming
+// something that exists), for refuse_outputs_over_inputs.
+void collect_paths(const CLI::App& app, const std::set<const CLI::Option*>& output_options,
+                   std::vector<std::pair<std::string, std::string>>& outputs,
                    std::vector<std::pair<std::string, std::string>>& inputs) {
     for (const CLI::Option* o : app.get_options()) {
         if (o->count() == 0) continue;
         const std::string name = o->get_name();
-        const bool output = name == "--out" || name == "--out-bag" || name == "OUT";
         for (const std::string& value : o->results()) {
             std::error_code ec;
-            if (output)
+            if (output_options.count(o) != 0)
                 outputs.emplace_back(name, value);
             else if (std::filesystem::exists(value, ec))
                 inputs.emplace_back(name, value);
         }
     }
-    for (const CLI::App* sub : app.get_subcommands()) collect_paths(*sub, outputs, inputs);
+    for (const CLI::App* sub : app.get_subcommands())
+        collect_paths(*sub, output_options, outputs, inputs);
 }
 
 }  // namespace
@@ -149,7 +156,8 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "makeway 0.1.0");
     app.require_subcommand(1);
     std::map<const CLI::App*, std::function<int()>> runs;
-    add_commands(app, runs);
+    std::set<const CLI::Option*> output_options;
+    add_commands(app, runs, output_options);
     check_numbers(app);
     if (argc > 1 && argv[1][0] != '-') {
         bool known = false;
@@ -173,7 +181,7 @@ int main(int argc, char** argv) {
     }
     try {
         std::vector<std::pair<std::string, std::string>> outputs, inputs;
-        collect_paths(app, outputs, inputs);
+        collect_paths(app, output_options, outputs, inputs);
         makeway::io::refuse_outputs_over_inputs(
             outputs, inputs);  // before any work: no output replaces an input
         // The subcommand chosen, down to the leaf (`bench nav`).

@@ -1,5 +1,9 @@
 #include "io/top_down_png.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
 #include "io/canvas.hpp"
 
 namespace makeway::io {
@@ -57,6 +61,57 @@ void write_top_down_png(const std::filesystem::path& path, const PointCloud& clo
         draw_box(canvas, o.box_world, label_colour(to_semantic_label(o.cls)));
     canvas.scale_bar();
     if (!style.title.empty()) canvas.text_px(10, 18, style.title, 12, {0, 0, 0});
+    canvas.save_png(path);
+}
+
+void write_detections_png(const std::filesystem::path& path, const PointCloud& raw,
+                          const PointCloud& kept, const std::vector<Detection>& detections,
+                          double reach_m, const std::string& title) {
+    const auto within = [reach_m](const Eigen::Vector3f& p) {
+        return p.allFinite() && std::abs(p.x()) <= reach_m && std::abs(p.y()) <= reach_m;
+    };
+    // The picture covers what was seen within reach, and every box.
+    Eigen::Vector2d lo(0, 0), hi(0, 0);
+    for (const auto& p : raw.xyz) {
+        if (!within(p)) continue;
+        lo = lo.cwiseMin(p.head<2>().cast<double>());
+        hi = hi.cwiseMax(p.head<2>().cast<double>());
+    }
+    for (const Detection& d : detections) {
+        for (const auto& c : d.box_sensor.bev_corners()) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+    }
+    const double span = std::max({hi.x() - lo.x(), hi.y() - lo.y(), 1.0});
+    Canvas canvas(lo, hi, std::clamp(1600.0 / span, 10.0, 60.0), 1.0);
+    for (const auto& p : raw.xyz) {
+        if (within(p)) canvas.dot(p.head<2>().cast<double>(), 1.5, {0.82, 0.82, 0.82});
+    }
+    float z_lo = 0.0f, z_hi = 0.0f;
+    bool any = false;
+    for (const auto& p : kept.xyz) {
+        if (!within(p)) continue;
+        z_lo = any ? std::min(z_lo, p.z()) : p.z(), z_hi = any ? std::max(z_hi, p.z()) : p.z();
+        any = true;
+    }
+    const float z_span = std::max(1e-3f, z_hi - z_lo);
+    for (const auto& p : kept.xyz) {
+        if (!within(p)) continue;
+        const double t = (p.z() - z_lo) / z_span;
+        canvas.dot(p.head<2>().cast<double>(), 2.0, {0.15, 0.15 + 0.35 * t, 0.35 + 0.6 * t});
+    }
+    for (const Detection& d : detections) {
+        const Rgb colour = label_colour(to_semantic_label(d.cls));
+        draw_box(canvas, d.box_sensor, colour);
+        char caption[64];
+        std::snprintf(caption, sizeof(caption), "%s %.2f", std::string(to_string(d.cls)).c_str(),
+                      d.score);
+        const auto c = d.box_sensor.bev_corners();
+        Eigen::Vector2d at = c[0];
+        for (const auto& corner : c) at = at.cwiseMax(corner);  // beside the box's upper right
+        canvas.text(at, caption, 11, colour);
+    }
+    canvas.fill_circle({0.0, 0.0}, 5.0, {0.0, 0.0, 0.0});  // the sensor
+    canvas.scale_bar();
+    if (!title.empty()) canvas.text_px(10, 18, title, 12, {0, 0, 0});
     canvas.save_png(path);
 }
 

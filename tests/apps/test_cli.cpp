@@ -481,12 +481,23 @@ TEST(Cli, DatasetTrainDetectAndEvaluateATinyModel) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_FALSE(
         std::filesystem::exists(dir / "model.pt.ckpt"));  // removed once the model is written
-    r = run_makeway("detect --model " + (dir / "model.pt").string() + " --cloud " +
-                        (dir / "data" / "clouds" / "000000.bin").string() + " --out " +
-                        (dir / "dets.json").string(),
+    const std::string cloud = (dir / "data" / "clouds" / "000000.bin").string();
+    r = run_makeway("detect --model " + (dir / "model.pt").string() + " --cloud " + cloud +
+                        " --out " + (dir / "dets.json").string() + " --png " +
+                        (dir / "dets.png").string(),
                     dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(io::read_json(dir / "dets.json")["detections"].is_array());
+    EXPECT_GT(std::filesystem::file_size(dir / "dets.png"), 1000u);
+    // The picture is an output: it may not replace the cloud it shows.
+    const auto cloud_bytes = std::filesystem::file_size(cloud);
+    r = run_makeway("detect --model " + (dir / "model.pt").string() + " --cloud " + cloud +
+                        " --out " + (dir / "d4.json").string() + " --png " + cloud,
+                    dir);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_EQ(std::filesystem::file_size(cloud), cloud_bytes);
+    EXPECT_FALSE(std::filesystem::exists(dir / "d4.json"));
     r = run_makeway("eval-detection --model " + (dir / "model.pt").string() + " --scenes 1 --out " +
                         (dir / "eval").string(),
                     dir);

@@ -50,5 +50,35 @@ TEST(TopDownPng, WritesAPngOfTheExpectedSize) {
     EXPECT_EQ(be32(20), 64u);
 }
 
+// Width and height of a PNG file (its IHDR).
+std::pair<unsigned, unsigned> png_size(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    unsigned char head[24] = {};
+    in.read(reinterpret_cast<char*>(head), 24);
+    const auto be32 = [&](int off) {
+        return (unsigned{head[off]} << 24) | (unsigned{head[off + 1]} << 16) |
+               (unsigned{head[off + 2]} << 8) | unsigned{head[off + 3]};
+    };
+    return {be32(16), be32(20)};
+}
+
+// The picture covers the points within the detector's reach and every box: a point 50 m away
+// does not shrink it to a dot, a box past the points widens it.
+TEST(TopDownPng, DetectionsPictureCoversTheReachAndTheBoxes) {
+    const auto dir = testing_util::fresh_dir("png_dets");
+    PointCloud raw, kept;
+    raw.xyz = {{-3, -2, 0.0}, {3, 2, 0.5}, {50, 0, 0.5}};
+    kept.xyz = {{3, 2, 0.5}};
+    write_detections_png(dir / "a.png", raw, kept, {}, 8.0, "no detections");
+    // [-3, 3] x [-2, 2] plus 1 m margins at 60 px/m.
+    EXPECT_EQ(png_size(dir / "a.png"), std::make_pair(480u, 360u));
+    Detection d;
+    d.box_sensor.centre_m = {4.0, 0.0, 0.5};
+    d.box_sensor.size_m = {1.0, 1.0, 1.0};
+    d.score = 0.5;
+    write_detections_png(dir / "b.png", raw, kept, {d}, 8.0, "one chair");
+    EXPECT_EQ(png_size(dir / "b.png"), std::make_pair(570u, 360u));  // x up to 4.5 m
+}
+
 }  // namespace
 }  // namespace makeway::io
