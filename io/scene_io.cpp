@@ -99,6 +99,53 @@ sim::SceneObject read_object(const YAML::Node& node, const std::string& prefix,
     return o;
 }
 
+sim::EnvironmentMesh read_environment(const YAML::Node& node, const std::string& prefix,
+                                      std::vector<std::string>& problems,
+                                      const std::filesystem::path& mesh_base_dir,
+                                      const SceneReadOptions& options) {
+    sim::EnvironmentMesh e;
+    YamlSection s(node, prefix, problems);
+    s.read("mesh", e.mesh_file);
+    MeshPlacementKeys keys;
+    keys.recentre = false;  // a scan's own frame: its origin and its floor's height
+    read_placement_keys(s, keys);
+    {
+        YamlSection ps(s.take("pose"), prefix + ".pose", problems);
+        ps.read("x_m", e.position_m.x());
+        ps.read("y_m", e.position_m.y());
+        ps.read("z_m", e.position_m.z());
+        ps.read("roll_rad", e.rpy_rad.x());
+        ps.read("pitch_rad", e.rpy_rad.y());
+        ps.read("yaw_rad", e.rpy_rad.z());
+        ps.finish();
+    }
+    s.finish();
+    if (e.mesh_file.empty()) s.problem("mesh: required (the environment's mesh file)");
+    if (!e.position_m.allFinite() || !e.rpy_rad.allFinite())
+        s.problem("pose: every value must be a finite number");
+    e.scale = keys.scale;
+    e.units = keys.units;
+    e.up_axis = keys.up_axis;
+    e.forward_axis = keys.forward_axis;
+    e.recentre = keys.recentre;
+    const std::optional<MeshPlacement> placement = to_placement(keys, s);
+    if (e.mesh_file.empty() || mesh_base_dir.empty()) return e;
+    if (!options.allow_outside_paths && !inside_folder(mesh_base_dir, e.mesh_file)) {
+        s.problem("mesh '" + e.mesh_file +
+                  "' is outside the scene's folder (--allow-outside-paths to read it)");
+    } else if (placement && e.position_m.allFinite() && e.rpy_rad.allFinite()) {
+        try {
+            TriangleMesh mesh = place_mesh(read_mesh(mesh_base_dir / e.mesh_file), *placement);
+            sim::transform_mesh(
+                mesh, make_T_xyz_rpy(e.position_m, e.rpy_rad.x(), e.rpy_rad.y(), e.rpy_rad.z()));
+            e.mesh_world = std::make_shared<TriangleMesh>(std::move(mesh));
+        } catch (const FileError& err) {
+            s.problem(std::string("mesh ") + err.what());
+        }
+    }
+    return e;
+}
+
 }  // namespace
 
 sim::Scene parse_scene(std::string_view yaml_text, const std::filesystem::path& mesh_base_dir,
@@ -141,6 +188,11 @@ sim::Scene parse_scene(std::string_view yaml_text, const std::filesystem::path& 
                       ps.read("height_m", p.height_m);
                       ps.finish();
                       scene.pillars.push_back(p);
+                  });
+    for_each_item(s.take("environment"), "environment", problems,
+                  [&](const YAML::Node& n, const std::string& name) {
+                      scene.environment.push_back(
+                          read_environment(n, name, problems, mesh_base_dir, options));
                   });
     for_each_item(
         s.take("objects"), "objects", problems, [&](const YAML::Node& n, const std::string& name) {
@@ -232,7 +284,26 @@ std::string scene_to_yaml(const sim::Scene& scene) {
         vec2("size_m", p.size_m);
         out << YAML::Key << "height_m" << YAML::Value << p.height_m << YAML::EndMap;
     }
-    out << YAML::EndSeq << YAML::Key << "objects" << YAML::Value << YAML::BeginSeq;
+    out << YAML::EndSeq;
+    if (!scene.environment.empty()) {
+        out << YAML::Key << "environment" << YAML::Value << YAML::BeginSeq;
+        for (const auto& e : scene.environment) {
+            out << YAML::Flow << YAML::BeginMap << YAML::Key << "mesh" << YAML::Value << e.mesh_file
+                << YAML::Key << "scale" << YAML::Value << e.scale << YAML::Key << "units"
+                << YAML::Value << e.units << YAML::Key << "up_axis" << YAML::Value << e.up_axis
+                << YAML::Key << "forward_axis" << YAML::Value << e.forward_axis << YAML::Key
+                << "recentre" << YAML::Value << e.recentre << YAML::Key << "pose" << YAML::Value
+                << YAML::Flow << YAML::BeginMap;
+            const char* keys[] = {"x_m", "y_m", "z_m", "roll_rad", "pitch_rad", "yaw_rad"};
+            for (int i = 0; i < 6; ++i) {
+                out << YAML::Key << keys[i] << YAML::Value
+                    << (i < 3 ? e.position_m[i] : e.rpy_rad[i - 3]);
+            }
+            out << YAML::EndMap << YAML::EndMap;
+        }
+        out << YAML::EndSeq;
+    }
+    out << YAML::Key << "objects" << YAML::Value << YAML::BeginSeq;
     for (const auto& o : scene.objects) {
         out << YAML::Flow << YAML::BeginMap << YAML::Key << "id" << YAML::Value << o.id << YAML::Key
             << "class" << YAML::Value << std::string(to_string(o.cls));

@@ -1,5 +1,6 @@
 #include "io/scene_png.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "io/top_down_png.hpp"
@@ -8,13 +9,30 @@
 namespace makeway::io {
 
 void draw_structure(Canvas& canvas, const sim::Scene& scene) {
+    const Rgb colour = label_colour(SemanticLabel::kStructure);
+    const auto fill = [&](const TriangleMesh& m, const Eigen::Vector3i& t) {
+        canvas.fill_polygon({m.vertices_m[t[0]].head<2>().cast<double>(),
+                             m.vertices_m[t[1]].head<2>().cast<double>(),
+                             m.vertices_m[t[2]].head<2>().cast<double>()},
+                            colour);
+    };
     // Every triangle of the wall and pillar boxes, projected.
-    const TriangleMesh structure = sim::structure_mesh(scene);
-    for (const auto& t : structure.triangles) {
-        canvas.fill_polygon({structure.vertices_m[t[0]].head<2>().cast<double>(),
-                             structure.vertices_m[t[1]].head<2>().cast<double>(),
-                             structure.vertices_m[t[2]].head<2>().cast<double>()},
-                            label_colour(SemanticLabel::kStructure));
+    sim::Scene walls_and_pillars = scene;
+    walls_and_pillars.environment.clear();
+    const TriangleMesh structure = sim::structure_mesh(walls_and_pillars);
+    for (const auto& t : structure.triangles) fill(structure, t);
+    // An environment mesh (a scan) has a floor and a ceiling too: only its standing faces between
+    // 5 cm and 2 m, what a person would call its walls and obstacles.
+    for (const sim::EnvironmentMesh& e : scene.environment) {
+        if (!e.mesh_world) continue;
+        const TriangleMesh& m = *e.mesh_world;
+        for (const auto& t : m.triangles) {
+            const Eigen::Vector3f a = m.vertices_m[t[0]], b = m.vertices_m[t[1]],
+                                  c = m.vertices_m[t[2]];
+            const Eigen::Vector3f n = (b - a).cross(c - a);
+            const float lo = std::min({a.z(), b.z(), c.z()}), hi = std::max({a.z(), b.z(), c.z()});
+            if (std::abs(n.z()) < 0.7f * n.norm() && hi > 0.05f && lo < 2.0f) fill(m, t);
+        }
     }
 }
 

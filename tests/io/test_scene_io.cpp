@@ -11,6 +11,7 @@
 #include "io_test_util.hpp"
 #include "makeway/sim/lidar.hpp"
 #include "makeway/sim/mesh_primitives.hpp"
+#include "makeway/sim/robot.hpp"
 #include "makeway/sim/scene_generator.hpp"
 
 namespace makeway::io {
@@ -71,6 +72,83 @@ TEST(SceneIo, UserMeshIsLoadedScaledAndHitByRays) {
         EXPECT_NEAR(c.xyz[i].x(), 1.6f, 0.06f);  // the near face at x = 2 - 0.4
     }
     EXPECT_GT(hits, 200u);
+}
+
+// A room given as one mesh (as a scan of a building would be): a 6 x 4 m shell of 2.5 m walls
+// with a floor slab, drawn Y-up in centimetres around its own origin at the room's corner.
+TriangleMesh scanned_shell_y_up_cm() {
+    TriangleMesh m;
+    sim::add_box(m, {300, 125, -5}, {600, 250, 10});   // east wall ... in (x, y-up, z) cm
+    sim::add_box(m, {300, 125, 405}, {600, 250, 10});  // west wall
+    sim::add_box(m, {-5, 125, 200}, {10, 250, 400});
+    sim::add_box(m, {605, 125, 200}, {10, 250, 400});
+    sim::add_box(m, {300, -1, 200}, {600, 2, 400});  // the floor, 2 cm thick, its top at 0
+    return m;
+}
+
+TEST(SceneIo, AnEnvironmentMeshIsPlacedPosedSeenAndSolid) {
+    const auto dir = testing_util::fresh_dir("environment");
+    write_mesh(dir / "scan.ply", scanned_shell_y_up_cm());
+    // The scan's x along the world's y: its corner at (1, -3), its floor 5 cm below ours.
+    std::ofstream(dir / "s.yaml")
+        << "name: scanned\nfloor: {min_m: [-6, -6], max_m: [6, 6]}\n"
+           "environment:\n  - {mesh: scan.ply, units: cm, up_axis: y, forward_axis: x, "
+           "pose: {x_m: 1, y_m: -3, z_m: -0.05, yaw_rad: 1.5707963267948966}}\n";
+    const sim::Scene s = read_scene(dir / "s.yaml");
+    ASSERT_EQ(s.environment.size(), 1u);
+    ASSERT_TRUE(s.environment[0].mesh_world);
+    Eigen::Vector3d lo, hi;
+    mesh_bounds(*s.environment[0].mesh_world, lo, hi);
+    // Y-up cm: the scan's z (depth) becomes -y, then the yaw turns it to +x: scan (x, z) 0..600 x
+    // 0..400 cm -> world y -3..3, x 1..5, walls 10 cm thick outside that, 2.5 m tall, standing on
+    // a floor 5 cm below the scene's.
+    EXPECT_NEAR(lo.x(), 1.0 - 0.1, 1e-4);
+    EXPECT_NEAR(hi.x(), 5.0 + 0.1, 1e-4);
+    EXPECT_NEAR(lo.y(), -3.0 - 0.1, 1e-4);
+    EXPECT_NEAR(hi.y(), 3.0 + 0.1, 1e-4);
+    EXPECT_NEAR(hi.z(), 2.5 - 0.05, 1e-4);
+    // Written back and read again: the same entry, the same mesh.
+    write_scene(dir / "back.yaml", s);
+    const sim::Scene back = read_scene(dir / "back.yaml");
+    ASSERT_EQ(back.environment.size(), 1u);
+    EXPECT_EQ(scene_to_yaml(back), scene_to_yaml(s));
+    EXPECT_EQ(back.environment[0].mesh_world->num_triangles(),
+              s.environment[0].mesh_world->num_triangles());
+    // The LiDAR sees it as structure: from the room's middle (3, 0), 45 cm up, the wall ahead (+x)
+    // with its inner face at x = 5.
+    sim::World world(s, {});
+    const PointCloud c = sim::simulate_sweep(
+        world, sim::LidarParams{},
+        [](double) {
+            return make_T_xyz_yaw({3, 0, 0.45}, 0);
+        },
+        0, 1, 0);
+    std::size_t ahead = 0;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        const Eigen::Vector3f& p = c.xyz[i];
+        if (std::abs(p.y()) > 0.3f || p.z() < 0.2f || p.z() > 1.5f || p.x() < 0.0f) continue;
+        ++ahead;
+        EXPECT_EQ(c.label[i], static_cast<std::uint8_t>(SemanticLabel::kStructure));
+        EXPECT_NEAR(p.x(), 2.0f, 0.06f);  // the inner face, 2 m ahead of the sensor
+    }
+    EXPECT_GT(ahead, 20u);
+    // Solid for the robot: its footprint at the wall collides, in the middle of the room it does
+    // not (the floor slab, below the body's ground clearance, is rolled over).
+    const sim::CollisionChecker checker(s, {}, sim::RobotParams{});
+    EXPECT_TRUE(checker.collides({4.9, 0.0, 0.0}, 0.0));
+    EXPECT_FALSE(checker.collides({3.0, 0.0, 0.0}, 0.0));
+    // A scene names its meshes inside its folder, environment meshes too.
+    std::ofstream(dir / "out.yaml") << "name: o\nfloor: {min_m: [-6, -6], max_m: [6, 6]}\n"
+                                       "environment:\n  - {mesh: ../scan.ply}\n";
+    try {
+        read_scene(dir / "out.yaml");
+        ADD_FAILURE() << "a mesh outside the folder was read";
+    } catch (const FileError& e) {
+        EXPECT_NE(std::string(e.what()).find("outside the scene's folder"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_NE(problem_of("name: n\nenvironment:\n  - {units: cm}\n").find("mesh: required"),
+              std::string::npos);
 }
 
 TEST(SceneIo, EveryProblemIsListed) {

@@ -17,7 +17,8 @@
 namespace makeway::eval {
 namespace {
 
-Costmap structure_grid(const sim::Scene& scene, double resolution) {
+// The prebuilt map of walls: walls, pillars, and the parts of environment meshes the body can hit.
+Costmap structure_grid(const sim::Scene& scene, double resolution, const BodyHeights& body) {
     const Eigen::Vector2d extent = scene.floor_max_m - scene.floor_min_m;
     Costmap g(scene.floor_min_m, resolution, static_cast<int>(std::ceil(extent.x() / resolution)),
               static_cast<int>(std::ceil(extent.y() / resolution)));
@@ -28,6 +29,13 @@ Costmap structure_grid(const sim::Scene& scene, double resolution) {
     }
     for (const sim::Pillar& p : scene.pillars)
         costmap::fill_rectangle(g, p.centre_m, p.size_m, 0.0, cost::kLethal);
+    for (const sim::EnvironmentMesh& e : scene.environment) {
+        if (!e.mesh_world) continue;
+        for (const Eigen::Vector2d& q : sim::low_surface_points(*e.mesh_world, body, resolution)) {
+            const Eigen::Vector2i c = g.cell_of(q);
+            if (g.inside(c.x(), c.y())) g.at(c.x(), c.y()) = cost::kLethal;
+        }
+    }
     return g;
 }
 
@@ -251,7 +259,8 @@ NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, Ob
                             const NavParams& params) {
     const Isometry3 T_sensor_robot = params.robot.T_robot_sensor().inverse();
     pipeline::Controller controller(
-        params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m),
+        params.static_map ? *params.static_map
+                          : structure_grid(scene, params.resolution_m, params.robot.body()),
         navigator_params(method, params));
     controller.set_route(route_of(scene));
     return drive(
@@ -278,7 +287,8 @@ pipeline::OnlineSystemSetup online_system_setup(const sim::Scene& scene, const N
     setup.params = params.system;
     setup.params.navigator = navigator_params(method, params);
     setup.start = scene.start;
-    setup.map = params.static_map ? *params.static_map : structure_grid(scene, params.resolution_m);
+    setup.map = params.static_map ? *params.static_map
+                                  : structure_grid(scene, params.resolution_m, params.robot.body());
     setup.map_kind = pipeline::MapKind::kWalls;
     return setup;
 }

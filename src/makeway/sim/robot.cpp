@@ -31,8 +31,8 @@ void add_rectangle_outline(std::vector<Eigen::Vector2d>& out, const Eigen::Vecto
     }
 }
 
-// Surface samples of the mesh parts the body can hit (between its ground clearance and its top),
-// projected to the floor, thinned on a grid.
+}  // namespace
+
 std::vector<Eigen::Vector2d> low_surface_points(const TriangleMesh& mesh, const BodyHeights& body,
                                                 double spacing_m) {
     std::set<std::pair<long, long>> seen;
@@ -61,8 +61,6 @@ std::vector<Eigen::Vector2d> low_surface_points(const TriangleMesh& mesh, const 
     }
     return out;
 }
-
-}  // namespace
 
 bool robot_caused_contact(const Pose2& pose, double v, double w,
                           const Eigen::Vector2d& contact_world, double length_m, double width_m,
@@ -138,6 +136,11 @@ CollisionChecker::CollisionChecker(const Scene& scene, const std::vector<ObjectM
     }
     for (const Pillar& p : scene.pillars)
         add_rectangle_outline(static_points_, p.centre_m, p.size_m, 0.0, spacing_m);
+    for (const EnvironmentMesh& e : scene.environment) {
+        if (!e.mesh_world) continue;
+        for (const auto& q : low_surface_points(*e.mesh_world, robot.body(), spacing_m))
+            static_points_.push_back(q);
+    }
     for (const ObjectModel& m : models) {
         object_points_.push_back(low_surface_points(m.mesh_object, robot.body(), spacing_m));
         double r = 0.0;

@@ -68,8 +68,14 @@ class WheelOdometry {
     Rng rng_;
 };
 
-/// Footprint collision checks against walls, pillars, furniture (the parts of its mesh below the
-/// robot's top) and people, at any time of the scene.
+/// Surface samples of the mesh parts the body can hit (between its ground clearance and its top),
+/// projected to the floor, thinned on a grid of spacing_m / 2: a footprint check's points, and a
+/// static map's obstacles from an environment mesh.
+std::vector<Eigen::Vector2d> low_surface_points(const TriangleMesh& mesh, const BodyHeights& body,
+                                                double spacing_m);
+
+/// Footprint collision checks against walls, pillars, environment meshes, furniture (the parts of
+/// its mesh below the robot's top) and people, at any time of the scene.
 class CollisionChecker {
   public:
     CollisionChecker(const Scene& scene, const std::vector<ObjectModel>& models,

@@ -71,6 +71,17 @@ std::vector<std::string> Scene::validate() const {
             p.push_back("object " + std::to_string(o.id) + beyond);
         }
     }
+    std::size_t environment_triangles = 0;
+    for (const EnvironmentMesh& e : environment) {
+        if (!e.mesh_world) continue;  // not loaded (parsed without its folder)
+        environment_triangles += e.mesh_world->num_triangles();
+        Eigen::Vector3d lo, hi;
+        mesh_bounds(*e.mesh_world, lo, hi);
+        if (!near_floor(lo.head<2>()) || !near_floor(hi.head<2>()))
+            p.push_back("environment mesh '" + e.mesh_file + "': a part" + beyond);
+    }
+    if (environment_triangles > kMaxEnvironmentTriangles)
+        p.push_back("environment: at most 5000000 triangles in all (decimate the scan)");
     for (const Walker& w : walkers) {
         if (std::any_of(w.route_m.begin(), w.route_m.end(),
                         [&](const Eigen::Vector2d& q) { return !near_floor(q); })) {

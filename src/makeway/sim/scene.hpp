@@ -49,6 +49,23 @@ struct SceneObject {
     std::uint32_t table_id = 0;  ///< the table a chair belongs to, 0 for none
 };
 
+/// Static geometry from a mesh of any size and no class: a scanned room (PLY/OBJ from RGB-D or
+/// LiDAR mapping), a building's model. The LiDAR sees it as structure; its parts between the
+/// robot's ground clearance and its top are obstacles the robot must not touch, like walls.
+struct EnvironmentMesh {
+    std::string mesh_file;  ///< OBJ/PLY/STL/DAE, relative to the scene file
+    double scale = 1.0;
+    std::string units = "m";
+    std::string up_axis = "z";
+    std::string forward_axis = "x";
+    bool recentre = false;  ///< a scan's own frame is kept by default (origin and floor height)
+    Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  ///< T_world_mesh: translation ...
+    Eigen::Vector3d rpy_rad = Eigen::Vector3d::Zero();     ///< ... and roll, pitch, yaw
+    /// The loaded mesh in the world frame (placed, then posed); filled by io when the scene is
+    /// read.
+    std::shared_ptr<const TriangleMesh> mesh_world;
+};
+
 /// A person walking a closed route at constant speed.
 struct Walker {
     std::vector<Eigen::Vector2d> route_m;  ///< closed polyline, at least 2 points
@@ -71,6 +88,8 @@ constexpr double kMaxFloorExtent_m = 200.0;
 /// (a wall 2000 km long made the simulator allocate until it failed).
 constexpr double kMaxBeyondFloor_m = 10.0;
 constexpr std::size_t kMaxStructures = 10000, kMaxObjects = 2000, kMaxWalkers = 200;
+/// Triangles of all environment meshes together (a room scan decimated for a robot's simulator).
+constexpr std::size_t kMaxEnvironmentTriangles = 5000000;
 
 struct Scene {
     std::string name = "scene";
@@ -81,6 +100,7 @@ struct Scene {
     double ceiling_height_m = 2.8;
     std::vector<Wall> walls;
     std::vector<Pillar> pillars;
+    std::vector<EnvironmentMesh> environment;
     std::vector<SceneObject> objects;
     std::vector<Walker> walkers;
     std::vector<ChairPusher> pushers;

@@ -87,6 +87,9 @@ TriangleMesh structure_mesh(const Scene& scene) {
         add_box(m, Eigen::Vector3d(p.centre_m.x(), p.centre_m.y(), p.height_m / 2),
                 Eigen::Vector3d(p.size_m.x(), p.size_m.y(), p.height_m));
     }
+    for (const EnvironmentMesh& e : scene.environment) {
+        if (e.mesh_world) m.append(*e.mesh_world);
+    }
     return m;
 }
 

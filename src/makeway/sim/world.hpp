@@ -74,7 +74,7 @@ class World {
     std::size_t num_triangles_ = 0;
 };
 
-/// The scene's static structure as one mesh per label (floor/ceiling/walls+pillars), world frame.
+/// The scene's static structure (walls, pillars and environment meshes), world frame.
 TriangleMesh structure_mesh(const Scene& scene);
 
 }  // namespace makeway::sim
