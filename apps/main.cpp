@@ -154,6 +154,7 @@ int main(int argc, char** argv) {
         "makeway: object-aware affordance costmaps for proactive indoor navigation "
         "with a 3D LiDAR"};
     app.set_version_flag("--version", "makeway 0.1.0");
+    app.set_help_all_flag("--help-all", "Print the help of every subcommand and exit");
     app.require_subcommand(1);
     std::map<const CLI::App*, std::function<int()>> runs;
     std::set<const CLI::Option*> output_options;
