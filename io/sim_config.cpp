@@ -29,7 +29,8 @@ std::vector<BoundSection> simulator_sections(SimConfig& c) {
     std::vector<BoundSection> s;
     s.push_back(bind_section("scene", "the procedural scene `makeway demo` drives through",
                              sim::scene_gen_table(), c.scene));
-    s.push_back(bind_section("lidar", "Velodyne Ultra Puck (VLP-32C): 32 beams, -25..+15 deg",
+    s.push_back(bind_section("lidar",
+                             "the simulated LiDAR, by default a Velodyne Ultra Puck (VLP-32C)",
                              sim::lidar_table(), c.lidar));
     s.push_back(bind_section(
         "wheel_noise",

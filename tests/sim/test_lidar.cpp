@@ -47,6 +47,37 @@ TEST(Lidar, BeamPatternMatchesDatasheet) {
     }
 }
 
+// The other sensors' layouts: beam counts and fields of view from their datasheets, every ray of a
+// closed room returned at its own elevation.
+TEST(Lidar, OtherSensorsBeamPatterns) {
+    struct Expected {
+        BeamPattern pattern;
+        std::size_t beams;
+        double lo_deg, hi_deg;
+    };
+    for (const Expected& e : {Expected{BeamPattern::kVlp16, 16, -15.0, 15.0},
+                              Expected{BeamPattern::kOs1_64, 64, -22.5, 22.5},
+                              Expected{BeamPattern::kOs1_128, 128, -22.5, 22.5}}) {
+        const auto& el = beam_elevations_deg(e.pattern);
+        ASSERT_EQ(el.size(), e.beams);
+        EXPECT_DOUBLE_EQ(el.front(), e.lo_deg);
+        EXPECT_DOUBLE_EQ(el.back(), e.hi_deg);
+        EXPECT_TRUE(std::is_sorted(el.begin(), el.end()));
+        LidarParams lidar = exact_lidar();
+        lidar.beam_pattern = e.pattern;
+        World world(testing_util::box_room(4.9), {});
+        const PointCloud c =
+            simulate_sweep(world, lidar, fixed(make_T_xyz_yaw({0.5, 1.0, 1.0}, 0.0)), 0.0, 1, 0);
+        ASSERT_EQ(c.size(), 1800u * e.beams);
+        for (std::size_t i = 0; i < c.size(); i += 11) {
+            const Eigen::Vector3f& p = c.xyz[i];
+            EXPECT_NEAR(rad_to_deg(std::atan2(p.z(), std::hypot(p.x(), p.y()))), el[c.ring[i]],
+                        1e-3);
+        }
+    }
+    EXPECT_EQ(beam_elevations_deg(BeamPattern::kVlp32c), vlp32c_elevations_deg());
+}
+
 TEST(Lidar, BoxRoomGivesAnalyticRanges) {
     // Inner wall faces at +-4.9 m, floor top at z = 0, ceiling at 3 m; sensor at height 1 m.
     World world(testing_util::box_room(4.9), {});

@@ -64,19 +64,33 @@ const std::vector<double>& vlp32c_elevations_deg() {
     return kAngles;
 }
 
+const std::vector<double>& beam_elevations_deg(BeamPattern pattern) {
+    const auto uniform = [](int beams, double lo, double hi) {
+        std::vector<double> e(static_cast<std::size_t>(beams));
+        for (int i = 0; i < beams; ++i) e[i] = lo + (hi - lo) * i / (beams - 1);
+        return e;
+    };
+    static const std::vector<double> kVlp16 = uniform(16, -15.0, 15.0);
+    static const std::vector<double> kOs1_64 = uniform(64, -22.5, 22.5);
+    static const std::vector<double> kOs1_128 = uniform(128, -22.5, 22.5);
+    switch (pattern) {
+        case BeamPattern::kVlp16:
+            return kVlp16;
+        case BeamPattern::kOs1_64:
+            return kOs1_64;
+        case BeamPattern::kOs1_128:
+            return kOs1_128;
+        case BeamPattern::kVlp32c:
+            break;
+    }
+    return vlp32c_elevations_deg();
+}
+
 int LidarParams::num_columns() const {
     return static_cast<int>(std::lround(360.0 / azimuth_step_deg));
 }
 
-std::vector<std::string> LidarParams::validate() const {
-    std::vector<std::string> p = lidar_table().problems(*this);
-    if (elevations_deg.empty() || elevations_deg.size() > 256)
-        p.push_back("elevations_deg must hold 1..256 angles");
-    for (double e : elevations_deg) {
-        if (!(e > -90.0 && e < 90.0)) p.push_back("elevations_deg must lie in (-90, 90)");
-    }
-    return p;
-}
+std::vector<std::string> LidarParams::validate() const { return lidar_table().problems(*this); }
 
 PointCloud simulate_sweep(World& world, const LidarParams& params,
                           const PoseAtTime& T_world_sensor_at, double t_start_s, std::uint64_t seed,
@@ -86,7 +100,7 @@ PointCloud simulate_sweep(World& world, const LidarParams& params,
     const double dt_column = params.sweep_duration_s() / columns;
     std::vector<float> cos_el(beams), sin_el(beams);
     for (int b = 0; b < beams; ++b) {
-        const double el = deg_to_rad(params.elevations_deg[b]);
+        const double el = deg_to_rad(params.elevations_deg()[b]);
         cos_el[b] = static_cast<float>(std::cos(el));
         sin_el[b] = static_cast<float>(std::sin(el));
     }
@@ -94,7 +108,7 @@ PointCloud simulate_sweep(World& world, const LidarParams& params,
     const std::uint64_t stream = seed ^ (sweep_index * 0xA24BAED4963EE407ULL);
     constexpr std::uint64_t kIntensityStream = 0x1A7E5171ULL;
 
-    constexpr int kMaxBeams = 256;  // validate() caps the beam count
+    constexpr int kMaxBeams = 256;  // more than any BeamPattern has
     constexpr int kPacket = World::kPacketSize;
     auto cast_column = [&](int c) {
         const double t_rel = c * dt_column;

@@ -1,6 +1,8 @@
 #pragma once
 // A spinning multi-beam LiDAR, by default the Velodyne Ultra Puck (VLP-32C): 32 beams at the
-// datasheet's non-uniform elevations (-25 to +15 deg), 360 deg at 0.2 deg steps, 10 Hz.
+// datasheet's non-uniform elevations (-25 to +15 deg), 360 deg at 0.2 deg steps, 10 Hz. The beam
+// layouts of a VLP-16 and of Ouster's OS1-64 and OS1-128 are there too (`lidar.beam_pattern`), so
+// the system can be tried with the sensor a user has.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -15,8 +17,15 @@ namespace makeway::sim {
 /// VLP-32C elevation angles [deg], lowest first (ring 0 is the lowest beam).
 const std::vector<double>& vlp32c_elevations_deg();
 
+/// Beam layouts from the datasheets: Velodyne VLP-16 (16 beams, -15..+15 deg every 2 deg),
+/// VLP-32C (32, -25..+15, denser near the horizon), Ouster OS1-64 and OS1-128 (uniform over
+/// -22.5..+22.5 deg).
+enum class BeamPattern { kVlp16, kVlp32c, kOs1_64, kOs1_128 };
+/// The pattern's elevation angles [deg], lowest first.
+const std::vector<double>& beam_elevations_deg(BeamPattern pattern);
+
 struct LidarParams {
-    std::vector<double> elevations_deg = vlp32c_elevations_deg();
+    BeamPattern beam_pattern = BeamPattern::kVlp32c;
     double azimuth_step_deg = 0.2;  ///< 1800 columns per turn
     double rate_hz = 10.0;          ///< turns per second
     double min_range_m = 0.4;
@@ -37,7 +46,8 @@ struct LidarParams {
 
     std::vector<std::string> validate() const;
     int num_columns() const;
-    int num_beams() const { return static_cast<int>(elevations_deg.size()); }
+    const std::vector<double>& elevations_deg() const { return beam_elevations_deg(beam_pattern); }
+    int num_beams() const { return static_cast<int>(elevations_deg().size()); }
     double sweep_duration_s() const { return 1.0 / rate_hz; }
 };
 

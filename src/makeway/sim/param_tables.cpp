@@ -25,7 +25,14 @@ const ParamTable<LidarParams>& lidar_table() {
     using L = LidarParams;
     static const ParamTable<L> table = [] {
         ParamTable<L> t;
-        t.add("azimuth_step_deg", &L::azimuth_step_deg, closed(0.01, 10.0), "")
+        t.choice("beam_pattern", &L::beam_pattern,
+                 {{"vlp16", BeamPattern::kVlp16},
+                  {"vlp32c", BeamPattern::kVlp32c},
+                  {"os1_64", BeamPattern::kOs1_64},
+                  {"os1_128", BeamPattern::kOs1_128}},
+                 "the beams: Velodyne VLP-16 (16, +-15 deg), VLP-32C (32, -25..+15), Ouster "
+                 "OS1-64 and OS1-128 (+-22.5)")
+            .add("azimuth_step_deg", &L::azimuth_step_deg, closed(0.01, 10.0), "")
             .add("rate_hz", &L::rate_hz, closed(1.0, 50.0), "turns per second")
             .add("min_range_m", &L::min_range_m, closed(0.0, 1000.0), "")
             .add("max_range_m", &L::max_range_m, above(0.0, 1000.0), "")
