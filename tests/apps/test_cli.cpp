@@ -1,24 +1,19 @@
-// End-to-end tests of the makeway program: info, convert, bad input, help, demo, the scene and
-// simulation chain, benchmarks, navigation, verification and the detector's commands.
+// End-to-end tests of the makeway program: config, info, convert, bad input, demo, the scene and
+// simulation chain, bench sim, navigation, verification and the detector's commands.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <sstream>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include "../io/io_test_util.hpp"
 #include "cli_test_util.hpp"
 #include "io/file_util.hpp"
 #include "io/json_io.hpp"
-#include "io/mesh_io.hpp"
 #include "io/point_cloud_io.hpp"
 #include "io/pose_io.hpp"
 #include "io/tracking_io.hpp"
-#include "makeway/sim/mesh_primitives.hpp"
 
 namespace makeway {
 namespace {
@@ -163,103 +158,6 @@ TEST(Cli, BadInputGivesExitTwoOneLineAndNoOutput) {
     EXPECT_EQ(io::read_point_cloud(dir / "ok.pcd").cloud.size(), 9u);
 }
 
-namespace {
-
-// One subcommand's part of `--help-all`: its name, its description, its options and positionals
-// without a description, and its own subcommands.
-struct HelpSection {
-    std::string name, description;
-    std::vector<std::string> undescribed, children;
-};
-
-// CLI11 writes `--help-all` as: a group heading at column 0 ("Start here:"), then per subcommand
-// its name at column 0, its description indented by 2, headings ("  Options:", "  Positionals:", "
-// Subcommands:") and items indented by 4 with their description from column 32, or on the next line
-// when the item is longer.
-std::vector<HelpSection> expanded_help(const std::string& text) {
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-    std::vector<HelpSection> sections;
-    bool started = false, in_children = false;
-    for (std::size_t i = 0; i < lines.size(); ++i) {
-        const std::string& line = lines[i];
-        if (line.empty()) continue;
-        if (line[0] != ' ') {
-            if (line.back() == ':') {
-                started |= line != "Options:" && line != "Positionals:";
-            } else if (started) {
-                sections.push_back({line, "", {}, {}});
-                in_children = false;
-            }
-            continue;
-        }
-        if (sections.empty()) continue;
-        HelpSection& s = sections.back();
-        if (line == "  Options:" || line == "  Positionals:" || line == "  Subcommands:") {
-            in_children = line == "  Subcommands:";
-        } else if (line.rfind("    ", 0) != 0) {
-            if (s.description.empty()) s.description = line.substr(2);
-        } else if (line.size() > 4 && line[4] != ' ') {
-            const std::string item = line.substr(4, line.find(' ', 4) - 4);
-            if (in_children) {
-                s.children.push_back(item);
-                continue;
-            }
-            const bool here = line.size() > 32 && line[31] == ' ' && line[32] != ' ';
-            const bool below = i + 1 < lines.size() &&
-                               lines[i + 1].rfind(std::string(32, ' '), 0) == 0 &&
-                               lines[i + 1].size() > 32;
-            if (!here && !below) s.undescribed.push_back(item);
-        }
-    }
-    return sections;
-}
-
-}  // namespace
-
-// Every subcommand's help, from `--help-all` (and `bench --help-all` for the subcommands of
-// `bench`: two processes, not one per subcommand, since each start loads libtorch): each says what
-// it does, and every option and positional has a description.
-TEST(Cli, HelpDescribesEveryOption) {
-    const auto dir = testing_util::fresh_dir("help");
-    const CliRun top = run_makeway("--help-all", dir);
-    ASSERT_EQ(top.exit_code, 0) << top.err;
-    std::vector<std::string> leaves;
-    for (const HelpSection& s : expanded_help(top.out)) {
-        std::vector<HelpSection> checked{s};
-        if (!s.children.empty()) {
-            const CliRun sub = run_makeway(s.name + " --help-all", dir);
-            ASSERT_EQ(sub.exit_code, 0) << s.name << "\n" << sub.err;
-            checked = expanded_help(sub.out);
-            EXPECT_EQ(checked.size(), s.children.size()) << s.name;
-            for (HelpSection& c : checked) c.name = s.name + " " + c.name;
-        }
-        for (const HelpSection& c : checked) {
-            leaves.push_back(c.name);
-            EXPECT_FALSE(c.description.empty()) << c.name << ": says nothing of what it does";
-            EXPECT_TRUE(c.undescribed.empty())
-                << c.name << ": no description for " << ::testing::PrintToString(c.undescribed);
-        }
-    }
-    for (const char* known :
-         {"info",           "config",         "convert",        "demo",        "cad",
-          "scene",          "simulate",       "navigate",       "verify",      "label",
-          "track",          "eval-tracking",  "odometry",       "run",         "dataset",
-          "train-detector", "detect",         "eval-detection", "train-shape", "complete",
-          "bench nav",      "bench merge",    "bench verify",   "bench track", "bench odometry",
-          "bench label",    "bench sessions", "bench shape",    "bench sim"}) {
-        EXPECT_NE(std::find(leaves.begin(), leaves.end(), known), leaves.end()) << known;
-    }
-    // One subcommand's own --help says the same.
-    const CliRun conv = run_makeway("convert --help", dir);
-    EXPECT_EQ(conv.exit_code, 0);
-    for (const char* opt :
-         {"--pcd-encoding", "--ply-encoding", "--non-finite", "=binary", "=reject"}) {
-        EXPECT_NE(conv.out.find(opt), std::string::npos) << opt;
-    }
-}
-
 TEST(Cli, DemoWritesItsOutputs) {
     const auto dir = testing_util::fresh_dir("demo");
     std::ofstream(dir / "small.yaml")
@@ -345,85 +243,6 @@ TEST(Cli, BenchSimPrintsItsNumbers) {
         EXPECT_GT(j[key].get<double>(), 0.0) << key;
     }
     EXPECT_EQ(j["rays_per_sweep"], 57600);
-}
-
-// A building given as one mesh, as a scan of it would be (issue 32): a 10 x 6 m room with a
-// partition and a 2 m door, its floor slab included, loaded as the scene's environment with four
-// pieces of furniture placed as objects (styles the detector knows).
-void write_scanned_room(const std::filesystem::path& dir) {
-    TriangleMesh room;
-    sim::add_box(room, {5, -3.05, 1.25}, {10.2, 0.1, 2.5});
-    sim::add_box(room, {5, 3.05, 1.25}, {10.2, 0.1, 2.5});
-    sim::add_box(room, {-0.05, 0, 1.25}, {0.1, 6.2, 2.5});
-    sim::add_box(room, {10.05, 0, 1.25}, {0.1, 6.2, 2.5});
-    sim::add_box(room, {5, -2, 1.25}, {0.2, 2, 2.5});  // the partition, a door at |y| < 1
-    sim::add_box(room, {5, 2, 1.25}, {0.2, 2, 2.5});
-    sim::add_box(room, {5, 0, -0.01}, {10, 6, 0.02});  // the floor slab, below the clearance
-    io::write_mesh(dir / "room.ply", room);
-    std::ofstream(dir / "room.yaml")
-        << "name: scanned_office\nfloor: {min_m: [-0.5, -3.5], max_m: [10.5, 3.5]}\n"
-           "start: {x_m: 1, y_m: 0, yaw_rad: 0}\nwaypoint: {x_m: 5, y_m: 0, yaw_rad: 0}\n"
-           "goal: {x_m: 9, y_m: 0, yaw_rad: 0}\nenvironment:\n  - {mesh: room.ply}\n"
-           "objects:\n"
-           "  - {id: 1, class: table, style: rect_table, model_seed: 1, pose: {x_m: 2.8, y_m: "
-           "1.6, yaw_rad: 0}}\n"
-           "  - {id: 2, class: chair, style: four_leg_chair, model_seed: 2, table_id: 1, pose: "
-           "{x_m: 2.8, y_m: 0.8, yaw_rad: 1.5708}}\n"
-           "  - {id: 3, class: chair, style: office_chair, model_seed: 3, pose: {x_m: 7.5, y_m: "
-           "-1.8, yaw_rad: 0.5}}\n"
-           "  - {id: 4, class: chair, style: four_leg_chair, model_seed: 5, pose: {x_m: 6.7, "
-           "y_m: 1.8, yaw_rad: 0}}\n";
-}
-
-// Drives `method` through the scanned room (with a configuration file's sensor when given):
-// reached, untouched, and for `ours` each piece of furniture in the final map within 0.3 m, of its
-// class.
-void drive_scanned_room(const std::filesystem::path& dir, const std::string& method,
-                        const std::string& config, const std::string& out) {
-    const CliRun r = run_makeway("navigate --scene " + (dir / "room.yaml").string() + " --method " +
-                                     method + (config.empty() ? "" : " --config " + config) +
-                                     " --out " + (dir / out).string(),
-                                 dir);
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    const io::Json run = io::read_json(dir / out / "run.json");
-    EXPECT_TRUE(run["success"].get<bool>()) << out << ": " << run["failure"];
-    EXPECT_EQ(run["collisions"].get<int>(), 0) << out;
-    EXPECT_EQ(run["contacts"]["walls"]["robot_caused"].get<int>(), 0) << out;
-    if (method != "ours") return;
-    const std::vector<std::tuple<const char*, double, double>> furniture = {
-        {"table", 2.8, 1.6}, {"chair", 2.8, 0.8}, {"chair", 7.5, -1.8}, {"chair", 6.7, 1.8}};
-    for (const auto& [cls, x, y] : furniture) {
-        bool found = false;
-        for (const auto& o : run["final_objects"]) {
-            const auto& c = o["box_world"]["centre_m"];
-            found |= o["class"] == cls &&
-                     std::hypot(c[0].get<double>() - x, c[1].get<double>() - y) < 0.3;
-        }
-        EXPECT_TRUE(found) << out << ": " << cls << " at " << x << ", " << y << "\n"
-                           << run["final_objects"].dump();
-    }
-}
-
-// The robot drives through a room given only as a mesh without touching the scan, and the full
-// system finds its furniture.
-TEST(Cli, ARoomGivenAsAMeshIsNavigatedAndItsFurnitureFound) {
-    const auto dir = testing_util::fresh_dir("scanned_room");
-    write_scanned_room(dir);
-    drive_scanned_room(dir, "gt-perc", "", "gt-perc");
-    drive_scanned_room(dir, "ours", "", "ours");
-}
-
-// Any sensor a user has (issue 32): the same room seen by a 16-beam VLP-16 and a 128-beam OS1-128
-// (`lidar.beam_pattern`) instead of the VLP-32C the detector was trained with; both find its
-// furniture.
-TEST(Cli, ASixteenAndA128BeamSensorBothFindTheFurniture) {
-    const auto dir = testing_util::fresh_dir("beam_patterns");
-    write_scanned_room(dir);
-    for (const char* pattern : {"vlp16", "os1_128"}) {
-        const std::string config = (dir / (std::string(pattern) + ".yaml")).string();
-        std::ofstream(config) << "lidar:\n  beam_pattern: " << pattern << "\n";
-        drive_scanned_room(dir, "ours", config, pattern);
-    }
 }
 
 TEST(Cli, NavigateWritesRunRouteAndCostmap) {
@@ -649,61 +468,6 @@ TEST(Cli, DatasetTrainDetectAndEvaluateATinyModel) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("nowhere"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "m2.pt"));
-}
-
-}  // namespace
-}  // namespace makeway
-
-namespace makeway {
-namespace {
-
-TEST(Cli, ShardedBenchNavMergesToTheSameBytes) {
-    // Three scenes, two methods, a coarse sensor; once whole, once as 2 shards merged in reverse
-    // order: results.json must be byte for byte the same; a missing or repeated shard is refused.
-    const auto dir = testing_util::fresh_dir("bench_merge");
-    std::ofstream(dir / "fast.yaml") << "lidar:\n  azimuth_step_deg: 1.0\n";
-    const std::string common =
-        "bench nav --scenes 3 --methods oppo,gt-perc --time-limit 12 --threads 1 --config " +
-        (dir / "fast.yaml").string();
-    ASSERT_EQ(run_makeway(common + " --out " + (dir / "whole").string(), dir).exit_code, 0);
-    for (int k = 0; k < 2; ++k) {
-        const CliRun r = run_makeway(common + " --shard " + std::to_string(k) + "/2 --out " +
-                                         (dir / ("s" + std::to_string(k))).string(),
-                                     dir);
-        ASSERT_EQ(r.exit_code, 0) << r.err;
-        EXPECT_FALSE(std::filesystem::exists(dir / ("s" + std::to_string(k)) / "results.json"));
-    }
-    const io::Json s0 = io::read_json(dir / "s0" / "partial.json");
-    EXPECT_EQ(s0["runs"].size(), 4u);  // scenes 0 and 2
-    CliRun r = run_makeway("bench merge " + (dir / "s1").string() + " " + (dir / "s0").string() +
-                               " --out " + (dir / "merged").string(),
-                           dir);
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_EQ(io::read_file(dir / "merged" / "results.json"),
-              io::read_file(dir / "whole" / "results.json"));
-    EXPECT_EQ(io::read_file(dir / "merged" / "table.md"),
-              io::read_file(dir / "whole" / "table.md"));
-    for (const char* f :
-         {"risk_time.png", "timing.json", "scenes/sparse_0.yaml", "routes/dense_2.png"}) {
-        EXPECT_TRUE(std::filesystem::exists(dir / "merged" / f)) << f;
-    }
-    const io::Json whole = io::read_json(dir / "whole" / "results.json");
-    EXPECT_EQ(whole["runs"].size(), 6u);
-    EXPECT_TRUE(whole["aggregate"]["gt-perc"]["interval_95"].contains("avoidable_risk_s"));
-    EXPECT_EQ(whole["paired"][0]["a"], "gt-perc");
-    // Refused, one line, exit 2, nothing written: a missing shard, a shard twice, a bad --shard.
-    r = run_makeway("bench merge " + (dir / "s0").string() + " --out " + (dir / "m2").string(),
-                    dir);
-    EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.err.find("shard 1/2 is missing"), std::string::npos) << r.err;
-    r = run_makeway("bench merge " + (dir / "s0").string() + " " + (dir / "s0").string() +
-                        " --out " + (dir / "m3").string(),
-                    dir);
-    EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.err.find("given twice"), std::string::npos) << r.err;
-    EXPECT_EQ(run_makeway(common + " --shard 2/2 --out " + (dir / "bad").string(), dir).exit_code,
-              2);
-    for (const char* d : {"m2", "m3", "bad"}) EXPECT_FALSE(std::filesystem::exists(dir / d)) << d;
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 
 #include "../io/io_test_util.hpp"
 #include "cli_test_util.hpp"
+#include "io/file_util.hpp"
 #include "io/json_io.hpp"
 
 namespace makeway {
@@ -159,6 +160,55 @@ TEST_F(CliOutputs, FullDiskLeavesNoHalfOutput) {
                          ": write failed: File too large\n");
     EXPECT_FALSE(fs::exists(dir_ / "nav"));
     EXPECT_TRUE(leftovers(dir_).empty());
+}
+
+TEST(Cli, ShardedBenchNavMergesToTheSameBytes) {
+    // Three scenes, two methods, a coarse sensor; once whole, once as 2 shards merged in reverse
+    // order: results.json must be byte for byte the same; a missing or repeated shard is refused.
+    const auto dir = testing_util::fresh_dir("bench_merge");
+    std::ofstream(dir / "fast.yaml") << "lidar:\n  azimuth_step_deg: 1.0\n";
+    const std::string common =
+        "bench nav --scenes 3 --methods oppo,gt-perc --time-limit 12 --threads 1 --config " +
+        (dir / "fast.yaml").string();
+    ASSERT_EQ(run_makeway(common + " --out " + (dir / "whole").string(), dir).exit_code, 0);
+    for (int k = 0; k < 2; ++k) {
+        const CliRun r = run_makeway(common + " --shard " + std::to_string(k) + "/2 --out " +
+                                         (dir / ("s" + std::to_string(k))).string(),
+                                     dir);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / ("s" + std::to_string(k)) / "results.json"));
+    }
+    const io::Json s0 = io::read_json(dir / "s0" / "partial.json");
+    EXPECT_EQ(s0["runs"].size(), 4u);  // scenes 0 and 2
+    CliRun r = run_makeway("bench merge " + (dir / "s1").string() + " " + (dir / "s0").string() +
+                               " --out " + (dir / "merged").string(),
+                           dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(io::read_file(dir / "merged" / "results.json"),
+              io::read_file(dir / "whole" / "results.json"));
+    EXPECT_EQ(io::read_file(dir / "merged" / "table.md"),
+              io::read_file(dir / "whole" / "table.md"));
+    for (const char* f :
+         {"risk_time.png", "timing.json", "scenes/sparse_0.yaml", "routes/dense_2.png"}) {
+        EXPECT_TRUE(std::filesystem::exists(dir / "merged" / f)) << f;
+    }
+    const io::Json whole = io::read_json(dir / "whole" / "results.json");
+    EXPECT_EQ(whole["runs"].size(), 6u);
+    EXPECT_TRUE(whole["aggregate"]["gt-perc"]["interval_95"].contains("avoidable_risk_s"));
+    EXPECT_EQ(whole["paired"][0]["a"], "gt-perc");
+    // Refused, one line, exit 2, nothing written: a missing shard, a shard twice, a bad --shard.
+    r = run_makeway("bench merge " + (dir / "s0").string() + " --out " + (dir / "m2").string(),
+                    dir);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("shard 1/2 is missing"), std::string::npos) << r.err;
+    r = run_makeway("bench merge " + (dir / "s0").string() + " " + (dir / "s0").string() +
+                        " --out " + (dir / "m3").string(),
+                    dir);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("given twice"), std::string::npos) << r.err;
+    EXPECT_EQ(run_makeway(common + " --shard 2/2 --out " + (dir / "bad").string(), dir).exit_code,
+              2);
+    for (const char* d : {"m2", "m3", "bad"}) EXPECT_FALSE(std::filesystem::exists(dir / d)) << d;
 }
 
 }  // namespace
