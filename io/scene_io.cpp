@@ -50,6 +50,16 @@ bool inside_folder(const std::filesystem::path& base, const std::filesystem::pat
     return !rel.empty() && *rel.begin() != "..";
 }
 
+// Whether a scene may read its mesh `file`: inside the scene's folder, or anywhere when the user
+// allows it; else the problem is recorded.
+bool may_read(YamlSection& s, const std::filesystem::path& base, const std::string& file,
+              const SceneReadOptions& options) {
+    if (options.allow_outside_paths || inside_folder(base, file)) return true;
+    s.problem("mesh '" + file +
+              "' is outside the scene's folder (--allow-outside-paths to read it)");
+    return false;
+}
+
 sim::SceneObject read_object(const YAML::Node& node, const std::string& prefix,
                              std::vector<std::string>& problems,
                              const std::filesystem::path& mesh_base_dir,
@@ -84,11 +94,8 @@ sim::SceneObject read_object(const YAML::Node& node, const std::string& prefix,
     o.forward_axis = keys.forward_axis;
     o.recentre = keys.recentre;
     const std::optional<MeshPlacement> placement = to_placement(keys, s);
-    if (!o.mesh_file.empty() && !mesh_base_dir.empty() && !options.allow_outside_paths &&
-        !inside_folder(mesh_base_dir, o.mesh_file)) {
-        s.problem("mesh '" + o.mesh_file +
-                  "' is outside the scene's folder (--allow-outside-paths to read it)");
-    } else if (!o.mesh_file.empty() && !mesh_base_dir.empty() && placement) {
+    if (!o.mesh_file.empty() && !mesh_base_dir.empty() &&
+        may_read(s, mesh_base_dir, o.mesh_file, options) && placement) {
         try {
             o.user_mesh = std::make_shared<TriangleMesh>(read_placed_mesh(
                 mesh_base_dir / o.mesh_file, *placement, o.cls, prefix, options.warn));
@@ -130,10 +137,8 @@ sim::EnvironmentMesh read_environment(const YAML::Node& node, const std::string&
     e.recentre = keys.recentre;
     const std::optional<MeshPlacement> placement = to_placement(keys, s);
     if (e.mesh_file.empty() || mesh_base_dir.empty()) return e;
-    if (!options.allow_outside_paths && !inside_folder(mesh_base_dir, e.mesh_file)) {
-        s.problem("mesh '" + e.mesh_file +
-                  "' is outside the scene's folder (--allow-outside-paths to read it)");
-    } else if (placement && e.position_m.allFinite() && e.rpy_rad.allFinite()) {
+    if (may_read(s, mesh_base_dir, e.mesh_file, options) && placement && e.position_m.allFinite() &&
+        e.rpy_rad.allFinite()) {
         try {
             TriangleMesh mesh = place_mesh(read_mesh(mesh_base_dir / e.mesh_file), *placement);
             sim::transform_mesh(

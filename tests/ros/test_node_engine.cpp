@@ -223,5 +223,23 @@ TEST(OnlineSystem, TheBenchmarkRunAndTheNodeBuildTheSameSystemFromOneYaml) {
     EXPECT_TRUE(node_system_params(node).T_base_sensor.isApprox(T));
 }
 
+// The simulated robot carries the simulated LiDAR: its collision monitor never assumes a lower beam
+// than that sensor has (a VLP-16's -15 deg, not the default -25 of a VLP-32C); a more cautious
+// value of the file stays.
+TEST(OnlineSystem, TheSimulatedRobotsMonitorKnowsItsLidarsLowestBeam) {
+    const auto dir = std::filesystem::temp_directory_path() / "makeway_test_lowest_beam";
+    std::filesystem::create_directories(dir);
+    const auto lowest = [&](const std::string& text) {
+        std::ofstream(dir / "c.yaml") << text;
+        return io::nav_params(io::load_sim_config(dir / "c.yaml"))
+            .system.navigator.monitor.lowest_beam_deg;
+    };
+    EXPECT_DOUBLE_EQ(lowest("lidar: {beam_pattern: vlp32c}\n"), -25.0);
+    EXPECT_DOUBLE_EQ(lowest("lidar: {beam_pattern: vlp16}\n"), -15.0);
+    EXPECT_DOUBLE_EQ(lowest("lidar: {beam_pattern: os1_128}\n"), -22.5);
+    EXPECT_DOUBLE_EQ(
+        lowest("lidar: {beam_pattern: vlp16}\ncollision_monitor: {lowest_beam_deg: -10}\n"), -10.0);
+}
+
 }  // namespace
 }  // namespace makeway::rosio

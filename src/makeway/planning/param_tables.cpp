@@ -72,9 +72,10 @@ const ParamTable<CollisionMonitorParams>& collision_monitor_table() {
                  "... unless it lies this close to a known chair (a pulled chair, not a walker)")
             .add("min_scale", &C::min_scale, below(0.0, 1.0),
                  "an approach scale below this holds the robot")
-            .add("lowest_beam_deg", &C::lowest_beam_deg, closed(-90.0, 90.0),
-                 "the LiDAR's lowest beam (VLP-32C); with robot.lidar_height_m: what it cannot see "
-                 "near it")
+            .add(
+                "lowest_beam_deg", &C::lowest_beam_deg, closed(-90.0, 90.0),
+                "the LiDAR's lowest beam (VLP-32C; a VLP-16: -15); with robot.lidar_height_m: what "
+                "it cannot see near it")
             .add("blind_memory_s", &C::blind_memory_s, closed(0.0, 60.0),
                  "returns the sensor can no longer see (a chair leg it closes in on) are "
                  "remembered at most this long")
