@@ -176,6 +176,7 @@ int main(int argc, char** argv) {
     try {
         engine = std::make_unique<rosio::NodeEngine>(settings, [&](const rosio::NodeOutput& out) {
             // The command went first (settings.send_command, under the engine's lock).
+            if (!out.notice.empty()) ROS_WARN("makeway_node: %s", out.notice.c_str());
             if (!out.object_map_json
                      .empty()) {  // a finished keyframe (in line, or from the perception thread)
                 objects_pub.publish(rosio::to_markers(out.objects, zones, out.stamp_s, frame));

@@ -23,6 +23,7 @@
 #include "io/tracking_io.hpp"
 #include "makeway/perception/detector.hpp"
 #include "makeway/pipeline/online_system.hpp"
+#include "makeway/planning/beam_check.hpp"
 #include "ros/node_engine_params.hpp"
 #include "ros/sweep_source.hpp"
 
@@ -220,7 +221,11 @@ struct NodeEngine::Impl {
     void process(CloudSweep sweep, double duration, const std::optional<Pose2>& wheel_start,
                  const std::optional<Pose2>& wheel_end, double waited_ms,
                  Clock::time_point arrived) {
+        std::string notice;
         if (!system) {
+            // The first sweep shows the sensor's lowest beam: a monitor told a lower one would
+            // forget the obstacles near the robot it no longer sees (planning/beam_check.hpp).
+            notice = planning::raise_lowest_beam(params.navigator.monitor, sweep.points);
             const Pose2 start = settings.start ? *settings.start : wheel_start.value_or(Pose2{});
             pipeline::OnlineSystemSetup setup;
             setup.params = params;
@@ -269,6 +274,7 @@ struct NodeEngine::Impl {
         }();
         NodeOutput out;
         out.stamp_s = stamp + duration;
+        out.notice = notice;
         out.pose = step.sweep.pose;
         out.wheel_pose = wheel_end;
         out.T_world_sensor = step.sweep.T_world_sensor_end;

@@ -95,6 +95,8 @@ struct NodeOutput {
     GatedCommand gated;  ///< what to send now: `command` through gate_command at settings.clock()
     std::vector<Eigen::Vector2d> plan;  ///< the global plan, world frame (empty when idle)
     NavStatus status;
+    std::string notice;  ///< a check of the first sweep changed a setting: one line to log (else
+                         ///< empty)
 };
 
 struct NodeStats {

@@ -19,7 +19,7 @@
 namespace makeway::rosio {
 namespace {
 
-std::vector<sim::SimFrame> drive(int frames) {
+std::vector<sim::SimFrame> drive(int frames, sim::BeamPattern beams = sim::BeamPattern::kVlp32c) {
     sim::SceneGenParams g;
     g.seed = 1000041;
     g.density = sim::Density::kMedium;
@@ -27,7 +27,9 @@ std::vector<sim::SimFrame> drive(int frames) {
     const sim::RobotParams robot;
     const auto route =
         sim::drive_route(scene, sim::CollisionChecker(scene, sim::models_of(scene), robot), robot);
-    sim::SequenceSimulator s(scene, route.value_or(std::vector<Eigen::Vector2d>{}), {});
+    sim::SequenceParams params;
+    params.lidar.beam_pattern = beams;
+    sim::SequenceSimulator s(scene, route.value_or(std::vector<Eigen::Vector2d>{}), params);
     std::vector<sim::SimFrame> out;
     for (int k = 0; k < frames; ++k) out.push_back(s.next());
     return out;
@@ -85,6 +87,34 @@ TEST(NodeEngine, EverySweepInOrderStampedWithItsEnd) {
         EXPECT_NEAR(stamps[i], 100.0 + frames[i].stamp_s + 0.1, 1e-9);
     EXPECT_EQ(keyframes, 5u);
     EXPECT_GT(objects, 0u);  // the committed detector maps something in a medium scene
+}
+
+// The first sweep shows the sensor's lowest beam: a VLP-16 on a robot whose configuration keeps
+// the VLP-32C's -25 deg gets its monitor raised to -15 and one notice on the first output; the
+// VLP-32C itself gets none.
+TEST(NodeEngine, TheFirstSweepSetsTheMonitorToTheSensorsLowestBeam) {
+    for (const sim::BeamPattern beams : {sim::BeamPattern::kVlp16, sim::BeamPattern::kVlp32c}) {
+        const auto frames = drive(2, beams);
+        std::vector<std::string> notices;
+        {
+            NodeEngine engine(settings(),
+                              [&](const NodeOutput& out) { notices.push_back(out.notice); });
+            for (const auto& f : frames) {
+                engine.push_sweep(sweep_of(f));
+                engine.push_odometry({100.0 + f.stamp_s, f.odometry_pose});
+                engine.push_odometry({100.0 + f.stamp_s + 0.1, f.odometry_end_pose});
+            }
+            engine.drain();
+        }
+        ASSERT_EQ(notices.size(), 2u);
+        if (beams == sim::BeamPattern::kVlp16) {
+            EXPECT_NE(notices[0].find("lowest beam is at -15.0 deg"), std::string::npos)
+                << notices[0];
+        } else {
+            EXPECT_EQ(notices[0], "");
+        }
+        EXPECT_EQ(notices[1], "");  // said once
+    }
 }
 
 // Async perception: every sweep's output comes without waiting for its keyframe; every keyframe
