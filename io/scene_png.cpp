@@ -17,9 +17,7 @@ void draw_structure(Canvas& canvas, const sim::Scene& scene) {
                             colour);
     };
     // Every triangle of the wall and pillar boxes, projected.
-    sim::Scene walls_and_pillars = scene;
-    walls_and_pillars.environment.clear();
-    const TriangleMesh structure = sim::structure_mesh(walls_and_pillars);
+    const TriangleMesh structure = sim::wall_and_pillar_mesh(scene);
     for (const auto& t : structure.triangles) fill(structure, t);
     // An environment mesh (a scan) has a floor and a ceiling too: only its standing faces between
     // 5 cm and 2 m, what a person would call its walls and obstacles.

@@ -74,7 +74,7 @@ float draw_reflectivity(std::uint64_t seed, std::uint64_t surface) {
     return m.lo + static_cast<float>(counter_uniform(seed, 2 * surface + 1)) * (m.hi - m.lo);
 }
 
-TriangleMesh structure_mesh(const Scene& scene) {
+TriangleMesh wall_and_pillar_mesh(const Scene& scene) {
     TriangleMesh m;
     for (const Wall& w : scene.walls) {
         const Eigen::Vector2d d = w.b_m - w.a_m;
@@ -87,6 +87,11 @@ TriangleMesh structure_mesh(const Scene& scene) {
         add_box(m, Eigen::Vector3d(p.centre_m.x(), p.centre_m.y(), p.height_m / 2),
                 Eigen::Vector3d(p.size_m.x(), p.size_m.y(), p.height_m));
     }
+    return m;
+}
+
+TriangleMesh structure_mesh(const Scene& scene) {
+    TriangleMesh m = wall_and_pillar_mesh(scene);
     for (const EnvironmentMesh& e : scene.environment) {
         if (e.mesh_world) m.append(*e.mesh_world);
     }

@@ -74,6 +74,8 @@ class World {
     std::size_t num_triangles_ = 0;
 };
 
+/// The scene's walls and pillars as boxes, world frame.
+TriangleMesh wall_and_pillar_mesh(const Scene& scene);
 /// The scene's static structure (walls, pillars and environment meshes), world frame.
 TriangleMesh structure_mesh(const Scene& scene);
 
