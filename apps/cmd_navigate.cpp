@@ -23,6 +23,8 @@
 #include "io/progress.hpp"
 #include "io/scene_io.hpp"
 #include "io/staged_output.hpp"
+#include "io/zones_io.hpp"
+#include "makeway/eval/zone_bench.hpp"
 #include "makeway/shape/learned_prior.hpp"
 #include "makeway/sim/scene_generator.hpp"
 
@@ -38,6 +40,7 @@ struct NavigateOptions {
     std::uint64_t seed = 0;
     double time_limit_s = 180.0;
     bool allow_outside_paths = false;  ///< the scene's meshes may lie outside its folder
+    std::string zones;  ///< learned zones for the method's costmap (risk stays on the paper's)
 };
 
 struct BenchNavOptions {
@@ -53,6 +56,9 @@ struct BenchNavOptions {
                         ///< scene, the results)
     std::string layout =
         "random";  ///< random (densities cycle) or study_space (the paper's room, seeded)
+    std::string usage = "default";     ///< how the scenes' people move furniture (their profile)
+    std::string zones;                 ///< learned zones for the methods' costmaps
+    std::string risk_zones = "paper";  ///< paper, or truth-profile: each scene's profile as zones
     std::string shape_model;  ///< `ours` verifies against these learned shapes instead of the
                               ///< scenes' CAD models
 };
@@ -62,6 +68,23 @@ struct BenchMergeOptions {
     std::string out_dir = "out/bench_nav";
 };
 
+namespace {
+
+// The methods plan with the learned zones of `zones_file` (when given); risk time stays scored on
+// the zones the configuration draws by hand, the same for every method.
+void use_zones(eval::NavParams& params, const std::shared_ptr<const costmap::LearnedZones>& zones) {
+    if (!zones) return;
+    params.risk_zones = params.system.navigator.affordance;
+    params.system.navigator.affordance.learned = zones;
+}
+
+std::shared_ptr<const costmap::LearnedZones> read_zones_file(const std::string& path) {
+    if (path.empty()) return nullptr;
+    return std::make_shared<const costmap::LearnedZones>(io::read_zones(path));
+}
+
+}  // namespace
+
 int run_navigate(const NavigateOptions& options) {
     const io::SimConfig cfg = io::load_sim_config(options.config);
     const sim::Scene scene =
@@ -69,6 +92,7 @@ int run_navigate(const NavigateOptions& options) {
     eval::NavParams params = nav_params(cfg);
     params.seed = options.seed;
     params.time_limit_s = options.time_limit_s;
+    use_zones(params, read_zones_file(options.zones));
     if (!options.map.empty()) params.static_map = io::read_map_server(options.map);
     std::optional<perception::Detector> detector;
     if (options.method == "ours") detector = load_detector(options.model);
@@ -191,10 +215,19 @@ int run_bench_nav(const BenchNavOptions& options) {
         g.seed = options.seed + static_cast<std::uint64_t>(i);
         g.density = densities[i % 3];
         g.layout = *sim::parse_layout(options.layout);
+        g.usage = *sim::parse_usage_profile(options.usage);
         g.robot = cfg.robot;
         indices.push_back(i);
         scenes.push_back(sim::generate_scene(g));
         io::write_scene(out / "scenes" / (scenes.back().name + ".yaml"), scenes.back());
+    }
+    const auto zones = read_zones_file(options.zones);
+    // truth-profile: where each scene's furniture goes by its usage profile (eval/zone_bench.hpp).
+    std::vector<std::shared_ptr<const costmap::LearnedZones>> truth_zones(scenes.size());
+    if (options.risk_zones == "truth-profile") {
+        for (std::size_t s = 0; s < scenes.size(); ++s)
+            truth_zones[s] =
+                std::make_shared<const costmap::LearnedZones>(eval::profile_zones(scenes[s]));
     }
     std::vector<std::vector<eval::NavRunResult>> results(scenes.size());
     io::ProgressBar bar("bench nav", scenes.size() * methods.size());
@@ -207,6 +240,12 @@ int run_bench_nav(const BenchNavOptions& options) {
         eval::NavParams params = nav_params(cfg);
         params.seed = options.seed + static_cast<std::uint64_t>(indices[s]);
         params.time_limit_s = options.time_limit_s;
+        use_zones(params, zones);
+        if (truth_zones[s]) {
+            costmap::AffordanceParams risk = cfg.affordance;
+            risk.learned = truth_zones[s];
+            params.risk_zones = risk;
+        }
         eval::NavRunResult r = run_nav_method(scenes[s], methods[m], params,
                                               detector ? &*detector : nullptr, prior.get());
         std::lock_guard<std::mutex> lock(mutex);
@@ -238,7 +277,7 @@ int run_bench_nav(const BenchNavOptions& options) {
                           {}, scenes[s].name + ": every method", cfg.affordance);
     }
     // What every shard of one benchmark shares; a merge refuses partials that differ in it.
-    const io::Json header = {
+    io::Json header = {
         {"scenes", options.scenes},
         {"seed", options.seed},
         {"methods", methods},
@@ -246,6 +285,10 @@ int run_bench_nav(const BenchNavOptions& options) {
         {"layout", options.layout},
         {"shape_model", options.shape_model},  // ours with learned shapes: a different benchmark
         {"config", options.config.empty() ? std::string() : io::read_file(options.config)}};
+    // Zones and usage only when asked for: the paper's benchmark keeps its header.
+    if (options.usage != "default") header["usage"] = options.usage;
+    if (!options.zones.empty()) header["zones"] = io::read_file(options.zones);
+    if (options.risk_zones != "paper") header["risk_zones"] = options.risk_zones;
     if (partial) {
         io::Json p = {{"kind", kPartialKind},
                       {"header", header},
@@ -372,6 +415,10 @@ void declare_navigate(CommandSpec& c, NavigateOptions& o) {
     c.option("--time-limit", o.time_limit_s, "Seconds before the run counts as failed [s]")
         .range(1.0, 3600.0)
         .show_default();
+    c.option("--zones", o.zones,
+             "Learned zones (makeway learn-zones) for the method's affordance layer instead of "
+             "the hand-drawn ones; risk time stays scored on the hand-drawn zones")
+        .existing_file();
     c.flag("--allow-outside-paths", o.allow_outside_paths,
            "Let the scene's `mesh:` paths leave the scene's folder (absolute, ../); off: a "
            "scene reads only "
@@ -409,6 +456,20 @@ void declare_bench_nav(CommandSpec& c, BenchNavOptions& nav_o) {
              "random (densities cycle sparse, medium, dense) or study_space (the paper's "
              "room of 12 tables and 22 chairs, one per seed)")
         .choices({"random", "study_space"})
+        .show_default();
+    c.option("--usage", nav_o.usage,
+             "How the generated scenes' people move their furniture (their usage profile; "
+             "README): default, pulled_back, sideways, tables_nudged")
+        .choices({"default", "pulled_back", "sideways", "tables_nudged"})
+        .show_default();
+    c.option("--zones", nav_o.zones,
+             "Learned zones (makeway learn-zones, bench zones) for every method's affordance "
+             "layer instead of the hand-drawn ones")
+        .existing_file();
+    c.option("--risk-zones", nav_o.risk_zones,
+             "What risk time is scored against: paper (the hand-drawn zones, Table II) or "
+             "truth-profile (where each scene's usage profile moves its furniture)")
+        .choices({"paper", "truth-profile"})
         .show_default();
     c.option("--shard", nav_o.shard,
              "K/N: run only scenes K, K+N, K+2N, ... (0 <= K < N) and write partial.json; "

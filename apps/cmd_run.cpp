@@ -24,6 +24,7 @@
 #include "io/progress.hpp"
 #include "io/staged_output.hpp"
 #include "io/tracking_io.hpp"
+#include "io/zones_io.hpp"
 #include "makeway/pipeline/online_system.hpp"
 #include "makeway/shape/learned_prior.hpp"
 #include "ros/bag_io.hpp"
@@ -44,6 +45,7 @@ struct RunOptions {
     std::vector<double>
         start;  ///< x y yaw of the base at the first sweep (default: the first pose)
     std::string config, model;
+    std::string zones;  ///< learned zones (makeway learn-zones) for the affordance layer
     std::string out = "out/run", out_bag;
     double rate_hz = 10.0;
     double costmap_size_m = 40.0,
@@ -109,6 +111,9 @@ int run_run(const RunOptions& o) {
     }
     pipeline::SystemParams params =
         io::online_system_params(cfg, extrinsics ? &*extrinsics : nullptr);
+    if (!o.zones.empty())
+        params.navigator.affordance.learned =
+            std::make_shared<const costmap::LearnedZones>(io::read_zones(o.zones));
     const bool external = !o.poses.empty();
     if (external)
         params.lidar_odometry_enabled = false;  // the given poses are the pose: no odometry runs
@@ -335,6 +340,9 @@ void declare_run(CommandSpec& c, RunOptions& o) {
         .expected(3);
     c.option("--config", o.config, "YAML configuration (config/default.yaml's sections)");
     c.option("--model", o.model, "Detector weights (default: models/detector.pt)");
+    c.option("--zones", o.zones,
+             "Learned affordance zones (makeway learn-zones) instead of the hand-drawn ones")
+        .existing_file();
     c.option("--rate", o.rate_hz, "Sweeps per second when nothing gives stamps")
         .range(0.1, 100.0)
         .show_default();

@@ -27,6 +27,7 @@ struct SceneOptions {
     std::string layout = "random";
     int sessions = 1;
     bool no_people = false;
+    std::string usage = "default";
     std::string out = "scene.yaml";
 };
 
@@ -48,6 +49,7 @@ int run_scene(const SceneOptions& options) {
     p.density = *sim::parse_density(options.density);
     p.layout = *sim::parse_layout(options.layout);
     p.people = !options.no_people;
+    p.usage = *sim::parse_usage_profile(options.usage);
     const std::filesystem::path out = options.out;
     if (io::lower_extension(out) != "yaml" && io::lower_extension(out) != "yml") {
         throw io::FileError(out.string(), "a scene file must end in .yaml");
@@ -110,6 +112,12 @@ void declare_scene(CommandSpec& c, SceneOptions& o) {
         .range(1, 100)
         .show_default();
     c.flag("--no-people", o.no_people, "No walkers and no chair pushers");
+    c.option("--usage", o.usage,
+             "How people leave the furniture between sessions (README, usage profiles): "
+             "default, pulled_back (chairs pulled straight back), sideways (chairs swung out to "
+             "a side), tables_nudged (tables slid along their length with their chairs)")
+        .choices({"default", "pulled_back", "sideways", "tables_nudged"})
+        .show_default();
     c.option("--out", o.out, "Scene file (.yaml)").show_default();
 }
 const Registration<SceneOptions> kScene{

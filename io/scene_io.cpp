@@ -163,6 +163,15 @@ sim::Scene parse_scene(std::string_view yaml_text, const std::filesystem::path& 
     s.read("name", scene.name);
     s.read("seed", scene.seed);
     s.read("density", scene.density);
+    if (s.has("usage")) {
+        std::string usage;
+        s.read("usage", usage);
+        if (const auto u = sim::parse_usage_profile(usage))
+            scene.usage = *u;
+        else
+            s.problem("usage must be default, pulled_back, sideways or tables_nudged (got '" +
+                      usage + "')");
+    }
     s.read("ceiling_height_m", scene.ceiling_height_m);
     {
         YamlSection floor(s.take("floor"), "floor", problems);
@@ -266,6 +275,8 @@ std::string scene_to_yaml(const sim::Scene& scene) {
     out << YAML::Key << "name" << YAML::Value << scene.name;
     out << YAML::Key << "seed" << YAML::Value << scene.seed;
     out << YAML::Key << "density" << YAML::Value << scene.density;
+    if (scene.usage != sim::UsageProfile::kDefault)  // how sessions move the furniture
+        out << YAML::Key << "usage" << YAML::Value << std::string(sim::to_string(scene.usage));
     out << YAML::Key << "ceiling_height_m" << YAML::Value << scene.ceiling_height_m;
     out << YAML::Key << "floor" << YAML::Value << YAML::BeginMap;
     vec2("min_m", scene.floor_min_m);

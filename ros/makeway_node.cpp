@@ -15,7 +15,7 @@
 //   keyframe.
 // Goals: /move_base_simple/goal (geometry_msgs/PoseStamped in ~frame_id; RViz's "2D Nav Goal");
 // ~cancel (std_msgs/Empty).
-// Parameters (private): config, model, cad, map (paths; the program's formats), cloud_topic
+// Parameters (private): config, model, cad, map, zones (paths; the program's formats), cloud_topic
 // (/velodyne_points), odom_topic (/odom), frame_id (map), base_frame (base_link), odom_frame
 // (odom), costmap_size (40 m), queue (600 sweeps), start ("x y yaw"; default: the first odometry
 // pose), extrinsics
@@ -104,6 +104,7 @@ int main(int argc, char** argv) {
     settings.model = param<std::string>(pnh, "model", "");
     settings.cad = param<std::string>(pnh, "cad", "");
     settings.map = param<std::string>(pnh, "map", "");
+    settings.zones = param<std::string>(pnh, "zones", "");
     settings.costmap_size_m = param<double>(pnh, "costmap_size", 40.0);
     settings.max_queue = static_cast<std::size_t>(std::max(1, param<int>(pnh, "queue", 600)));
     settings.sensor_timeout_s = param<double>(pnh, "sensor_timeout", 0.3);

@@ -21,6 +21,7 @@
 #include "io/json_io.hpp"
 #include "io/map_server_io.hpp"
 #include "io/tracking_io.hpp"
+#include "io/zones_io.hpp"
 #include "makeway/perception/detector.hpp"
 #include "makeway/pipeline/online_system.hpp"
 #include "makeway/planning/beam_check.hpp"
@@ -56,7 +57,12 @@ std::string goal_problem(const Eigen::Vector2d& goal, const Costmap& costmap) {
 
 pipeline::SystemParams node_system_params(const NodeSettings& s) {
     const io::Config config = io::load_config(s.config);
-    return io::online_system_params(config, s.T_base_sensor ? &*s.T_base_sensor : nullptr);
+    pipeline::SystemParams p =
+        io::online_system_params(config, s.T_base_sensor ? &*s.T_base_sensor : nullptr);
+    if (!s.zones.empty())
+        p.navigator.affordance.learned =
+            std::make_shared<const costmap::LearnedZones>(io::read_zones(s.zones));
+    return p;
 }
 
 std::string to_json(const NavStatus& s) {

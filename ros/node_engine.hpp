@@ -27,6 +27,7 @@ struct NodeSettings {
     std::string model;   ///< detector weights (empty: models/detector.pt)
     std::string cad;     ///< CAD folder (empty: verification skipped)
     std::string map;     ///< map_server YAML (empty: a free square around the start)
+    std::string zones;   ///< learned zones (makeway learn-zones; empty: the hand-drawn ones)
     double costmap_size_m = 40.0;
     std::optional<Pose2>
         start;  ///< the base at the first sweep (default: the first odometry pose, else 0 0 0)

@@ -102,6 +102,86 @@ TEST(SceneGenerator, SessionsMoveFurnitureButKeepTheBuilding) {
     EXPECT_TRUE(is_navigable(s1, RobotParams{}));
 }
 
+// How each usage profile moves a chair, in the chair's own frame at its base pose, over the
+// chairs of several sessions that do not belong to a moved table.
+TEST(SceneGenerator, UsageProfilesMoveChairsTheirOwnWay) {
+    struct Motions {
+        int chairs = 0, moved = 0, back = 0, sideways_turned = 0, forward = 0;
+    };
+    const auto motions_of = [](UsageProfile usage) {
+        Motions m;
+        for (std::uint64_t seed : {3u, 4u}) {
+            const Scene base = generate_scene({.seed = seed, .usage = usage});
+            EXPECT_EQ(base.usage, usage);
+            for (int k = 1; k <= 4; ++k) {
+                const Scene s = make_session(base, k);
+                for (std::size_t i = 0; i < base.objects.size(); ++i) {
+                    const SceneObject& o = base.objects[i];
+                    if (o.cls != ObjectClass::kChair) continue;
+                    // Chairs at a table that moved moved with it: left out.
+                    bool table_moved = false;
+                    for (std::size_t j = 0; j < base.objects.size(); ++j) {
+                        table_moved |= base.objects[j].id == o.table_id &&
+                                       (s.objects[j].pose.x_m != base.objects[j].pose.x_m ||
+                                        s.objects[j].pose.y_m != base.objects[j].pose.y_m);
+                    }
+                    if (table_moved) continue;
+                    const Pose2 d = between(o.pose, s.objects[i].pose);
+                    ++m.chairs;
+                    if (std::hypot(d.x_m, d.y_m) < 1e-9) continue;
+                    ++m.moved;
+                    m.back += d.x_m < -0.34 && std::abs(d.y_m) < 1e-9 &&
+                              std::abs(d.yaw_rad) < deg_to_rad(15);
+                    m.sideways_turned += std::abs(d.y_m) >= 0.25 &&
+                                         std::abs(d.yaw_rad) >= deg_to_rad(50) &&
+                                         d.y_m * d.yaw_rad > 0;  // turned toward the side it went
+                    m.forward += d.x_m > 0.0;
+                }
+            }
+        }
+        return m;
+    };
+    const Motions pulled = motions_of(UsageProfile::kPulledBack);
+    ASSERT_GT(pulled.chairs, 40);
+    EXPECT_EQ(pulled.back, pulled.moved);  // all straight back 0.35-0.9 m, nearly unturned
+    EXPECT_GT(pulled.moved, pulled.chairs / 2);
+    const Motions sideways = motions_of(UsageProfile::kSideways);
+    EXPECT_EQ(sideways.sideways_turned, sideways.moved);
+    EXPECT_EQ(sideways.forward, 0);
+    EXPECT_GT(sideways.moved, sideways.chairs / 3);
+    const Motions other = motions_of(UsageProfile::kDefault);
+    EXPECT_GT(other.forward, 0);  // the default pushes some in
+    EXPECT_EQ(other.sideways_turned, 0);
+    EXPECT_EQ(parse_usage_profile("tables_nudged"), UsageProfile::kTablesNudged);
+    EXPECT_EQ(to_string(UsageProfile::kSideways), "sideways");
+    EXPECT_FALSE(parse_usage_profile("pulled back").has_value());
+}
+
+TEST(SceneGenerator, NudgedTablesTakeTheirChairsAlong) {
+    const Scene base = generate_scene({.seed = 5, .usage = UsageProfile::kTablesNudged});
+    int tables_moved = 0;
+    for (int k = 1; k <= 3; ++k) {
+        const Scene s = make_session(base, k);
+        for (std::size_t j = 0; j < base.objects.size(); ++j) {
+            const SceneObject& t = base.objects[j];
+            if (t.cls != ObjectClass::kTable) continue;
+            const Pose2 d = between(t.pose, s.objects[j].pose);
+            if (std::hypot(d.x_m, d.y_m) < 1e-9) continue;
+            ++tables_moved;
+            EXPECT_NEAR(std::abs(d.x_m), std::clamp(std::abs(d.x_m), 0.2, 0.6), 1e-9);
+            EXPECT_NEAR(d.y_m, 0.0, 1e-9);  // along its length
+            // Its chairs keep their place relative to it (up to the chair's own move).
+            for (std::size_t i = 0; i < base.objects.size(); ++i) {
+                if (base.objects[i].table_id != t.id) continue;
+                const Pose2 before = between(t.pose, base.objects[i].pose);
+                const Pose2 after = between(s.objects[j].pose, s.objects[i].pose);
+                EXPECT_LT(std::hypot(after.x_m - before.x_m, after.y_m - before.y_m), 0.5);
+            }
+        }
+    }
+    EXPECT_GT(tables_moved, 0);
+}
+
 TEST(Sequence, RobotDrivesTheRouteWithoutCollisions) {
     const Scene s = generate_scene({.seed = 0, .density = Density::kSparse});
     SequenceParams p;

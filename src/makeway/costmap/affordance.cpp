@@ -23,15 +23,10 @@ Eigen::Vector2d zone_half_extent(const ObjectEstimate& o, const AffordanceParams
     return {hl + (square ? p.table.sides_m : p.table.ends_m), hw + p.table.sides_m};
 }
 
-}  // namespace
-
-std::vector<std::string> AffordanceParams::validate() const {
-    return affordance_table().problems(*this);
-}
-
-double zone_coordinate(const ObjectEstimate& o, const AffordanceParams& p,
-                       const Eigen::Vector2d& p_m) {
-    const Eigen::Vector2d q = to_object_frame(o, p_m).cwiseAbs();
+// The paper's zone coordinate, q in the object frame.
+double hand_drawn_coordinate(const ObjectEstimate& o, const AffordanceParams& p,
+                             const Eigen::Vector2d& q_object) {
+    const Eigen::Vector2d q = q_object.cwiseAbs();
     const Eigen::Vector2d half_object = 0.5 * o.box_world.size_m.head<2>();
     if ((q.array() <= half_object.array()).all()) return 0.0;
     const Eigen::Vector2d half_zone = zone_half_extent(o, p);
@@ -51,6 +46,40 @@ double zone_coordinate(const ObjectEstimate& o, const AffordanceParams& p,
     return std::max(ux, uy);
 }
 
+const ClassZone* learned_zone_of(const ObjectEstimate& o, const AffordanceParams& p) {
+    return p.learned ? p.learned->of(o.cls) : nullptr;
+}
+
+}  // namespace
+
+std::vector<std::string> AffordanceParams::validate() const {
+    std::vector<std::string> out = affordance_table().problems(*this);
+    if (learned) {
+        for (const std::string& m : learned->validate()) out.push_back("zones: " + m);
+    }
+    return out;
+}
+
+double zone_coordinate(const ObjectEstimate& o, const AffordanceParams& p,
+                       const Eigen::Vector2d& p_m) {
+    const Eigen::Vector2d q = to_object_frame(o, p_m);
+    const ClassZone* zone = learned_zone_of(o, p);
+    if (zone == nullptr) return hand_drawn_coordinate(o, p, q);
+    const Eigen::Vector2d half_object = 0.5 * o.box_world.size_m.head<2>();
+    if ((q.cwiseAbs().array() <= half_object.array()).all()) return 0.0;
+    // learned_zone.hpp: the blend of the learned coverage and the hand-drawn zone's.
+    const LearnedZones& l = *p.learned;
+    const double n = zone->observations, n0 = l.prior_strength, tau = l.coverage_threshold;
+    const double u_prior = hand_drawn_coordinate(o, p, q);
+    const double c_prior = u_prior <= 1.0 ? 1.0 - u_prior * (1.0 - tau) : 0.0;
+    if (n + n0 <= 0.0) return u_prior;
+    const double c_learned = n > 0.0 && q.norm() <= learned_reach_m(*zone, l.kernel_m, half_object)
+                                 ? learned_coverage(*zone, l.kernel_m, half_object, q)
+                                 : 0.0;
+    const double c = (n * c_learned + n0 * c_prior) / (n + n0);
+    return std::max(0.0, (1.0 - c) / (1.0 - tau));
+}
+
 std::uint8_t zone_cost(const ObjectEstimate& o, const AffordanceParams& p,
                        const Eigen::Vector2d& p_m) {
     if (o.existence < p.min_existence) return cost::kFree;
@@ -67,7 +96,15 @@ void zone_bounds(const ObjectEstimate& o, const AffordanceParams& p, Eigen::Vect
     const Eigen::Vector2d h = zone_half_extent(o, p);
     const double c = std::abs(std::cos(o.box_world.yaw_rad)),
                  s = std::abs(std::sin(o.box_world.yaw_rad));
-    const Eigen::Vector2d r(c * h.x() + s * h.y(), s * h.x() + c * h.y());
+    Eigen::Vector2d r(c * h.x() + s * h.y(), s * h.x() + c * h.y());
+    if (const ClassZone* zone = learned_zone_of(o, p)) {
+        // The learned coverage vanishes beyond its reach (a circle); the prior's rectangle
+        // stands while it has weight.
+        const double reach =
+            learned_reach_m(*zone, p.learned->kernel_m, 0.5 * o.box_world.size_m.head<2>());
+        const Eigen::Vector2d circle(reach, reach);
+        r = p.learned->prior_strength > 0.0 ? r.cwiseMax(circle) : circle;
+    }
     min_m = o.box_world.centre_m.head<2>() - r;
     max_m = o.box_world.centre_m.head<2>() + r;
 }

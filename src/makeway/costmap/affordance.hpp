@@ -10,12 +10,18 @@
 // Cost: `peak_cost` on the object, falling linearly in the zone coordinate u (0 on the object's
 // footprint, 1 on the zone boundary) to `edge_cost`; 0 outside. All costs are soft (<= 252), so a
 // zone steers the robot but never closes a passage.
+//
+// With `learned` set (learned_zone.hpp, `makeway learn-zones`), a class with a learned zone gets
+// the density of where its footprint went in this building instead, blended with the shape above by
+// the amount of evidence; every function below follows it.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "makeway/common/costmap.hpp"
 #include "makeway/common/object_estimate.hpp"
+#include "makeway/costmap/learned_zone.hpp"
 
 namespace makeway::costmap {
 
@@ -38,6 +44,8 @@ struct AffordanceParams {
     ChairZoneParams chair;
     TableZoneParams table;
     double min_existence = 0.5;  ///< objects less likely than this get no zone
+    /// Learned zones (a zones file); null, or a class without one: the hand-drawn zone.
+    std::shared_ptr<const LearnedZones> learned;
     std::vector<std::string> validate() const;
 };
 

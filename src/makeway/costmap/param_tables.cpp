@@ -41,6 +41,21 @@ const ParamTable<AffordanceParams>& affordance_table() {
     return table;
 }
 
+const ParamTable<LearnedZones>& learned_zones_table() {
+    using L = LearnedZones;
+    static const ParamTable<L> table = [] {
+        ParamTable<L> t;
+        t.add("kernel_m", &L::kernel_m, above(0.0, 1.0),
+              "s: the footprint's edges are smoothed by a Gaussian of this width")
+            .add("coverage_threshold", &L::coverage_threshold, open(0.0, 1.0),
+                 "the zone: where the footprint goes at least this often")
+            .add("prior_strength", &L::prior_strength, closed(0.0, 1e6),
+                 "n0: pseudo-observations of the hand-drawn zone blended in");
+        return t;
+    }();
+    return table;
+}
+
 const ParamTable<InflationParams>& inflation_table() {
     static const ParamTable<InflationParams> table = [] {
         ParamTable<InflationParams> t;

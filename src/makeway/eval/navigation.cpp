@@ -98,7 +98,7 @@ struct Scorer {
         bool risky = false;
         near_chair.resize(truth.size(), false);
         for (std::size_t j = 0; j < truth.size(); ++j) {
-            risky |= costmap::in_affordance_zone(truth[j], params.system.navigator.affordance,
+            risky |= costmap::in_affordance_zone(truth[j], params.scored_zones(),
                                                  c);  // the same zones for every method
             const bool moving = truth[j].velocity_mps.norm() > 0.02;
             const bool near = moving && distance_to_box(truth[j].box_world, c) <
@@ -140,8 +140,8 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
     {
         const pipeline::NavigatorParams& n = params.system.navigator;
         const UnavoidableRisk u = unavoidable_risk(
-            scene, checker, ground_truth_objects(scene, models, 0.0), params.robot, n.affordance,
-            n.waypoint_tolerance_m, n.goal_tolerance_m, params.resolution_m);
+            scene, checker, ground_truth_objects(scene, models, 0.0), params.robot,
+            params.scored_zones(), n.waypoint_tolerance_m, n.goal_tolerance_m, params.resolution_m);
         out.unavoidable_risk_s = u.reachable ? u.risk_time_s : -1.0;
     }
     sim::World world(scene, models);

@@ -67,6 +67,13 @@ struct NavParams {
     std::optional<Costmap> static_map;
     /// Called once per sweep; may throw to abandon the run (the program checks for Ctrl-C here).
     std::function<void()> on_sweep;
+    /// The zones risk time is scored against (`bench nav --risk-zones`); none: the navigator's own
+    /// (system.navigator.affordance, the paper's shapes unless a zones file replaced them: then
+    /// set this to the shapes the methods are compared on).
+    std::optional<costmap::AffordanceParams> risk_zones;
+    const costmap::AffordanceParams& scored_zones() const {
+        return risk_zones ? *risk_zones : system.navigator.affordance;
+    }
 };
 
 /// The map's objects after one keyframe of the online system.

@@ -4,7 +4,9 @@
 // person can read and edit (io/scene_io); everything else in sim/ is computed from this.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "makeway/common/semantic_label.hpp"
@@ -91,10 +93,24 @@ constexpr std::size_t kMaxStructures = 10000, kMaxObjects = 2000, kMaxWalkers = 
 /// Triangles of all environment meshes together (a room scan decimated for a robot's simulator).
 constexpr std::size_t kMaxEnvironmentTriangles = 5000000;
 
+/// How the people of a building leave its furniture between recording sessions (make_session):
+/// each session draws every object's pose anew from its pose in the base scene (session 0).
+///  - default: half the chairs pushed in (up to 0.15 m) or pulled out (up to 0.45 m) along their
+///    axis and turned (12 deg sd); 15 % of the tables shifted (0.25 m sd) with their chairs.
+///  - pulled_back: 70 % of the chairs pulled straight back 0.35-0.9 m (3 deg sd); tables stay.
+///  - sideways: 60 % of the chairs swung out to one side (50-100 deg) and slid 0.25-0.5 m that
+///    way and 0.1-0.35 m back; tables stay.
+///  - tables_nudged: 60 % of the tables slid 0.2-0.6 m along their length either way and turned
+///    (8 deg sd), their chairs with them; 30 % of the chairs as in default.
+enum class UsageProfile { kDefault, kPulledBack, kSideways, kTablesNudged };
+std::optional<UsageProfile> parse_usage_profile(std::string_view name);
+std::string_view to_string(UsageProfile profile);
+
 struct Scene {
     std::string name = "scene";
     std::uint64_t seed = 0;
     std::string density = "medium";
+    UsageProfile usage = UsageProfile::kDefault;  ///< how sessions move the furniture
     Eigen::Vector2d floor_min_m = Eigen::Vector2d(-10, -10);
     Eigen::Vector2d floor_max_m = Eigen::Vector2d(10, 10);
     double ceiling_height_m = 2.8;

@@ -23,15 +23,18 @@ struct SceneGenParams {
     Density density = Density::kMedium;
     Layout layout = Layout::kRandom;  ///< kStudySpace: the paper's room of 12 tables and 22 chairs
     bool people = true;               ///< walkers and chair pushers
-    int max_attempts = 40;            ///< layouts tried before giving up
+    UsageProfile usage = UsageProfile::kDefault;  ///< how make_session moves the furniture
+    int max_attempts = 40;                        ///< layouts tried before giving up
     RobotParams robot;
 };
 
 /// Throws std::runtime_error when no navigable layout was found within max_attempts.
 Scene generate_scene(const SceneGenParams& params);
 
-/// The same building on another recording session: some chairs pushed in or pulled out and
-/// turned, some free chairs moved, some tables shifted with their chairs. Session 0 is `base`.
+/// The same building on another recording session, the furniture moved by the scene's usage
+/// profile (scene.hpp) from where it stands in `base`, which is session 0. Seeded by the scene's
+/// seed and the session; a draw that overlaps objects or blocks the route is drawn again (20
+/// times, then `base`).
 Scene make_session(const Scene& base, int session, const RobotParams& robot = {});
 
 /// Whether the start pose is collision-free and the mission route exists at t = 0.

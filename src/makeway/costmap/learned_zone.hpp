@@ -1,0 +1,68 @@
+#pragma once
+// Affordance zones learned from how the furniture of one building moves (issue 36), in place of the
+// paper's hand-drawn shapes (affordance.hpp). A class's zone is a density over where an object's
+// footprint goes between two observations: weighted motions (dx, dy, dyaw) in the object's frame
+// at the earlier observation, each moving the object's own footprint, smoothed by a Gaussian
+// kernel of `kernel_m` across the footprint's edges:
+//
+//   c_learned(q) = sum_k w_k Phi((l/2 - |x_k|) / s) Phi((w/2 - |y_k|) / s) / sum_k w_k,
+//   (x_k, y_k) = R(-dyaw_k) (q - (dx_k, dy_k)),
+//
+// the probability that point q (object frame) lies under the footprint next time. The hand-drawn
+// zone is the prior, as a coverage of its own (1 on the object falling to `coverage_threshold` at
+// its boundary, 0 outside), and the two are blended by the amount of evidence:
+//
+//   c(q) = (n c_learned(q) + n0 c_prior(q)) / (n + n0),   n = observations, n0 = prior_strength,
+//
+// so a class seen a few times keeps nearly the paper's shape, and with n = 0 the zone and its costs
+// are exactly the paper's. The zone is where c >= coverage_threshold; its coordinate
+// u = (1 - c) / (1 - coverage_threshold) (0 on the object, 1 on the boundary) drives the same cost
+// profile as the hand-drawn zones.
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "makeway/common/object_estimate.hpp"
+
+namespace makeway::costmap {
+
+/// One motion between two observations of an object, in its frame at the earlier one.
+struct ZoneMotion {
+    double dx_m = 0.0, dy_m = 0.0;  ///< forward (the object's +x) and left
+    double dyaw_rad = 0.0;
+    double weight = 1.0;
+};
+
+/// The learned zone of one class.
+struct ClassZone {
+    double observations = 0.0;        ///< n: observed motions behind `motions`
+    std::vector<ZoneMotion> motions;  ///< weighted (binned) motions; weights need not sum to 1
+    /// The median footprint (length, width) of the observed objects, for pictures and the
+    /// benchmark; zero when unknown. Each object's zone uses its own footprint.
+    Eigen::Vector2d typical_size_m = Eigen::Vector2d::Zero();
+};
+
+struct LearnedZones {
+    double kernel_m = 0.05;           ///< s: smoothing across the footprint's edges
+    double coverage_threshold = 0.1;  ///< the zone: where the footprint goes this often
+    double prior_strength = 10.0;     ///< n0: pseudo-observations of the hand-drawn zone
+    std::optional<ClassZone> chair;   ///< none: the hand-drawn zone
+    std::optional<ClassZone> table;
+    std::vector<std::string> validate() const;
+
+    const ClassZone* of(ObjectClass cls) const {
+        const std::optional<ClassZone>& z = cls == ObjectClass::kChair ? chair : table;
+        return z ? &*z : nullptr;
+    }
+};
+
+/// c_learned at q_object for an object of footprint half extents `half_m` (no prior).
+double learned_coverage(const ClassZone& zone, double kernel_m, const Eigen::Vector2d& half_m,
+                        const Eigen::Vector2d& q_object_m);
+
+/// How far from the object's centre c_learned can be non-negligible (the farthest motion plus the
+/// footprint's half diagonal plus 4 kernels) [m].
+double learned_reach_m(const ClassZone& zone, double kernel_m, const Eigen::Vector2d& half_m);
+
+}  // namespace makeway::costmap
