@@ -5,7 +5,7 @@
 //   format: makeway_zones
 //   version: 1
 //   kernel_m: 0.05
-//   coverage_threshold: 0.1
+//   coverage_threshold: 0.03
 //   prior_strength: 10
 //   chair:                      # absent: the hand-drawn zone
 //     observations: 120

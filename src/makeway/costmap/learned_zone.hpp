@@ -44,10 +44,10 @@ struct ClassZone {
 };
 
 struct LearnedZones {
-    double kernel_m = 0.05;           ///< s: smoothing across the footprint's edges
-    double coverage_threshold = 0.1;  ///< the zone: where the footprint goes this often
-    double prior_strength = 10.0;     ///< n0: pseudo-observations of the hand-drawn zone
-    std::optional<ClassZone> chair;   ///< none: the hand-drawn zone
+    double kernel_m = 0.05;            ///< s: smoothing across the footprint's edges
+    double coverage_threshold = 0.03;  ///< the zone: where the footprint goes this often
+    double prior_strength = 10.0;      ///< n0: pseudo-observations of the hand-drawn zone
+    std::optional<ClassZone> chair;    ///< none: the hand-drawn zone
     std::optional<ClassZone> table;
     std::vector<std::string> validate() const;
 
