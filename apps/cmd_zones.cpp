@@ -11,6 +11,7 @@
 #include "io/json_io.hpp"
 #include "io/progress.hpp"
 #include "io/staged_output.hpp"
+#include "io/tracking_io.hpp"
 #include "io/zones_io.hpp"
 #include "makeway/eval/zone_bench.hpp"
 #include "makeway/zones/zone_learning.hpp"
@@ -63,34 +64,92 @@ std::vector<zones::SessionObject> read_labelled_objects(const fs::path& folder, 
     return out;
 }
 
+// The object map of one `makeway run` output (objects/NNNNNN.json per keyframe), as place
+// `place`: objects at least `min_existence` likely.
+std::vector<zones::TrackedObject> read_tracked_objects(const fs::path& folder, int place,
+                                                       double min_existence) {
+    std::vector<zones::TrackedObject> out;
+    for (const fs::path& path : io::frame_files(folder / "objects", "json")) {
+        const io::Json j = io::read_json(path);
+        try {
+            if (!j.is_object() || !j.contains("stamp_s") || !j["stamp_s"].is_number() ||
+                !j.contains("objects") || !j["objects"].is_array())
+                throw io::FormatError("needs 'stamp_s' (a number) and 'objects' (a list)");
+            const double stamp = j["stamp_s"].get<double>();
+            std::size_t index = 0;
+            for (const io::Json& o : j["objects"]) {
+                const std::string where = "objects[" + std::to_string(index++) + "]: ";
+                if (!o.is_object() || !o.contains("id") || !o["id"].is_number_unsigned() ||
+                    !o.contains("class") || !o["class"].is_string())
+                    throw io::FormatError(where + "needs 'id' (a track id) and 'class'");
+                const std::string cls = o["class"].get<std::string>();
+                if (cls != "chair" && cls != "table") continue;
+                if (o.value("existence", 1.0) < min_existence) continue;
+                zones::TrackedObject t;
+                t.place = place;
+                t.track = o["id"].get<std::uint32_t>();
+                t.stamp_s = stamp;
+                t.cls = cls == "chair" ? ObjectClass::kChair : ObjectClass::kTable;
+                try {
+                    t.box_world =
+                        io::box_from_json(o.contains("box_world") ? o["box_world"] : io::Json());
+                } catch (const io::FormatError& e) {
+                    throw io::FormatError(where + "box_world: " + e.what());
+                }
+                out.push_back(t);
+            }
+        } catch (const io::FormatError& e) {
+            throw io::FileError(path.string(), e.what());
+        } catch (const io::Json::exception& e) {
+            throw io::FileError(path.string(), e.what());
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
 struct LearnZonesOptions {
-    std::vector<std::string> labels;
+    std::vector<std::string> labels, tracks;
+    double track_gap_s = 5.0, min_existence = 0.5;
     std::string out, png;
     zones::ZoneLearnParams params;
     bool no_png = false;
 };
 
 int run_learn_zones(const LearnZonesOptions& o) {
+    if (o.labels.empty() && o.tracks.empty()) {
+        print_error("learn-zones: give --labels DIR... and/or --tracks DIR...");
+        return kExitBadInput;
+    }
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<zones::SessionObject> objects;
     for (std::size_t i = 0; i < o.labels.size(); ++i) {
         const auto more = read_labelled_objects(o.labels[i], static_cast<int>(i));
         objects.insert(objects.end(), more.begin(), more.end());
     }
-    const zones::ZoneLearning l = zones::learn_zones(objects, o.params);
+    std::vector<zones::TrackedObject> tracked;
+    for (std::size_t i = 0; i < o.tracks.size(); ++i) {
+        const auto more = read_tracked_objects(o.tracks[i], static_cast<int>(i), o.min_existence);
+        tracked.insert(tracked.end(), more.begin(), more.end());
+    }
+    const zones::ZoneLearning l =
+        zones::learn_zones(objects, o.params, zones::track_motions(tracked, o.track_gap_s));
     std::string header = "makeway learned affordance zones (makeway learn-zones) from " +
-                         std::to_string(o.labels.size()) + " labelled place(s):\n";
-    for (const std::string& d : o.labels) header += "  " + fs::path(d).filename().string() + "\n";
+                         std::to_string(o.labels.size()) + " labelled place(s) and " +
+                         std::to_string(o.tracks.size()) + " tracked drive(s):\n";
+    for (const std::string& d : o.labels)
+        header += "  labels " + fs::path(d).filename().string() + "\n";
+    for (const std::string& d : o.tracks)
+        header += "  tracks " + fs::path(d).filename().string() + "\n";
     char line[256];
     for (const ObjectClass cls : {ObjectClass::kChair, ObjectClass::kTable}) {
         const zones::ClassLearning& c = cls == ObjectClass::kChair ? l.chair : l.table;
         std::snprintf(line, sizeof line,
-                      "%s: %zu observations, %zu motions (both directions of each match), mean "
-                      "match confidence %.2f, %.0f %% moved; %zu never matched, %zu unsure, %zu "
-                      "without a facing\n",
-                      std::string(to_string(cls)).c_str(), c.observations, c.motions,
+                      "%s: %zu observations, %zu motions (both directions of each match; %zu "
+                      "within tracks), mean match confidence %.2f, %.0f %% moved; %zu never "
+                      "matched, %zu unsure, %zu without a facing\n",
+                      std::string(to_string(cls)).c_str(), c.observations, c.motions, c.tracked,
                       c.mean_confidence, 100.0 * c.moved_share, c.unmatched, c.unsure,
                       c.facing_unknown);
         header += line;
@@ -130,9 +189,12 @@ io::Json coverage_json(const eval::ZoneCoverage& c) {
 
 std::string coverage_row(const std::string& what, const eval::ZoneCoverage& c, double cell_m2) {
     char line[320];
-    std::snprintf(line, sizeof line, "| %s | %zu | %.3f | %.3f | %.2fx | %.3f | %.2f | %.2f |\n",
-                  what.c_str(), c.objects, c.hand_drawn(), c.learned_equal_area(),
-                  c.hand_drawn() > 0 ? c.learned_equal_area() / c.hand_drawn() : 0.0, c.learned(),
+    const double miss_hand = 1.0 - c.hand_drawn(), miss_learned = 1.0 - c.learned_equal_area();
+    std::snprintf(line, sizeof line,
+                  "| %s | %zu | %.3f | %.3f | %.2fx | %.2f | %.3f | %.2f | %.2f |\n", what.c_str(),
+                  c.objects, c.hand_drawn(), c.learned_equal_area(),
+                  c.hand_drawn() > 0 ? c.learned_equal_area() / c.hand_drawn() : 0.0,
+                  miss_hand > 0 ? miss_learned / miss_hand : 0.0, c.learned(),
                   c.objects ? cell_m2 * c.hand_drawn_area / static_cast<double>(c.objects) : 0.0,
                   c.objects ? cell_m2 * c.learned_area / static_cast<double>(c.objects) : 0.0);
     return line;
@@ -194,8 +256,10 @@ int run_bench_zones(const BenchZonesOptions& o) {
         std::to_string(p.train_sessions) + " sessions, scored on the next " +
         std::to_string(p.test_sessions) +
         "\n\nCoverage: the share of an object's footprint cells in the later sessions inside the "
-        "zone placed where it stood in the last learned session. Learned (equal area): the learned "
-        "zone cut to the hand-drawn zone's area.\n\n"
+        "zone placed where it stood in the last learned session (footprints scored: objects x "
+        "later "
+        "sessions). Learned (equal area): the learned zone cut to the hand-drawn zone's area; "
+        "missed: the footprint cells outside the zone. Areas: per zone placed.\n\n"
         "| objects | zones | hand-drawn | learned (equal area) | ratio | learned (own threshold) | "
         "hand-drawn area [m^2] | learned area [m^2] |\n| --- | --- | --- | --- | --- | --- | --- | "
         "--- |\n";
@@ -226,8 +290,18 @@ void declare_learn_zones(CommandSpec& c, LearnZonesOptions& o) {
     c.option("--labels", o.labels,
              "makeway label outputs (objects.json: every object of every session of one place); "
              "sessions are compared within a folder, never across")
-        .required()
         .expected(1, -1);
+    c.option("--tracks", o.tracks,
+             "makeway run outputs (objects/ per keyframe): the object map's tracks, each sampled "
+             "every --track-gap-s, its motion between samples (chairs pushed and pulled while the "
+             "robot watched)")
+        .expected(1, -1);
+    c.option("--track-gap-s", o.track_gap_s, "Seconds between a track's samples")
+        .range(0.1, 3600.0)
+        .show_default();
+    c.option("--min-existence", o.min_existence, "Tracked objects less likely are left out")
+        .range(0.0, 1.0)
+        .show_default();
     c.option("--out", o.out, "Zones file to write (YAML; the affordance layer's `--zones`)")
         .required();
     c.option("--png", o.png, "Picture of the zones (default: the zones file with .png)").output();

@@ -94,6 +94,40 @@ TEST(Cli, LearnZonesRefusesWhatIsNotALabelOutput) {
     EXPECT_FALSE(std::filesystem::exists(dir / "z.png"));
 }
 
+TEST(Cli, LearnZonesFromTheObjectMapsTracks) {
+    // A makeway run output: a chair tracked for 30 s at 2 Hz, pulled 0.5 m back at t = 12 s.
+    const auto dir = testing_util::fresh_dir("learn_zones_tracks");
+    std::filesystem::create_directories(dir / "drive" / "objects");
+    for (int k = 0; k < 60; ++k) {
+        const double t = 0.5 * k, x = t >= 12.0 ? -0.5 : 0.0;
+        const io::Json frame = {
+            {"frame", k},
+            {"stamp_s", t},
+            {"objects",
+             {{{"id", 4},
+               {"class", "chair"},
+               {"existence", 0.9},
+               {"box_world",
+                {{"centre_m", {x, 0.0, 0.45}}, {"size_m", {0.5, 0.5, 0.9}}, {"yaw_rad", 0.0}}}}}}};
+        char name[32];
+        std::snprintf(name, sizeof name, "%06d.json", k);
+        io::write_json(dir / "drive" / "objects" / name, frame);
+    }
+    const std::string d = dir.string() + "/";
+    const CliRun r =
+        run_makeway("learn-zones --tracks " + d + "drive --no-png --out " + d + "zones.yaml", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // Samples at 0, 5, ..., 25 s: five motions, one of them the pull.
+    EXPECT_NE(r.out.find("chair: 0 observations, 5 motions (both directions of each match; 5 "
+                         "within tracks)"),
+              std::string::npos)
+        << r.out;
+    EXPECT_FALSE(std::filesystem::exists(dir / "zones.png"));
+    const CliRun none = run_makeway("learn-zones --out " + d + "z.yaml", dir);
+    EXPECT_EQ(none.exit_code, 2);
+    EXPECT_EQ(lines(none.err), 1u) << none.err;
+}
+
 TEST(Cli, BenchZonesWritesItsTableAndTheZonesItLearned) {
     const auto dir = testing_util::fresh_dir("bench_zones");
     const CliRun r = run_makeway(

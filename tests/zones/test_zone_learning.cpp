@@ -218,6 +218,39 @@ TEST(ZoneLearning, SymmetryHalvesAChairsWeightAcrossItsAxis) {
     EXPECT_EQ(bin_motions({{0.4, 0.1, 0.0}}, ObjectClass::kTable, params).motions.size(), 1u);
 }
 
+TEST(ZoneLearning, TracksGiveTheMotionsSeenWithinASession) {
+    // A chair tracked at 1 Hz for 20 s, pulled 0.4 m back at t = 8 s; a table that stands. Sampled
+    // every 5 s (t = 0, 5, 10, 15): motions 0, -0.4, 0 for the chair, three of nothing for the
+    // table.
+    std::vector<TrackedObject> seen;
+    const ObjectEstimate chair = chair_at(1.0, 1.0, M_PI_2);
+    for (int t = 0; t < 20; ++t) {
+        const Eigen::Vector2d p = beside(chair, t >= 8 ? -0.4 : 0.0, 0.0);
+        seen.push_back({0, 7, static_cast<double>(t), ObjectClass::kChair,
+                        chair_at(p.x(), p.y(), M_PI_2).box_world});
+        seen.push_back({0,
+                        9,
+                        static_cast<double>(t),
+                        ObjectClass::kTable,
+                        {{3.0, 3.0, 0.37}, {1.6, 0.8, 0.74}, 0.0}});
+    }
+    const std::vector<ObjectMotion> motions = track_motions(seen, 5.0);
+    ASSERT_EQ(motions.size(), 6u);
+    std::vector<double> chair_dx;
+    for (const ObjectMotion& m : motions)
+        if (m.cls == ObjectClass::kChair) chair_dx.push_back(m.motion.x_m);
+    ASSERT_EQ(chair_dx.size(), 3u);
+    EXPECT_NEAR(chair_dx[0], 0.0, 1e-12);
+    EXPECT_NEAR(chair_dx[1], -0.4, 1e-12);
+    EXPECT_NEAR(chair_dx[2], 0.0, 1e-12);
+    // They join the sessions' matches as observations of their own.
+    const ZoneLearning l = learn_zones({}, {}, motions);
+    EXPECT_EQ(l.chair.motions, 3u);
+    EXPECT_EQ(l.chair.tracked, 3u);
+    EXPECT_DOUBLE_EQ(l.zones.chair->observations, 3.0);
+    EXPECT_NEAR(l.chair.moved_share, 1.0 / 3.0, 1e-12);
+}
+
 TEST(ZoneLearning, BadParamsAreRefusedWithEveryProblem) {
     ZoneLearnParams p;
     p.match_gate_m = -1.0;

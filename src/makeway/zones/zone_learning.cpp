@@ -133,7 +133,30 @@ costmap::ClassZone bin_motions(const std::vector<Pose2>& motions, ObjectClass cl
     return zone;
 }
 
-ZoneLearning learn_zones(const std::vector<SessionObject>& objects, const ZoneLearnParams& p) {
+std::vector<ObjectMotion> track_motions(const std::vector<TrackedObject>& objects, double gap_s) {
+    std::map<std::pair<int, std::uint32_t>, std::vector<const TrackedObject*>> tracks;
+    for (const TrackedObject& o : objects) tracks[{o.place, o.track}].push_back(&o);
+    std::vector<ObjectMotion> out;
+    for (auto& [key, seen] : tracks) {
+        std::stable_sort(seen.begin(), seen.end(),
+                         [](const auto* a, const auto* b) { return a->stamp_s < b->stamp_s; });
+        const TrackedObject* last = nullptr;
+        int index = 0;
+        for (const TrackedObject* o : seen) {
+            if (last != nullptr && o->stamp_s - last->stamp_s < gap_s) continue;
+            if (last != nullptr && o->cls == last->cls) {
+                out.push_back({o->cls, key.first, index, index + 1,
+                               between(pose_of(last->box_world), pose_of(o->box_world)), 1.0});
+                ++index;
+            }
+            last = o;
+        }
+    }
+    return out;
+}
+
+ZoneLearning learn_zones(const std::vector<SessionObject>& objects, const ZoneLearnParams& p,
+                         const std::vector<ObjectMotion>& more) {
     throw_if_problems(p.validate(), "zone learning");
     ZoneLearning out;
     out.zones = p.zone;
@@ -175,12 +198,20 @@ ZoneLearning learn_zones(const std::vector<SessionObject>& objects, const ZoneLe
                 static_cast<std::size_t>(std::count(flags.begin(), flags.end(), false));
     }
 
+    const std::size_t matched = out.motions.size();
+    for (const ObjectMotion& m : more) {
+        if (m.confidence >= p.min_match_confidence) out.motions.push_back(m);
+    }
     for (ObjectClass cls : {ObjectClass::kChair, ObjectClass::kTable}) {
         std::vector<Pose2> motions;
         double confidence = 0.0;
+        double observations = 0.0;  // both directions of a match are one observation
         std::size_t moved = 0;
-        for (const ObjectMotion& m : out.motions) {
+        for (std::size_t k = 0; k < out.motions.size(); ++k) {
+            const ObjectMotion& m = out.motions[k];
             if (m.cls != cls) continue;
+            observations += k < matched && p.both_directions ? 0.5 : 1.0;
+            of(out, cls).tracked += k >= matched;
             motions.push_back(m.motion);
             confidence += m.confidence;
             moved += std::hypot(m.motion.x_m, m.motion.y_m) > 0.05 ||
@@ -199,8 +230,7 @@ ZoneLearning learn_zones(const std::vector<SessionObject>& objects, const ZoneLe
             widths.push_back(o.box_world.size_m.y());
         }
         zone.typical_size_m = {median(lengths), median(widths)};
-        // Both directions of a match are one observation of how far the object goes.
-        if (p.both_directions) zone.observations = 0.5 * static_cast<double>(motions.size());
+        zone.observations = observations;
         (cls == ObjectClass::kChair ? out.zones.chair : out.zones.table) = std::move(zone);
     }
     return out;

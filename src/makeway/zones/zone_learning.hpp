@@ -59,7 +59,8 @@ struct ObjectMotion {
 
 struct ClassLearning {
     std::size_t observations = 0;    ///< object observations of the class (all sessions)
-    std::size_t motions = 0;         ///< matched pairs used
+    std::size_t motions = 0;         ///< motions used (both directions of each match, and tracked)
+    std::size_t tracked = 0;         ///< of them: within-session motions of tracks
     std::size_t unmatched = 0;       ///< observations left without a partner in some other session
     std::size_t unsure = 0;          ///< matches below min_match_confidence
     std::size_t facing_unknown = 0;  ///< chairs left out: no CAD facing
@@ -73,10 +74,27 @@ struct ZoneLearning {
     costmap::LearnedZones zones;
 };
 
+/// One object of the object map at one time (`makeway run`'s objects/ frames): the tracker's
+/// identity, no matching needed.
+struct TrackedObject {
+    int place = 0;  ///< one recorded drive
+    std::uint32_t track = 0;
+    double stamp_s = 0.0;
+    ObjectClass cls = ObjectClass::kChair;
+    OrientedBox box_world;
+};
+
+/// Within-session motions of tracked objects: each track sampled every `gap_s` (its first
+/// observation, then the first one at least gap_s later, ...), one motion per pair of consecutive
+/// samples (confidence 1: the tracker's identity). A chair pushed and pulled while the robot
+/// watches moves between samples; one that stands gives motions of (nearly) nothing.
+std::vector<ObjectMotion> track_motions(const std::vector<TrackedObject>& objects, double gap_s);
+
 /// Every pair of distinct sessions of a place (both ways unless params.both_directions is false):
-/// the motion from one observation to the next of the same object. Throws std::invalid_argument for
-/// invalid params.
-ZoneLearning learn_zones(const std::vector<SessionObject>& objects, const ZoneLearnParams& params);
+/// the motion from one observation to the next of the same object; `more` (track_motions) joins
+/// them as they are. Throws std::invalid_argument for invalid params.
+ZoneLearning learn_zones(const std::vector<SessionObject>& objects, const ZoneLearnParams& params,
+                         const std::vector<ObjectMotion>& more = {});
 
 /// The weighted, binned motions of a list of motions (symmetrised as the params say).
 costmap::ClassZone bin_motions(const std::vector<Pose2>& motions, ObjectClass cls,
