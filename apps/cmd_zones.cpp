@@ -168,6 +168,7 @@ int run_learn_zones(const LearnZonesOptions& o) {
 struct BenchZonesOptions {
     eval::ZoneBenchParams params;
     std::string usage = "pulled_back";
+    std::string source = "truth";
     std::string out = "out/bench_zones";
 };
 
@@ -205,6 +206,7 @@ std::string coverage_row(const std::string& what, const eval::ZoneCoverage& c, d
 int run_bench_zones(const BenchZonesOptions& o) {
     eval::ZoneBenchParams p = o.params;
     p.usage = *sim::parse_usage_profile(o.usage);
+    p.source = o.source == "labels" ? eval::ZoneSource::kLabels : eval::ZoneSource::kTruth;
     p.hand_drawn = io::Config{}.affordance;
     io::ProgressBar bar("bench zones", static_cast<std::size_t>(p.scenes));
     const auto t0 = std::chrono::steady_clock::now();
@@ -226,7 +228,8 @@ int run_bench_zones(const BenchZonesOptions& o) {
                           {"chair_mean_match_confidence", s.chair_learning.mean_confidence},
                           {"table_motions", s.table_learning.motions},
                           {"table_mean_match_confidence", s.table_learning.mean_confidence},
-                          {"learn_seconds", s.learn_seconds}});
+                          {"learn_seconds", s.learn_seconds},
+                          {"label_seconds", s.label_seconds}});
     }
     const auto scale_areas = [&](io::Json j) {
         j["hand_drawn_area_m2_per_zone"] = j["hand_drawn_area_m2_per_zone"].get<double>() * cell_m2;
@@ -237,6 +240,7 @@ int run_bench_zones(const BenchZonesOptions& o) {
         for (const char* k : {"chair", "table", "chair_moved", "table_moved"})
             s[k] = scale_areas(s[k]);
     const io::Json j = {{"usage", o.usage},
+                        {"source", o.source},
                         {"scenes", p.scenes},
                         {"seed", p.seed},
                         {"train_sessions", p.train_sessions},
@@ -248,14 +252,16 @@ int run_bench_zones(const BenchZonesOptions& o) {
                         {"chair_moved", scale_areas(coverage_json(r.total.chair_moved))},
                         {"table_moved", scale_areas(coverage_json(r.total.table_moved))},
                         {"learn_seconds", r.total.learn_seconds},
+                        {"label_seconds", r.total.label_seconds},
                         {"seconds", seconds},
                         {"per_scene", scenes}};
     std::string table =
         "# Learned vs hand-drawn affordance zones: usage " + o.usage + ", " +
         std::to_string(p.scenes) + " scenes, seed " + std::to_string(p.seed) + ", learned from " +
         std::to_string(p.train_sessions) + " sessions, scored on the next " +
-        std::to_string(p.test_sessions) +
-        "\n\nCoverage: the share of an object's footprint cells in the later sessions inside the "
+        std::to_string(p.test_sessions) + " (" +
+        (o.source == "labels" ? "auto-labelled drives" : "the sessions' boxes, identities hidden") +
+        ")\n\nCoverage: the share of an object's footprint cells in the later sessions inside the "
         "zone placed where it stood in the last learned session (footprints scored: objects x "
         "later "
         "sessions). Learned (equal area): the learned zone cut to the hand-drawn zone's area; "
@@ -338,6 +344,15 @@ void declare_bench_zones(CommandSpec& c, BenchZonesOptions& o) {
         .range(1, 10000)
         .show_default();
     c.option("--seed", o.params.seed, "Seed of the first scene (scene i: seed + i)").show_default();
+    c.option("--source", o.source,
+             "What the zones are learned from: truth (the sessions' boxes, identities hidden) or "
+             "labels (each training session driven and auto-labelled with the scene's CAD "
+             "models, as makeway label does: minutes per scene)")
+        .choices({"truth", "labels"})
+        .show_default();
+    c.option("--max-sweeps", o.params.max_sweeps, "Sweeps per labelled session at most")
+        .range(10, 100000)
+        .show_default();
     c.option("--usage", o.usage, "How the scenes' people move the furniture between sessions")
         .choices({"default", "pulled_back", "sideways", "tables_nudged"})
         .show_default();

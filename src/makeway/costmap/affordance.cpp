@@ -71,11 +71,9 @@ double zone_coordinate(const ObjectEstimate& o, const AffordanceParams& p,
     const LearnedZones& l = *p.learned;
     const double n = zone->observations, n0 = l.prior_strength, tau = l.coverage_threshold;
     const double u_prior = hand_drawn_coordinate(o, p, q);
+    if (n <= 0.0) return u_prior;  // nothing learned: the paper's zone, to the bit
     const double c_prior = u_prior <= 1.0 ? 1.0 - u_prior * (1.0 - tau) : 0.0;
-    if (n + n0 <= 0.0) return u_prior;
-    const double c_learned = n > 0.0 && q.norm() <= learned_reach_m(*zone, l.kernel_m, half_object)
-                                 ? learned_coverage(*zone, l.kernel_m, half_object, q)
-                                 : 0.0;
+    const double c_learned = l.coverage(o.cls, half_object, q);
     const double c = (n * c_learned + n0 * c_prior) / (n + n0);
     return std::max(0.0, (1.0 - c) / (1.0 - tau));
 }

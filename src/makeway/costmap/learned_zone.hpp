@@ -19,6 +19,7 @@
 // u = (1 - c) / (1 - coverage_threshold) (0 on the object, 1 on the boundary) drives the same cost
 // profile as the hand-drawn zones.
 #include <Eigen/Core>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,7 +44,17 @@ struct ClassZone {
     Eigen::Vector2d typical_size_m = Eigen::Vector2d::Zero();
 };
 
+/// Rasters of c_learned per class and footprint (learned_zone.cpp), so that a costmap rewriting
+/// zones every keyframe does not sum every motion for every cell.
+class CoverageCache;
+
 struct LearnedZones {
+    LearnedZones();
+    ~LearnedZones();
+    /// A copy starts with an empty cache (its zones may be changed before it is used).
+    LearnedZones(const LearnedZones& other);
+    LearnedZones& operator=(const LearnedZones& other);
+
     double kernel_m = 0.05;            ///< s: smoothing across the footprint's edges
     double coverage_threshold = 0.03;  ///< the zone: where the footprint goes this often
     double prior_strength = 10.0;      ///< n0: pseudo-observations of the hand-drawn zone
@@ -55,6 +66,16 @@ struct LearnedZones {
         const std::optional<ClassZone>& z = cls == ObjectClass::kChair ? chair : table;
         return z ? &*z : nullptr;
     }
+
+    /// c_learned of `cls` (which must have a zone) at q_object for footprint half extents half_m,
+    /// from a raster of 2 cm cells computed once per class and footprint (half extents rounded to
+    /// 5 mm), bilinear between cells: within 0.01 of learned_coverage(). Thread-safe. The zones
+    /// must not be changed once this was called.
+    double coverage(ObjectClass cls, const Eigen::Vector2d& half_m,
+                    const Eigen::Vector2d& q_object_m) const;
+
+  private:
+    std::shared_ptr<CoverageCache> cache_;
 };
 
 /// c_learned at q_object for an object of footprint half extents `half_m` (no prior).

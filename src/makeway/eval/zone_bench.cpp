@@ -9,8 +9,11 @@
 #include <mutex>
 
 #include "makeway/common/angles.hpp"
+#include "makeway/eval/label_bench.hpp"
+#include "makeway/eval/scene_cad.hpp"
 #include "makeway/sim/scene_dynamics.hpp"
 #include "makeway/sim/scene_generator.hpp"
+#include "makeway/sim/sequence.hpp"
 
 namespace makeway::eval {
 namespace {
@@ -99,6 +102,25 @@ std::vector<zones::SessionObject> session_objects(const std::vector<ObjectEstima
     return out;
 }
 
+// The training sessions as the robot labels them: driven, auto-labelled with the scene's CAD
+// models (eval/label_bench.hpp's drive), every object with a class.
+std::vector<zones::SessionObject> labelled_sessions(const sim::Scene& base, int sessions,
+                                                    int max_sweeps, std::uint64_t seed, int place) {
+    labelling::LabelParams lp;
+    lp.system.T_base_sensor = sim::SequenceParams{}.robot.T_robot_sensor();
+    labelling::Labeller labeller(lp);
+    drive_sessions(labeller, base, sessions, max_sweeps, seed, sim::OdometryNoiseParams{});
+    const verification::CadLibrary library = scene_cad_library(base);
+    const labelling::LabelResult labels = labeller.finish(&library);
+    std::vector<zones::SessionObject> out;
+    for (const labelling::LabelledWorldObject& o : labels.objects) {
+        if (!o.cls) continue;
+        out.push_back(
+            {place, o.session, *o.cls, o.box_world, o.class_source == "cad" && !o.model.empty()});
+    }
+    return out;
+}
+
 }  // namespace
 
 ZoneCoverage& ZoneCoverage::operator+=(const ZoneCoverage& o) {
@@ -150,7 +172,7 @@ ZoneBenchResult run_zone_bench(const ZoneBenchParams& p,
     std::vector<std::vector<zones::SessionObject>> training(out.scenes.size());
     std::mutex mutex;
     std::size_t done = 0;
-    tbb::parallel_for(0, p.scenes, [&](int i) {
+    const auto one_scene = [&](int i) {
         sim::SceneGenParams g;
         g.seed = p.seed + static_cast<std::uint64_t>(i);
         g.density = i % 2 == 0 ? sim::Density::kMedium : sim::Density::kDense;
@@ -163,9 +185,17 @@ ZoneBenchResult run_zone_bench(const ZoneBenchParams& p,
         ZoneBenchScene& r = out.scenes[static_cast<std::size_t>(i)];
         r.name = base.name;
         std::vector<zones::SessionObject>& train = training[static_cast<std::size_t>(i)];
-        for (int s = 0; s < p.train_sessions; ++s) {
-            const auto more = session_objects(sessions[s], i, s);
-            train.insert(train.end(), more.begin(), more.end());
+        if (p.source == ZoneSource::kLabels) {
+            const auto t_label = std::chrono::steady_clock::now();
+            train = labelled_sessions(base, p.train_sessions, p.max_sweeps,
+                                      p.seed * 7919 + static_cast<std::uint64_t>(i) * 31, i);
+            r.label_seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t_label).count();
+        } else {
+            for (int s = 0; s < p.train_sessions; ++s) {
+                const auto more = session_objects(sessions[s], i, s);
+                train.insert(train.end(), more.begin(), more.end());
+            }
         }
         const auto t0 = std::chrono::steady_clock::now();
         const zones::ZoneLearning l = zones::learn_zones(train, p.learn);
@@ -188,7 +218,13 @@ ZoneBenchResult run_zone_bench(const ZoneBenchParams& p,
         }
         std::lock_guard<std::mutex> lock(mutex);
         if (progress) progress(++done, out.scenes.size());
-    });
+    };
+    // The labeller spreads its own work over the cores: its scenes go one after the other.
+    if (p.source == ZoneSource::kLabels) {
+        for (int i = 0; i < p.scenes; ++i) one_scene(i);
+    } else {
+        tbb::parallel_for(0, p.scenes, one_scene);
+    }
     std::vector<zones::SessionObject> all;
     for (const auto& t : training) all.insert(all.end(), t.begin(), t.end());
     out.pooled = zones::learn_zones(all, p.learn).zones;
@@ -199,6 +235,7 @@ ZoneBenchResult run_zone_bench(const ZoneBenchParams& p,
         out.total.chair_moved += s.chair_moved;
         out.total.table_moved += s.table_moved;
         out.total.learn_seconds += s.learn_seconds;
+        out.total.label_seconds += s.label_seconds;
         for (const auto& [from, to] : {std::pair{&s.chair_learning, &out.total.chair_learning},
                                        std::pair{&s.table_learning, &out.total.table_learning}}) {
             const double n = static_cast<double>(to->motions + from->motions);

@@ -19,8 +19,15 @@
 
 namespace makeway::eval {
 
+/// What the zones are learned from: the sessions' true boxes (identities hidden), or the robot's
+/// own labelling of its drives (`makeway label`: each training session driven, the labeller with
+/// the scene's CAD models), as a user would learn them.
+enum class ZoneSource { kTruth, kLabels };
+
 struct ZoneBenchParams {
     int scenes = 6;
+    ZoneSource source = ZoneSource::kTruth;
+    int max_sweeps = 400;  ///< per labelled session
     std::uint64_t seed = 0;
     sim::UsageProfile usage = sim::UsageProfile::kPulledBack;
     int train_sessions = 5;  ///< K
@@ -50,6 +57,7 @@ struct ZoneBenchScene {
     ZoneCoverage chair_moved, table_moved;  ///< only where the object moved (> 5 cm or 5 deg)
     zones::ClassLearning chair_learning, table_learning;
     double learn_seconds = 0.0;
+    double label_seconds = 0.0;  ///< driving and labelling the training sessions (labels only)
 };
 
 struct ZoneBenchResult {
