@@ -189,15 +189,17 @@ io::Json coverage_json(const eval::ZoneCoverage& c) {
 }
 
 std::string coverage_row(const std::string& what, const eval::ZoneCoverage& c, double cell_m2) {
-    char line[320];
+    if (c.objects == 0) return "| " + what + " | 0 | - | - | - | - | - | - | - |\n";
+    char miss[32] = "-";  // nothing missed by the hand-drawn zones: no ratio
     const double miss_hand = 1.0 - c.hand_drawn(), miss_learned = 1.0 - c.learned_equal_area();
+    if (miss_hand > 1e-9) std::snprintf(miss, sizeof miss, "%.2f", miss_learned / miss_hand);
+    char line[320];
     std::snprintf(line, sizeof line,
-                  "| %s | %zu | %.3f | %.3f | %.2fx | %.2f | %.3f | %.2f | %.2f |\n", what.c_str(),
+                  "| %s | %zu | %.3f | %.3f | %.2fx | %s | %.3f | %.2f | %.2f |\n", what.c_str(),
                   c.objects, c.hand_drawn(), c.learned_equal_area(),
-                  c.hand_drawn() > 0 ? c.learned_equal_area() / c.hand_drawn() : 0.0,
-                  miss_hand > 0 ? miss_learned / miss_hand : 0.0, c.learned(),
-                  c.objects ? cell_m2 * c.hand_drawn_area / static_cast<double>(c.objects) : 0.0,
-                  c.objects ? cell_m2 * c.learned_area / static_cast<double>(c.objects) : 0.0);
+                  c.learned_equal_area() / c.hand_drawn(), miss, c.learned(),
+                  cell_m2 * c.hand_drawn_area / static_cast<double>(c.objects),
+                  cell_m2 * c.learned_area / static_cast<double>(c.objects));
     return line;
 }
 
@@ -263,12 +265,11 @@ int run_bench_zones(const BenchZonesOptions& o) {
         (o.source == "labels" ? "auto-labelled drives" : "the sessions' boxes, identities hidden") +
         ")\n\nCoverage: the share of an object's footprint cells in the later sessions inside the "
         "zone placed where it stood in the last learned session (footprints scored: objects x "
-        "later "
-        "sessions). Learned (equal area): the learned zone cut to the hand-drawn zone's area; "
-        "missed: the footprint cells outside the zone. Areas: per zone placed.\n\n"
-        "| objects | zones | hand-drawn | learned (equal area) | ratio | learned (own threshold) | "
-        "hand-drawn area [m^2] | learned area [m^2] |\n| --- | --- | --- | --- | --- | --- | --- | "
-        "--- |\n";
+        "later sessions). Learned (equal area): the learned zone cut to the hand-drawn zone's "
+        "area; missed: the footprint cells outside the zone. Areas: per zone placed.\n\n"
+        "| objects | footprints scored | hand-drawn | learned (equal area) | ratio | missed, "
+        "learned / hand-drawn | learned (own threshold) | hand-drawn area [m^2] | learned area "
+        "[m^2] |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
     table += coverage_row("chairs", r.total.chair, cell_m2);
     table += coverage_row("tables", r.total.table, cell_m2);
     table += coverage_row("chairs that moved", r.total.chair_moved, cell_m2);

@@ -72,10 +72,12 @@ double zone_coordinate(const ObjectEstimate& o, const AffordanceParams& p,
     const double n = zone->observations, n0 = l.prior_strength, tau = l.coverage_threshold;
     const double u_prior = hand_drawn_coordinate(o, p, q);
     if (n <= 0.0) return u_prior;  // nothing learned: the paper's zone, to the bit
-    const double c_prior = u_prior <= 1.0 ? 1.0 - u_prior * (1.0 - tau) : 0.0;
+    // u = ln c / ln tau: coverages span decades (a chair goes 0.5 m back one time in three, 1 m
+    // one time in thirty), so costs follow their logarithm; the prior's coverage is tau^u.
+    const double c_prior = u_prior <= 1.0 ? std::pow(tau, u_prior) : 0.0;
     const double c_learned = l.coverage(o.cls, half_object, q);
     const double c = (n * c_learned + n0 * c_prior) / (n + n0);
-    return std::max(0.0, (1.0 - c) / (1.0 - tau));
+    return c >= 1.0 ? 0.0 : c <= 0.0 ? 2.0 : std::log(c) / std::log(tau);
 }
 
 std::uint8_t zone_cost(const ObjectEstimate& o, const AffordanceParams& p,

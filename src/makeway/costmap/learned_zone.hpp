@@ -9,15 +9,17 @@
 //   (x_k, y_k) = R(-dyaw_k) (q - (dx_k, dy_k)),
 //
 // the probability that point q (object frame) lies under the footprint next time. The hand-drawn
-// zone is the prior, as a coverage of its own (1 on the object falling to `coverage_threshold` at
-// its boundary, 0 outside), and the two are blended by the amount of evidence:
+// zone is the prior, as a coverage of its own (tau^u for the paper's zone coordinate u: 1 on the
+// object, tau = coverage_threshold on its boundary, 0 outside), and the two are blended by the
+// amount of evidence:
 //
 //   c(q) = (n c_learned(q) + n0 c_prior(q)) / (n + n0),   n = observations, n0 = prior_strength,
 //
 // so a class seen a few times keeps nearly the paper's shape, and with n = 0 the zone and its costs
-// are exactly the paper's. The zone is where c >= coverage_threshold; its coordinate
-// u = (1 - c) / (1 - coverage_threshold) (0 on the object, 1 on the boundary) drives the same cost
-// profile as the hand-drawn zones.
+// are exactly the paper's. The zone is where c >= tau; its coordinate u = ln c / ln tau (0 on the
+// object, 1 on the boundary) drives the same cost profile as the hand-drawn zones. Logarithmic,
+// because coverages span decades: with u linear in c, most of a zone (c of a few per cent) would
+// cost nearly the edge cost and steer the robot hardly at all.
 #include <Eigen/Core>
 #include <memory>
 #include <optional>
