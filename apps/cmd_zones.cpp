@@ -315,14 +315,14 @@ void declare_learn_zones(CommandSpec& c, LearnZonesOptions& o) {
     c.flag("--no-png", o.no_png, "Write no picture");
     c.option("--match-gate-m", o.params.match_gate_m,
              "Objects of two sessions farther apart are not the same object")
-        .range(0.01, 20.0)
+        .range(0.01, 5.0)
         .show_default();
     c.option("--min-confidence", o.params.min_match_confidence,
              "Matches less sure than this are left out (1 - d / d_next)")
         .range(0.0, 1.0)
         .show_default();
     c.option("--kernel-m", o.params.zone.kernel_m, "Smoothing of the footprint's edges")
-        .range(0.001, 1.0)
+        .range(0.001, 0.5)
         .show_default();
     c.option("--coverage-threshold", o.params.zone.coverage_threshold,
              "The zone: where the footprint goes at least this often")

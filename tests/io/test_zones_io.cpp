@@ -51,6 +51,8 @@ TEST(ZonesFile, BadFilesAreOneLineNamingTheFileAndTheProblem) {
         {head + "chair: {observations: 3, motions: [[0, 0, 0, -1]]}\n", "weight >= 0"},
         {head + "chair: {observations: 3, motions: [[.nan, 0, 0, 1]]}\n", "finite"},
         {head + "chair: {observations: 3, motions: 4}\n", "motions must be a list"},
+        {head + "chair: {observations: 1, motions: [[6, 0, 0, 1]]}\n", "<= 5 m"},
+        {head + "kernel_m: 0.8\n", "kernel_m"},
         {head + "chair: {observations: 3}\n", "has observations but no motions"},
         {head + "chair: {observations: 1, motions: [[0, 0, 0, 1]], colour: red}\n",
          "chair.colour: unknown key"},

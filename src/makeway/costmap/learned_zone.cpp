@@ -86,7 +86,7 @@ class CoverageCache {
         for (std::size_t k = 0; k < sum.size(); ++k)
             r->c[k] = total > 0.0 ? static_cast<float>(sum[k] / total) : 0.0f;
         std::lock_guard<std::mutex> lock(mutex_);
-        if (rasters_.size() >= 512) rasters_.clear();  // footprints seen lately are few
+        if (rasters_.size() >= 64) rasters_.clear();  // footprints seen lately are few
         return rasters_.emplace(key, std::move(r)).first->second;
     }
 
@@ -131,13 +131,15 @@ std::vector<std::string> LearnedZones::validate() const {
             out.push_back(std::string(name) + ".observations must be a number >= 0");
         if (z->observations > 0.0 && z->motions.empty())
             out.push_back(std::string(name) + " has observations but no motions");
+        if (z->motions.size() > 100000)
+            out.push_back(std::string(name) + ".motions: at most 100000 (they are binned)");
         double total = 0.0;
         for (const ZoneMotion& m : z->motions) {
             const bool finite = std::isfinite(m.dx_m) && std::isfinite(m.dy_m) &&
                                 std::isfinite(m.dyaw_rad) && std::isfinite(m.weight);
-            if (!finite || m.weight < 0.0 || std::hypot(m.dx_m, m.dy_m) > 20.0) {
+            if (!finite || m.weight < 0.0 || std::hypot(m.dx_m, m.dy_m) > kMaxZoneMotion_m) {
                 out.push_back(std::string(name) +
-                              ".motions: each needs |(dx, dy)| <= 20 m and a weight >= 0, all "
+                              ".motions: each needs |(dx, dy)| <= 5 m and a weight >= 0, all "
                               "finite");
                 return;
             }

@@ -30,6 +30,10 @@
 
 namespace makeway::costmap {
 
+/// Motions farther than this are not a zone's (a zones file with one is refused; learning leaves
+/// them out): a zone is where furniture goes next to where it stands, and it bounds the rasters.
+constexpr double kMaxZoneMotion_m = 5.0;
+
 /// One motion between two observations of an object, in its frame at the earlier one.
 struct ZoneMotion {
     double dx_m = 0.0, dy_m = 0.0;  ///< forward (the object's +x) and left

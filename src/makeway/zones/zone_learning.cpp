@@ -91,8 +91,9 @@ std::vector<std::string> ZoneLearnParams::validate() const {
     const auto check = [&](bool ok, const char* message) {
         if (!ok) out.push_back(message);
     };
-    check(std::isfinite(match_gate_m) && match_gate_m > 0.0 && match_gate_m <= 20.0,
-          "match_gate_m must be in (0, 20]");
+    check(std::isfinite(match_gate_m) && match_gate_m > 0.0 &&
+              match_gate_m <= costmap::kMaxZoneMotion_m,
+          "match_gate_m must be in (0, 5]");
     check(std::isfinite(max_size_difference_m) && max_size_difference_m >= 0.0,
           "max_size_difference_m must be >= 0");
     check(min_match_confidence >= 0.0 && min_match_confidence <= 1.0,
@@ -112,6 +113,7 @@ costmap::ClassZone bin_motions(const std::vector<Pose2>& motions, ObjectClass cl
               std::lround(fold_half_turn(dyaw) / bin_rad)}] += w;
     };
     for (const Pose2& m : motions) {
+        if (!(std::hypot(m.x_m, m.y_m) <= costmap::kMaxZoneMotion_m)) continue;
         if (!p.symmetric) {
             add(m.x_m, m.y_m, m.yaw_rad, 1.0);
         } else if (cls == ObjectClass::kChair) {
