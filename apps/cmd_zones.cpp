@@ -322,7 +322,7 @@ void declare_learn_zones(CommandSpec& c, LearnZonesOptions& o) {
         .range(0.0, 1.0)
         .show_default();
     c.option("--kernel-m", o.params.zone.kernel_m, "Smoothing of the footprint's edges")
-        .range(0.001, 0.5)
+        .range(0.001, 0.2)
         .show_default();
     c.option("--coverage-threshold", o.params.zone.coverage_threshold,
              "The zone: where the footprint goes at least this often")

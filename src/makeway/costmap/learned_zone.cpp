@@ -131,8 +131,8 @@ std::vector<std::string> LearnedZones::validate() const {
             out.push_back(std::string(name) + ".observations must be a number >= 0");
         if (z->observations > 0.0 && z->motions.empty())
             out.push_back(std::string(name) + " has observations but no motions");
-        if (z->motions.size() > 100000)
-            out.push_back(std::string(name) + ".motions: at most 100000 (they are binned)");
+        if (z->motions.size() > 20000)  // binned motions of one class: hundreds
+            out.push_back(std::string(name) + ".motions: at most 20000 (bin them coarser)");
         double total = 0.0;
         for (const ZoneMotion& m : z->motions) {
             const bool finite = std::isfinite(m.dx_m) && std::isfinite(m.dy_m) &&

@@ -61,7 +61,7 @@ struct LearnedZones {
     LearnedZones(const LearnedZones& other);
     LearnedZones& operator=(const LearnedZones& other);
 
-    double kernel_m = 0.05;            ///< s: smoothing across the footprint's edges
+    double kernel_m = 0.05;            ///< s: smoothing across the footprint's edges (<= 0.2)
     double coverage_threshold = 0.03;  ///< the zone: where the footprint goes this often
     double prior_strength = 10.0;      ///< n0: pseudo-observations of the hand-drawn zone
     std::optional<ClassZone> chair;    ///< none: the hand-drawn zone

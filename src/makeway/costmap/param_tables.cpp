@@ -45,7 +45,7 @@ const ParamTable<LearnedZones>& learned_zones_table() {
     using L = LearnedZones;
     static const ParamTable<L> table = [] {
         ParamTable<L> t;
-        t.add("kernel_m", &L::kernel_m, above(0.0, 0.5),
+        t.add("kernel_m", &L::kernel_m, above(0.0, 0.2),
               "s: the footprint's edges are smoothed by a Gaussian of this width")
             .add("coverage_threshold", &L::coverage_threshold, open(0.0, 1.0),
                  "the zone: where the footprint goes at least this often")
