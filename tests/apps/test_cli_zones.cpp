@@ -68,7 +68,17 @@ TEST(Cli, LearnZonesFromLabelledSessionsAndDriveWithThem) {
     chair.box_world = {{0.0, 0.0, 0.45}, {0.5, 0.5, 0.9}, 0.0};
     EXPECT_LE(costmap::zone_coordinate(chair, a, {-0.6, 0.0}), 1.0);
     EXPECT_LE(costmap::zone_coordinate(chair, a, {0.6, 0.0}), 1.0);
-    // The navigator takes the file; a damaged one is one line and exit 2 before anything runs.
+    // The navigator plans with the file: the ground-truth method reaches the goal untouched.
+    ASSERT_EQ(run_makeway("scene --seed 0 --density sparse --out " + d + "s.yaml", dir).exit_code,
+              0);
+    const CliRun nav = run_makeway("navigate --scene " + d + "s.yaml --method gt-perc --zones " +
+                                       d + "zones.yaml --time-limit 90 --out " + d + "nav_ok",
+                                   dir);
+    ASSERT_EQ(nav.exit_code, 0) << nav.err;
+    const io::Json run = io::read_json(dir / "nav_ok" / "run.json");
+    EXPECT_TRUE(run["success"].get<bool>()) << run["failure"];
+    EXPECT_EQ(run["collisions"].get<int>(), 0);
+    // A damaged file is one line and exit 2 before anything runs.
     std::ofstream(dir / "bad.yaml") << "format: makeway_zones\nversion: 1\nprior_strength: -2\n";
     const CliRun bad = run_makeway(
         "navigate --scene " + d + "missing.yaml --zones " + d + "bad.yaml --out " + d + "nav", dir);
