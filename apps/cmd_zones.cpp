@@ -351,6 +351,12 @@ void declare_bench_zones(CommandSpec& c, BenchZonesOptions& o) {
              "models, as makeway label does: minutes per scene)")
         .choices({"truth", "labels"})
         .show_default();
+    c.option("--track-gap-s", o.params.track_gap_s,
+             "With --source truth: also learn from each training session's objects tracked over "
+             "its first minute (the chair pushers at work), sampled every this many seconds, as "
+             "learn-zones --tracks does (0: sessions alone)")
+        .range(0.0, 60.0)
+        .show_default();
     c.option("--max-sweeps", o.params.max_sweeps, "Sweeps per labelled session at most")
         .range(10, 100000)
         .show_default();

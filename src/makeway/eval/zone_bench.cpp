@@ -170,6 +170,7 @@ ZoneBenchResult run_zone_bench(const ZoneBenchParams& p,
     ZoneBenchResult out;
     out.scenes.resize(static_cast<std::size_t>(p.scenes));
     std::vector<std::vector<zones::SessionObject>> training(out.scenes.size());
+    std::vector<std::vector<zones::ObjectMotion>> training_tracks(out.scenes.size());
     std::mutex mutex;
     std::size_t done = 0;
     const auto one_scene = [&](int i) {
@@ -197,8 +198,21 @@ ZoneBenchResult run_zone_bench(const ZoneBenchParams& p,
                 train.insert(train.end(), more.begin(), more.end());
             }
         }
+        std::vector<zones::ObjectMotion> tracked;
+        if (p.track_gap_s > 0.0 && p.source == ZoneSource::kTruth) {
+            std::vector<zones::TrackedObject> seen;
+            for (int s = 0; s < p.train_sessions; ++s) {
+                const sim::Scene session = sim::make_session(base, s, g.robot);
+                for (double t = 0.0; t <= p.track_duration_s; t += 1.0) {
+                    for (const ObjectEstimate& o : sim::object_estimates_at(session, models, t))
+                        seen.push_back({i * 1000 + s, o.id, t, o.cls, o.box_world});
+                }
+            }
+            tracked = zones::track_motions(seen, p.track_gap_s);
+        }
         const auto t0 = std::chrono::steady_clock::now();
-        const zones::ZoneLearning l = zones::learn_zones(train, p.learn);
+        const zones::ZoneLearning l = zones::learn_zones(train, p.learn, tracked);
+        training_tracks[static_cast<std::size_t>(i)] = tracked;
         r.learn_seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         r.chair_learning = l.chair;
@@ -227,7 +241,9 @@ ZoneBenchResult run_zone_bench(const ZoneBenchParams& p,
     }
     std::vector<zones::SessionObject> all;
     for (const auto& t : training) all.insert(all.end(), t.begin(), t.end());
-    out.pooled = zones::learn_zones(all, p.learn).zones;
+    std::vector<zones::ObjectMotion> all_tracks;
+    for (const auto& t : training_tracks) all_tracks.insert(all_tracks.end(), t.begin(), t.end());
+    out.pooled = zones::learn_zones(all, p.learn, all_tracks).zones;
     out.total.name = "total";
     for (const ZoneBenchScene& s : out.scenes) {
         out.total.chair += s.chair;

@@ -28,6 +28,11 @@ struct ZoneBenchParams {
     int scenes = 6;
     ZoneSource source = ZoneSource::kTruth;
     int max_sweeps = 400;  ///< per labelled session
+    /// > 0 (truth only): each training session's objects also tracked over its first
+    /// `track_duration_s` (the scenes' chair pushers at work) and sampled every this many seconds,
+    /// as `learn-zones --tracks` learns from a drive's object map; 0: sessions alone.
+    double track_gap_s = 0.0;
+    double track_duration_s = 60.0;
     std::uint64_t seed = 0;
     sim::UsageProfile usage = sim::UsageProfile::kPulledBack;
     int train_sessions = 5;  ///< K
