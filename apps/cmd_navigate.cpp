@@ -78,11 +78,6 @@ void use_zones(eval::NavParams& params, const std::shared_ptr<const costmap::Lea
     params.system.navigator.affordance.learned = zones;
 }
 
-std::shared_ptr<const costmap::LearnedZones> read_zones_file(const std::string& path) {
-    if (path.empty()) return nullptr;
-    return std::make_shared<const costmap::LearnedZones>(io::read_zones(path));
-}
-
 }  // namespace
 
 int run_navigate(const NavigateOptions& options) {
@@ -92,7 +87,7 @@ int run_navigate(const NavigateOptions& options) {
     eval::NavParams params = nav_params(cfg);
     params.seed = options.seed;
     params.time_limit_s = options.time_limit_s;
-    use_zones(params, read_zones_file(options.zones));
+    use_zones(params, io::load_zones(options.zones));
     if (!options.map.empty()) params.static_map = io::read_map_server(options.map);
     std::optional<perception::Detector> detector;
     if (options.method == "ours") detector = load_detector(options.model);
@@ -221,7 +216,7 @@ int run_bench_nav(const BenchNavOptions& options) {
         scenes.push_back(sim::generate_scene(g));
         io::write_scene(out / "scenes" / (scenes.back().name + ".yaml"), scenes.back());
     }
-    const auto zones = read_zones_file(options.zones);
+    const auto zones = io::load_zones(options.zones);
     // truth-profile: where each scene's furniture goes by its usage profile (eval/zone_bench.hpp).
     std::vector<std::shared_ptr<const costmap::LearnedZones>> truth_zones(scenes.size());
     if (options.risk_zones == "truth-profile") {
@@ -460,7 +455,7 @@ void declare_bench_nav(CommandSpec& c, BenchNavOptions& nav_o) {
     c.option("--usage", nav_o.usage,
              "How the generated scenes' people move their furniture (their usage profile; "
              "README): default, pulled_back, sideways, tables_nudged")
-        .choices({"default", "pulled_back", "sideways", "tables_nudged"})
+        .choices(sim::usage_profile_names())
         .show_default();
     c.option("--zones", nav_o.zones,
              "Learned zones (makeway learn-zones, bench zones) for every method's affordance "

@@ -111,9 +111,7 @@ int run_run(const RunOptions& o) {
     }
     pipeline::SystemParams params =
         io::online_system_params(cfg, extrinsics ? &*extrinsics : nullptr);
-    if (!o.zones.empty())
-        params.navigator.affordance.learned =
-            std::make_shared<const costmap::LearnedZones>(io::read_zones(o.zones));
+    params.navigator.affordance.learned = io::load_zones(o.zones);
     const bool external = !o.poses.empty();
     if (external)
         params.lidar_odometry_enabled = false;  // the given poses are the pose: no odometry runs

@@ -116,7 +116,7 @@ void declare_scene(CommandSpec& c, SceneOptions& o) {
              "How people leave the furniture between sessions (README, usage profiles): "
              "default, pulled_back (chairs pulled straight back), sideways (chairs swung out to "
              "a side), tables_nudged (tables slid along their length with their chairs)")
-        .choices({"default", "pulled_back", "sideways", "tables_nudged"})
+        .choices(sim::usage_profile_names())
         .show_default();
     c.option("--out", o.out, "Scene file (.yaml)").show_default();
 }

@@ -70,38 +70,10 @@ std::vector<zones::TrackedObject> read_tracked_objects(const fs::path& folder, i
                                                        double min_existence) {
     std::vector<zones::TrackedObject> out;
     for (const fs::path& path : io::frame_files(folder / "objects", "json")) {
-        const io::Json j = io::read_json(path);
-        try {
-            if (!j.is_object() || !j.contains("stamp_s") || !j["stamp_s"].is_number() ||
-                !j.contains("objects") || !j["objects"].is_array())
-                throw io::FormatError("needs 'stamp_s' (a number) and 'objects' (a list)");
-            const double stamp = j["stamp_s"].get<double>();
-            std::size_t index = 0;
-            for (const io::Json& o : j["objects"]) {
-                const std::string where = "objects[" + std::to_string(index++) + "]: ";
-                if (!o.is_object() || !o.contains("id") || !o["id"].is_number_unsigned() ||
-                    !o.contains("class") || !o["class"].is_string())
-                    throw io::FormatError(where + "needs 'id' (a track id) and 'class'");
-                const std::string cls = o["class"].get<std::string>();
-                if (cls != "chair" && cls != "table") continue;
-                if (o.value("existence", 1.0) < min_existence) continue;
-                zones::TrackedObject t;
-                t.place = place;
-                t.track = o["id"].get<std::uint32_t>();
-                t.stamp_s = stamp;
-                t.cls = cls == "chair" ? ObjectClass::kChair : ObjectClass::kTable;
-                try {
-                    t.box_world =
-                        io::box_from_json(o.contains("box_world") ? o["box_world"] : io::Json());
-                } catch (const io::FormatError& e) {
-                    throw io::FormatError(where + "box_world: " + e.what());
-                }
-                out.push_back(t);
-            }
-        } catch (const io::FormatError& e) {
-            throw io::FileError(path.string(), e.what());
-        } catch (const io::Json::exception& e) {
-            throw io::FileError(path.string(), e.what());
+        double stamp = 0.0;
+        for (const ObjectEstimate& o : io::read_object_frame(path, &stamp)) {
+            if (o.existence >= min_existence)
+                out.push_back({place, o.id, stamp, o.cls, o.box_world});
         }
     }
     return out;
@@ -361,7 +333,7 @@ void declare_bench_zones(CommandSpec& c, BenchZonesOptions& o) {
         .range(10, 100000)
         .show_default();
     c.option("--usage", o.usage, "How the scenes' people move the furniture between sessions")
-        .choices({"default", "pulled_back", "sideways", "tables_nudged"})
+        .choices(sim::usage_profile_names())
         .show_default();
     c.option("--train-sessions", o.params.train_sessions, "Sessions learned from (K)")
         .range(2, 100)

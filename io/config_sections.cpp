@@ -97,9 +97,7 @@ void read_param(YamlSection& s, const char* key, const BoundParam& p) {
     } else if (const auto* c = std::get_if<ParamChoice>(&p.ref)) {
         const YAML::Node v = s.take(key);
         if (!v || v.IsNull()) return;
-        std::string list;
-        for (std::size_t k = 0; k < c->names.size(); ++k)
-            list += (k == 0 ? "" : k + 1 == c->names.size() ? " or " : ", ") + c->names[k];
+        const std::string list = join_alternatives(c->names);
         std::vector<std::string> chosen;
         bool ok = c->list ? v.IsSequence() && v.size() > 0 : v.IsScalar();
         std::string got;

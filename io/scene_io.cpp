@@ -169,7 +169,7 @@ sim::Scene parse_scene(std::string_view yaml_text, const std::filesystem::path& 
         if (const auto u = sim::parse_usage_profile(usage))
             scene.usage = *u;
         else
-            s.problem("usage must be default, pulled_back, sideways or tables_nudged (got '" +
+            s.problem("usage must be " + join_alternatives(sim::usage_profile_names()) + " (got '" +
                       usage + "')");
     }
     s.read("ceiling_height_m", scene.ceiling_height_m);

@@ -299,10 +299,15 @@ Json to_json(const DetectionFrame& f) {
     return j;
 }
 
-std::vector<ObjectEstimate> read_object_frame(const std::filesystem::path& path) {
+std::vector<ObjectEstimate> read_object_frame(const std::filesystem::path& path, double* stamp_s) {
     const Json j = read_json(path);
     if (!j.is_object() || !j.contains("objects") || !j["objects"].is_array())
         throw FileError(path.string(), "expected {\"objects\": [...]}");
+    if (stamp_s != nullptr) {
+        if (!j.contains("stamp_s") || !j["stamp_s"].is_number())
+            throw FileError(path.string(), "'stamp_s' must be a number");
+        *stamp_s = j["stamp_s"].get<double>();
+    }
     std::vector<ObjectEstimate> out;
     for (std::size_t i = 0; i < j["objects"].size(); ++i) {
         const Json& o = j["objects"][i];

@@ -67,8 +67,10 @@ DetectionFrame parse_detection_frame(std::string_view text, bool any_score = fal
 DetectionFrame read_detection_frame(const std::filesystem::path& path, bool any_score = false);
 Json to_json(const DetectionFrame& frame);
 
-/// Objects of one frame (tracks or ground truth).
-std::vector<ObjectEstimate> read_object_frame(const std::filesystem::path& path);
+/// Objects of one frame (tracks or ground truth). With `stamp_s`, the frame's `stamp_s` is
+/// required too and written there.
+std::vector<ObjectEstimate> read_object_frame(const std::filesystem::path& path,
+                                              double* stamp_s = nullptr);
 Json objects_to_json(int frame, double stamp_s, const std::vector<ObjectEstimate>& objects);
 
 /// The frame files of a folder (*.json or *.txt), sorted by name; throws FileError when none.

@@ -92,6 +92,11 @@ costmap::LearnedZones read_zones(const std::filesystem::path& path) {
     return z;
 }
 
+std::shared_ptr<const costmap::LearnedZones> load_zones(const std::filesystem::path& path) {
+    if (path.empty()) return nullptr;
+    return std::make_shared<const costmap::LearnedZones>(read_zones(path));
+}
+
 void write_zones(const std::filesystem::path& path, const costmap::LearnedZones& zones,
                  const std::string& header) {
     YAML::Emitter out;

@@ -24,6 +24,9 @@ namespace makeway::io {
 
 /// Throws FileError naming the file and every problem (one line).
 costmap::LearnedZones read_zones(const std::filesystem::path& path);
+/// read_zones() as an affordance layer holds it (AffordanceParams::learned); null for an empty
+/// path (no zones file given: the hand-drawn zones).
+std::shared_ptr<const costmap::LearnedZones> load_zones(const std::filesystem::path& path);
 
 /// Written atomically; `header` (may be empty) becomes comment lines at the top.
 void write_zones(const std::filesystem::path& path, const costmap::LearnedZones& zones,

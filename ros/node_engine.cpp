@@ -59,9 +59,7 @@ pipeline::SystemParams node_system_params(const NodeSettings& s) {
     const io::Config config = io::load_config(s.config);
     pipeline::SystemParams p =
         io::online_system_params(config, s.T_base_sensor ? &*s.T_base_sensor : nullptr);
-    if (!s.zones.empty())
-        p.navigator.affordance.learned =
-            std::make_shared<const costmap::LearnedZones>(io::read_zones(s.zones));
+    p.navigator.affordance.learned = io::load_zones(s.zones);
     return p;
 }
 

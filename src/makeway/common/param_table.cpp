@@ -28,6 +28,13 @@ std::string join_problems(const std::vector<std::string>& problems) {
     return msg;
 }
 
+std::string join_alternatives(const std::vector<std::string>& names) {
+    std::string list;
+    for (std::size_t k = 0; k < names.size(); ++k)
+        list += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
+    return list;
+}
+
 void throw_if_problems(const std::vector<std::string>& problems, const std::string& what) {
     if (!problems.empty())
         throw std::invalid_argument((what.empty() ? std::string() : what + ": ") +

@@ -53,6 +53,8 @@ using ParamRef = std::variant<double*, int*, std::uint32_t*, std::uint64_t*, boo
 
 /// "a" for one problem, "3 problems: a; b; c" for several: one line, every problem.
 std::string join_problems(const std::vector<std::string>& problems);
+/// "a, b or c": the admitted names of a choice, for messages.
+std::string join_alternatives(const std::vector<std::string>& names);
 /// Throws std::invalid_argument(`what` + ": " + join_problems(problems)) unless there are none
 /// (an empty `what`: the problems alone).
 void throw_if_problems(const std::vector<std::string>& problems, const std::string& what = {});

@@ -16,6 +16,17 @@ double normal_cdf(double z) { return 0.5 * std::erfc(-z * M_SQRT1_2); }
 
 constexpr double kRasterCell_m = 0.02, kSizeStep_m = 0.005;
 
+// One motion's smoothed footprint at q (object frame), c = cos(dyaw), sn = sin(dyaw): the term of
+// c_learned without its weight; 0 beyond 4 kernels past the footprint's edges (the factor is below
+// 3e-5 there).
+double footprint_term(const ZoneMotion& m, double c, double sn, const Eigen::Vector2d& half,
+                      double s, const Eigen::Vector2d& q) {
+    const double dx = q.x() - m.dx_m, dy = q.y() - m.dy_m;
+    const double x = std::abs(c * dx + sn * dy), y = std::abs(-sn * dx + c * dy);
+    if (x > half.x() + 4.0 * s || y > half.y() + 4.0 * s) return 0.0;
+    return normal_cdf((half.x() - x) / s) * normal_cdf((half.y() - y) / s);
+}
+
 // c_learned on a square grid around the object centre, cell centres at origin + cell (i + 1/2).
 struct CoverageRaster {
     Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();
@@ -63,22 +74,18 @@ class CoverageCache {
             const Eigen::Vector2d grown = half + Eigen::Vector2d::Constant(4.0 * s);
             const double ex = std::abs(c) * grown.x() + std::abs(sn) * grown.y(),
                          ey = std::abs(sn) * grown.x() + std::abs(c) * grown.y();
-            const auto cell_of = [&](double v) {
-                return static_cast<int>(std::floor((v - r->origin_m.x()) / kRasterCell_m));
+            const auto cell_of = [&](double v, int axis) {
+                return static_cast<int>(std::floor((v - r->origin_m[axis]) / kRasterCell_m));
             };
-            const int x0 = std::max(0, cell_of(m.dx_m - ex)),
-                      x1 = std::min(r->n - 1, cell_of(m.dx_m + ex)),
-                      y0 = std::max(0, cell_of(m.dy_m - ey)),
-                      y1 = std::min(r->n - 1, cell_of(m.dy_m + ey));
+            const int x0 = std::max(0, cell_of(m.dx_m - ex, 0)),
+                      x1 = std::min(r->n - 1, cell_of(m.dx_m + ex, 0)),
+                      y0 = std::max(0, cell_of(m.dy_m - ey, 1)),
+                      y1 = std::min(r->n - 1, cell_of(m.dy_m + ey, 1));
             for (int j = y0; j <= y1; ++j) {
                 for (int i = x0; i <= x1; ++i) {
                     const Eigen::Vector2d q =
                         r->origin_m + kRasterCell_m * Eigen::Vector2d(i + 0.5, j + 0.5);
-                    const double dx = q.x() - m.dx_m, dy = q.y() - m.dy_m;
-                    const double x = std::abs(c * dx + sn * dy), y = std::abs(-sn * dx + c * dy);
-                    if (x > grown.x() || y > grown.y()) continue;
-                    sum[j * r->n + i] +=
-                        m.weight * normal_cdf((half.x() - x) / s) * normal_cdf((half.y() - y) / s);
+                    sum[j * r->n + i] += m.weight * footprint_term(m, c, sn, half, s, q);
                 }
             }
         }
@@ -95,32 +102,13 @@ class CoverageCache {
     std::map<std::tuple<int, long, long>, std::shared_ptr<const CoverageRaster>> rasters_;
 };
 
-LearnedZones::LearnedZones() : cache_(std::make_shared<CoverageCache>()) {}
-LearnedZones::~LearnedZones() = default;
-LearnedZones::LearnedZones(const LearnedZones& o)
-    : kernel_m(o.kernel_m),
-      coverage_threshold(o.coverage_threshold),
-      prior_strength(o.prior_strength),
-      chair(o.chair),
-      table(o.table),
-      cache_(std::make_shared<CoverageCache>()) {}
-LearnedZones& LearnedZones::operator=(const LearnedZones& o) {
-    if (this != &o) {
-        kernel_m = o.kernel_m;
-        coverage_threshold = o.coverage_threshold;
-        prior_strength = o.prior_strength;
-        chair = o.chair;
-        table = o.table;
-        cache_ = std::make_shared<CoverageCache>();
-    }
-    return *this;
-}
+LearnedZones::FreshCache::FreshCache() : cache(std::make_shared<CoverageCache>()) {}
 
 double LearnedZones::coverage(ObjectClass cls, const Eigen::Vector2d& half_m,
                               const Eigen::Vector2d& q_object_m) const {
     const ClassZone* zone = of(cls);
     if (zone == nullptr) return 0.0;
-    return cache_->get(cls, *zone, kernel_m, half_m)->at(q_object_m);
+    return cache_.cache->get(cls, *zone, kernel_m, half_m)->at(q_object_m);
 }
 
 std::vector<std::string> LearnedZones::validate() const {
@@ -159,12 +147,8 @@ double learned_coverage(const ClassZone& zone, double kernel_m, const Eigen::Vec
     const double s = std::max(kernel_m, 1e-4);
     for (const ZoneMotion& m : zone.motions) {
         total += m.weight;
-        const double dx = q.x() - m.dx_m, dy = q.y() - m.dy_m;
-        const double c = std::cos(m.dyaw_rad), sn = std::sin(m.dyaw_rad);
-        const double x = std::abs(c * dx + sn * dy), y = std::abs(-sn * dx + c * dy);
-        // Beyond 4 kernels outside the footprint the factor is below 3e-5: skip the erfc.
-        if (x > half_m.x() + 4.0 * s || y > half_m.y() + 4.0 * s) continue;
-        sum += m.weight * normal_cdf((half_m.x() - x) / s) * normal_cdf((half_m.y() - y) / s);
+        sum +=
+            m.weight * footprint_term(m, std::cos(m.dyaw_rad), std::sin(m.dyaw_rad), half_m, s, q);
     }
     return total > 0.0 ? sum / total : 0.0;
 }

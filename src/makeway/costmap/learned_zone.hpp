@@ -55,12 +55,6 @@ struct ClassZone {
 class CoverageCache;
 
 struct LearnedZones {
-    LearnedZones();
-    ~LearnedZones();
-    /// A copy starts with an empty cache (its zones may be changed before it is used).
-    LearnedZones(const LearnedZones& other);
-    LearnedZones& operator=(const LearnedZones& other);
-
     double kernel_m = 0.05;            ///< s: smoothing across the footprint's edges (<= 0.2)
     double coverage_threshold = 0.03;  ///< the zone: where the footprint goes this often
     double prior_strength = 10.0;      ///< n0: pseudo-observations of the hand-drawn zone
@@ -81,7 +75,17 @@ struct LearnedZones {
                     const Eigen::Vector2d& q_object_m) const;
 
   private:
-    std::shared_ptr<CoverageCache> cache_;
+    /// A copy of the zones starts with an empty cache (its zones may be changed before use).
+    struct FreshCache {
+        FreshCache();
+        FreshCache(const FreshCache&) : FreshCache() {}
+        FreshCache& operator=(const FreshCache&) {
+            cache = FreshCache().cache;
+            return *this;
+        }
+        std::shared_ptr<CoverageCache> cache;  ///< never null (no moves: a move copies)
+    };
+    FreshCache cache_;
 };
 
 /// c_learned at q_object for an object of footprint half extents `half_m` (no prior).

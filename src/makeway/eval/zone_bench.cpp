@@ -23,14 +23,6 @@ std::vector<ObjectEstimate> objects_of(const sim::Scene& scene,
     return sim::object_estimates_at(scene, models, 0.0);
 }
 
-// Whether the footprint of `box` covers p (the box's height aside).
-bool covers(const OrientedBox& box, const Eigen::Vector2d& p) {
-    const Eigen::Vector2d d = p - box.centre_m.head<2>();
-    const double c = std::cos(box.yaw_rad), s = std::sin(box.yaw_rad);
-    return std::abs(c * d.x() + s * d.y()) <= 0.5 * box.size_m.x() &&
-           std::abs(-s * d.x() + c * d.y()) <= 0.5 * box.size_m.y();
-}
-
 bool moved(const ObjectEstimate& a, const ObjectEstimate& b) {
     return (a.box_world.centre_m.head<2>() - b.box_world.centre_m.head<2>()).norm() > 0.05 ||
            std::abs(angle_diff(a.box_world.yaw_rad, b.box_world.yaw_rad)) > deg_to_rad(5.0);
@@ -79,7 +71,8 @@ void score_object(const ObjectEstimate& at, const std::vector<ObjectEstimate>& l
         ZoneCoverage c;
         for (int y = 0; y < h; ++y) {
             for (int x = 0; x < w; ++x) {
-                if (!covers(o.box_world, centre(x, y))) continue;
+                const Eigen::Vector2d q = centre(x, y);
+                if (!o.box_world.contains({q.x(), q.y(), o.box_world.centre_m.z()})) continue;
                 c.truth_cells += 1.0;
                 c.in_hand_drawn += u_hand[y * w + x] <= 1.0;
                 c.in_learned_equal_area += u_learned[y * w + x] <= cut;

@@ -103,6 +103,8 @@ constexpr std::size_t kMaxEnvironmentTriangles = 5000000;
 ///  - tables_nudged: 60 % of the tables slid 0.2-0.6 m along their length either way and turned
 ///    (8 deg sd), their chairs with them; 30 % of the chairs as in default.
 enum class UsageProfile { kDefault, kPulledBack, kSideways, kTablesNudged };
+/// The profiles' names, in the enum's order (scene files, --usage).
+const std::vector<std::string>& usage_profile_names();
 std::optional<UsageProfile> parse_usage_profile(std::string_view name);
 std::string_view to_string(UsageProfile profile);
 
