@@ -160,7 +160,7 @@ TEST(ZoneLearning, FewObservationsKeepThePaperShapeNoneGiveItExactly) {
     // and no longer forward.
     const auto pulled = [&](int n) {
         costmap::LearnedZones z;
-        z.chair = costmap::ClassZone{static_cast<double>(n), {{-0.8, 0.0, 0.0, 1.0}}, {}};
+        z.chair = costmap::ClassZone{static_cast<double>(n), {{-0.8, 0.0, 0.0, 1.0}}};
         AffordanceParams a;
         a.learned = std::make_shared<const costmap::LearnedZones>(z);
         return a;
