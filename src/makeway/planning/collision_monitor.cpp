@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "makeway/common/angles.hpp"
@@ -15,6 +16,12 @@ namespace {
 // Returns of one sweep are thinned to one per cell of this size: the zones' paddings are several
 // cells, so nothing the robot could touch is lost, and the memory stays a few thousand points.
 constexpr double kThinCell_m = 0.03;
+
+// A cell's key in a hash set (unsigned: no shift of a negative index).
+std::int64_t cell_key(std::int64_t ix, std::int64_t iy) {
+    return static_cast<std::int64_t>((static_cast<std::uint64_t>(ix) << 32) ^
+                                     (static_cast<std::uint64_t>(iy) & 0xffffffffULL));
+}
 
 // The pose after following (v, w) for u seconds from the origin (exact arc).
 Pose2 along_arc(double v, double w, double u) {
@@ -59,9 +66,67 @@ std::vector<std::string> CollisionMonitorParams::validate() const {
         p.push_back("body top must be above its ground clearance");
     if (!(max_acc_mps2 > 0.0 && max_ang_acc_radps2 > 0.0)) p.push_back("accelerations must be > 0");
     if (!(max_v_mps > 0.0 && max_w_radps > 0.0)) p.push_back("top speeds must be > 0");
+    if (!(bridge_gap_m < footprint_width_m))
+        p.push_back(
+            "bridge_gap_m must be below footprint_width_m (a gap the robot fits through "
+            "would close)");
     if (!(sensor_height_m >= 0.0 && sensor_height_m <= 5.0))
         p.push_back("sensor_height_m must be in [0, 5]");
     return p;
+}
+
+std::vector<Eigen::Vector2d> bridge_gaps(const std::vector<Eigen::Vector2d>& pts, double gap_m,
+                                         double step_m) {
+    std::vector<Eigen::Vector2d> out;
+    if (!(gap_m > 2.0 * step_m) || !(step_m > 0.0) || pts.size() < 2) return out;
+    auto cell = [step_m](const Eigen::Vector2d& q) {
+        return cell_key(static_cast<std::int64_t>(std::floor(q.x() / step_m)),
+                        static_cast<std::int64_t>(std::floor(q.y() / step_m)));
+    };
+    auto around = [&](const Eigen::Vector2d& q, const std::unordered_set<std::int64_t>& cells) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            for (int dy = -1; dy <= 1; ++dy) {
+                if (cells.count(cell(q + step_m * Eigen::Vector2d(dx, dy)))) return true;
+            }
+        }
+        return false;
+    };
+    std::unordered_set<std::int64_t> occupied;  // the returns' own cells: the gap test
+    for (const Eigen::Vector2d& q : pts) occupied.insert(cell(q));
+    std::unordered_set<std::int64_t> filled = occupied;  // and the points added: no duplicates
+    // Pairs from neighbouring cells gap_m wide only (each return meets the few near it).
+    auto bucket_of = [gap_m](const Eigen::Vector2d& q) {
+        return std::pair<std::int64_t, std::int64_t>(
+            static_cast<std::int64_t>(std::floor(q.x() / gap_m)),
+            static_cast<std::int64_t>(std::floor(q.y() / gap_m)));
+    };
+    std::unordered_map<std::int64_t, std::vector<std::size_t>> buckets;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        const auto [bx, by] = bucket_of(pts[i]);
+        buckets[cell_key(bx, by)].push_back(i);
+    }
+    const double min2 = 4.0 * step_m * step_m, max2 = gap_m * gap_m;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        const auto [bx, by] = bucket_of(pts[i]);
+        for (std::int64_t dx = -1; dx <= 1; ++dx) {
+            for (std::int64_t dy = -1; dy <= 1; ++dy) {
+                const auto b = buckets.find(cell_key(bx + dx, by + dy));
+                if (b == buckets.end()) continue;
+                for (const std::size_t j : b->second) {
+                    if (j <= i) continue;  // each pair once
+                    const Eigen::Vector2d d = pts[j] - pts[i];
+                    const double n2 = d.squaredNorm();
+                    if (n2 <= min2 || n2 > max2 || around(pts[i] + 0.5 * d, occupied)) continue;
+                    const int n = static_cast<int>(std::ceil(std::sqrt(n2) / step_m));
+                    for (int k = 1; k < n; ++k) {
+                        const Eigen::Vector2d q = pts[i] + d * (static_cast<double>(k) / n);
+                        if (filled.insert(cell(q)).second) out.push_back(q);
+                    }
+                }
+            }
+        }
+    }
+    return out;
 }
 
 CollisionMonitor::CollisionMonitor(const CollisionMonitorParams& params)
@@ -231,11 +296,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     if (in.points_world != nullptr) {
         std::unordered_set<std::int64_t> seen;
         std::vector<std::int64_t> cells;
-        auto key_of = [](std::int64_t ix,
-                         std::int64_t iy) {  // unsigned: no shift of a negative value
-            return static_cast<std::int64_t>((static_cast<std::uint64_t>(ix) << 32) ^
-                                             (static_cast<std::uint64_t>(iy) & 0xffffffffULL));
-        };
+        const auto key_of = cell_key;
         const double r2 = params_.max_range_m * params_.max_range_m;
         struct Candidate {
             std::size_t index;  ///< into pts
@@ -436,6 +497,23 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
                     age.push_back(0.0);
                 }
             }
+        }
+    }
+
+    // Narrow gaps between still returns near the robot, closed (the chair seat between its back's
+    // posts). Near: what a corner can reach within a second at top speed and the gap beyond it.
+    if (params_.bridge_gap_m > 0.0) {
+        const double near_m =
+            0.5 * std::hypot(params_.footprint_length_m, params_.footprint_width_m) +
+            params_.max_v_mps + params_.bridge_gap_m;
+        std::vector<Eigen::Vector2d> still;
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+            if (dynamic[i] == 0 && pts[i].squaredNorm() <= near_m * near_m) still.push_back(pts[i]);
+        }
+        for (const Eigen::Vector2d& q : bridge_gaps(still, params_.bridge_gap_m, kThinCell_m)) {
+            pts.push_back(q);
+            dynamic.push_back(0);
+            age.push_back(0.0);
         }
     }
 

@@ -64,6 +64,13 @@
 // into the cells it just left, which are not new). Off by default: chairs people push become
 // movers too, and the robot waits for them (README).
 //
+// Gaps: a surface seen edge-on returns nothing (a chair's seat at the sensor's height, between
+// the two posts of its back, which do return): a robot turning beside the chair sweeps a corner
+// into the gap between the posts. Between two still returns at most bridge_gap_m apart (less than
+// the footprint's width: nothing the robot fits through) with no return around the middle, the
+// segment counts as returns (bridge_gaps). A robot already beside such a segment may still move
+// away from it, like from any return.
+//
 // Recovery: when the monitor has held the robot (stop, or approach below min_scale) for
 // recovery_after_s, it backs up (straight, backup_distance_m at backup_speed_mps) if the sweep
 // shows that space free, else turns on the spot (rotate_angle_rad, the free side first); the
@@ -143,6 +150,9 @@ struct CollisionMonitorParams {
                                       ///< in the last blind_memory_s)
     double object_lead_s = 0.0;  ///< ... each swept along its velocity this far ahead (the map lags
                                  ///< a keyframe); 0: where it is
+    double bridge_gap_m = 0.35;  ///< a gap this narrow between two still returns is solid (the
+                                 ///< seat between a chair back's posts); 0: off. Below the
+                                 ///< footprint's width, so no gap the robot fits through closes
     double max_range_m = 4.0;    ///< returns farther than this from the base are not looked at
     double recovery_after_s = 3.0;  ///< held this long: start a recovery
     double backup_speed_mps = 0.15;
@@ -179,6 +189,13 @@ struct MonitorResult {
     bool recovering = false;
     bool started_recovery = false;
 };
+
+/// The points, every step_m, of the segments between two of `pts` at most gap_m apart whose middle
+/// holds no point of `pts` (none within step_m of a 3 x 3 neighbourhood of cells step_m wide), one
+/// per cell of that size; none where a point already is. Pairs over 2 step_m apart only (closer
+/// points are one surface already). O(n^2) in `pts`: the caller hands the returns near the robot.
+std::vector<Eigen::Vector2d> bridge_gaps(const std::vector<Eigen::Vector2d>& pts, double gap_m,
+                                         double step_m);
 
 class CollisionMonitor {
   public:

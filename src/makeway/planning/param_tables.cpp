@@ -92,6 +92,9 @@ const ParamTable<CollisionMonitorParams>& collision_monitor_table() {
             .add("object_lead_s", &C::object_lead_s, closed(0.0, 5.0),
                  "... each swept along its velocity this far ahead (the object map lags a "
                  "keyframe; 0: where it is)")
+            .add("bridge_gap_m", &C::bridge_gap_m, closed(0.0, 0.4),
+                 "a gap this narrow between two still returns counts as solid (a chair's seat "
+                 "between its back's posts; below the footprint's width); 0: off")
             .add("max_range_m", &C::max_range_m, above(0.0, 50.0),
                  "returns farther than this from the base are not looked at")
             .add("recovery_after_s", &C::recovery_after_s, above(0.0, 3600.0),

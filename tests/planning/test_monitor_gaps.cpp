@@ -1,0 +1,135 @@
+// The collision monitor's narrow gaps (bridge_gap_m), with known answers: the chair seat the
+// sensor sees edge-on between its back's two posts, which a robot turning on the spot beside the
+// chair sweeps a corner into.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "makeway/planning/collision_monitor.hpp"
+#include "makeway/sim/robot.hpp"
+
+namespace makeway::planning {
+namespace {
+
+TEST(BridgeGaps, FillsANarrowGapEveryStepAndNothingElse) {
+    // Two returns 0.3 m apart: the points between them, one per 3 cm cell, none on the ends.
+    const std::vector<Eigen::Vector2d> posts{{0.0, 0.0}, {0.3, 0.0}};
+    const std::vector<Eigen::Vector2d> bridge = bridge_gaps(posts, 0.35, 0.03);
+    ASSERT_EQ(bridge.size(), 9u);
+    for (std::size_t k = 0; k < bridge.size(); ++k) {
+        EXPECT_NEAR(bridge[k].x(), 0.03 * static_cast<double>(k + 1), 1e-12);
+        EXPECT_EQ(bridge[k].y(), 0.0);
+    }
+    // A gap the robot fits through stays open; returns 2 steps apart are one surface already.
+    EXPECT_TRUE(bridge_gaps({{0.0, 0.0}, {0.5, 0.0}}, 0.35, 0.03).empty());
+    EXPECT_TRUE(bridge_gaps({{0.0, 0.0}, {0.06, 0.0}}, 0.35, 0.03).empty());
+    // A surface seen whole (a wall, a return every 2 cm) has no gap: nothing added.
+    std::vector<Eigen::Vector2d> wall;
+    for (int i = 0; i <= 50; ++i) wall.emplace_back(0.02 * i, 1.0);
+    EXPECT_TRUE(bridge_gaps(wall, 0.35, 0.03).empty());
+    // Off: a gap no wider than two steps.
+    EXPECT_TRUE(bridge_gaps(posts, 0.06, 0.03).empty());
+}
+
+CollisionMonitorParams jackal() {
+    const sim::RobotParams r;
+    CollisionMonitorParams p;
+    p.footprint_length_m = r.length_m;
+    p.footprint_width_m = r.width_m;
+    p.body = r.body();
+    p.max_v_mps = r.max_v_mps;
+    p.max_w_radps = r.max_w_radps;
+    p.max_acc_mps2 = r.max_acc_mps2;
+    p.max_ang_acc_radps2 = r.max_ang_acc_radps2;
+    p.stop_padding_m = 0.01;  // the posts stay out of the padded corner's reach (below)
+    return p;
+}
+
+// Two posts of a chair's back (3 returns each) 0.32 m apart on the line y = -0.31, beside a robot
+// at the origin: each 0.35 m from its centre, out of the reach of its corners (0.333 m, +0.01
+// padding) whatever way it turns, while the segment between them comes within 0.31 m, which the
+// corner sweeps through turning clockwise: the seat.
+PointCloud posts_sweep() {
+    PointCloud c;
+    for (const float x : {-0.16f, 0.16f}) {
+        for (const float y : {-0.31f, -0.32f, -0.33f}) c.xyz.emplace_back(x, y, 0.47f);
+    }
+    return c;
+}
+
+// Distance from a point to the footprint at `pose` (0 inside).
+double footprint_distance(const Pose2& pose, const Eigen::Vector2d& p) {
+    const sim::RobotParams r;
+    const Eigen::Vector2d q = to_isometry(pose).inverse() * p;
+    return Eigen::Vector2d(std::max(std::abs(q.x()) - 0.5 * r.length_m, 0.0),
+                           std::max(std::abs(q.y()) - 0.5 * r.width_m, 0.0))
+        .norm();
+}
+
+// The navigator asks to turn clockwise on the spot for 3 s; the closest the footprint came to the
+// seat (the segment between the posts' faces, every 5 mm) and to the posts' returns.
+struct TurnOutcome {
+    double seat_m = 1e9, posts_m = 1e9;
+    bool stopped = false;
+};
+TurnOutcome turn_beside_posts(const CollisionMonitorParams& params) {
+    const sim::RobotParams robot;
+    CollisionMonitor monitor(params);
+    const PointCloud sweep = posts_sweep();
+    sim::RobotState state;
+    VelocityCommand cmd;
+    TurnOutcome out;
+    for (int k = 0; k < 30; ++k) {
+        for (int i = 0; i < 10; ++i) {  // the last command acts for one period
+            state = sim::step_diff_drive(state, cmd, 0.01, robot);
+            for (double x = -0.16; x <= 0.16 + 1e-9; x += 0.005)
+                out.seat_m = std::min(out.seat_m, footprint_distance(state.pose, {x, -0.31}));
+            for (const Eigen::Vector3f& p : sweep.xyz)
+                out.posts_m = std::min(out.posts_m,
+                                       footprint_distance(state.pose, p.head<2>().cast<double>()));
+        }
+        const MonitorResult r = monitor.filter(
+            {0.1 * (k + 1), state.pose, &sweep, {0.0, -1.0}, state.v_mps, state.w_radps});
+        cmd = r.command;
+        out.stopped |= r.action == MonitorAction::kStop ||
+                       (r.action == MonitorAction::kApproach && r.scale == 0.0);
+        if (r.recovering) break;
+    }
+    return out;
+}
+
+TEST(CollisionMonitor, ATurnSweepingACornerBetweenTwoPostsIsStopped) {
+    const sim::RobotParams r;
+    const double corner = 0.5 * std::hypot(r.length_m, r.width_m);
+    for (const Eigen::Vector3f& p : posts_sweep().xyz)
+        ASSERT_GT(p.head<2>().norm(), corner + 0.01 + 1e-3);
+    ASSERT_LT(0.31, corner);  // the corner crosses the segment between the posts
+
+    CollisionMonitorParams open = jackal();
+    open.bridge_gap_m = 0.0;
+    const TurnOutcome without = turn_beside_posts(open);
+    EXPECT_FALSE(without.stopped);  // the posts alone are never in the way ...
+    EXPECT_GT(without.posts_m, 0.0);
+    EXPECT_EQ(without.seat_m, 0.0);  // ... and the corner goes through the seat
+
+    const TurnOutcome with = turn_beside_posts(jackal());
+    EXPECT_TRUE(with.stopped);
+    EXPECT_GT(with.seat_m, 0.0);
+    EXPECT_LT(with.seat_m, 0.05);  // it turned up to the seat, not far short of it
+
+    // Driving straight ahead, along the posts, is not held by them.
+    CollisionMonitor ahead(jackal());
+    const PointCloud sweep = posts_sweep();
+    EXPECT_EQ(ahead.filter({0.0, Pose2{}, &sweep, {0.3, 0.0}, 0.0, 0.0}).action,
+              MonitorAction::kNone);
+}
+
+TEST(CollisionMonitor, RejectsABridgeAsWideAsTheFootprint) {
+    CollisionMonitorParams p = jackal();
+    p.bridge_gap_m = p.footprint_width_m;
+    EXPECT_THROW(CollisionMonitor{p}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace makeway::planning
