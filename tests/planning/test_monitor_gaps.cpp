@@ -125,10 +125,21 @@ TEST(CollisionMonitor, ATurnSweepingACornerBetweenTwoPostsIsStopped) {
               MonitorAction::kNone);
 }
 
-TEST(CollisionMonitor, RejectsABridgeAsWideAsTheFootprint) {
+TEST(CollisionMonitor, ABridgeNeverClosesAGapTheRobotFitsThrough) {
+    // A robot 0.25 m wide with the default bridge (0.35 m): two posts 0.32 m apart ahead, which it
+    // passes between with 3.5 cm to spare on each side, stay open (the bridge is capped at the
+    // footprint's width - 3 cm).
     CollisionMonitorParams p = jackal();
-    p.bridge_gap_m = p.footprint_width_m;
-    EXPECT_THROW(CollisionMonitor{p}, std::invalid_argument);
+    p.footprint_width_m = 0.25;
+    ASSERT_GT(p.bridge_gap_m, 0.32);
+    CollisionMonitor narrow(p);
+    PointCloud posts;
+    for (const float y : {-0.16f, 0.16f}) posts.xyz.emplace_back(0.45f, y, 0.3f);
+    for (const float y : {-0.17f, 0.17f}) posts.xyz.emplace_back(0.45f, y, 0.3f);
+    const MonitorResult r = narrow.filter({0.0, Pose2{}, &posts, {0.3, 0.0}, 0.3, 0.0});
+    EXPECT_NE(r.action, MonitorAction::kStop);
+    EXPECT_NE(r.action, MonitorAction::kApproach);
+    EXPECT_GT(r.command.v_mps, 0.0);
 }
 
 }  // namespace

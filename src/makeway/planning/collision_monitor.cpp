@@ -66,10 +66,6 @@ std::vector<std::string> CollisionMonitorParams::validate() const {
         p.push_back("body top must be above its ground clearance");
     if (!(max_acc_mps2 > 0.0 && max_ang_acc_radps2 > 0.0)) p.push_back("accelerations must be > 0");
     if (!(max_v_mps > 0.0 && max_w_radps > 0.0)) p.push_back("top speeds must be > 0");
-    if (!(bridge_gap_m < footprint_width_m))
-        p.push_back(
-            "bridge_gap_m must be below footprint_width_m (a gap the robot fits through "
-            "would close)");
     if (!(sensor_height_m >= 0.0 && sensor_height_m <= 5.0))
         p.push_back("sensor_height_m must be in [0, 5]");
     return p;
@@ -502,15 +498,18 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
 
     // Narrow gaps between still returns near the robot, closed (the chair seat between its back's
     // posts). Near: what a corner can reach within a second at top speed and the gap beyond it.
-    if (params_.bridge_gap_m > 0.0) {
+    // Never as wide as the footprint: a gap the robot fits through stays open (a narrower robot
+    // than the Jackal with the default 0.35 m).
+    const double gap_m = std::min(params_.bridge_gap_m, params_.footprint_width_m - kThinCell_m);
+    if (gap_m > 0.0) {
         const double near_m =
             0.5 * std::hypot(params_.footprint_length_m, params_.footprint_width_m) +
-            params_.max_v_mps + params_.bridge_gap_m;
+            params_.max_v_mps + gap_m;
         std::vector<Eigen::Vector2d> still;
         for (std::size_t i = 0; i < pts.size(); ++i) {
             if (dynamic[i] == 0 && pts[i].squaredNorm() <= near_m * near_m) still.push_back(pts[i]);
         }
-        for (const Eigen::Vector2d& q : bridge_gaps(still, params_.bridge_gap_m, kThinCell_m)) {
+        for (const Eigen::Vector2d& q : bridge_gaps(still, gap_m, kThinCell_m)) {
             pts.push_back(q);
             dynamic.push_back(0);
             age.push_back(0.0);

@@ -66,10 +66,10 @@
 //
 // Gaps: a surface seen edge-on returns nothing (a chair's seat at the sensor's height, between
 // the two posts of its back, which do return): a robot turning beside the chair sweeps a corner
-// into the gap between the posts. Between two still returns at most bridge_gap_m apart (less than
-// the footprint's width: nothing the robot fits through) with no return around the middle, the
-// segment counts as returns (bridge_gaps). A robot already beside such a segment may still move
-// away from it, like from any return.
+// into the gap between the posts. Between two still returns at most bridge_gap_m apart (and 3 cm
+// less than the footprint's width: nothing the robot fits through) with no return around the
+// middle, the segment counts as returns (bridge_gaps). A robot already beside such a segment may
+// still move away from it, like from any return.
 //
 // Recovery: when the monitor has held the robot (stop, or approach below min_scale) for
 // recovery_after_s, it backs up (straight, backup_distance_m at backup_speed_mps) if the sweep
@@ -151,8 +151,8 @@ struct CollisionMonitorParams {
     double object_lead_s = 0.0;  ///< ... each swept along its velocity this far ahead (the map lags
                                  ///< a keyframe); 0: where it is
     double bridge_gap_m = 0.35;  ///< a gap this narrow between two still returns is solid (the
-                                 ///< seat between a chair back's posts); 0: off. Below the
-                                 ///< footprint's width, so no gap the robot fits through closes
+                                 ///< seat between a chair back's posts); 0: off. At most the
+                                 ///< footprint's width - 3 cm: no gap the robot fits through closes
     double max_range_m = 4.0;    ///< returns farther than this from the base are not looked at
     double recovery_after_s = 3.0;  ///< held this long: start a recovery
     double backup_speed_mps = 0.15;

@@ -94,7 +94,7 @@ const ParamTable<CollisionMonitorParams>& collision_monitor_table() {
                  "keyframe; 0: where it is)")
             .add("bridge_gap_m", &C::bridge_gap_m, closed(0.0, 0.4),
                  "a gap this narrow between two still returns counts as solid (a chair's seat "
-                 "between its back's posts; below the footprint's width); 0: off")
+                 "between its back's posts; never wider than the footprint's width - 3 cm); 0: off")
             .add("max_range_m", &C::max_range_m, above(0.0, 50.0),
                  "returns farther than this from the base are not looked at")
             .add("recovery_after_s", &C::recovery_after_s, above(0.0, 3600.0),
