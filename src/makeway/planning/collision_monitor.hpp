@@ -191,9 +191,10 @@ struct MonitorResult {
 };
 
 /// The points, every step_m, of the segments between two of `pts` at most gap_m apart whose middle
-/// holds no point of `pts` (none within step_m of a 3 x 3 neighbourhood of cells step_m wide), one
-/// per cell of that size; none where a point already is. Pairs over 2 step_m apart only (closer
-/// points are one surface already). O(n^2) in `pts`: the caller hands the returns near the robot.
+/// has no point of `pts` in the 3 x 3 cells (step_m wide) around it; one per such cell, none in a
+/// cell a point of `pts` holds. Pairs over 2 step_m apart only (closer points are one surface
+/// already). Each point meets only those in the neighbouring cells gap_m wide: the caller hands
+/// the returns near the robot.
 std::vector<Eigen::Vector2d> bridge_gaps(const std::vector<Eigen::Vector2d>& pts, double gap_m,
                                          double step_m);
 
