@@ -10,31 +10,10 @@
 #include "makeway/common/angles.hpp"
 #include "makeway/planning/collision_monitor.hpp"
 #include "makeway/sim/robot.hpp"
+#include "monitor_test_util.hpp"
 
 namespace makeway::planning {
 namespace {
-
-CollisionMonitorParams jackal() {
-    const sim::RobotParams r;
-    CollisionMonitorParams p;
-    p.footprint_length_m = r.length_m;
-    p.footprint_width_m = r.width_m;
-    p.body = r.body();
-    p.max_v_mps = r.max_v_mps;
-    p.max_w_radps = r.max_w_radps;
-    p.max_acc_mps2 = r.max_acc_mps2;
-    p.max_ang_acc_radps2 = r.max_ang_acc_radps2;
-    return p;
-}
-
-// Distance from a point to the footprint at `pose` (0 inside).
-double footprint_distance(const Pose2& pose, const Eigen::Vector2d& p) {
-    const sim::RobotParams r;
-    const Eigen::Vector2d q = to_isometry(pose).inverse() * p;
-    return Eigen::Vector2d(std::max(std::abs(q.x()) - 0.5 * r.length_m, 0.0),
-                           std::max(std::abs(q.y()) - 0.5 * r.width_m, 0.0))
-        .norm();
-}
 
 // A box's outline (centre, half size), sampled every 2 cm at heights the body can hit.
 std::vector<Eigen::Vector2d> box_outline(const Eigen::Vector2d& c, const Eigen::Vector2d& h) {

@@ -7,7 +7,9 @@
 #include <cmath>
 
 #include "makeway/planning/collision_monitor.hpp"
+#include "makeway/planning/gap_bridge.hpp"
 #include "makeway/sim/robot.hpp"
+#include "monitor_test_util.hpp"
 
 namespace makeway::planning {
 namespace {
@@ -32,17 +34,10 @@ TEST(BridgeGaps, FillsANarrowGapEveryStepAndNothingElse) {
     EXPECT_TRUE(bridge_gaps(posts, 0.06, 0.03).empty());
 }
 
-CollisionMonitorParams jackal() {
-    const sim::RobotParams r;
-    CollisionMonitorParams p;
-    p.footprint_length_m = r.length_m;
-    p.footprint_width_m = r.width_m;
-    p.body = r.body();
-    p.max_v_mps = r.max_v_mps;
-    p.max_w_radps = r.max_w_radps;
-    p.max_acc_mps2 = r.max_acc_mps2;
-    p.max_ang_acc_radps2 = r.max_ang_acc_radps2;
-    p.stop_padding_m = 0.01;  // the posts stay out of the padded corner's reach (below)
+// The posts (below) stay out of the padded corner's reach.
+CollisionMonitorParams jackal_tight() {
+    CollisionMonitorParams p = jackal();
+    p.stop_padding_m = 0.01;
     return p;
 }
 
@@ -56,15 +51,6 @@ PointCloud posts_sweep() {
         for (const float y : {-0.31f, -0.32f, -0.33f}) c.xyz.emplace_back(x, y, 0.47f);
     }
     return c;
-}
-
-// Distance from a point to the footprint at `pose` (0 inside).
-double footprint_distance(const Pose2& pose, const Eigen::Vector2d& p) {
-    const sim::RobotParams r;
-    const Eigen::Vector2d q = to_isometry(pose).inverse() * p;
-    return Eigen::Vector2d(std::max(std::abs(q.x()) - 0.5 * r.length_m, 0.0),
-                           std::max(std::abs(q.y()) - 0.5 * r.width_m, 0.0))
-        .norm();
 }
 
 // The navigator asks to turn clockwise on the spot for 3 s; the closest the footprint came to the
@@ -106,20 +92,20 @@ TEST(CollisionMonitor, ATurnSweepingACornerBetweenTwoPostsIsStopped) {
         ASSERT_GT(p.head<2>().norm(), corner + 0.01 + 1e-3);
     ASSERT_LT(0.31, corner);  // the corner crosses the segment between the posts
 
-    CollisionMonitorParams open = jackal();
+    CollisionMonitorParams open = jackal_tight();
     open.bridge_gap_m = 0.0;
     const TurnOutcome without = turn_beside_posts(open);
     EXPECT_FALSE(without.stopped);  // the posts alone are never in the way ...
     EXPECT_GT(without.posts_m, 0.0);
     EXPECT_EQ(without.seat_m, 0.0);  // ... and the corner goes through the seat
 
-    const TurnOutcome with = turn_beside_posts(jackal());
+    const TurnOutcome with = turn_beside_posts(jackal_tight());
     EXPECT_TRUE(with.stopped);
     EXPECT_GT(with.seat_m, 0.0);
     EXPECT_LT(with.seat_m, 0.05);  // it turned up to the seat, not far short of it
 
     // Driving straight ahead, along the posts, is not held by them.
-    CollisionMonitor ahead(jackal());
+    CollisionMonitor ahead(jackal_tight());
     const PointCloud sweep = posts_sweep();
     EXPECT_EQ(ahead.filter({0.0, Pose2{}, &sweep, {0.3, 0.0}, 0.0, 0.0}).action,
               MonitorAction::kNone);
@@ -129,7 +115,7 @@ TEST(CollisionMonitor, ABridgeNeverClosesAGapTheRobotFitsThrough) {
     // A robot 0.25 m wide with the default bridge (0.35 m): two posts 0.32 m apart ahead, which it
     // passes between with 3.5 cm to spare on each side, stay open (the bridge is capped at the
     // footprint's width - 3 cm).
-    CollisionMonitorParams p = jackal();
+    CollisionMonitorParams p = jackal_tight();
     p.footprint_width_m = 0.25;
     ASSERT_GT(p.bridge_gap_m, 0.32);
     CollisionMonitor narrow(p);

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
-#include <unordered_map>
 #include <unordered_set>
 
 #include "makeway/common/angles.hpp"
+#include "makeway/planning/gap_bridge.hpp"
 #include "makeway/planning/param_tables.hpp"
 
 namespace makeway::planning {
@@ -16,12 +16,6 @@ namespace {
 // Returns of one sweep are thinned to one per cell of this size: the zones' paddings are several
 // cells, so nothing the robot could touch is lost, and the memory stays a few thousand points.
 constexpr double kThinCell_m = 0.03;
-
-// A cell's key in a hash set (unsigned: no shift of a negative index).
-std::int64_t cell_key(std::int64_t ix, std::int64_t iy) {
-    return static_cast<std::int64_t>((static_cast<std::uint64_t>(ix) << 32) ^
-                                     (static_cast<std::uint64_t>(iy) & 0xffffffffULL));
-}
 
 // The pose after following (v, w) for u seconds from the origin (exact arc).
 Pose2 along_arc(double v, double w, double u) {
@@ -69,60 +63,6 @@ std::vector<std::string> CollisionMonitorParams::validate() const {
     if (!(sensor_height_m >= 0.0 && sensor_height_m <= 5.0))
         p.push_back("sensor_height_m must be in [0, 5]");
     return p;
-}
-
-std::vector<Eigen::Vector2d> bridge_gaps(const std::vector<Eigen::Vector2d>& pts, double gap_m,
-                                         double step_m) {
-    std::vector<Eigen::Vector2d> out;
-    if (!(gap_m > 2.0 * step_m) || !(step_m > 0.0) || pts.size() < 2) return out;
-    auto cell = [step_m](const Eigen::Vector2d& q) {
-        return cell_key(static_cast<std::int64_t>(std::floor(q.x() / step_m)),
-                        static_cast<std::int64_t>(std::floor(q.y() / step_m)));
-    };
-    auto around = [&](const Eigen::Vector2d& q, const std::unordered_set<std::int64_t>& cells) {
-        for (int dx = -1; dx <= 1; ++dx) {
-            for (int dy = -1; dy <= 1; ++dy) {
-                if (cells.count(cell(q + step_m * Eigen::Vector2d(dx, dy)))) return true;
-            }
-        }
-        return false;
-    };
-    std::unordered_set<std::int64_t> occupied;  // the returns' own cells: the gap test
-    for (const Eigen::Vector2d& q : pts) occupied.insert(cell(q));
-    std::unordered_set<std::int64_t> filled = occupied;  // and the points added: no duplicates
-    // Pairs from neighbouring cells gap_m wide only (each return meets the few near it).
-    auto bucket_of = [gap_m](const Eigen::Vector2d& q) {
-        return std::pair<std::int64_t, std::int64_t>(
-            static_cast<std::int64_t>(std::floor(q.x() / gap_m)),
-            static_cast<std::int64_t>(std::floor(q.y() / gap_m)));
-    };
-    std::unordered_map<std::int64_t, std::vector<std::size_t>> buckets;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-        const auto [bx, by] = bucket_of(pts[i]);
-        buckets[cell_key(bx, by)].push_back(i);
-    }
-    const double min2 = 4.0 * step_m * step_m, max2 = gap_m * gap_m;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-        const auto [bx, by] = bucket_of(pts[i]);
-        for (std::int64_t dx = -1; dx <= 1; ++dx) {
-            for (std::int64_t dy = -1; dy <= 1; ++dy) {
-                const auto b = buckets.find(cell_key(bx + dx, by + dy));
-                if (b == buckets.end()) continue;
-                for (const std::size_t j : b->second) {
-                    if (j <= i) continue;  // each pair once
-                    const Eigen::Vector2d d = pts[j] - pts[i];
-                    const double n2 = d.squaredNorm();
-                    if (n2 <= min2 || n2 > max2 || around(pts[i] + 0.5 * d, occupied)) continue;
-                    const int n = static_cast<int>(std::ceil(std::sqrt(n2) / step_m));
-                    for (int k = 1; k < n; ++k) {
-                        const Eigen::Vector2d q = pts[i] + d * (static_cast<double>(k) / n);
-                        if (filled.insert(cell(q)).second) out.push_back(q);
-                    }
-                }
-            }
-        }
-    }
-    return out;
 }
 
 CollisionMonitor::CollisionMonitor(const CollisionMonitorParams& params)
@@ -292,7 +232,6 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     if (in.points_world != nullptr) {
         std::unordered_set<std::int64_t> seen;
         std::vector<std::int64_t> cells;
-        const auto key_of = cell_key;
         const double r2 = params_.max_range_m * params_.max_range_m;
         struct Candidate {
             std::size_t index;  ///< into pts
@@ -313,8 +252,8 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             if (d2 > r2) continue;
             const auto ix = static_cast<std::int64_t>(std::floor(q.x() / kThinCell_m));
             const auto iy = static_cast<std::int64_t>(std::floor(q.y() / kThinCell_m));
-            if (!seen.insert(key_of(ix, iy)).second) continue;
-            cells.push_back(key_of(ix, iy));
+            if (!seen.insert(cell_key(ix, iy)).second) continue;
+            cells.push_back(cell_key(ix, iy));
             pts.push_back(T_base_world * q);
             // New: a return in this cell or next to it in fewer than dynamic_min_seen of the last
             // dynamic_history sweeps (none new before the first). A surface stays where it is
@@ -327,7 +266,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
                 for (std::int64_t dx = -1; dx <= 1 && !here_then; ++dx) {
                     for (std::int64_t dy = -1; dy <= 1 && !here_then; ++dy)
                         here_then = std::binary_search(earlier.begin(), earlier.end(),
-                                                       key_of(ix + dx, iy + dy));
+                                                       cell_key(ix + dx, iy + dy));
                 }
                 if (here_then && ++seen_in >= need) break;
             }
@@ -357,7 +296,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             std::vector<std::int64_t> seeds;
             for (const Candidate& c : candidates) {
                 if (dynamic[c.index])
-                    seeds.push_back(key_of(coarse(c.q).first, coarse(c.q).second));
+                    seeds.push_back(cell_key(coarse(c.q).first, coarse(c.q).second));
             }
             std::sort(seeds.begin(), seeds.end());
             for (std::size_t i = 0; i < seeds.size();) {
@@ -373,7 +312,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
                 bool near = false;
                 for (std::int64_t dx = -1; dx <= 1 && !near; ++dx) {
                     for (std::int64_t dy = -1; dy <= 1 && !near; ++dy) {
-                        const std::int64_t k = key_of(cx + dx, cy + dy);
+                        const std::int64_t k = cell_key(cx + dx, cy + dy);
                         near = std::binary_search(movers.begin(), movers.end(), k);
                         for (const std::vector<std::int64_t>& earlier : previous_movers_)
                             near = near || std::binary_search(earlier.begin(), earlier.end(), k);
@@ -398,7 +337,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             int n = 0;
             for (std::int64_t dx = -2; dx <= 2; ++dx) {
                 for (std::int64_t dy = -2; dy <= 2; ++dy) {
-                    if ((dx != 0 || dy != 0) && seen.count(key_of(ix + dx, iy + dy)) &&
+                    if ((dx != 0 || dy != 0) && seen.count(cell_key(ix + dx, iy + dy)) &&
                         ++n >= params_.low_edge_support)
                         return true;
                 }

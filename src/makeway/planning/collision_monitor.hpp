@@ -68,7 +68,7 @@
 // the two posts of its back, which do return): a robot turning beside the chair sweeps a corner
 // into the gap between the posts. Between two still returns at most bridge_gap_m apart (and 3 cm
 // less than the footprint's width: nothing the robot fits through) with no return around the
-// middle, the segment counts as returns (bridge_gaps). A robot already beside such a segment may
+// middle, the segment counts as returns (gap_bridge.hpp). A robot already beside such a segment may
 // still move away from it, like from any return.
 //
 // Recovery: when the monitor has held the robot (stop, or approach below min_scale) for
@@ -189,14 +189,6 @@ struct MonitorResult {
     bool recovering = false;
     bool started_recovery = false;
 };
-
-/// The points, every step_m, of the segments between two of `pts` at most gap_m apart whose middle
-/// has no point of `pts` in the 3 x 3 cells (step_m wide) around it; one per such cell, none in a
-/// cell a point of `pts` holds. Pairs over 2 step_m apart only (closer points are one surface
-/// already). Each point meets only those in the neighbouring cells gap_m wide: the caller hands
-/// the returns near the robot.
-std::vector<Eigen::Vector2d> bridge_gaps(const std::vector<Eigen::Vector2d>& pts, double gap_m,
-                                         double step_m);
 
 class CollisionMonitor {
   public:
