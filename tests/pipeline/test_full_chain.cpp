@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "makeway/common/polygon2d.hpp"
 #include "makeway/eval/scene_cad.hpp"
 #include "makeway/perception/detector.hpp"
 #include "makeway/pipeline/pipeline.hpp"
@@ -109,7 +110,32 @@ TEST(FullChain, FindsTheFurnitureWhereItStands) {
         << correct << " of " << objects.size() << " map objects are real";
     EXPECT_GE(static_cast<double>(found) / static_cast<double>(passed), 0.6)
         << found << " of " << passed << " passed objects found";
+    // What the collision monitor gets of the CAD fits (ObjectEstimate::parts_world): the map's
+    // objects carry their models' body-height parts, and those lie inside the true objects' boxes.
+    int with_parts = 0, part_points = 0, inside = 0;
+    for (const ObjectEstimate& o : objects) {
+        if (o.parts_world.empty()) continue;
+        ++with_parts;
+        for (const sim::ObjectState& t : truth) {
+            if ((o.box_world.centre_m.head<2>() - t.box_world.centre_m.head<2>()).norm() >= 0.3 ||
+                o.cls != t.cls)
+                continue;
+            const auto c = t.box_world.bev_corners();
+            const Polygon2 box(c.begin(), c.end());
+            for (const Polygon2& part : o.parts_world) {
+                for (const Eigen::Vector2d& q : part) {
+                    ++part_points;
+                    inside += convex_distance(box, q) <= 0.05;
+                }
+            }
+            break;
+        }
+    }
+    EXPECT_GE(with_parts, 0.8 * static_cast<double>(objects.size()));
+    ASSERT_GT(part_points, 0);
+    EXPECT_GE(inside, 0.95 * part_points) << inside << " of " << part_points << " part vertices";
     RecordProperty("map_objects", static_cast<int>(objects.size()));
+    RecordProperty("with_parts", with_parts);
     RecordProperty("correct", correct);
     RecordProperty("passed", passed);
     RecordProperty("found", found);

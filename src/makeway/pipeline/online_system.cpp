@@ -65,17 +65,29 @@ Controller::Step Controller::step(const NavigatorInput& in) {
     std::erase_if(moved_at_, [&](const auto& kv) {
         return in.t_s - kv.second > mp.blind_memory_s;
     });  // a long run's ids do not pile up
-    std::vector<Polygon2> chairs, moved_chairs;
+    std::erase_if(parts_,
+                  [&](const auto& kv) { return in.t_s - kv.second.t_s > mp.blind_memory_s; });
+    std::vector<Polygon2> chairs, solid;
     for (const ObjectEstimate& o : in.objects) {
-        if (o.cls != ObjectClass::kChair || o.existence < min_existence_) continue;
-        if (o.velocity_mps.norm() > mp.object_moving_mps) moved_at_[o.id] = in.t_s;
-        const auto moved = moved_at_.find(o.id);
-        const bool moving = moved != moved_at_.end() && in.t_s - moved->second <= mp.blind_memory_s;
-        chairs.push_back(chair_footprint(o, moving ? mp.object_lead_s : 0.0));
-        if (moving) moved_chairs.push_back(chairs.back());
+        if (o.existence < min_existence_) continue;
+        bool moving = false;
+        if (o.cls == ObjectClass::kChair) {
+            if (o.velocity_mps.norm() > mp.object_moving_mps) moved_at_[o.id] = in.t_s;
+            const auto moved = moved_at_.find(o.id);
+            moving = moved != moved_at_.end() && in.t_s - moved->second <= mp.blind_memory_s;
+            chairs.push_back(chair_footprint(o, moving ? mp.object_lead_s : 0.0));
+            if (moving && mp.object_footprints) solid.push_back(chairs.back());
+        }
+        // What a CAD model placed: the parts the body can hit, whatever the class (a table's foot
+        // is as low as a chair's base), a moving chair's where they are now (its box above). Kept
+        // for blind_memory_s after the map drops the object: too close to the robot to be
+        // detected, it is still there.
+        if (mp.object_parts && !o.parts_world.empty()) parts_[o.id] = {o.parts_world, in.t_s};
     }
+    for (const auto& [id, kept] : parts_)
+        solid.insert(solid.end(), kept.parts.begin(), kept.parts.end());
     out.guard = monitor_.filter(
-        {in.t_s, in.pose, in.points_world, wanted, in.v_mps, in.w_radps, &moved_chairs, &chairs});
+        {in.t_s, in.pose, in.points_world, wanted, in.v_mps, in.w_radps, &solid, &chairs});
     out.monitor_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     // Idle (never driven, arrived, gave up, cancelled): zero, whatever the monitor was doing (a
     // recovery it had started is not a goal's to finish).

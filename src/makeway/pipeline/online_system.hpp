@@ -9,6 +9,7 @@
 //
 // Without a route the command is zero and the monitor still sees every sweep (its memory of what
 // the sensor can no longer see, and which returns are new, stay current for the next goal).
+#include <map>
 #include <optional>
 #include <unordered_map>
 #include <vector>
@@ -56,6 +57,11 @@ class Controller {
     double min_existence_;  ///< objects this likely lend the monitor their footprints ...
     std::unordered_map<std::uint32_t, double>
         moved_at_;  ///< ... when they moved lately: object id -> when last seen moving
+    struct KeptParts {
+        std::vector<Polygon2> parts;  ///< ObjectEstimate::parts_world
+        double t_s = 0.0;             ///< when the map last held the object
+    };
+    std::map<std::uint32_t, KeptParts> parts_;  ///< by object id (ordered: the monitor's input is)
     bool navigating_ = false;
 };
 

@@ -6,6 +6,7 @@
 #include <unordered_set>
 
 #include "makeway/common/param_table.hpp"
+#include "makeway/verification/part_outlines.hpp"
 
 namespace makeway::pipeline {
 namespace {
@@ -92,8 +93,10 @@ SweepResult Pipeline::track(const Sweep& sweep, std::optional<PendingKeyframe>* 
 
 KeyframeResult Pipeline::perceive(PendingKeyframe pending, StageTiming& timing) {
     KeyframeResult kf = process_keyframe(std::move(pending.front), pending.stamp_s, timing);
+    std::vector<ObjectEstimate> objects = kf.tracking.objects_world;
+    attach_parts(objects);
     std::lock_guard<std::mutex> lock(objects_mutex_);
-    objects_ = kf.tracking.objects_world;
+    objects_ = std::move(objects);
     return kf;
 }
 
@@ -147,8 +150,7 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
     }
     kf.tracking =
         map_.update(kf.evidence, kf.T_world_keyframe, stamp_s, nullptr, floor ? &*floor : nullptr);
-    if (have_cad && params_.verify.reseed_tolerance_m > 0.0)
-        remember_fits(kf);  // only re-verification reads them
+    if (have_cad) remember_fits(kf);  // re-verification's seeds, the objects' parts
     timing.track_ms = ms_since(t);
     // Learned shapes: each object verified against one gains this view, and its shape is completed
     // from all of its views; the next keyframe verifies it against that shape.
@@ -209,6 +211,36 @@ void Pipeline::remember_fits(const KeyframeResult& kf) {
             TrackFit{model, kf.T_world_keyframe * v.T_sensor_object, v.residual_m, kf.stamp_s};
     }
     std::erase_if(fits_, [&](const auto& entry) { return !map_.tracks().count(entry.first); });
+}
+
+void Pipeline::attach_parts(std::vector<ObjectEstimate>& objects) {
+    for (ObjectEstimate& o : objects) {
+        const auto fit = fits_.find(o.id);
+        if (fit == fits_.end()) continue;
+        const verification::CadModel* model = fit->second.model;
+        auto outlines = part_outlines_.find(model);
+        if (outlines == part_outlines_.end()) {
+            outlines =
+                part_outlines_
+                    .emplace(model, verification::part_outlines(
+                                        model->levels.empty() ? std::vector<Eigen::Vector3d>{}
+                                                              : model->levels.back().points_object,
+                                        params_.navigator.monitor.body))
+                    .first;
+        }
+        // The fit where the map's box is now: the tracker has moved the object since, or smoothed
+        // the fit's box.
+        const Isometry3& T = fit->second.T_world_object;
+        const Eigen::Vector2d shift =
+            o.box_world.centre_m.head<2>() - (T * model->box_object.centre_m).head<2>();
+        for (const Polygon2& part : outlines->second) {
+            Polygon2 world;
+            world.reserve(part.size());
+            for (const Eigen::Vector2d& q : part)
+                world.push_back((T * Eigen::Vector3d(q.x(), q.y(), 0.0)).head<2>() + shift);
+            o.parts_world.push_back(std::move(world));
+        }
+    }
 }
 
 }  // namespace makeway::pipeline

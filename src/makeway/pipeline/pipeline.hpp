@@ -132,6 +132,9 @@ class Pipeline {
     /// Keeps the fits of this keyframe's accepted detections under their tracks; forgets dead
     /// tracks'.
     void remember_fits(const KeyframeResult& kf);
+    /// Gives each object with a CAD fit the outlines of that model's body-height parts, at the
+    /// fit moved with the object's box since (ObjectEstimate::parts_world).
+    void attach_parts(std::vector<ObjectEstimate>& objects);
 
     struct TrackFit {  ///< a tracked object's last CAD fit
         const verification::CadModel* model = nullptr;
@@ -148,6 +151,8 @@ class Pipeline {
     FrontEnd front_end_;
     tracking::ObjectMap map_;
     std::unordered_map<std::uint32_t, TrackFit> fits_;  ///< by track id
+    /// verification::part_outlines per model, for the collision monitor's body (computed once).
+    std::unordered_map<const verification::CadModel*, std::vector<Polygon2>> part_outlines_;
     mutable std::mutex objects_mutex_;
     std::vector<ObjectEstimate> objects_;
     std::size_t keyframes_ = 0;

@@ -417,7 +417,7 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     }
 
     // Object footprints where the sensor cannot see the floor: their outlines, sampled.
-    if (params_.object_footprints && in.footprints_world != nullptr) {
+    if (in.footprints_world != nullptr) {
         const double blind = blind_radius_m(params_.body.ground_clearance_m);
         for (const Polygon2& poly : *in.footprints_world) {
             for (std::size_t i = 0; i < poly.size(); ++i) {

@@ -14,9 +14,12 @@
 // and where it was seen from; once the sensor could see its place again, only the new sweep counts.
 // New returns (below) are not remembered there: a walker that has moved on leaves no trail.
 // Memory cannot follow what moves inside that blind ring (a chair a person pulls toward a turning
-// robot: its seat is seen, its base is not): with object_footprints, the footprints the caller
-// hands in (the Controller: chairs of the object map that moved lately) stand in for returns
-// there, their outlines sampled where the sensor cannot see the floor (nav2's polygon source).
+// robot: its seat is seen, its base is not), nor what is too low to be seen more than once (a
+// round table's 3 cm foot): the footprints the caller hands in stand in for returns there, their
+// outlines sampled where the sensor cannot see the floor (nav2's polygon source). The Controller
+// hands in, with object_footprints, the boxes of the object map's chairs that moved lately, and
+// with object_parts, the body-height parts of every object a CAD model placed (its foot, its
+// star base, its legs: verification::part_outlines).
 //
 // Each zone follows the robot's own motion model (the simulator's and DWA's): from the current
 // velocity, each axis moves toward its target within the acceleration limits. With a_v, a_w the
@@ -145,11 +148,14 @@ struct CollisionMonitorParams {
         0;  ///< a return below dynamic_min_height_m seen in one sweep only is remembered with this
             ///< many returns around it (5 x 5 cells); 0: never
     bool object_footprints =
-        true;  ///< inside the blind ring, MonitorInput::footprints_world count as returns ...
-    double object_moving_mps = 0.05;  ///< ... (the Controller's: chairs that moved faster than this
-                                      ///< in the last blind_memory_s)
+        true;  ///< the Controller hands in (MonitorInput::footprints_world) the boxes of chairs ...
+    double object_moving_mps = 0.05;  ///< ... that moved faster than this in the last
+                                      ///< blind_memory_s
     double object_lead_s = 0.0;  ///< ... each swept along its velocity this far ahead (the map lags
                                  ///< a keyframe); 0: where it is
+    bool object_parts = true;    ///< the Controller hands in the body-height parts of the objects
+                                 ///< their CAD models placed (still ones; kept blind_memory_s
+                                 ///< after the map drops one)
     double bridge_gap_m = 0.35;  ///< a gap this narrow between two still returns is solid (the
                                  ///< seat between a chair back's posts); 0: off. At most the
                                  ///< footprint's width - 3 cm: no gap the robot fits through closes
@@ -175,7 +181,7 @@ struct MonitorInput {
     VelocityCommand command;            ///< what the navigator asks for
     double v_mps = 0.0, w_radps = 0.0;  ///< the base's velocity now (wheel odometry)
     /// Objects solid below the body's top (null or empty: none): where the sensor cannot see the
-    /// floor, their outlines count as returns (with object_footprints).
+    /// floor, their outlines count as returns (the Controller's: object_footprints, object_parts).
     const std::vector<Polygon2>* footprints_world = nullptr;
     /// Every chair the robot knows of (null: none): a new return beside one is the chair being
     /// pulled, which the personal space leaves to the stop zone (a walker's is not beside one).

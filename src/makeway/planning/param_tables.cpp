@@ -92,6 +92,10 @@ const ParamTable<CollisionMonitorParams>& collision_monitor_table() {
             .add("object_lead_s", &C::object_lead_s, closed(0.0, 5.0),
                  "... each swept along its velocity this far ahead (the object map lags a "
                  "keyframe; 0: where it is)")
+            .add("object_parts", &C::object_parts,
+                 "inside that blind ring the body-height parts of every object placed by its CAD "
+                 "model count as returns (a round table's foot, an office chair's star base), "
+                 "for blind_memory_s after the object map drops one")
             .add("bridge_gap_m", &C::bridge_gap_m, closed(0.0, 0.4),
                  "a gap this narrow between two still returns counts as solid (a chair's seat "
                  "between its back's posts; never wider than the footprint's width - 3 cm); 0: off")
