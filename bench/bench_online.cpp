@@ -14,6 +14,7 @@
 #include "makeway/sim/route.hpp"
 #include "makeway/sim/scene_generator.hpp"
 #include "makeway/sim/sequence.hpp"
+#include "makeway/verification/part_outlines.hpp"
 
 namespace {
 
@@ -26,6 +27,7 @@ struct Drive {
     Costmap free_map;
     Eigen::Vector2d goal = Eigen::Vector2d::Zero();  // the scene's goal
     std::vector<PointCloud> worlds;  // each sweep de-skewed on the true poses, world frame
+    std::vector<Polygon2> parts;     // every object's body-height parts at its true pose
 };
 
 const Drive& medium_drive() {
@@ -41,6 +43,19 @@ const Drive& medium_drive() {
         Drive d;
         d.start = sim.start_pose();
         for (int k = 0; k < 50; ++k) d.frames.push_back(sim.next());
+        const std::vector<sim::ObjectModel> models = sim::models_of(scene);
+        for (std::size_t i = 0; i < models.size(); ++i) {
+            verification::CadLibrary one;
+            one.add("m", ObjectClass::kChair, models[i].mesh_object);
+            const Isometry3 T = d.frames.front().objects[i].T_world_object;
+            for (const Polygon2& part : verification::part_outlines(
+                     one.models().front().levels.back().points_object, robot.body())) {
+                Polygon2 world;
+                for (const Eigen::Vector2d& q : part)
+                    world.push_back((T * Eigen::Vector3d(q.x(), q.y(), 0.0)).head<2>());
+                d.parts.push_back(std::move(world));
+            }
+        }
         for (const sim::ObjectState& s : d.frames.front().objects) {
             ObjectEstimate o;
             o.id = s.id;
@@ -176,7 +191,9 @@ BENCHMARK(BM_ControlCycle)
 // The collision monitor's cycle (issue 29's target: at most 1 ms on one core): the sweep's
 // returns the body can hit thinned into its 1 s memory, then the stop, approach and slowdown
 // checks of a full-speed command along a gentle arc, on the same drive's de-skewed sweeps;
-// bridge_gaps: 0 with narrow gaps left open, 1 closed (the default, bridge_gap_m).
+// bridge_gaps: 0 with narrow gaps left open, 1 closed (the default, bridge_gap_m); parts: 1 with
+// every object's body-height parts handed in (object_parts: what the Controller gives when the map
+// has placed each object by its CAD model), 0 none.
 void BM_CollisionMonitor(benchmark::State& state) {
     const Drive& d = medium_drive();
     const sim::RobotParams robot;
@@ -195,15 +212,17 @@ void BM_CollisionMonitor(benchmark::State& state) {
                                        &worlds[k % worlds.size()],
                                        {robot.max_v_mps, 0.3},
                                        robot.max_v_mps,
-                                       0.3});
+                                       0.3,
+                                       state.range(1) != 0 ? &d.parts : nullptr});
         benchmark::DoNotOptimize(r.command);
         ++k;
     }
 }
 BENCHMARK(BM_CollisionMonitor)
-    ->Arg(0)
-    ->Arg(1)
-    ->ArgName("bridge_gaps")
+    ->Args({0, 0})
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->ArgNames({"bridge_gaps", "parts"})
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
 

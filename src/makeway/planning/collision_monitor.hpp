@@ -154,8 +154,8 @@ struct CollisionMonitorParams {
     double object_lead_s = 0.0;  ///< ... each swept along its velocity this far ahead (the map lags
                                  ///< a keyframe); 0: where it is
     bool object_parts = true;    ///< the Controller hands in the body-height parts of the objects
-                                 ///< their CAD models placed (still ones; kept blind_memory_s
-                                 ///< after the map drops one)
+                                 ///< their CAD models placed (kept blind_memory_s after the map
+                                 ///< drops one)
     double bridge_gap_m = 0.35;  ///< a gap this narrow between two still returns is solid (the
                                  ///< seat between a chair back's posts); 0: off. At most the
                                  ///< footprint's width - 3 cm: no gap the robot fits through closes
