@@ -199,9 +199,7 @@ void BM_CollisionMonitor(benchmark::State& state) {
     const sim::RobotParams robot;
     const std::vector<PointCloud>& worlds = d.worlds;
     planning::CollisionMonitorParams p;
-    p.footprint_length_m = robot.length_m;
-    p.footprint_width_m = robot.width_m;
-    p.body = robot.body();
+    p.apply_robot(robot);  // its speeds and accelerations are the monitor's defaults too
     if (state.range(0) == 0) p.bridge_gap_m = 0.0;  // narrow gaps left open
     planning::CollisionMonitor monitor(p);
     std::size_t k = 0;

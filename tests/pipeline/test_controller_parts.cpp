@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "../planning/monitor_test_util.hpp"
 #include "makeway/common/angles.hpp"
 #include "makeway/common/polygon2d.hpp"
 #include "makeway/pipeline/online_system.hpp"
@@ -33,7 +34,8 @@ Drive drive_at_the_foot(bool object_parts, double drop_object_after_s) {
 
     const Costmap map({-5.0, -5.0}, 0.05, 200, 200, cost::kFree);
     NavigatorParams params;
-    params.affordance_layer = false;  // the costmap knows nothing of the table either
+    params.affordance_layer = false;      // the costmap knows nothing of the table either
+    params.monitor = planning::jackal();  // the robot footprint_distance measures
     params.monitor.object_parts = object_parts;
     Controller controller(map, params);
     controller.set_route({{3.0, 0.0}});
@@ -41,8 +43,6 @@ Drive drive_at_the_foot(bool object_parts, double drop_object_after_s) {
     Pose2 pose{0.0, 0.0, 0.0};
     double v = 0.0, w = 0.0;
     Drive out;
-    const double half_l = 0.5 * params.monitor.footprint_length_m;
-    const double half_w = 0.5 * params.monitor.footprint_width_m;
     for (int k = 0; k < 80; ++k) {  // 8 s at 10 Hz
         const double t = 0.1 * k;
         std::vector<ObjectEstimate> objects;
@@ -52,15 +52,8 @@ Drive drive_at_the_foot(bool object_parts, double drop_object_after_s) {
         v = s.command.v_mps, w = s.command.w_radps;
         pose = {pose.x_m + 0.1 * v * std::cos(pose.yaw_rad),
                 pose.y_m + 0.1 * v * std::sin(pose.yaw_rad), wrap_angle(pose.yaw_rad + 0.1 * w)};
-        Polygon2 body;
-        for (const auto& [dx, dy] : {std::pair{half_l, half_w},
-                                     {-half_l, half_w},
-                                     {-half_l, -half_w},
-                                     {half_l, -half_w}}) {
-            body.emplace_back(pose.x_m + dx * std::cos(pose.yaw_rad) - dy * std::sin(pose.yaw_rad),
-                              pose.y_m + dx * std::sin(pose.yaw_rad) + dy * std::cos(pose.yaw_rad));
-        }
-        out.closest_m = std::min(out.closest_m, convex_distance(body, foot_centre) - foot_r);
+        out.closest_m =
+            std::min(out.closest_m, planning::footprint_distance(pose, foot_centre) - foot_r);
     }
     return out;
 }

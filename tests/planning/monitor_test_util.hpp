@@ -13,15 +13,8 @@ namespace makeway::planning {
 
 /// The monitor's defaults with the simulated robot's footprint, body, speeds and accelerations.
 inline CollisionMonitorParams jackal() {
-    const sim::RobotParams r;
     CollisionMonitorParams p;
-    p.footprint_length_m = r.length_m;
-    p.footprint_width_m = r.width_m;
-    p.body = r.body();
-    p.max_v_mps = r.max_v_mps;
-    p.max_w_radps = r.max_w_radps;
-    p.max_acc_mps2 = r.max_acc_mps2;
-    p.max_ang_acc_radps2 = r.max_ang_acc_radps2;
+    p.apply_robot(sim::RobotParams{});
     return p;
 }
 

@@ -29,15 +29,8 @@ void apply_robot(const RobotDescription& robot, SystemParams& params,
     n.dwa.max_w_radps = robot.max_w_radps;
     n.dwa.acc_v_mps2 = robot.max_acc_mps2;
     n.dwa.acc_w_radps2 = robot.max_ang_acc_radps2;
-    planning::CollisionMonitorParams& m = n.monitor;
-    m.footprint_length_m = robot.length_m;
-    m.footprint_width_m = robot.width_m;
-    m.body = robot.body();
-    m.max_v_mps = robot.max_v_mps;
-    m.max_w_radps = robot.max_w_radps;
-    m.max_acc_mps2 = robot.max_acc_mps2;
-    m.max_ang_acc_radps2 = robot.max_ang_acc_radps2;
-    m.sensor_height_m =
+    n.monitor.apply_robot(robot);
+    n.monitor.sensor_height_m =
         params.T_base_sensor.translation().z();  // the blind ring is the mounted sensor's
 }
 

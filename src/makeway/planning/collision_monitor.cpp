@@ -65,6 +65,16 @@ std::vector<std::string> CollisionMonitorParams::validate() const {
     return p;
 }
 
+void CollisionMonitorParams::apply_robot(const RobotDescription& robot) {
+    footprint_length_m = robot.length_m;
+    footprint_width_m = robot.width_m;
+    body = robot.body();
+    max_v_mps = robot.max_v_mps;
+    max_w_radps = robot.max_w_radps;
+    max_acc_mps2 = robot.max_acc_mps2;
+    max_ang_acc_radps2 = robot.max_ang_acc_radps2;
+}
+
 CollisionMonitor::CollisionMonitor(const CollisionMonitorParams& params)
     : params_(params), tan_down_(std::tan(-params.lowest_beam_deg * kPi / 180.0)) {
     throw_if_problems(params_.validate(), "collision monitor");

@@ -90,6 +90,7 @@
 #include "makeway/common/point_cloud.hpp"
 #include "makeway/common/polygon2d.hpp"
 #include "makeway/common/robot_body.hpp"
+#include "makeway/common/robot_description.hpp"
 #include "makeway/common/transforms.hpp"
 #include "makeway/common/velocity_command.hpp"
 
@@ -166,6 +167,9 @@ struct CollisionMonitorParams {
     double rotate_speed_radps = 0.8;
     double rotate_angle_rad = 1.2;
     std::vector<std::string> validate() const;
+    /// The robot's footprint, body, top speeds and accelerations (the sensor's height and lowest
+    /// beam are its mounting's and stay as they are).
+    void apply_robot(const RobotDescription& robot);
 };
 
 /// Why the monitor changed the command this cycle (run.json's stop_reason).
