@@ -309,5 +309,50 @@ TEST(LayeredCostmap, ChangedWindowsEqualAFullRecomposition) {
     EXPECT_GT(updates_with_small_windows, 30u);  // and the windows are smaller than the map
 }
 
+// The obstacle layer's rays and the inflation's distance transform on several threads: the same
+// map, cell for cell, as on one, on sweeps with enough returns (thousands of endpoint cells, wide
+// windows) that the threads are used.
+TEST(LayeredCostmap, ThreadsGiveTheSameMapAsOne) {
+    auto make = [](int threads) {
+        auto lc = std::make_unique<LayeredCostmap>(grid(400));
+        ObstacleLayerParams obstacle;
+        obstacle.threads = threads;
+        lc->add_layer(std::make_unique<ObstacleLayer>(grid(400), obstacle));
+        InflationParams inflation{0.25, 0.55, 3.0};
+        inflation.threads = threads;
+        lc->add_layer(std::make_unique<InflationLayer>(inflation));
+        return lc;
+    };
+    const auto one = make(1), two = make(2);
+    Rng rng = make_rng(7);
+    std::size_t lethal = 0, cleared = 0;
+    for (int k = 0; k < 12; ++k) {
+        const Eigen::Vector2d sensor(8.0 + 0.3 * k, 9.0 - 0.2 * k);
+        PointCloud pts;
+        // Clutter everywhere (tall and low returns, most of them in cells of their own) that moves
+        // from sweep to sweep: marks appear, and rays clear the last sweep's.
+        for (int i = 0; i < 6000; ++i)
+            pts.xyz.emplace_back(
+                static_cast<float>(uniform(rng, 1.0, 19.0)),
+                static_cast<float>(uniform(rng, 1.0, 19.0)),
+                static_cast<float>(i % 3 == 0 ? uniform(rng, 0.0, 0.06) : uniform(rng, 0.1, 1.5)));
+        LayerInput in;
+        in.points_world = &pts;
+        in.sensor_world_m = {sensor.x(), sensor.y(), 0.45};
+        const Costmap before = one->master();
+        one->update(in);
+        two->update(in);
+        ASSERT_EQ(one->master().cost, two->master().cost) << "update " << k;
+        for (std::size_t i = 0; i < before.cost.size(); ++i) {
+            lethal += one->master().cost[i] == cost::kLethal;
+            cleared += before.cost[i] == cost::kLethal && one->master().cost[i] != cost::kLethal;
+        }
+    }
+    std::cout << "[          ] " << lethal << " lethal cells over 12 updates, " << cleared
+              << " cleared\n";
+    EXPECT_GT(lethal, 3000u);   // the maps compared hold obstacles ...
+    EXPECT_GT(cleared, 2000u);  // ... and rays cleared some of them
+}
+
 }  // namespace
 }  // namespace makeway::costmap

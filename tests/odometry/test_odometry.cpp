@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "makeway/eval/odometry_bench.hpp"
 #include "makeway/odometry/lidar_odometry.hpp"
@@ -18,14 +19,19 @@ namespace {
 using eval::dead_reckoning;
 using eval::truth_of;
 
-TEST(LidarOdometry, ShortDriveStaysNearTheTruth) {
+// A drive of `sweeps` through the dense scene of `seed` (walkers and pulled chairs included).
+eval::OdometryDrive dense_drive(std::uint64_t seed, int sweeps, const sim::SequenceParams& p) {
     sim::SceneGenParams g;
-    g.seed = 4;
+    g.seed = seed;
     g.density = sim::Density::kDense;
-    const sim::Scene scene = sim::generate_scene(g);
+    return eval::simulate_odometry_drive(sim::generate_scene(g), p, sweeps,
+                                         "dense_" + std::to_string(seed));
+}
+
+TEST(LidarOdometry, ShortDriveStaysNearTheTruth) {
     sim::SequenceParams p;
     p.seed = 4;
-    const eval::OdometryDrive drive = eval::simulate_odometry_drive(scene, p, 250, "dense_4");
+    const eval::OdometryDrive drive = dense_drive(4, 250, p);
     ASSERT_GT(drive.length_m, 10.0);
     const auto run = eval::run_makeway_odometry(drive, OdometryParams{}, p.robot.T_robot_sensor());
     const auto ours = eval::trajectory_metrics(run.poses, truth_of(drive));
@@ -143,6 +149,29 @@ TEST(LidarOdometry, DeskewingAFastTurnRecoversTheStaticGeometry) {
     EXPECT_LT(on, 0.02);
     EXPECT_LT(spread_on, 0.04);  // range noise 1.5 cm
     EXPECT_GT(spread_off, 1.5 * spread_on);
+}
+
+// The correspondence search on several threads sums their contributions in the points' order: the
+// poses are the same to the last bit as on one thread (a sum in another order would differ there).
+TEST(LidarOdometry, ThreadsGiveTheSamePosesAsOne) {
+    sim::SequenceParams p;
+    p.seed = 6;
+    const eval::OdometryDrive drive = dense_drive(6, 60, p);
+    OdometryParams one, two;
+    one.threads = 1;
+    two.threads = 2;
+    const auto a = eval::run_makeway_odometry(drive, one, p.robot.T_robot_sensor());
+    const auto b = eval::run_makeway_odometry(drive, two, p.robot.T_robot_sensor());
+    ASSERT_EQ(a.poses.size(), 60u);
+    ASSERT_EQ(b.poses.size(), a.poses.size());
+    for (std::size_t i = 0; i < a.poses.size(); ++i) {
+        EXPECT_EQ(a.poses[i].x_m, b.poses[i].x_m) << "sweep " << i;
+        EXPECT_EQ(a.poses[i].y_m, b.poses[i].y_m) << "sweep " << i;
+        EXPECT_EQ(a.poses[i].yaw_rad, b.poses[i].yaw_rad) << "sweep " << i;
+    }
+    EXPECT_GT(std::hypot(a.poses.back().x_m - a.poses.front().x_m,
+                         a.poses.back().y_m - a.poses.front().y_m),
+              2.0);  // a drive, not a robot standing still
 }
 
 }  // namespace

@@ -1,5 +1,9 @@
 #include "makeway/costmap/inflation_layer.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <cmath>
 #include <limits>
 
@@ -39,6 +43,15 @@ void dt1d(const std::vector<double>& f, std::vector<double>& d, std::vector<int>
 
 }  // namespace
 
+struct InflationLayer::Threads {
+    explicit Threads(int n) : arena(n) {}
+    tbb::task_arena arena;
+};
+
+InflationLayer::InflationLayer(const InflationParams& params) : params_(params) {
+    if (params.threads > 1) threads_ = std::make_shared<Threads>(params.threads);
+}
+
 std::vector<std::string> InflationParams::validate() const {
     std::vector<std::string> out = inflation_table().problems(*this);
     if (!(inscribed_radius_m > 0.0 && inscribed_radius_m < 5.0))
@@ -57,8 +70,12 @@ std::uint8_t inflation_cost(double d, const InflationParams& p) {
         1.0, std::floor(cost::kMaxSoft * std::exp(-p.cost_scaling * (d - p.inscribed_radius_m)))));
 }
 
-std::vector<double> squared_distance_to_lethal(const Costmap& grid, const GridWindow& src,
-                                               const GridWindow& win) {
+namespace {
+
+// The two passes (columns, then rows) on the arena's threads when there is one: each line is
+// transformed alone, with its own scratch, so the result does not depend on the threads.
+std::vector<double> distance_transform(const Costmap& grid, const GridWindow& src,
+                                       const GridWindow& win, tbb::task_arena* arena) {
     const int w = src.x1 - src.x0, h = src.y1 - src.y0;
     std::vector<double> g(static_cast<std::size_t>(w) * h);
     for (int y = 0; y < h; ++y) {
@@ -67,21 +84,28 @@ std::vector<double> squared_distance_to_lethal(const Costmap& grid, const GridWi
             g[static_cast<std::size_t>(y) * w + x] = (c == cost::kLethal) ? 0.0 : kFar;
         }
     }
-    const int n = std::max(w, h);
-    std::vector<double> f(n), d(n), z(n + 1);
-    std::vector<int> v(n);
-    for (int x = 0; x < w; ++x) {  // columns
-        f.resize(h), d.resize(h);
-        for (int y = 0; y < h; ++y) f[y] = g[static_cast<std::size_t>(y) * w + x];
-        dt1d(f, d, v, z);
-        for (int y = 0; y < h; ++y) g[static_cast<std::size_t>(y) * w + x] = d[y];
-    }
-    for (int y = 0; y < h; ++y) {  // rows
-        f.resize(w), d.resize(w);
-        for (int x = 0; x < w; ++x) f[x] = g[static_cast<std::size_t>(y) * w + x];
-        dt1d(f, d, v, z);
-        for (int x = 0; x < w; ++x) g[static_cast<std::size_t>(y) * w + x] = d[x];
-    }
+    // Lines [l0, l1) of length n, element i of line l at g[l * line_step + i * step].
+    auto pass = [&g](int l0, int l1, int n, std::size_t line_step, std::size_t step) {
+        std::vector<double> f(n), d(n), z(n + 1);
+        std::vector<int> v(n);
+        for (int l = l0; l < l1; ++l) {
+            double* line = g.data() + static_cast<std::size_t>(l) * line_step;
+            for (int i = 0; i < n; ++i) f[i] = line[i * step];
+            dt1d(f, d, v, z);
+            for (int i = 0; i < n; ++i) line[i * step] = d[i];
+        }
+    };
+    auto lines = [&](int count, int n, std::size_t line_step, std::size_t step) {
+        if (!arena || count < 64) return pass(0, count, n, line_step, step);
+        arena->execute([&] {
+            tbb::parallel_for(tbb::blocked_range<int>(0, count, 32),
+                              [&](const tbb::blocked_range<int>& r) {
+                                  pass(r.begin(), r.end(), n, line_step, step);
+                              });
+        });
+    };
+    lines(w, h, 1, static_cast<std::size_t>(w));  // columns
+    lines(h, w, static_cast<std::size_t>(w), 1);  // rows
     std::vector<double> out(static_cast<std::size_t>(win.x1 - win.x0) * (win.y1 - win.y0));
     for (int y = win.y0; y < win.y1; ++y) {
         for (int x = win.x0; x < win.x1; ++x) {
@@ -90,6 +114,13 @@ std::vector<double> squared_distance_to_lethal(const Costmap& grid, const GridWi
         }
     }
     return out;
+}
+
+}  // namespace
+
+std::vector<double> squared_distance_to_lethal(const Costmap& grid, const GridWindow& source,
+                                               const GridWindow& window) {
+    return distance_transform(grid, source, window, nullptr);
 }
 
 void InflationLayer::update_bounds(const Costmap& master, const LayerInput&, GridWindow& window) {
@@ -102,7 +133,8 @@ void InflationLayer::update_costs(Costmap& master, const GridWindow& window) {
     if (window.empty()) return;
     const int r = static_cast<int>(std::ceil(params_.inflation_radius_m / master.resolution_m));
     const GridWindow source = window.grown(r).clipped(master.width, master.height);
-    const std::vector<double> d2 = squared_distance_to_lethal(master, source, window);
+    const std::vector<double> d2 =
+        distance_transform(master, source, window, threads_ ? &threads_->arena : nullptr);
     // Squared distances on the grid are whole numbers of cells^2: the cost of each one is tabled
     // once per resolution, out to the first beyond the inflation radius that is free (all farther
     // ones are: the distance only grows), so there is no sqrt and exp per cell.

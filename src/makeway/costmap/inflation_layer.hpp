@@ -2,6 +2,8 @@
 // Inflation around lethal cells, with nav2's formula: cost 253 within the inscribed radius, then
 // 252 * exp(-k (d - r_inscribed)) out to the inflation radius. Distances are exact Euclidean
 // (Felzenszwalb-Huttenlocher distance transform over the window).
+#include <memory>
+
 #include "makeway/costmap/layer.hpp"
 
 namespace makeway::costmap {
@@ -10,6 +12,7 @@ struct InflationParams {
     double inscribed_radius_m = 0.215;  ///< half the Jackal's width
     double inflation_radius_m = 0.55;
     double cost_scaling = 3.0;  ///< k [1/m]
+    int threads = 1;            ///< the distance transform's threads (the same costs for any count)
     std::vector<std::string> validate() const;
 };
 
@@ -18,7 +21,7 @@ std::uint8_t inflation_cost(double d_m, const InflationParams& params);
 
 class InflationLayer : public Layer {
   public:
-    explicit InflationLayer(const InflationParams& params) : params_(params) {}
+    explicit InflationLayer(const InflationParams& params);
     std::string name() const override { return "inflation"; }
     void update_bounds(const Costmap& master, const LayerInput& input, GridWindow& window) override;
     void update_costs(Costmap& master, const GridWindow& window) override;
@@ -28,6 +31,8 @@ class InflationLayer : public Layer {
     double table_resolution_m_ = 0.0;  ///< the resolution cost_of_d2_ was made for
     std::vector<std::uint8_t>
         cost_of_d2_;  ///< inflation_cost at sqrt(k) cells, out to the first free k past the radius
+    struct Threads;   ///< params_.threads > 1: the distance transform's TBB arena
+    std::shared_ptr<Threads> threads_;
 };
 
 /// Exact squared Euclidean distance [cells^2] from every cell of `window` to the nearest cell with

@@ -1,5 +1,10 @@
 #include "makeway/costmap/obstacle_layer.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <cmath>
 #include <cstdlib>
 
@@ -7,6 +12,12 @@
 #include "makeway/costmap/ray_walk.hpp"
 
 namespace makeway::costmap {
+
+struct ObstacleLayer::Threads {
+    explicit Threads(int n) : arena(n) {}
+    tbb::task_arena arena;
+    tbb::enumerable_thread_specific<std::vector<int>> cleared;  ///< per thread: cells rays clear
+};
 
 std::vector<std::string> ObstacleLayerParams::validate() const {
     std::vector<std::string> out = obstacle_layer_table().problems(*this);
@@ -19,7 +30,9 @@ std::vector<std::string> ObstacleLayerParams::validate() const {
 
 ObstacleLayer::ObstacleLayer(const Costmap& geometry, const ObstacleLayerParams& params)
     : params_(params),
-      grid_(geometry.origin_m, geometry.resolution_m, geometry.width, geometry.height) {}
+      grid_(geometry.origin_m, geometry.resolution_m, geometry.width, geometry.height) {
+    if (params.threads > 1) threads_ = std::make_shared<Threads>(params.threads);
+}
 
 void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridWindow& window) {
     if (!input.points_world) return;
@@ -87,33 +100,63 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
     };
     // Clear along each ray (ray_walk.hpp: Bresenham, stopping before the endpoint cell, crossing
     // blocks without marks in one step); a low mark only where the ray passes no higher than its
-    // top (plus a noise margin).
-    for (int idx : cells) {
+    // top (plus a noise margin). Whether a ray clears a cell depends on that cell's mark and the
+    // ray alone, never on other rays: on several threads, each ray lists the cells it clears
+    // against the grid as it was (its blocks' counts too, so it may walk cells another ray has
+    // already freed), and the lists are applied afterwards; the same cells end up free.
+    auto clears_cell = [&](int idx, double length, int x, int y) {
+        const int i = y * grid_.width + x;
+        if (grid_.cost[i] == cost::kFree || scratch_[i].endpoint == 2) return false;
+        if (top_[i] >= params_.low_band_top_m)
+            return true;  // tall marks: any ray (sparse rings rarely see their top)
+        const double f = length > 0.0 ? std::sqrt(static_cast<double>((x - s.x()) * (x - s.x()) +
+                                                                      (y - s.y()) * (y - s.y()))) /
+                                            length
+                                      : 0.0;
+        return sensor_z + f * (scratch_[idx].end_z - sensor_z) <= top_[i] + kClearMargin_m;
+    };
+    auto free_cell = [&](int x, int y) {
+        const int i = y * grid_.width + x;
+        if (grid_.cost[i] == cost::kFree) return;
+        grid_.cost[i] = cost::kFree;
+        --block_of(x, y);
+        changed.expand({x, y, x + 1, y + 1});
+    };
+    auto ray_length = [&](int idx) {
         const int ex = idx % grid_.width, ey = idx / grid_.width;
-        const double length = std::sqrt(
+        return std::sqrt(
             static_cast<double>((ex - s.x()) * (ex - s.x()) + (ey - s.y()) * (ey - s.y())));
-        walk_ray(s.x(), s.y(), ex, ey, kBlock, empty_block, [&](int x, int y) {
-            if (!grid_.inside(x, y)) return;
-            const int i = y * grid_.width + x;
-            if (grid_.cost[i] == cost::kFree || scratch_[i].endpoint == 2) return;
-            bool clears =
-                top_[i] >=
-                params_.low_band_top_m;  // tall marks: any ray (sparse rings rarely see their top)
-            if (!clears) {
-                const double f = length > 0.0
-                                     ? std::sqrt(static_cast<double>((x - s.x()) * (x - s.x()) +
-                                                                     (y - s.y()) * (y - s.y()))) /
-                                           length
-                                     : 0.0;
-                clears =
-                    sensor_z + f * (scratch_[idx].end_z - sensor_z) <= top_[i] + kClearMargin_m;
-            }
-            if (clears) {
-                grid_.cost[i] = cost::kFree;
-                --block_of(x, y);
-                changed.expand({x, y, x + 1, y + 1});
-            }
+    };
+    if (!threads_ || cells.size() < 1024) {
+        for (int idx : cells) {
+            const double length = ray_length(idx);
+            walk_ray(s.x(), s.y(), idx % grid_.width, idx / grid_.width, kBlock, empty_block,
+                     [&](int x, int y) {
+                         if (grid_.inside(x, y) && clears_cell(idx, length, x, y)) free_cell(x, y);
+                     });
+        }
+    } else {
+        threads_->cleared.clear();
+        threads_->arena.execute([&] {
+            tbb::parallel_for(
+                tbb::blocked_range<std::size_t>(0, cells.size(), 256),
+                [&](const tbb::blocked_range<std::size_t>& range) {
+                    std::vector<int>& out = threads_->cleared.local();
+                    for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                        const int idx = cells[k];
+                        const double length = ray_length(idx);
+                        walk_ray(s.x(), s.y(), idx % grid_.width, idx / grid_.width, kBlock,
+                                 empty_block, [&](int x, int y) {
+                                     if (grid_.inside(x, y) && clears_cell(idx, length, x, y))
+                                         out.push_back(y * grid_.width + x);
+                                 });
+                    }
+                });
         });
+        for (std::vector<int>& list : threads_->cleared) {
+            for (int i : list) free_cell(i % grid_.width, i / grid_.width);
+            list.clear();
+        }
     }
     for (int idx : cells) {
         if (scratch_[idx].endpoint == 2 && grid_.cost[idx] != cost::kLethal) {

@@ -10,6 +10,8 @@
 // 1 cm at 6 m) and only when at least low_min_returns of them, and low_min_share of the cell's
 // returns below the low band's top, stand above the clearance in one sweep: range noise lifts a
 // few floor returns of a cell (sigma 6 mm at the lowest ring), a runner or a foot plate most.
+#include <memory>
+
 #include "makeway/common/robot_body.hpp"
 #include "makeway/costmap/layer.hpp"
 
@@ -23,6 +25,7 @@ struct ObstacleLayerParams {
     double low_min_share = 0.5;
     double mark_range_m = 6.0;
     double clear_range_m = 8.0;
+    int threads = 2;  ///< threads walking the rays (1: the caller's alone); the same map for any
     std::vector<std::string> validate() const;
 };
 
@@ -53,6 +56,8 @@ class ObstacleLayer : public Layer {
     std::vector<float> top_;        ///< per marked cell: the highest return behind its mark [m]
     std::vector<int> cells_;        ///< the cells with an endpoint in this update
     std::vector<std::uint16_t> block_marks_;  ///< per block: its cells that are not free in grid_
+    struct Threads;                           ///< threads > 1: the rays' TBB arena
+    std::shared_ptr<Threads> threads_;        ///< shared by copies (an arena is not copyable)
 };
 
 }  // namespace makeway::costmap

@@ -84,6 +84,9 @@ const ParamTable<ObstacleLayerParams>& obstacle_layer_table() {
             .add("mark_range_m", &O::mark_range_m, above(0.0, 100.0), "returns farther do not mark")
             .add("clear_range_m", &O::clear_range_m, above(0.0, 100.0),
                  "rays clear free space this far")
+            .add("threads", &O::threads, closed(1, 256),
+                 "threads walking the rays and (the object costmap's) inflating: the same map for "
+                 "any count")
             .require([](const O& o) { return o.mark_range_m <= o.clear_range_m; },
                      "mark_range_m must be in (0, clear_range_m]");
         return t;

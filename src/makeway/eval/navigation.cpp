@@ -115,6 +115,7 @@ pipeline::NavigatorParams navigator_params(const NavMethod& method, const NavPar
     n.inflation.inflation_radius_m = method.inflation_radius_m;
     n.inflation.inscribed_radius_m *= method.inscribed_scale;
     n.affordance_layer = method.affordance;
+    n.obstacle.threads = 1;  // runs go in parallel instead (shards, --threads)
     return n;
 }
 
@@ -286,6 +287,7 @@ pipeline::OnlineSystemSetup online_system_setup(const sim::Scene& scene, const N
     pipeline::OnlineSystemSetup setup;
     setup.params = params.system;
     setup.params.navigator = navigator_params(method, params);
+    setup.params.lidar_odometry.threads = 1;  // runs go in parallel instead (shards, --threads)
     setup.start = scene.start;
     setup.map = params.static_map ? *params.static_map
                                   : structure_grid(scene, params.resolution_m, params.robot.body());

@@ -1,5 +1,9 @@
 #include "makeway/odometry/lidar_odometry.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -26,7 +30,19 @@ constexpr std::size_t kDeviationWindow = 100;
 
 double sq(double v) { return v * v; }
 
+// One source point's say in a Gauss-Newton step: the Jacobian row of its residual and the residual.
+struct Contribution {
+    Eigen::Vector3d row = Eigen::Vector3d::Zero();
+    double r = 0.0;
+    bool used = false;
+};
+
 }  // namespace
+
+struct LidarOdometry::Threads {
+    explicit Threads(int n) : arena(n) {}
+    tbb::task_arena arena;
+};
 
 std::vector<std::string> OdometryParams::validate() const {
     std::vector<std::string> p = odometry_table().problems(*this);
@@ -38,6 +54,7 @@ LidarOdometry::LidarOdometry(const OdometryParams& params, const Isometry3& T_ba
                              const Pose2& start_pose)
     : params_(params), T_base_sensor_(T_base_sensor), pose_(start_pose), map_(params.map) {
     throw_if_problems(params.validate(), "lidar odometry");
+    if (params_.threads > 1) threads_ = std::make_shared<Threads>(params_.threads);
 }
 
 OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, double /*stamp_s*/,
@@ -109,16 +126,22 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
         const double kernel = sq(threshold / 3.0);
         const double inv_var = 1.0 / sq(params_.residual_sigma_m);
         Eigen::Matrix3d H_lidar = Eigen::Matrix3d::Zero();
+        std::vector<Contribution> contributions(source.size());
         for (int it = 0; it < params_.max_iterations; ++it) {
             const double c = std::cos(estimate.yaw_rad), s = std::sin(estimate.yaw_rad);
             Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
             Eigen::Vector3d g = Eigen::Vector3d::Zero();
-            std::size_t matched = 0;
-            for (const Eigen::Vector3d& p : source) {
+            // The correspondences (the nearest-point searches: most of a sweep's registration)
+            // on every thread the odometry has, then their sum in the points' order: the same
+            // floating-point result whatever the thread count.
+            const auto contribute = [&](std::size_t i) {
+                const Eigen::Vector3d& p = source[i];
+                Contribution& out_i = contributions[i];
+                out_i.used = false;
                 const Eigen::Vector2d rp(c * p.x() - s * p.y(), s * p.x() + c * p.y());
                 const Eigen::Vector3d q(rp.x() + estimate.x_m, rp.y() + estimate.y_m, p.z());
                 const auto m = map_.nearest(q, threshold);
-                if (!m) continue;
+                if (!m) return;
                 const Eigen::Vector3d d = q - m->point;
                 // Point-to-plane on walls and faces, point-to-line on legs, door frames and wall
                 // corners (vertical lines). Residuals run
@@ -131,11 +154,8 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
                     Eigen::Matrix3d::Zero();  // d(q) / d(x, y, yaw); z does not move
                 J << 1.0, 0.0, -rp.y(), 0.0, 1.0, rp.x(), 0.0, 0.0, 0.0;
                 if (m->shape == VoxelShape::kPlane && std::abs(m->axis.z()) < kHorizontal) {
-                    const Eigen::Vector3d row = J.transpose() * m->axis;
-                    const double r = m->axis.dot(d);
-                    const double w = sq(kernel) / sq(kernel + r * r) * inv_var;
-                    H.noalias() += w * row * row.transpose();
-                    g.noalias() += w * row * r;
+                    out_i.row = J.transpose() * m->axis;
+                    out_i.r = m->axis.dot(d);
                 } else if (m->shape == VoxelShape::kLine && std::abs(m->axis.z()) > kVertical) {
                     // Across the line of sight only: a wall seen edge-on fills a voxel with one
                     // firing's column of returns, a "line" that slides along the wall (nearly the
@@ -144,14 +164,30 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
                     const Eigen::Vector3d across =
                         Eigen::Vector3d(estimate.y_m - q.y(), q.x() - estimate.x_m, 0.0)
                             .normalized();
-                    const Eigen::Vector3d row = J.transpose() * across;
-                    const double r = across.dot(d);
-                    const double w = sq(kernel) / sq(kernel + r * r) * inv_var;
-                    H.noalias() += w * row * row.transpose();
-                    g.noalias() += w * row * r;
+                    out_i.row = J.transpose() * across;
+                    out_i.r = across.dot(d);
                 } else {
-                    continue;
+                    return;
                 }
+                out_i.used = true;
+            };
+            if (params_.threads > 1 && source.size() >= 512) {
+                threads_->arena.execute([&] {
+                    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, source.size(), 256),
+                                      [&](const tbb::blocked_range<std::size_t>& range) {
+                                          for (std::size_t i = range.begin(); i != range.end(); ++i)
+                                              contribute(i);
+                                      });
+                });
+            } else {
+                for (std::size_t i = 0; i < source.size(); ++i) contribute(i);
+            }
+            std::size_t matched = 0;
+            for (const Contribution& k : contributions) {
+                if (!k.used) continue;
+                const double w = sq(kernel) / sq(kernel + k.r * k.r) * inv_var;
+                H.noalias() += w * k.row * k.row.transpose();
+                g.noalias() += w * k.row * k.r;
                 ++matched;
             }
             H_lidar = H;

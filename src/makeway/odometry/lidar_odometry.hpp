@@ -16,6 +16,7 @@
 //      along a featureless corridor the point-to-plane term is flat and the wheel prior holds the
 //      pose instead of the registration sliding or sticking;
 //   4. the registered sweep added to the map; voxels far from the robot dropped.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -44,6 +45,8 @@ struct OdometryParams {
     double wheel_sigma_m = 0.005, wheel_sigma_per_m = 0.05;
     double wheel_sigma_rad = 0.002, wheel_sigma_per_rad = 0.05;
     bool deskew = true;
+    int threads = 2;  ///< the correspondence search's threads (1: the caller's alone); the
+                      ///< same poses for any count
     std::vector<std::string> validate() const;
 };
 
@@ -84,6 +87,8 @@ class LidarOdometry {
     Pose2 last_motion_;               ///< the base's motion over the last sweep (its own frame)
     std::vector<double> deviations_;  ///< |estimate - prediction| per sweep: the adaptive threshold
     bool first_ = true;
+    struct Threads;                     ///< params_.threads > 1: the searches' TBB arena
+    std::shared_ptr<Threads> threads_;  ///< shared by copies (an arena is not copyable)
 };
 
 }  // namespace makeway::odometry

@@ -42,6 +42,8 @@ const ParamTable<OdometryParams>& odometry_table() {
             .add("wheel_sigma_rad", &O::wheel_sigma_rad, above(0.0, 10.0), "")
             .add("wheel_sigma_per_rad", &O::wheel_sigma_per_rad, closed(0.0, 10.0), "")
             .add("deskew", &O::deskew, "move each point with the pose at its own time")
+            .add("threads", &O::threads, closed(1, 256),
+                 "threads of the correspondence search (the same poses for any count)")
             .require([](const O& o) { return o.min_range_m < o.max_range_m; },
                      "needs 0 <= min_range_m < max_range_m")
             .require(

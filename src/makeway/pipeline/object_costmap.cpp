@@ -22,6 +22,7 @@ ObjectCostmap::ObjectCostmap(const Costmap& static_map, const NavigatorParams& p
     costmap::InflationParams inflation = params.inflation;
     inflation.inflation_radius_m =
         std::max(inflation.inflation_radius_m, inflation.inscribed_radius_m);
+    inflation.threads = params.obstacle.threads;  // costmap.threads: the rays and the distances
     layered_.add_layer(std::make_unique<costmap::InflationLayer>(inflation));
 }
 
