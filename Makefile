@@ -59,15 +59,18 @@ asan:
 
 # ThreadSanitizer build of the tests that start threads: the simulator's parallel ray casting, a
 # detector shared by threads (bench nav's pattern), the pipeline, the ROS node's engine (its worker
-# thread and queue), the verifier's threads over detections. Debian's oneTBB is not built with
+# thread and queue), the verifier's threads over detections, the odometry's and the costmap's
+# threads (common/handover.hpp). Debian's oneTBB is not built with
 # TSan: tests/tsan.supp says what that hides. The full chain is left out: under TSan, TBB's
 # uninstrumented waiting made it run past 10 minutes.
 TSAN_RUNS := test_sim:*SameSeedSameSweepForAnyThreadCount* test_detector:Detector.SharedByThreads* test_pipeline:* \
-             test_node_engine:* test_verification:*SerialAndParallel*
+             test_node_engine:* test_verification:*SerialAndParallel* test_odometry:*Threads* \
+             test_costmap:*Threads*
 tsan: deps
 	@cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMAKEWAY_TSAN=ON \
 	    -DMAKEWAY_BUILD_BENCH=OFF -DMAKEWAY_BUILD_APPS=OFF $(CMAKE_ARGS) > /dev/null
-	@cmake --build build-tsan -j $(JOBS) --target test_sim test_detector test_pipeline test_node_engine test_verification
+	@cmake --build build-tsan -j $(JOBS) --target test_sim test_detector test_pipeline test_node_engine test_verification \
+	    test_odometry test_costmap
 	@for run in $(TSAN_RUNS); do t=$${run%%:*}; echo "== tsan $$run"; \
 	    TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$(CURDIR)/tests/tsan.supp" \
 	    build-tsan/bin/$$t --gtest_brief=1 --gtest_filter="$${run#*:}" || exit 1; done

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "makeway/common/handover.hpp"
 #include "makeway/costmap/param_tables.hpp"
 
 namespace makeway::costmap {
@@ -97,12 +98,17 @@ std::vector<double> distance_transform(const Costmap& grid, const GridWindow& sr
     };
     auto lines = [&](int count, int n, std::size_t line_step, std::size_t step) {
         if (!arena || count < 64) return pass(0, count, n, line_step, step);
+        Handover handover;
+        handover.release();
         arena->execute([&] {
             tbb::parallel_for(tbb::blocked_range<int>(0, count, 32),
                               [&](const tbb::blocked_range<int>& r) {
+                                  handover.acquire();
                                   pass(r.begin(), r.end(), n, line_step, step);
+                                  handover.release();
                               });
         });
+        handover.acquire();
     };
     lines(w, h, 1, static_cast<std::size_t>(w));  // columns
     lines(h, w, static_cast<std::size_t>(w), 1);  // rows

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "makeway/common/handover.hpp"
 #include "makeway/costmap/param_tables.hpp"
 #include "makeway/costmap/ray_walk.hpp"
 
@@ -137,10 +138,13 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
         }
     } else {
         threads_->cleared.clear();
+        Handover handover;
+        handover.release();
         threads_->arena.execute([&] {
             tbb::parallel_for(
                 tbb::blocked_range<std::size_t>(0, cells.size(), 256),
                 [&](const tbb::blocked_range<std::size_t>& range) {
+                    handover.acquire();
                     std::vector<int>& out = threads_->cleared.local();
                     for (std::size_t k = range.begin(); k != range.end(); ++k) {
                         const int idx = cells[k];
@@ -151,8 +155,10 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
                                          out.push_back(y * grid_.width + x);
                                  });
                     }
+                    handover.release();
                 });
         });
+        handover.acquire();
         for (std::vector<int>& list : threads_->cleared) {
             for (int i : list) free_cell(i % grid_.width, i / grid_.width);
             list.clear();

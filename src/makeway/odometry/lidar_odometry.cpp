@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -13,6 +14,7 @@
 #include <tuple>
 
 #include "makeway/common/angles.hpp"
+#include "makeway/common/handover.hpp"
 #include "makeway/common/voxel_thin.hpp"
 #include "makeway/odometry/param_tables.hpp"
 
@@ -27,6 +29,8 @@ constexpr double kHorizontal = 0.8;
 constexpr double kVertical = 0.9;
 // Deviations remembered for the adaptive threshold.
 constexpr std::size_t kDeviationWindow = 100;
+// Fewer points than this stay on the caller's thread (a parallel loop's start costs more).
+constexpr std::size_t kParallelPoints = 8192, kParallelSource = 512;
 
 double sq(double v) { return v * v; }
 
@@ -76,31 +80,71 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
     const bool timed =
         params_.deskew && points_sensor.time_s.size() == points_sensor.size() && duration_s > 0.0;
     const Isometry3 T_end_start = lift_to_3d(motion).inverse();
-    std::vector<Eigen::Vector3d> points;
-    points.reserve(points_sensor.size());
     // A spinning sensor fires a column of beams at once: consecutive points share their time, and
-    // the motion at that time is computed once per column (1,800 a sweep, not 57,600).
-    float column_time = -1.0f;
-    Isometry3 T_end_point = T_end_start;
-    for (std::size_t i = 0; i < points_sensor.size(); ++i) {
-        const Eigen::Vector3d p = points_sensor.xyz[i].cast<double>();
-        if (!p.allFinite()) continue;
-        const double range = p.norm();
-        if (range < params_.min_range_m || range > params_.max_range_m) continue;
-        const Eigen::Vector3d p_base = T_base_sensor_ * p;
-        if (p_base.z() < params_.min_height_m) continue;
-        if (timed) {
-            if (points_sensor.time_s[i] != column_time) {
-                column_time = points_sensor.time_s[i];
-                const double s =
-                    std::clamp(static_cast<double>(column_time) / duration_s, 0.0, 1.0);
-                T_end_point = T_end_start * lift_to_3d(interpolate(Pose2{}, motion, s));
+    // the motion at that time is computed once per column (1,800 a sweep, not 57,600). On several
+    // threads the sweep is cut into runs of points, each de-skewed alone and joined in order.
+    const auto deskew = [&](std::size_t begin, std::size_t end,
+                            std::vector<Eigen::Vector3d>& into) {
+        into.reserve(end - begin);
+        float column_time = -1.0f;
+        Isometry3 T_end_point = T_end_start;
+        for (std::size_t i = begin; i < end; ++i) {
+            const Eigen::Vector3d p = points_sensor.xyz[i].cast<double>();
+            if (!p.allFinite()) continue;
+            const double range = p.norm();
+            if (range < params_.min_range_m || range > params_.max_range_m) continue;
+            const Eigen::Vector3d p_base = T_base_sensor_ * p;
+            if (p_base.z() < params_.min_height_m) continue;
+            if (timed) {
+                if (points_sensor.time_s[i] != column_time) {
+                    column_time = points_sensor.time_s[i];
+                    const double s =
+                        std::clamp(static_cast<double>(column_time) / duration_s, 0.0, 1.0);
+                    T_end_point = T_end_start * lift_to_3d(interpolate(Pose2{}, motion, s));
+                }
+                into.push_back(T_end_point * p_base);
+            } else {
+                into.push_back(T_end_start *
+                               p_base);  // an instantaneous sweep, taken at its stamp (the start)
             }
-            points.push_back(T_end_point * p_base);
-        } else {
-            points.push_back(T_end_start *
-                             p_base);  // an instantaneous sweep, taken at its stamp (the start)
         }
+    };
+    std::vector<Eigen::Vector3d> points;
+    const std::size_t n = points_sensor.size();
+    if (threads_ && n >= kParallelPoints) {
+        std::vector<std::vector<Eigen::Vector3d>> runs(static_cast<std::size_t>(params_.threads));
+        Handover handover;
+        handover.release();
+        threads_->arena.execute([&] {
+            tbb::parallel_for(std::size_t{0}, runs.size(), [&](std::size_t k) {
+                handover.acquire();
+                deskew(k * n / runs.size(), (k + 1) * n / runs.size(), runs[k]);
+                handover.release();
+            });
+        });
+        handover.acquire();
+        points.reserve(n);
+        for (const auto& run : runs) points.insert(points.end(), run.begin(), run.end());
+    } else {
+        deskew(0, n, points);
+    }
+    // The map's share of the sweep (one point per insert voxel) is thinned on another thread while
+    // this one registers the sweep.
+    std::vector<Eigen::Vector3d> insert;
+    Handover thinned;
+    tbb::task_group thinning;
+    const auto thin_for_map = [&] { insert = voxel_thin(points, params_.insert_voxel_m); };
+    if (threads_) {
+        thinned.release();
+        threads_->arena.execute([&] {
+            thinning.run([&] {
+                thinned.acquire();
+                thin_for_map();
+                thinned.release();
+            });
+        });
+    } else {
+        thin_for_map();
     }
 
     OdometryResult out;
@@ -171,14 +215,19 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
                 }
                 out_i.used = true;
             };
-            if (params_.threads > 1 && source.size() >= 512) {
+            if (threads_ && source.size() >= kParallelSource) {
+                Handover handover;
+                handover.release();
                 threads_->arena.execute([&] {
                     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, source.size(), 256),
                                       [&](const tbb::blocked_range<std::size_t>& range) {
+                                          handover.acquire();
                                           for (std::size_t i = range.begin(); i != range.end(); ++i)
                                               contribute(i);
+                                          handover.release();
                                       });
                 });
+                handover.acquire();
             } else {
                 for (std::size_t i = 0; i < source.size(); ++i) contribute(i);
             }
@@ -220,8 +269,12 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
     first_ = false;
 
     // 4. The map: the registered sweep in, far voxels out.
+    if (threads_) {
+        threads_->arena.execute([&] { thinning.wait(); });
+        thinned.acquire();
+    }
     const double c = std::cos(estimate.yaw_rad), s = std::sin(estimate.yaw_rad);
-    std::vector<Eigen::Vector3d> world = voxel_thin(points, params_.insert_voxel_m);
+    std::vector<Eigen::Vector3d> world = std::move(insert);
     for (auto& p : world)
         p = Eigen::Vector3d(c * p.x() - s * p.y() + estimate.x_m,
                             s * p.x() + c * p.y() + estimate.y_m, p.z());

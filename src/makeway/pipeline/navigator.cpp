@@ -84,11 +84,11 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
             plan_ = p.path_m;
             planned_t_ = in.t_s;
             if (detour_pending_ && around) {
-                // The first plan around the leg's first stuck spot is longer than the way that
-                // failed: it gets give_up_s of its own, progress measured along it. Only the
-                // first: a robot circling from detour to detour (con in the demo's study space,
-                // 72.7 s with every detour restarting the clock) still gives up, at most
-                // 2 x give_up_s after it last came closer.
+                // The first plan around each of the leg's first clocked_detours stuck spots is
+                // longer than the way that failed: it gets give_up_s of its own, progress measured
+                // along it. Not every detour: a robot circling from detour to detour (con in the
+                // demo's study space: 121.7 s with 3, 51.4 s with 2) still gives up, at most
+                // about (clocked_detours + 1) x give_up_s after it last came closer.
                 best_remaining_m_ = remaining_m(here);
                 moved_t_ = in.t_s;
             }
@@ -253,7 +253,7 @@ void Navigator::start_recovery(const NavigatorInput& in, NavigatorStep& out) {
             {along_plan(here, params_.detour_ahead_m), in.t_s + params_.detour_memory_s});
         ++detours_;
         out.detour = true;
-        detour_pending_ = detours_ == 1;  // the first detour of the leg only (below)
+        detour_pending_ = detours_ <= params_.clocked_detours;  // the leg's first ones (step())
     }
     plan_.clear();
     out.started_recovery = true;

@@ -62,8 +62,10 @@ const ParamTable<NavigatorParams>& navigator_policy_table() {
                  "... this wide (0: never) ...")
             .add("detour_memory_s", &N::detour_memory_s, closed(0.0, 3600.0), "... this long ...")
             .add("max_detours", &N::max_detours, closed(0, 100),
-                 "... this often per leg (the first detour gets give_up_s of its own; no other "
-                 "way: through it again)")
+                 "... this often per leg (no other way: through it again)")
+            .add("clocked_detours", &N::clocked_detours, closed(0, 100),
+                 "the leg's first this many detours get give_up_s of their own (progress along "
+                 "the longer way around)")
             .add("plan_to_tolerance", &N::plan_to_tolerance, below(0.0, 1.0),
                  "A* ends anywhere within this share of the tolerance (a goal inside a zone is "
                  "approached from its cheap side)")

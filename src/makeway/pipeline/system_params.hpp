@@ -65,13 +65,14 @@ struct NavigatorParams {
     /// Stuck means the plan leads where the robot cannot go (a gap its footprint does not turn
     /// through, a person standing in it): the plan's point detour_ahead_m ahead is avoided by A*
     /// (a disc of detour_radius_m, lethal) for detour_memory_s, at most max_detours times per leg;
-    /// with no other way, A* plans through it again. The first plan around the leg's first
-    /// stuck spot restarts the give-up clock, progress measured along it (it is longer than the
-    /// way that failed); later detours and a plan through the spot again do not.
+    /// with no other way, A* plans through it again. The first plan around each of the leg's first
+    /// clocked_detours stuck spots restarts the give-up clock, progress measured along it (it is
+    /// longer than the way that failed); later detours and a plan through a spot again do not.
     double detour_ahead_m = 0.6;
     double detour_radius_m = 0.35;
     double detour_memory_s = 30.0;
     int max_detours = 3;
+    int clocked_detours = 2;
     double plan_to_tolerance =
         0.6;  ///< A* ends anywhere within this share of the leg's tolerance (0: at the point)
     std::vector<std::string> validate() const;         ///< everything, layers and planners included
