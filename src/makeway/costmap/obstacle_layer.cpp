@@ -14,10 +14,16 @@
 
 namespace makeway::costmap {
 
+namespace {
+
+// Fewer endpoint cells than this stay on the caller's thread (a parallel loop's start costs more).
+constexpr std::size_t kParallelRays = 1024;
+
+}  // namespace
+
 struct ObstacleLayer::Threads {
     explicit Threads(int n) : arena(n) {}
-    tbb::task_arena arena;
-    tbb::enumerable_thread_specific<std::vector<int>> cleared;  ///< per thread: cells rays clear
+    tbb::task_arena arena;  ///< thread-safe: copies of the layer may share it
 };
 
 std::vector<std::string> ObstacleLayerParams::validate() const {
@@ -128,7 +134,7 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
         return std::sqrt(
             static_cast<double>((ex - s.x()) * (ex - s.x()) + (ey - s.y()) * (ey - s.y())));
     };
-    if (!threads_ || cells.size() < 1024) {
+    if (!threads_ || cells.size() < kParallelRays) {
         for (int idx : cells) {
             const double length = ray_length(idx);
             walk_ray(s.x(), s.y(), idx % grid_.width, idx / grid_.width, kBlock, empty_block,
@@ -137,7 +143,7 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
                      });
         }
     } else {
-        threads_->cleared.clear();
+        tbb::enumerable_thread_specific<std::vector<int>> cleared;  // per thread: cells rays clear
         Handover handover;
         handover.release();
         threads_->arena.execute([&] {
@@ -145,7 +151,7 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
                 tbb::blocked_range<std::size_t>(0, cells.size(), 256),
                 [&](const tbb::blocked_range<std::size_t>& range) {
                     handover.acquire();
-                    std::vector<int>& out = threads_->cleared.local();
+                    std::vector<int>& out = cleared.local();
                     for (std::size_t k = range.begin(); k != range.end(); ++k) {
                         const int idx = cells[k];
                         const double length = ray_length(idx);
@@ -159,10 +165,8 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
                 });
         });
         handover.acquire();
-        for (std::vector<int>& list : threads_->cleared) {
+        for (const std::vector<int>& list : cleared)
             for (int i : list) free_cell(i % grid_.width, i / grid_.width);
-            list.clear();
-        }
     }
     for (int idx : cells) {
         if (scratch_[idx].endpoint == 2 && grid_.cost[idx] != cost::kLethal) {
