@@ -1,7 +1,6 @@
 #include "makeway/costmap/inflation_layer.hpp"
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <cmath>
@@ -98,17 +97,10 @@ std::vector<double> distance_transform(const Costmap& grid, const GridWindow& sr
     };
     auto lines = [&](int count, int n, std::size_t line_step, std::size_t step) {
         if (!arena || count < 64) return pass(0, count, n, line_step, step);
-        Handover handover;
-        handover.release();
-        arena->execute([&] {
-            tbb::parallel_for(tbb::blocked_range<int>(0, count, 32),
-                              [&](const tbb::blocked_range<int>& r) {
-                                  handover.acquire();
-                                  pass(r.begin(), r.end(), n, line_step, step);
-                                  handover.release();
-                              });
-        });
-        handover.acquire();
+        visible_parallel_for(*arena, tbb::blocked_range<int>(0, count, 32),
+                             [&](const tbb::blocked_range<int>& part) {
+                                 pass(part.begin(), part.end(), n, line_step, step);
+                             });
     };
     lines(w, h, 1, static_cast<std::size_t>(w));  // columns
     lines(h, w, static_cast<std::size_t>(w), 1);  // rows

@@ -2,7 +2,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <cmath>
@@ -144,27 +143,20 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
         }
     } else {
         tbb::enumerable_thread_specific<std::vector<int>> cleared;  // per thread: cells rays clear
-        Handover handover;
-        handover.release();
-        threads_->arena.execute([&] {
-            tbb::parallel_for(
-                tbb::blocked_range<std::size_t>(0, cells.size(), 256),
-                [&](const tbb::blocked_range<std::size_t>& range) {
-                    handover.acquire();
-                    std::vector<int>& out = cleared.local();
-                    for (std::size_t k = range.begin(); k != range.end(); ++k) {
-                        const int idx = cells[k];
-                        const double length = ray_length(idx);
-                        walk_ray(s.x(), s.y(), idx % grid_.width, idx / grid_.width, kBlock,
-                                 empty_block, [&](int x, int y) {
-                                     if (grid_.inside(x, y) && clears_cell(idx, length, x, y))
-                                         out.push_back(y * grid_.width + x);
-                                 });
-                    }
-                    handover.release();
-                });
-        });
-        handover.acquire();
+        visible_parallel_for(
+            threads_->arena, tbb::blocked_range<std::size_t>(0, cells.size(), 256),
+            [&](const tbb::blocked_range<std::size_t>& part) {
+                std::vector<int>& out = cleared.local();
+                for (std::size_t k = part.begin(); k != part.end(); ++k) {
+                    const int idx = cells[k];
+                    const double length = ray_length(idx);
+                    walk_ray(s.x(), s.y(), idx % grid_.width, idx / grid_.width, kBlock,
+                             empty_block, [&](int x, int y) {
+                                 if (grid_.inside(x, y) && clears_cell(idx, length, x, y))
+                                     out.push_back(y * grid_.width + x);
+                             });
+                }
+            });
         for (const std::vector<int>& list : cleared)
             for (int i : list) free_cell(i % grid_.width, i / grid_.width);
     }

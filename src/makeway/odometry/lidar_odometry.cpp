@@ -1,7 +1,6 @@
 #include "makeway/odometry/lidar_odometry.hpp"
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
@@ -113,16 +112,12 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
     const std::size_t n = points_sensor.size();
     if (threads_ && n >= kParallelPoints) {
         std::vector<std::vector<Eigen::Vector3d>> runs(static_cast<std::size_t>(params_.threads));
-        Handover handover;
-        handover.release();
-        threads_->arena.execute([&] {
-            tbb::parallel_for(std::size_t{0}, runs.size(), [&](std::size_t k) {
-                handover.acquire();
-                deskew(k * n / runs.size(), (k + 1) * n / runs.size(), runs[k]);
-                handover.release();
-            });
-        });
-        handover.acquire();
+        visible_parallel_for(threads_->arena, tbb::blocked_range<std::size_t>(0, runs.size(), 1),
+                             [&](const tbb::blocked_range<std::size_t>& part) {
+                                 for (std::size_t k = part.begin(); k != part.end(); ++k)
+                                     deskew(k * n / runs.size(), (k + 1) * n / runs.size(),
+                                            runs[k]);
+                             });
         points.reserve(n);
         for (const auto& run : runs) points.insert(points.end(), run.begin(), run.end());
     } else {
@@ -216,18 +211,12 @@ OdometryResult LidarOdometry::register_sweep(const PointCloud& points_sensor, do
                 out_i.used = true;
             };
             if (threads_ && source.size() >= kParallelSource) {
-                Handover handover;
-                handover.release();
-                threads_->arena.execute([&] {
-                    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, source.size(), 256),
-                                      [&](const tbb::blocked_range<std::size_t>& range) {
-                                          handover.acquire();
-                                          for (std::size_t i = range.begin(); i != range.end(); ++i)
-                                              contribute(i);
-                                          handover.release();
-                                      });
-                });
-                handover.acquire();
+                visible_parallel_for(threads_->arena,
+                                     tbb::blocked_range<std::size_t>(0, source.size(), 256),
+                                     [&](const tbb::blocked_range<std::size_t>& part) {
+                                         for (std::size_t i = part.begin(); i != part.end(); ++i)
+                                             contribute(i);
+                                     });
             } else {
                 for (std::size_t i = 0; i < source.size(); ++i) contribute(i);
             }
