@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "../sim/sim_test_util.hpp"
@@ -369,19 +370,26 @@ TEST(Verification, ASeedFromTheLastFitReverifiesWithOneIcpUnlessTheObjectTurned)
                      .from_seed);  // off by default
 }
 
-TEST(Verification, SerialAndParallelVerificationAgree) {
-    const ChairScan scan = scan_chair(sim::FurnitureStyle::kFourLegChair, 4, 0.6, 3);
-    const CadLibrary lib = library_with(sim::FurnitureStyle::kFourLegChair, 4);
+// n detections of the scanned chair: centres off by up to dx_m along x, yaws anywhere.
+std::vector<Detection> jittered_detections(const ChairScan& scan, int n, double dx_m,
+                                           std::uint64_t seed) {
     std::vector<Detection> dets;
-    Rng rng = make_rng(9);
-    for (int k = 0; k < 12; ++k) {
+    Rng rng = make_rng(seed);
+    for (int k = 0; k < n; ++k) {
         Detection d;
         d.cls = ObjectClass::kChair;
         d.box_sensor = scan.box_sensor;
-        d.box_sensor.centre_m.x() += uniform(rng, -0.15, 0.15);
+        d.box_sensor.centre_m.x() += uniform(rng, -dx_m, dx_m);
         d.box_sensor.yaw_rad += uniform(rng, -3.1, 3.1);
         dets.push_back(d);
     }
+    return dets;
+}
+
+TEST(Verification, SerialAndParallelVerificationAgree) {
+    const ChairScan scan = scan_chair(sim::FurnitureStyle::kFourLegChair, 4, 0.6, 3);
+    const CadLibrary lib = library_with(sim::FurnitureStyle::kFourLegChair, 4);
+    std::vector<Detection> dets = jittered_detections(scan, 12, 0.15, 9);
     dets.push_back(dets.front());
     dets.back().box_sensor.centre_m = {6.4, -2.0, 0.0};  // on the wall: rejected in both
     VerifyParams serial, parallel, crowded;
@@ -403,6 +411,54 @@ TEST(Verification, SerialAndParallelVerificationAgree) {
     }
     EXPECT_GE(accepted, 6);
     EXPECT_FALSE(a.back().accepted);
+}
+
+TEST(Verification, ManyDetectionsAreCutFromTheKeyframeAsOneIs) {
+    // verify_detections cuts each segment from floor-plane buckets of the keyframe; one
+    // verify_detection scans the whole cloud. The same points in the same order, so the same fits
+    // to the bit, with what the buckets must survive: NaN and infinite coordinates, boxes over the
+    // cloud's edge and off it, and (second cloud) a stray return kilometres out (the cells grow).
+    const ChairScan scan = scan_chair(sim::FurnitureStyle::kFourLegChair, 4, 0.6, 3);
+    const CadLibrary lib = library_with(sim::FurnitureStyle::kFourLegChair, 4);
+    PointCloud cloud;
+    cloud.xyz = scan.cloud_sensor.xyz;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    cloud.xyz.insert(cloud.xyz.begin() + 100, Eigen::Vector3f(nan, 0.5f, 0.2f));
+    cloud.xyz.insert(cloud.xyz.begin() + 200, Eigen::Vector3f(2.0f, inf, 0.2f));
+    PointCloud stray = cloud;
+    stray.xyz.emplace_back(3000.0f, -2.0f, 0.3f);
+    Eigen::Vector2f lo = scan.cloud_sensor.xyz.front().head<2>();
+    for (const Eigen::Vector3f& p : scan.cloud_sensor.xyz) lo = lo.cwiseMin(p.head<2>());
+    std::vector<Detection> dets = jittered_detections(scan, 6, 0.1, 5);
+    for (const Eigen::Vector3d& c : {Eigen::Vector3d(lo.x(), lo.y(), 0.4),   // the cloud's corner
+                                     Eigen::Vector3d(-50.0, 0.0, 0.4),       // off the cloud
+                                     Eigen::Vector3d(3000.0, -2.0, 0.3)}) {  // the stray return
+        dets.push_back(dets.front());
+        dets.back().box_sensor.centre_m = c;
+    }
+    VerifyParams params;
+    params.num_threads = 2;
+    for (const PointCloud* keyframe : {&cloud, &stray}) {
+        const auto many = verify_detections(*keyframe, dets, lib, params);
+        ASSERT_EQ(many.size(), dets.size());
+        int accepted = 0;
+        for (std::size_t i = 0; i < dets.size(); ++i) {
+            const VerifiedDetection one = verify_detection(*keyframe, dets[i], lib, params);
+            EXPECT_EQ(many[i].segment_points,
+                      segment_points(*keyframe, dets[i].box_sensor, params.box_margin_m).size())
+                << i;
+            EXPECT_EQ(many[i].segment_points, one.segment_points) << i;
+            EXPECT_EQ(many[i].accepted, one.accepted) << i;
+            EXPECT_EQ(many[i].residual_m, one.residual_m) << i;
+            EXPECT_TRUE(many[i].T_sensor_object.isApprox(one.T_sensor_object, 0.0)) << i;
+            accepted += many[i].accepted;
+        }
+        EXPECT_GE(accepted, 4);
+        EXPECT_GT(many[6].segment_points, 10u);  // the corner's walls
+        EXPECT_EQ(many[7].segment_points, 0u);
+        EXPECT_EQ(many[8].segment_points, keyframe == &stray ? 1u : 0u);
+    }
 }
 
 TEST(Verification, ARoomOfVariantsTriesOnlyTheClosestInSize) {

@@ -74,6 +74,13 @@ DetectionEvalResult run_detection_eval(
                              .first;
                 lib = &it->second;
             }
+            if (lib->models().empty() && !p.shape_prior) {
+                // Nothing to verify against: the pipeline maps the network's boxes, its scores as
+                // the evidence (Pipeline::perceive), and so does this stage.
+                ver.push_back(net.back());
+                evidence.push_back(net.back());
+                continue;
+            }
             // The floor under a detection from the front end's fitted plane, as the pipeline does.
             perception::GroundPlaneResult ground;
             if (kf.ground_plane_sensor) {

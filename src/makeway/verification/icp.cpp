@@ -63,7 +63,8 @@ double geometric_residual(const std::vector<Eigen::Vector3d>& seg, const CadMode
 }
 
 IcpResult align(const LevelledSegment& segment, const CadModel& model, const Pose4& initial,
-                const IcpParams& params, int first_level, int last_level) {
+                const IcpParams& params, int first_level, int last_level,
+                FinalResidual final_residual) {
     IcpResult result;
     result.pose = initial;
     const int n_levels = static_cast<int>(model.levels.size());
@@ -123,6 +124,10 @@ IcpResult align(const LevelledSegment& segment, const CadModel& model, const Pos
                 break;
             }
         }
+    }
+    if (final_residual == FinalResidual::kSkip) {
+        result.residual_m = std::numeric_limits<double>::quiet_NaN();
+        return result;
     }
     result.residual_m = geometric_residual(
         segment.per_level_sensor[static_cast<std::size_t>(last_level)], model, last_level,

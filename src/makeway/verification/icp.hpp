@@ -55,10 +55,17 @@ struct LevelledSegment {
 LevelledSegment thin_to_levels(const std::vector<Eigen::Vector3d>& segment_sensor,
                                const CadModel& model);
 
+/// Whether align() ends with the residual (IcpResult::residual_m), a pass of nearest-point queries
+/// over the last level's points. Verification's candidates are ranked on residuals of their own
+/// and skip it (a tenth of a detection's queries).
+enum class FinalResidual { kCompute, kSkip };
+
 /// Gauss-Newton with Cauchy weights at levels [first_level, last_level] (inclusive; -1: finest).
-/// The segment must have been thinned for a model with the same voxel sizes.
+/// The segment must have been thinned for a model with the same voxel sizes. With
+/// FinalResidual::kSkip, residual_m is NaN.
 IcpResult align(const LevelledSegment& segment, const CadModel& model, const Pose4& initial,
-                const IcpParams& params, int first_level = 0, int last_level = -1);
+                const IcpParams& params, int first_level = 0, int last_level = -1,
+                FinalResidual final_residual = FinalResidual::kCompute);
 /// The same, thinning the segment first.
 IcpResult align(const std::vector<Eigen::Vector3d>& segment_sensor, const CadModel& model,
                 const Pose4& initial, const IcpParams& params, int first_level = 0,

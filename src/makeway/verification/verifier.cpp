@@ -6,6 +6,7 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <numeric>
 #include <stdexcept>
 #include <system_error>
 #include <thread>
@@ -15,6 +16,10 @@
 
 namespace makeway::verification {
 
+// Cells of the floor-plane buckets segments are cut from: about a chair, so a box reads 3 x 3 to
+// 5 x 5 cells.
+constexpr double kBucket_m = 0.5;
+
 std::vector<std::string> VerifyParams::validate() const {
     std::vector<std::string> p = verify_table().problems(*this);
     if (candidate_iterations < 0 || candidate_iterations > 100)
@@ -22,19 +27,133 @@ std::vector<std::string> VerifyParams::validate() const {
     return p;
 }
 
+namespace {
+
+// Whether p lies in the box grown by margin (the cheap test first; NaN fails it).
+struct SegmentTest {
+    SegmentTest(const OrientedBox& box, double margin)
+        : centre(box.centre_m),
+          c(std::cos(box.yaw_rad)),
+          s(std::sin(box.yaw_rad)),
+          half(0.5 * box.size_m + Eigen::Vector3d::Constant(margin)),
+          reach2(half.head<2>().squaredNorm()) {}
+    bool operator()(const Eigen::Vector3d& p) const {
+        const Eigen::Vector3d d = p - centre;
+        if (!(d.head<2>().squaredNorm() <= reach2)) return false;  // cheap reject (and NaN)
+        return std::abs(c * d.x() + s * d.y()) <= half.x() &&
+               std::abs(-s * d.x() + c * d.y()) <= half.y() && std::abs(d.z()) <= half.z();
+    }
+    Eigen::Vector3d centre;
+    double c, s;
+    Eigen::Vector3d half;
+    double reach2;
+};
+
+// A keyframe's points bucketed on the floor plane, so that each detection's segment reads the
+// cells its box reaches instead of the whole cloud (twenty detections read a keyframe of a few
+// hundred thousand points twenty times otherwise). Indices ascend within a cell, and a segment
+// gathered from cells is sorted back into the cloud's order: the same points in the same order
+// as the scan of the whole cloud, so every fit is the same to the bit.
+class PlaneBuckets {
+  public:
+    PlaneBuckets(const PointCloud& cloud, double cell_m) {
+        Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+        Eigen::Vector2d hi = -lo;
+        for (const Eigen::Vector3f& p : cloud.xyz) {
+            if (!std::isfinite(p.x()) || !std::isfinite(p.y())) continue;
+            lo = lo.cwiseMin(p.head<2>().cast<double>());
+            hi = hi.cwiseMax(p.head<2>().cast<double>());
+        }
+        if (!(lo.x() <= hi.x())) return;  // no finite point: every segment is empty
+        // At most 2,000 cells a side: a stray return kilometres out grows the cells instead.
+        cell_m_ = std::max(cell_m, (hi - lo).maxCoeff() / 2000.0);
+        origin_ = lo;
+        nx_ = static_cast<std::int64_t>((hi.x() - lo.x()) / cell_m_) + 1;
+        ny_ = static_cast<std::int64_t>((hi.y() - lo.y()) / cell_m_) + 1;
+        start_.assign(static_cast<std::size_t>(nx_ * ny_) + 1, 0);
+        std::vector<std::int64_t> cell_of(cloud.xyz.size(), -1);
+        for (std::size_t i = 0; i < cloud.xyz.size(); ++i) {
+            const Eigen::Vector3f& p = cloud.xyz[i];
+            if (!std::isfinite(p.x()) || !std::isfinite(p.y())) continue;
+            cell_of[i] = cell(p.x(), p.y());
+            ++start_[static_cast<std::size_t>(cell_of[i]) + 1];
+        }
+        for (std::size_t k = 1; k < start_.size(); ++k) start_[k] += start_[k - 1];
+        index_.resize(start_.back());
+        std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+        for (std::size_t i = 0; i < cloud.xyz.size(); ++i) {
+            if (cell_of[i] >= 0)
+                index_[fill[static_cast<std::size_t>(cell_of[i])]++] =
+                    static_cast<std::uint32_t>(i);
+        }
+    }
+
+    std::vector<Eigen::Vector3d> segment(const PointCloud& cloud, const OrientedBox& box,
+                                         double margin) const {
+        const SegmentTest inside(box, margin);
+        std::vector<std::uint32_t> hits;
+        if (nx_ > 0 && std::isfinite(inside.reach2) && inside.centre.allFinite()) {
+            // A hair wider than the reach: the exact test below decides, the cells only must not
+            // miss a point it would keep.
+            const double r = std::sqrt(inside.reach2) * (1.0 + 1e-9) + 1e-9;
+            const auto clamp_x = [&](double x) {
+                return static_cast<std::int64_t>(std::clamp(std::floor((x - origin_.x()) / cell_m_),
+                                                            0.0, static_cast<double>(nx_ - 1)));
+            };
+            const auto clamp_y = [&](double y) {
+                return static_cast<std::int64_t>(std::clamp(std::floor((y - origin_.y()) / cell_m_),
+                                                            0.0, static_cast<double>(ny_ - 1)));
+            };
+            for (std::int64_t iy = clamp_y(inside.centre.y() - r);
+                 iy <= clamp_y(inside.centre.y() + r); ++iy) {
+                for (std::int64_t ix = clamp_x(inside.centre.x() - r);
+                     ix <= clamp_x(inside.centre.x() + r); ++ix) {
+                    const auto k = static_cast<std::size_t>(iy * nx_ + ix);
+                    for (std::uint32_t j = start_[k]; j < start_[k + 1]; ++j) {
+                        if (inside(cloud.xyz[index_[j]].cast<double>())) hits.push_back(index_[j]);
+                    }
+                }
+            }
+        }
+        std::sort(hits.begin(), hits.end());
+        std::vector<Eigen::Vector3d> out;
+        out.reserve(hits.size());
+        for (const std::uint32_t i : hits) out.push_back(cloud.xyz[i].cast<double>());
+        return out;
+    }
+
+  private:
+    std::int64_t cell(float x, float y) const {
+        const auto ix = std::min<std::int64_t>(
+            static_cast<std::int64_t>((static_cast<double>(x) - origin_.x()) / cell_m_), nx_ - 1);
+        const auto iy = std::min<std::int64_t>(
+            static_cast<std::int64_t>((static_cast<double>(y) - origin_.y()) / cell_m_), ny_ - 1);
+        return iy * nx_ + ix;
+    }
+    Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
+    double cell_m_ = 1.0;
+    std::int64_t nx_ = 0, ny_ = 0;
+    std::vector<std::uint32_t> start_;  ///< per cell, its first entry in index_ (and one past)
+    std::vector<std::uint32_t> index_;  ///< point indices, cell by cell, ascending in each
+};
+
+// The cloud a detection's segment comes from: scanned whole, or through its buckets.
+struct CloudView {
+    const PointCloud& cloud;
+    const PlaneBuckets* buckets = nullptr;
+    std::vector<Eigen::Vector3d> segment(const OrientedBox& box, double margin) const {
+        return buckets ? buckets->segment(cloud, box, margin) : segment_points(cloud, box, margin);
+    }
+};
+
+}  // namespace
+
 std::vector<Eigen::Vector3d> segment_points(const PointCloud& cloud, const OrientedBox& box,
                                             double margin) {
     std::vector<Eigen::Vector3d> out;
-    const double c = std::cos(box.yaw_rad), s = std::sin(box.yaw_rad);
-    const Eigen::Vector3d half = 0.5 * box.size_m + Eigen::Vector3d::Constant(margin);
-    const double reach2 = half.head<2>().squaredNorm();
+    const SegmentTest inside(box, margin);
     for (const auto& p : cloud.xyz) {
-        const Eigen::Vector3d d = p.cast<double>() - box.centre_m;
-        if (!(d.head<2>().squaredNorm() <= reach2)) continue;  // cheap reject (and NaN)
-        if (std::abs(c * d.x() + s * d.y()) <= half.x() &&
-            std::abs(-s * d.x() + c * d.y()) <= half.y() && std::abs(d.z()) <= half.z()) {
-            out.push_back(p.cast<double>());
-        }
+        if (inside(p.cast<double>())) out.push_back(p.cast<double>());
     }
     return out;
 }
@@ -55,13 +174,11 @@ void take_fit(VerifiedDetection& out, const CadModel& model, const IcpResult& fi
     out.box_sensor = model.box_object.transformed(out.T_sensor_object);
 }
 
-VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det,
+VerifiedDetection verify_with_cad(const std::vector<Eigen::Vector3d>& segment, const Detection& det,
                                   const CadLibrary& library, const VerifyParams& params,
                                   std::optional<double> floor_z_m) {
     VerifiedDetection out;
     out.detection = det;
-    const std::vector<Eigen::Vector3d> segment =
-        segment_points(cloud, det.box_sensor, params.box_margin_m);
     out.segment_points = segment.size();
     const auto models = library.models_of(det.cls);
     if (models.empty()) {
@@ -121,7 +238,7 @@ VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det,
                 IcpParams short_run = params.icp;
                 short_run.iterations.assign(short_run.iterations.size(),
                                             params.candidate_iterations);
-                pose = align(levelled, *m, init, short_run, 0, 0).pose;
+                pose = align(levelled, *m, init, short_run, 0, 0, FinalResidual::kSkip).pose;
             }
             // Ranked on every point: a back rest seen by few points is what tells the yaw flips
             // apart.
@@ -145,8 +262,8 @@ VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det,
          i < std::min<std::size_t>(candidates.size(),
                                    static_cast<std::size_t>(params.refined_candidates));
          ++i) {
-        const IcpResult r =
-            align(levelled, *candidates[i].model, candidates[i].pose, params.icp, 0, rank_level);
+        const IcpResult r = align(levelled, *candidates[i].model, candidates[i].pose, params.icp, 0,
+                                  rank_level, FinalResidual::kSkip);
         // Ranked on every point: a back rest seen by few points tells the yaw flips apart.
         const double e = geometric_residual(
             ranked_points, *candidates[i].model, rank_level, r.pose,
@@ -201,11 +318,9 @@ VerifiedDetection verify_with_cad(const PointCloud& cloud, const Detection& det,
 // model and yaw are known; the full search (every model, four yaw candidates, four refined) is
 // for objects seen anew or turned since. The seed's own residual bounds the answer, so a chair
 // turned half round, whose old yaw still fits it loosely, goes to the full search.
-std::optional<VerifiedDetection> verify_from_seed(const PointCloud& cloud, const Detection& det,
-                                                  const VerifySeed& seed,
+std::optional<VerifiedDetection> verify_from_seed(const std::vector<Eigen::Vector3d>& segment,
+                                                  const Detection& det, const VerifySeed& seed,
                                                   const VerifyParams& params) {
-    std::vector<Eigen::Vector3d> segment =
-        segment_points(cloud, det.box_sensor, params.box_margin_m);
     if (segment.size() < params.min_points) return std::nullopt;
     const IcpResult fit = align(segment, *seed.model, seed.pose, params.icp,
                                 1);  // a seed is within the 4 cm level's reach
@@ -222,20 +337,17 @@ std::optional<VerifiedDetection> verify_from_seed(const PointCloud& cloud, const
     return out;
 }
 
-}  // namespace
-
-VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det,
-                                   const CadLibrary& library, const VerifyParams& params,
-                                   std::optional<double> floor_z_m, const ShapePrior* prior,
-                                   const VerifySeed* seed) {
+// verify_detection() on the detection's segment, cut from the view before.
+VerifiedDetection verify_segment(const CloudView& view, const std::vector<Eigen::Vector3d>& segment,
+                                 const Detection& det, const CadLibrary& library,
+                                 const VerifyParams& params, std::optional<double> floor_z_m,
+                                 const ShapePrior* prior, const VerifySeed* seed) {
     if (seed && seed->model && params.reseed_tolerance_m > 0.0 && params.min_yaw_margin <= 0.0) {
-        if (auto seeded = verify_from_seed(cloud, det, *seed, params)) return std::move(*seeded);
+        if (auto seeded = verify_from_seed(segment, det, *seed, params)) return std::move(*seeded);
     }
-    VerifiedDetection cad = verify_with_cad(cloud, det, library, params, floor_z_m);
+    VerifiedDetection cad = verify_with_cad(segment, det, library, params, floor_z_m);
     if (cad.accepted || !prior || cad.segment_points < params.min_points) return cad;
     // No CAD model fits: the prior's model of this object, verified the same way from its pose.
-    const std::vector<Eigen::Vector3d> segment =
-        segment_points(cloud, det.box_sensor, params.box_margin_m);
     const double floor_z = floor_z_m.value_or(det.box_sensor.z_min_m());
     auto estimate = prior->estimate(segment, det.cls, floor_z);
     if (!estimate || estimate->mesh_object.triangles.empty()) {
@@ -249,7 +361,8 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
     VerifyParams shape_params = params;
     shape_params.e_max_m = std::max(params.shape_e_max_m, params.e_min_m + 1e-6);
     shape_params.approx_e_max_m = 0.0;  // the completed shape is the object's own: no second level
-    VerifiedDetection shaped = verify_with_cad(cloud, seeded, own, shape_params, floor_z);
+    VerifiedDetection shaped = verify_with_cad(view.segment(seeded.box_sensor, params.box_margin_m),
+                                               seeded, own, shape_params, floor_z);
     shaped.detection = det;
     if (!shaped.accepted) {
         cad.reason += "; completed shape: " + shaped.reason;
@@ -257,6 +370,17 @@ VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det
     }
     shaped.shape = std::move(*estimate);
     return shaped;
+}
+
+}  // namespace
+
+VerifiedDetection verify_detection(const PointCloud& cloud, const Detection& det,
+                                   const CadLibrary& library, const VerifyParams& params,
+                                   std::optional<double> floor_z_m, const ShapePrior* prior,
+                                   const VerifySeed* seed) {
+    const CloudView view{cloud};
+    return verify_segment(view, view.segment(det.box_sensor, params.box_margin_m), det, library,
+                          params, floor_z_m, prior, seed);
 }
 
 std::vector<VerifiedDetection> verify_detections(
@@ -270,29 +394,37 @@ std::vector<VerifiedDetection> verify_detections(
                                     " detections");
     }
     std::vector<VerifiedDetection> out(detections.size());
+    const PlaneBuckets buckets(cloud, kBucket_m);
+    const CloudView view{cloud, &buckets};
+    std::vector<std::vector<Eigen::Vector3d>> segments(detections.size());
+    for (std::size_t i = 0; i < detections.size(); ++i)
+        segments[i] = view.segment(detections[i].box_sensor, params.box_margin_m);
     auto verify_one = [&](std::size_t i) {
         const Detection& d = detections[i];
         const std::optional<double> floor_z =
             floor_z_at ? floor_z_at(d.box_sensor.centre_m.x(), d.box_sensor.centre_m.y())
                        : std::nullopt;
         const VerifySeed* seed = seeds.empty() || !seeds[i] ? nullptr : &*seeds[i];
-        out[i] = verify_detection(cloud, d, library, params, floor_z, prior, seed);
+        out[i] = verify_segment(view, segments[i], d, library, params, floor_z, prior, seed);
+        segments[i] = {};
     };
     if (params.num_threads <= 1 || detections.size() < 2) {
         for (std::size_t i = 0; i < detections.size(); ++i) verify_one(i);
         return out;
     }
-    // Detections are independent and each writes its own slot: the result does not depend on the
-    // schedule. Helper threads live for this call only and take the next detection as they finish
-    // one. Not a TBB arena: with two benchmark runs sharing two cores its waiting workers cost
-    // 29 s of system CPU over 25 runs against 12 s here, and the keyframe chain 62 ms median
-    // against 48 (README); a thread's start costs ~0.1 ms against 40+ ms of work.
+    // The largest segments first (their fits take longest): the threads then end together
+    // instead of one finishing a large table alone while the other waits.
+    std::vector<std::size_t> order(detections.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return segments[a].size() > segments[b].size();
+    });
     std::atomic<std::size_t> next{0};
     std::exception_ptr failure;
     std::mutex failure_mutex;
     auto work = [&] {
         try {
-            for (std::size_t i = next++; i < detections.size(); i = next++) verify_one(i);
+            for (std::size_t k = next++; k < order.size(); k = next++) verify_one(order[k]);
         } catch (...) {
             const std::lock_guard<std::mutex> lock(failure_mutex);
             if (!failure) failure = std::current_exception();
