@@ -6,6 +6,7 @@
 
 #include "apps/command.hpp"
 #include "apps/model_path.hpp"
+#include "io/config_reader.hpp"
 #include "io/dataset_io.hpp"
 #include "io/error.hpp"
 #include "io/furniture_folder.hpp"
@@ -67,6 +68,7 @@ struct EvalDetectionOptions {
     bool no_cad = false;  ///< no CAD models at all
     std::string shape_model;     ///< learned shapes for what no CAD model fits
     double shape_e_max = 0.035;  ///< verification's residual bound for completed shapes [m]
+    std::string config;          ///< the online system's sections (front end, verification, ...)
 };
 
 namespace {
@@ -203,6 +205,7 @@ int run_detect(const DetectOptions& o) {
 int run_eval_detection(const EvalDetectionOptions& o) {
     const perception::Detector detector = load_detector(o.model);
     eval::DetectionEvalParams p;
+    p.system = io::load_config(o.config).system;
     p.scenes = o.scenes;
     p.seed = o.seed;
     p.cad = o.no_cad        ? eval::CadSource::kNone
@@ -235,6 +238,7 @@ int run_eval_detection(const EvalDetectionOptions& o) {
     j["left_out"]["styles"] = p.left_out_styles;
     j["left_out"]["stages"] = stages(r.left_out);
     j["cad_library"] = o.no_cad ? "none" : o.default_cad ? "default" : "scene";
+    j["config"] = o.config.empty() ? io::Json(nullptr) : io::Json(o.config);
     j["shape_model"] = o.shape_model.empty() ? io::Json(nullptr) : io::Json(o.shape_model);
     j["latency_ms_median_1t"] = r.latency_ms_median_1t;
     j["latency_ms_p99_1t"] = r.latency_ms_p99_1t;
@@ -354,6 +358,10 @@ void declare_eval_detection(CommandSpec& c, EvalDetectionOptions& ev) {
              "Verification's residual bound for completed shapes [m]")
         .range(0.005, 0.5)
         .show_default();
+    c.option("--config", ev.config,
+             "YAML configuration: the online system's sections (perception, verification, "
+             "tracking; default: built-in, see config/default.yaml)")
+        .existing_file();
     c.flag("--default-cad", ev.default_cad,
            "Verify against one default-dimension model per style instead of the "
            "CAD models of each scene's own furniture");

@@ -44,7 +44,11 @@ const ParamTable<SystemParams>& verification_section() {
                 verification::verify_table())
             .include(
                 "shape_", [](SystemParams& p) -> pipeline::TrackedShapeParams& { return p.shapes; },
-                pipeline::tracked_shape_table());
+                pipeline::tracked_shape_table())
+            .include(
+                "back_yaw_",
+                [](SystemParams& p) -> verification::BackYawParams& { return p.back_yaw; },
+                verification::back_yaw_table());
         return s;
     }();
     return t;

@@ -74,13 +74,6 @@ DetectionEvalResult run_detection_eval(
                              .first;
                 lib = &it->second;
             }
-            if (lib->models().empty() && !p.shape_prior) {
-                // Nothing to verify against: the pipeline maps the network's boxes, its scores as
-                // the evidence (Pipeline::perceive), and so does this stage.
-                ver.push_back(net.back());
-                evidence.push_back(net.back());
-                continue;
-            }
             // The floor under a detection from the front end's fitted plane, as the pipeline does.
             perception::GroundPlaneResult ground;
             if (kf.ground_plane_sensor) {
@@ -92,6 +85,14 @@ DetectionEvalResult run_detection_eval(
                 if (!ground.found) return std::nullopt;
                 return ground.floor_z_at(x, y);
             };
+            if (lib->models().empty() && !p.shape_prior) {
+                // Nothing to verify against: the pipeline maps the network's boxes, chairs turned
+                // to their backs, its scores as the evidence (Pipeline::perceive); so does this.
+                ver.push_back(verification::chairs_turned_to_their_backs(
+                    kf.cloud_sensor, net.back(), floor_z, p.system.back_yaw));
+                evidence.push_back(ver.back());
+                continue;
+            }
             const auto verified = verification::verify_detections(
                 kf.cloud_sensor, net.back(), *lib, p.system.verify, floor_z, p.shape_prior);
             ver.push_back(

@@ -135,6 +135,12 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
             params_.verify, [&](double x, double y) { return prepared.floor_z_at(x, y); },
             shapes_.get(), seeds);
         kf.evidence = verification::accepted_detections(kf.verified);
+    } else {
+        // Nothing to verify against: the network's boxes, chairs turned to their backs.
+        const PreparedKeyframe& prepared = kf.prepared;
+        kf.evidence = verification::chairs_turned_to_their_backs(
+            prepared.cloud_sensor, kf.detections,
+            [&](double x, double y) { return prepared.floor_z_at(x, y); }, params_.back_yaw);
     }
     timing.verify_ms = ms_since(t);
     // Track: associate (GIoU + Hungarian), filter, fuse class and existence (eqs. 3-5), prune.

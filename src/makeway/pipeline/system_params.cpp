@@ -61,6 +61,7 @@ std::vector<std::string> SystemParams::validate() const {
     add(p, "perception", keyframe.validate());  // its keys are the perception section's
     add(p, "verification", verify.validate());
     add(p, "verification.shapes", shapes.validate());
+    add(p, "verification.back_yaw", back_yaw.validate());
     add(p, "tracking", tracker.validate());
     add(p, "navigation", navigator.validate());
     return p;

@@ -16,6 +16,7 @@
 #include "makeway/planning/collision_monitor.hpp"
 #include "makeway/planning/dwa.hpp"
 #include "makeway/tracking/object_map.hpp"
+#include "makeway/verification/back_yaw.hpp"
 #include "makeway/verification/verifier.hpp"
 
 namespace makeway::pipeline {
@@ -91,6 +92,8 @@ struct SystemParams {
     bool verification_enabled =
         true;  ///< with a CAD library: 4-DoF ICP, p_exist as existence evidence
     verification::VerifyParams verify;
+    /// Without CAD models (no verification): chairs turned to their backs' yaw before the map.
+    verification::BackYawParams back_yaw;
     TrackedShapeParams shapes;  ///< with a shape prior: learned shapes kept per tracked object
     tracking::TrackerParams tracker;
     NavigatorParams navigator;

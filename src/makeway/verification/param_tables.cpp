@@ -50,4 +50,25 @@ const ParamTable<VerifyParams>& verify_table() {
     return table;
 }
 
+const ParamTable<BackYawParams>& back_yaw_table() {
+    using B = BackYawParams;
+    static const ParamTable<B> table = [] {
+        ParamTable<B> t;
+        t.add("enabled", &B::enabled,
+              "without CAD models: chairs turned to their back rest's yaw (false: the network's)")
+            .add("top_share", &B::top_share, closed(0.01, 1.0),
+                 "the back: segment points in this top share of the box's height above the floor")
+            .add("margin_m", &B::margin_m, closed(0.0, 1.0),
+                 "the box grown by this on every side cuts the segment")
+            .add("min_points", &B::min_points, closed(3.0, 1e9),
+                 "fewer back points: the network's yaw stays")
+            .add("min_elongation", &B::min_elongation, closed(1.0, 1e6),
+                 "variance along the back's axis over across it, at least")
+            .add("max_turn_rad", &B::max_turn_rad, closed(0.0, 1.5707963267948966),
+                 "a larger turn is not trusted: the network's yaw stays");
+        return t;
+    }();
+    return table;
+}
+
 }  // namespace makeway::verification
