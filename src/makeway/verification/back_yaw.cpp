@@ -62,14 +62,18 @@ std::vector<Detection> chairs_turned_to_their_backs(
     const std::function<std::optional<double>(double, double)>& floor_z_at,
     const BackYawParams& params) {
     if (!params.enabled) return detections;
+    std::vector<OrientedBox> chairs;
+    for (const Detection& d : detections) {
+        if (d.cls == ObjectClass::kChair) chairs.push_back(d.box_sensor);
+    }
+    const auto segments = segments_of(cloud, chairs, params.margin_m);
+    std::size_t k = 0;
     for (Detection& d : detections) {
         if (d.cls != ObjectClass::kChair) continue;
         const std::optional<double> floor_z =
             floor_z_at ? floor_z_at(d.box_sensor.centre_m.x(), d.box_sensor.centre_m.y())
                        : std::nullopt;
-        d.box_sensor.yaw_rad = yaw_from_back(segment_points(cloud, d.box_sensor, params.margin_m),
-                                             d.box_sensor, floor_z, params)
-                                   .yaw_rad;
+        d.box_sensor.yaw_rad = yaw_from_back(segments[k++], d.box_sensor, floor_z, params).yaw_rad;
     }
     return detections;
 }

@@ -158,6 +158,16 @@ std::vector<Eigen::Vector3d> segment_points(const PointCloud& cloud, const Orien
     return out;
 }
 
+std::vector<std::vector<Eigen::Vector3d>> segments_of(const PointCloud& cloud,
+                                                      const std::vector<OrientedBox>& boxes,
+                                                      double margin) {
+    std::vector<std::vector<Eigen::Vector3d>> out;
+    if (boxes.empty()) return out;
+    const PlaneBuckets buckets(cloud, kBucket_m);
+    for (const OrientedBox& box : boxes) out.push_back(buckets.segment(cloud, box, margin));
+    return out;
+}
+
 double existence_probability(double e, double e_min, double e_max) {
     return std::clamp(1.0 - 0.5 * (e - e_min) / (e_max - e_min), 0.5, 1.0);  // eq. (2)
 }

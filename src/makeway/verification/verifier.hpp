@@ -91,6 +91,12 @@ struct VerifySeed {
 std::vector<Eigen::Vector3d> segment_points(const PointCloud& cloud_sensor, const OrientedBox& box,
                                             double margin_m);
 
+/// segment_points() of every box, cut through floor-plane buckets of the cloud built once: the same
+/// points in the same order, without reading the whole cloud once per box.
+std::vector<std::vector<Eigen::Vector3d>> segments_of(const PointCloud& cloud_sensor,
+                                                      const std::vector<OrientedBox>& boxes,
+                                                      double margin_m);
+
 /// p_exist of eq. (2) for an accepted residual.
 double existence_probability(double residual_m, double e_min_m, double e_max_m);
 
