@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
+#include <optional>
+#include <tuple>
 
 #include "makeway/common/angles.hpp"
 #include "makeway/common/polygon2d.hpp"
@@ -27,7 +30,22 @@ struct ChainRun {
     std::vector<sim::ObjectState> truth;
     std::vector<Eigen::Vector2d> path;
     std::size_t detections = 0, accepted = 0, from_seed = 0;
+    /// Per mapped chair (by id), its yaw error [rad] in the first keyframe's map that held it on
+    /// a true chair.
+    std::map<std::uint32_t, double> first_chair_yaw_error;
 };
+
+// The yaw error [rad] of a mapped chair against the true chair within 0.3 m (none: no such chair).
+std::optional<double> chair_yaw_error(const ObjectEstimate& o,
+                                      const std::vector<sim::ObjectState>& truth) {
+    if (o.cls != ObjectClass::kChair) return std::nullopt;
+    for (const sim::ObjectState& t : truth) {
+        if (t.cls == ObjectClass::kChair &&
+            (o.box_world.centre_m.head<2>() - t.box_world.centre_m.head<2>()).norm() < 0.3)
+            return std::abs(angle_diff(o.box_world.yaw_rad, t.box_world.yaw_rad));
+    }
+    return std::nullopt;
+}
 
 // The whole online system with the committed weights on a simulated drive it never trained on
 // (held-out seed, honest intensity, the robot moving during every sweep), with the scene's CAD
@@ -67,6 +85,11 @@ ChainRun run_chain(const perception::Detector& detector, SystemParams params, bo
                 run.from_seed += v.from_seed;
             }
             run.path.emplace_back(frame.true_pose.x_m, frame.true_pose.y_m);
+            for (const ObjectEstimate& o : r.objects) {
+                if (run.first_chair_yaw_error.count(o.id)) continue;
+                if (const auto e = chair_yaw_error(o, frame.objects))
+                    run.first_chair_yaw_error[o.id] = *e;
+            }
         }
         run.objects = r.objects;
         run.truth = frame.objects;
@@ -84,7 +107,9 @@ TEST(FullChain, FindsTheFurnitureWhereItStands) {
     params.verify.reseed_tolerance_m =
         0.005;  // re-verification from the map's fits (off by default)
     const ChainRun run = run_chain(detector, params, true, 120);
-    const auto& [objects, truth, path, detections, accepted, from_seed] = run;
+    const auto& [objects, truth, path] = std::tie(run.objects, run.truth, run.path);
+    const std::size_t detections = run.detections, accepted = run.accepted,
+                      from_seed = run.from_seed;
     ASSERT_GT(detections, 10u);
     // Objects the map has verified are re-verified from their last fit with one ICP (most of the
     // accepted detections after the first keyframes); the map's precision and recall below hold.
@@ -159,7 +184,8 @@ TEST(FullChain, FindsTheFurnitureWhereItStands) {
 
 // Without CAD models the map keeps the network's boxes, chairs turned to their back rests' yaw
 // (verification/back_yaw.hpp): more of the mapped chairs face within 10 deg of the truth than
-// with the network's yaw alone, and the median error is lower.
+// with the network's yaw alone, the median error is lower, and more face right in the final map
+// than in the first map that held each.
 TEST(FullChain, WithoutCadModelsChairsFaceWhereTheirBacksSay) {
     ASSERT_TRUE(fs::exists(kWeights)) << "the default weights are committed: " << kWeights;
     const perception::Detector detector = perception::Detector::load(kWeights);
@@ -167,15 +193,7 @@ TEST(FullChain, WithoutCadModelsChairsFaceWhereTheirBacksSay) {
     auto chair_errors = [](const ChainRun& run) {
         std::vector<double> e;
         for (const ObjectEstimate& o : run.objects) {
-            if (o.cls != ObjectClass::kChair) continue;
-            for (const sim::ObjectState& t : run.truth) {
-                if (t.cls == ObjectClass::kChair &&
-                    (o.box_world.centre_m.head<2>() - t.box_world.centre_m.head<2>()).norm() <
-                        0.3) {
-                    e.push_back(std::abs(angle_diff(o.box_world.yaw_rad, t.box_world.yaw_rad)));
-                    break;
-                }
-            }
+            if (const auto err = chair_yaw_error(o, run.truth)) e.push_back(*err);
         }
         return e;
     };
@@ -186,7 +204,8 @@ TEST(FullChain, WithoutCadModelsChairsFaceWhereTheirBacksSay) {
     };
     SystemParams backs, network;
     network.back_yaw.enabled = false;
-    const std::vector<double> turned = chair_errors(run_chain(detector, backs, false, 120));
+    const ChainRun with_backs = run_chain(detector, backs, false, 120);
+    const std::vector<double> turned = chair_errors(with_backs);
     const std::vector<double> as_detected = chair_errors(run_chain(detector, network, false, 120));
     ASSERT_GE(turned.size(), 5u);
     ASSERT_GE(as_detected.size(), 5u);
@@ -197,6 +216,21 @@ TEST(FullChain, WithoutCadModelsChairsFaceWhereTheirBacksSay) {
     EXPECT_GE(within_10deg(turned), within_10deg(as_detected) + 0.05);
     EXPECT_GE(within_10deg(turned), 0.75);
     EXPECT_LT(median(turned), 0.8 * median(as_detected));
+    // Over keyframes: a chair's yaw in the final map against its yaw in the first map that held
+    // it (each later view fused, the back seen from more sides).
+    std::vector<double> first, last;
+    for (const ObjectEstimate& o : with_backs.objects) {
+        const auto e = chair_yaw_error(o, with_backs.truth);
+        const auto it = with_backs.first_chair_yaw_error.find(o.id);
+        if (!e || it == with_backs.first_chair_yaw_error.end()) continue;
+        first.push_back(it->second);
+        last.push_back(*e);
+    }
+    ASSERT_GE(first.size(), 5u);
+    RecordProperty("within_10deg_first_map", std::to_string(within_10deg(first)));
+    // Measured: 25 of 38 chairs within 10 deg in their first map, 31 in the final one (median
+    // errors 1.9 and 2.9 deg: the share of chairs facing right grows, not every chair's fit).
+    EXPECT_GE(within_10deg(last), within_10deg(first) + 0.1);
 }
 
 }  // namespace
