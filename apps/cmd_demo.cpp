@@ -90,7 +90,7 @@ int run_demo(const DemoOptions& options) {
     std::vector<std::string> methods = eval::nav_method_names();
     std::optional<perception::Detector> detector;
     if (const auto model = default_model_path()) {
-        detector = load_detector(model->string());
+        detector = load_online_detector(model->string());
         methods.push_back("ours");
     } else {
         std::cout << "  no detector weights (models/detector.pt; `make model`): skipping the full "

@@ -90,7 +90,7 @@ int run_navigate(const NavigateOptions& options) {
     use_zones(params, io::load_zones(options.zones));
     if (!options.map.empty()) params.static_map = io::read_map_server(options.map);
     std::optional<perception::Detector> detector;
-    if (options.method == "ours") detector = load_detector(options.model);
+    if (options.method == "ours") detector = load_online_detector(options.model);
     const eval::NavRunResult r =
         run_nav_method(scene, options.method, params, detector ? &*detector : nullptr);
     io::StagedOutput staged(

@@ -128,7 +128,7 @@ int run_run(const RunOptions& o) {
     so.T_base_sensor = params.T_base_sensor;
     so.skip_bad_messages = o.skip_bad_messages;
     const std::unique_ptr<rosio::SweepSource> source = rosio::open_sweep_source(so);
-    const perception::Detector detector = load_detector(o.model);
+    const perception::Detector detector = load_online_detector(o.model);
     std::optional<verification::CadLibrary> library;
     if (!o.cad.empty()) library = io::read_cad_folder(o.cad);
     const Pose2 start = !o.start.empty() ? Pose2{o.start[0], o.start[1], o.start[2]}

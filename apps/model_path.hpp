@@ -41,6 +41,18 @@ inline perception::Detector load_detector(const std::string& given) {
     }
 }
 
+/// load_detector() for the online system (run, navigate, demo): the network on one thread. On
+/// this 2-core machine a second thread gains the network nothing (detect 7.7-8.1 against 7.8-7.9
+/// ms median) while OpenBLAS's second worker spins in sched_yield after every call beside
+/// verification's threads: `run --bag` on the dense drive with its CAD models, keyframe chain
+/// 65.9-70.3 -> 45.4-46.4 ms median, verification 52.5-53.6 -> 32.7-34.7 ms. The same as bench
+/// nav's runs, so `navigate` replays them to the byte.
+inline perception::Detector load_online_detector(const std::string& given) {
+    perception::Detector detector = load_detector(given);
+    perception::set_inference_threads(1);
+    return detector;
+}
+
 /// The given shape model file, else models/shape.pt; throws io::FileError naming the file.
 inline shape::ShapeModel load_shape_model(const std::string& given) {
     const std::filesystem::path path =
