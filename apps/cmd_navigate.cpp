@@ -180,9 +180,9 @@ int run_bench_nav(const BenchNavOptions& options) {
     const bool ours_asked =
         std::find(options.methods.begin(), options.methods.end(), "ours") != options.methods.end();
     if (!options.model.empty() || default_model_path() || ours_asked) {
-        detector =
-            load_detector(options.model);  // names the missing default file when ours was asked for
-        perception::set_inference_threads(1);  // runs go in parallel instead
+        // Names the missing default file when ours was asked for; one thread (runs go in
+        // parallel instead).
+        detector = load_online_detector(options.model);
         methods.push_back("ours");
     } else {
         std::cout << "no detector weights (models/detector.pt; `make model`): the full system "

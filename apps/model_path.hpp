@@ -41,12 +41,12 @@ inline perception::Detector load_detector(const std::string& given) {
     }
 }
 
-/// load_detector() for the online system (run, navigate, demo): the network on one thread. On
-/// this 2-core machine a second thread gains the network nothing (detect 7.7-8.1 against 7.8-7.9
-/// ms median) while OpenBLAS's second worker spins in sched_yield after every call beside
-/// verification's threads: `run --bag` on the dense drive with its CAD models, keyframe chain
-/// 65.9-70.3 -> 45.4-46.4 ms median, verification 52.5-53.6 -> 32.7-34.7 ms. The same as bench
-/// nav's runs, so `navigate` replays them to the byte.
+/// load_detector() for the online system (run, navigate, bench nav, demo): the network on one
+/// thread. On this 2-core machine a second thread gains the network nothing (detect 7.7-8.1
+/// against 7.8-7.9 ms median) while OpenBLAS's second worker spins in sched_yield after every call
+/// beside verification's threads: `run --bag` on the dense drive with its CAD models, keyframe
+/// chain 65.0-70.3 -> 45.4-52.2 ms median, verification 46.9-53.6 -> 32.7-34.7 ms. bench nav's
+/// runs, which go in parallel, and `navigate`'s replay of one of them run the network alike.
 inline perception::Detector load_online_detector(const std::string& given) {
     perception::Detector detector = load_detector(given);
     perception::set_inference_threads(1);
