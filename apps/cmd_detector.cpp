@@ -1,4 +1,5 @@
 // makeway dataset, train-detector, detect and eval-detection.
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -15,6 +16,7 @@
 #include "io/progress.hpp"
 #include "io/staged_output.hpp"
 #include "io/top_down_png.hpp"
+#include "makeway/common/statistics.hpp"
 #include "makeway/eval/detection_dataset.hpp"
 #include "makeway/eval/detection_eval.hpp"
 #include "makeway/pipeline/keyframe.hpp"
@@ -33,8 +35,13 @@ struct DatasetOptions {
     }();
     std::string
         furniture;  ///< a folder of the user's own furniture meshes (io/furniture_folder.hpp)
+    int furniture_holdout_every = 0;  ///< eval::split_furniture: models kept for measuring
+    std::string beam_pattern = "vlp32c";
+    std::vector<double> variety_heights{0.3, 1.1};
     std::string out;
 };
+
+std::vector<std::string> beam_pattern_names() { return {"vlp16", "vlp32c", "os1_64", "os1_128"}; }
 
 struct TrainDetectorOptions {
     std::vector<std::string> data;
@@ -45,6 +52,7 @@ struct TrainDetectorOptions {
     int threads = 0;
     int width = 32;
     bool intensity = false;
+    bool level = true;  ///< levelled by each keyframe's ground plane (perception/levelling.hpp)
     bool resume = false;
     std::string out;
 };
@@ -69,7 +77,22 @@ struct EvalDetectionOptions {
     std::string shape_model;     ///< learned shapes for what no CAD model fits
     double shape_e_max = 0.035;  ///< verification's residual bound for completed shapes [m]
     std::string config;          ///< the online system's sections (front end, verification, ...)
+    std::string furniture;       ///< real models: the held-out part makes a third set
+    int furniture_holdout_every = 3;  ///< eval::split_furniture, as the training used
+    int clutter = 8;                  ///< clutter items per room of the fourth set (0: none)
+    std::string beam_pattern = "vlp32c";
+    double sensor_height = 0.45;
 };
+
+/// The user's furniture folder read and split as eval::split_furniture does.
+eval::FurnitureSplit read_furniture_split(const std::string& folder, int holdout_every) {
+    std::vector<eval::UserFurniture> all;
+    if (!folder.empty()) {
+        for (io::FurnitureMesh& m : io::read_furniture_folder(folder, io::print_warning))
+            all.push_back({m.name, m.cls, std::move(m.mesh_object)});
+    }
+    return eval::split_furniture(std::move(all), holdout_every);
+}
 
 namespace {
 
@@ -95,11 +118,13 @@ io::Json metrics_json(const eval::DetectionMetrics& m) {
 
 int run_dataset(const DatasetOptions& o) {
     eval::DatasetParams p = o.params;
-    if (!o.furniture.empty()) {
-        for (io::FurnitureMesh& m : io::read_furniture_folder(o.furniture, io::print_warning)) {
-            p.furniture.push_back({m.name, m.cls, std::move(m.mesh_object)});
-        }
-    }
+    p.beam_pattern = *sim::parse_beam_pattern(o.beam_pattern);
+    p.sensor_variety.height_min_m = std::min(o.variety_heights[0], o.variety_heights[1]);
+    p.sensor_variety.height_max_m = std::max(o.variety_heights[0], o.variety_heights[1]);
+    eval::FurnitureSplit split = read_furniture_split(o.furniture, o.furniture_holdout_every);
+    p.furniture = std::move(split.train);
+    std::vector<std::string> held_out;
+    for (const eval::UserFurniture& f : split.held_out) held_out.push_back(f.name);
     io::ProgressBar bar("dataset", static_cast<std::size_t>(p.scenes));
     const auto kfs = eval::generate_detection_dataset(
         p, [&](int d, int) { bar.update(static_cast<std::size_t>(d)); });
@@ -117,7 +142,13 @@ int run_dataset(const DatasetOptions& o) {
                                                     {"objects", objects},
                                                     {"all_styles", p.all_styles},
                                                     {"furniture", o.furniture},
-                                                    {"furniture_meshes", p.furniture.size()}});
+                                                    {"furniture_meshes", p.furniture.size()},
+                                                    {"furniture_held_out", held_out},
+                                                    {"clutter_per_scene", p.clutter.count},
+                                                    {"beam_pattern", o.beam_pattern},
+                                                    {"sensor_height_m", p.sensor_height_m},
+                                                    {"sensor_variety", p.sensor_variety.share},
+                                                    {"variety_heights_m", o.variety_heights}});
     staged.commit();
     std::cout << "wrote " << kfs.size() << " keyframes with " << objects << " labelled objects to "
               << o.out << "\n";
@@ -135,9 +166,18 @@ int run_train_detector(const TrainDetectorOptions& o) {
         perception::TrainingSample s;
         s.cloud_sensor = &kf.cloud_sensor;
         for (const auto& obj : kf.objects) s.boxes.emplace_back(obj.cls, obj.box_sensor);
+        s.ground_plane_sensor = kf.ground_plane_sensor;
         samples.push_back(s);
     }
     perception::DetectorParams dp;
+    // Levelled to the training's median sensor height, measured from the keyframes' ground
+    // planes (datasets without planes: not levelled).
+    std::vector<double> heights;
+    for (const auto& kf : data) {
+        if (kf.ground_plane_sensor) heights.push_back((*kf.ground_plane_sensor)(3));
+    }
+    if (o.level && !heights.empty())
+        dp.level_height_m = std::round(percentile(heights, 0.5) * 100.0) / 100.0;
     dp.width = o.width;
     dp.grid.intensity = o.intensity;
     dp.seed = o.seed;
@@ -151,7 +191,11 @@ int run_train_detector(const TrainDetectorOptions& o) {
     tp.checkpoint = o.out + ".ckpt";
     if (!o.resume && fs::exists(tp.checkpoint)) fs::remove(tp.checkpoint);
     std::cout << "training on " << samples.size() << " keyframes, " << detector.parameter_count()
-              << " parameters\n";
+              << " parameters";
+    if (dp.level_height_m > 0)
+        std::cout << ", levelled to a sensor " << dp.level_height_m << " m above the floor ("
+                  << heights.size() << " ground planes)";
+    std::cout << "\n";
     io::ProgressBar bar("train", static_cast<std::size_t>(o.epochs) *
                                      ((samples.size() + static_cast<std::size_t>(o.batch) - 1) /
                                       static_cast<std::size_t>(o.batch)));
@@ -182,9 +226,10 @@ int run_detect(const DetectOptions& o) {
     const auto policy =
         o.non_finite == "drop" ? io::NonFinitePolicy::kDrop : io::NonFinitePolicy::kReject;
     const PointCloud raw = io::read_point_cloud(o.cloud, {.non_finite = policy}).cloud;
-    const PointCloud cloud = pipeline::prepare_keyframe(raw, {}).cloud_sensor;
+    const pipeline::PreparedKeyframe prepared = pipeline::prepare_keyframe(raw, {});
+    const PointCloud& cloud = prepared.cloud_sensor;
     io::Json dets = io::Json::array();
-    const auto found = detector.detect(cloud);
+    const auto found = detector.detect(cloud, prepared.ground.plane());
     for (const Detection& d : found) {
         dets.push_back({{"class", std::string(to_string(d.cls))},
                         {"box", io::to_json(d.box_sensor)},
@@ -219,7 +264,17 @@ int run_eval_detection(const EvalDetectionOptions& o) {
         shape::set_threads(1);  // verification runs detections on parallel threads instead
         p.system.verify.shape_e_max_m = o.shape_e_max;
     }
-    io::ProgressBar bar("eval-detection", static_cast<std::size_t>(2 * o.scenes));
+    p.real_held_out = read_furniture_split(o.furniture, o.furniture_holdout_every).held_out;
+    if (!o.furniture.empty() && p.real_held_out.empty())
+        throw io::FileError(o.furniture,
+                            "no model is held out of training (too few models for "
+                            "--furniture-holdout-every " +
+                                std::to_string(o.furniture_holdout_every) + ")");
+    p.clutter.count = o.clutter;
+    p.beam_pattern = *sim::parse_beam_pattern(o.beam_pattern);
+    p.sensor_height_m = o.sensor_height;
+    const int sets = 2 + (p.real_held_out.empty() ? 0 : 1) + (o.clutter > 0 ? 1 : 0);
+    io::ProgressBar bar("eval-detection", static_cast<std::size_t>(sets * o.scenes));
     int arm = 0;
     std::string last;
     const auto r = eval::run_detection_eval(detector, p, [&](const std::string& what, int d, int) {
@@ -237,6 +292,23 @@ int run_eval_detection(const EvalDetectionOptions& o) {
     j["left_out"] = metrics_json(r.left_out.network);
     j["left_out"]["styles"] = p.left_out_styles;
     j["left_out"]["stages"] = stages(r.left_out);
+    if (r.real_held_out) {
+        j["real_held_out"] = metrics_json(r.real_held_out->network);
+        j["real_held_out"]["stages"] = stages(*r.real_held_out);
+        j["real_held_out"]["keyframes"] = r.real_held_out->keyframes;
+        std::vector<std::string> names;
+        for (const eval::UserFurniture& f : p.real_held_out) names.push_back(f.name);
+        j["real_held_out"]["models"] = names;
+    }
+    if (r.clutter) {
+        const eval::ClutterMetrics& c = *r.clutter;
+        j["clutter"] = {{"keyframes", c.keyframes},
+                        {"clutter_items", c.clutter_items},
+                        {"network_detections", c.network},
+                        {"network_per_keyframe", c.network_per_keyframe()},
+                        {"map_objects", c.tracked},
+                        {"map_objects_per_keyframe", c.tracked_per_keyframe()}};
+    }
     j["cad_library"] = o.no_cad ? "none" : o.default_cad ? "default" : "scene";
     j["config"] = o.config.empty() ? io::Json(nullptr) : io::Json(o.config);
     j["shape_model"] = o.shape_model.empty() ? io::Json(nullptr) : io::Json(o.shape_model);
@@ -248,6 +320,9 @@ int run_eval_detection(const EvalDetectionOptions& o) {
     j["left_out_keyframes"] = r.left_out.keyframes;
     j["scenes"] = o.scenes;
     j["seed"] = o.seed;
+    j["beam_pattern"] = o.beam_pattern;
+    j["sensor_height_m"] = o.sensor_height;
+    j["level_height_m"] = detector.params().level_height_m;
     fs::create_directories(o.out_dir);
     io::write_json(fs::path(o.out_dir) / "summary.json", j);
     const auto& h = r.held_out;
@@ -256,9 +331,19 @@ int run_eval_detection(const EvalDetectionOptions& o) {
               << h.verified.map_25 << " / " << h.verified.map_50 << ", + tracking "
               << h.tracked.map_25 << " / " << h.tracked.map_50
               << "; left-out styles (network): " << r.left_out.network.map_25 << " / "
-              << r.left_out.network.map_50 << "; latency " << r.latency_ms_median_2t
-              << " ms (2 threads); wrote " << (fs::path(o.out_dir) / "summary.json").string()
-              << "\n";
+              << r.left_out.network.map_50;
+    if (r.real_held_out) {
+        std::cout << "; real models held out: network " << r.real_held_out->network.map_25 << " / "
+                  << r.real_held_out->network.map_50 << ", + tracking "
+                  << r.real_held_out->tracked.map_25 << " / " << r.real_held_out->tracked.map_50;
+    }
+    if (r.clutter) {
+        std::cout << "; clutter: " << r.clutter->network_per_keyframe()
+                  << " false detections per keyframe, " << r.clutter->tracked_per_keyframe()
+                  << " false map objects";
+    }
+    std::cout << "; latency " << r.latency_ms_median_2t << " ms (2 threads); wrote "
+              << (fs::path(o.out_dir) / "summary.json").string() << "\n";
     return 0;
 }
 
@@ -293,6 +378,34 @@ void declare_dataset(CommandSpec& c, DatasetOptions& ds) {
              "Share of the objects of a class drawn with your meshes")
         .range(0.0, 1.0)
         .show_default();
+    c.option("--furniture-holdout-every", ds.furniture_holdout_every,
+             "Within each class, sorted by name, every N-th model of --furniture is left out "
+             "(for eval-detection --furniture; 0: all are used)")
+        .range(0, 1000)
+        .show_default();
+    c.option("--beam-pattern", ds.beam_pattern,
+             "The LiDAR's beams (scenes not drawn by --sensor-variety)")
+        .choices(beam_pattern_names())
+        .show_default();
+    c.option("--sensor-height", ds.params.sensor_height_m,
+             "The LiDAR's height above the floor [m] (scenes not drawn by --sensor-variety)")
+        .range(0.1, 3.0)
+        .show_default();
+    c.option("--sensor-variety", ds.params.sensor_variety.share,
+             "Share of the scenes recorded with a random sensor: one of the four beam patterns "
+             "at a height drawn in --variety-heights")
+        .range(0.0, 1.0)
+        .show_default();
+    c.option("--variety-heights", ds.variety_heights, "MIN,MAX sensor height of those scenes [m]")
+        .delimiter(',')
+        .expected(2)
+        .range(0.1, 3.0)
+        .show_default();
+    c.option("--clutter", ds.params.clutter.count,
+             "Things of furniture size that are not furniture (crates, cabinets, bins, sofas, "
+             "shelves, plants, standing people, lamps, boxes) per scene, unlabelled")
+        .range(0, 100)
+        .show_default();
     c.option("--out", ds.out, "Output folder (clouds/, labels/, meta.json)").required();
 }
 const Registration<DatasetOptions> kDataset{
@@ -315,6 +428,9 @@ void declare_train_detector(CommandSpec& c, TrainDetectorOptions& tr) {
         .show_default();
     c.flag("--intensity", tr.intensity, "Add a mean-intensity input channel (off: geometry only)");
     c.flag("--resume", tr.resume, "Continue from OUT.ckpt when it exists");
+    c.flag("!--no-level", tr.level,
+           "Do not level the keyframes by their ground planes (the model then takes clouds as "
+           "the sensor gives them, mounted as in the training data)");
     c.option("--out", tr.out, "Model file (.pt)").required();
 }
 const Registration<TrainDetectorOptions> kTrainDetector{
@@ -362,6 +478,25 @@ void declare_eval_detection(CommandSpec& c, EvalDetectionOptions& ev) {
              "YAML configuration: the online system's sections (perception, verification, "
              "tracking; default: built-in, see config/default.yaml)")
         .existing_file();
+    c.option("--furniture", ev.furniture,
+             "Real furniture models (furniture.yaml): the ones training left out "
+             "(--furniture-holdout-every) furnish a third set of scenes")
+        .existing_directory();
+    c.option("--furniture-holdout-every", ev.furniture_holdout_every,
+             "As given to dataset: every N-th model of each class is the held-out one")
+        .range(1, 1000)
+        .show_default();
+    c.option("--clutter", ev.clutter,
+             "Clutter items per room of the false-positive set (rooms of clutter alone; 0: "
+             "no such set)")
+        .range(0, 100)
+        .show_default();
+    c.option("--beam-pattern", ev.beam_pattern, "The simulated LiDAR's beams in every set")
+        .choices(beam_pattern_names())
+        .show_default();
+    c.option("--sensor-height", ev.sensor_height, "The LiDAR's height above the floor [m]")
+        .range(0.1, 3.0)
+        .show_default();
     c.flag("--default-cad", ev.default_cad,
            "Verify against one default-dimension model per style instead of the "
            "CAD models of each scene's own furniture");

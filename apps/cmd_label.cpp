@@ -86,7 +86,8 @@ labelling::UnknownClassifier detector_classifier(const perception::Detector& det
         const OrientedBox box = box_world.transformed(T_sensor_world);
         std::optional<ObjectClass> cls;
         double best = 0.0;
-        for (const Detection& d : detector.detect(cloud)) {
+        // The floor (world z = 0) is known here: at.z() below the virtual sensor.
+        for (const Detection& d : detector.detect(cloud, Eigen::Vector4d(0, 0, 1, at.z()))) {
             if (iou_bev(d.box_sensor, box) > 0.1 && d.score > best) best = d.score, cls = d.cls;
         }
         return cls;

@@ -1,5 +1,6 @@
 #include "io/dataset_io.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -60,6 +61,17 @@ void read_keyframe_fields(const Json& j, LabelledKeyframe& kf) {
     }
     if (j.contains("T_world_sensor"))
         kf.T_world_sensor = pose_from_json(j["T_world_sensor"], "T_world_sensor");
+    if (j.contains("ground_plane")) {
+        const Json& g = j["ground_plane"];
+        if (!g.is_array() || g.size() != 4 || !std::all_of(g.begin(), g.end(), [](const Json& v) {
+                return v.is_number() && std::isfinite(v.get<double>());
+            }))
+            throw FormatError("'ground_plane' must be 4 finite numbers (normal, offset)");
+        kf.ground_plane_sensor = Eigen::Vector4d(g[0].get<double>(), g[1].get<double>(),
+                                                 g[2].get<double>(), g[3].get<double>());
+        if (std::abs(kf.ground_plane_sensor->head<3>().norm() - 1.0) > 0.01)
+            throw FormatError("'ground_plane' normal must be a unit vector");
+    }
 }
 
 }  // namespace
@@ -73,12 +85,16 @@ void write_labelled_keyframe(const std::filesystem::path& dir, std::size_t index
                          ? kf.cloud_sensor.intensity
                          : std::vector<float>(kf.cloud_sensor.size(), 0.0f);
     write_point_cloud(dir / "clouds" / (name + ".bin"), xyzi);
-    write_json(dir / "labels" / (name + ".json"),
-               {{"objects", labelled_objects_to_json(kf.objects)},
-                {"unseen", labelled_objects_to_json(kf.unseen)},
-                {"sequence", kf.sequence},
-                {"stamp_s", kf.stamp_s},
-                {"T_world_sensor", pose_to_json(kf.T_world_sensor)}});
+    Json label{{"objects", labelled_objects_to_json(kf.objects)},
+               {"unseen", labelled_objects_to_json(kf.unseen)},
+               {"sequence", kf.sequence},
+               {"stamp_s", kf.stamp_s},
+               {"T_world_sensor", pose_to_json(kf.T_world_sensor)}};
+    if (kf.ground_plane_sensor) {
+        const Eigen::Vector4d& g = *kf.ground_plane_sensor;
+        label["ground_plane"] = {g(0), g(1), g(2), g(3)};
+    }
+    write_json(dir / "labels" / (name + ".json"), label);
 }
 
 std::vector<LabelledKeyframe> read_detection_dataset(

@@ -22,6 +22,7 @@ TEST(DetectionEval, WithoutCadModelsTheStagesKeepTheNetworksBoxes) {
     p.max_keyframes_per_scene = 8;
     p.latency_keyframes = 1;
     p.cad = CadSource::kNone;
+    p.clutter.count = 0;  // no false-positive set
     const DetectionEvalResult r = run_detection_eval(detector, p);
     const StageMetrics& s = r.held_out;
     ASSERT_GT(s.keyframes, 0u);

@@ -26,6 +26,7 @@ LabelledKeyframe keyframe(std::uint32_t sequence, double stamp_s) {
             .toRotationMatrix();
     T.translation() = Eigen::Vector3d(4.0, -2.0, 0.45);
     kf.T_world_sensor = T;
+    kf.ground_plane_sensor = Eigen::Vector4d(0.0, 0.6, 0.8, 0.45);
     return kf;
 }
 
@@ -40,6 +41,8 @@ TEST(DatasetIo, RoundTripsLabelsPosesAndUnseenObjects) {
     EXPECT_EQ(got.sequence, 3u);
     EXPECT_DOUBLE_EQ(got.stamp_s, 2.5);
     EXPECT_TRUE(got.T_world_sensor.isApprox(want.T_world_sensor, 1e-12));
+    ASSERT_TRUE(got.ground_plane_sensor.has_value());  // what the detector levels with
+    EXPECT_TRUE(got.ground_plane_sensor->isApprox(*want.ground_plane_sensor, 1e-12));
     ASSERT_EQ(got.cloud_sensor.size(), 2u);
     EXPECT_EQ(got.cloud_sensor.xyz[1], want.cloud_sensor.xyz[1]);
     ASSERT_EQ(got.objects.size(), 1u);
@@ -65,11 +68,14 @@ TEST(DatasetIo, LabelsWithoutPosesLoadAsOneSequenceAndBadPosesNameTheFile) {
     EXPECT_EQ(plain[0].sequence, 0u);
     EXPECT_TRUE(plain[0].T_world_sensor.isApprox(Isometry3::Identity()));
     EXPECT_TRUE(plain[0].unseen.empty());
+    EXPECT_FALSE(plain[0].ground_plane_sensor.has_value());
 
     const char* bad[] = {
         R"({"objects": [], "T_world_sensor": {"t_m": [0, 0, 0], "q_wxyz": [2, 0, 0, 0]}})",
         R"({"objects": [], "T_world_sensor": {"t_m": [0, 0], "yaw_rad": 0}})",
         R"({"objects": [], "stamp_s": "soon"})",
+        R"({"objects": [], "ground_plane": [0, 0, 1]})",
+        R"({"objects": [], "ground_plane": [0, 0, 2, 0.4]})",
         R"({"objects": [], "unseen": [{"class": "sofa"}]})"};
     for (const char* text : bad) {
         std::ofstream(dir / "labels" / "000000.json") << text;

@@ -45,7 +45,8 @@ TEST(NoTruthRule, PipelineSourcesReachNoSimulatorEvaluationOrIo) {
 // A detector that records what it was given.
 class SpyDetector : public perception::ObjectDetector {
   public:
-    std::vector<Detection> detect(const PointCloud& cloud) const override {
+    std::vector<Detection> detect(const PointCloud& cloud,
+                                  const std::optional<Eigen::Vector4d>&) const override {
         seen.push_back(cloud.fields());
         points.push_back(cloud.size());
         return {};

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <stdexcept>
+#include <tuple>
 
 #include "makeway/common/random.hpp"
 #include "makeway/pipeline/front_end.hpp"
@@ -84,7 +86,41 @@ void furnish(sim::Scene& scene, const DatasetParams& p) {
     }
 }
 
+// Clutter on the scene's free floor; items dropped from the back while they block the drive.
+std::optional<std::vector<Eigen::Vector2d>> clutter_and_route(sim::Scene& scene,
+                                                              const DatasetParams& p,
+                                                              const sim::RobotParams& robot) {
+    if (p.clutter_only) {
+        scene.objects.clear();
+        scene.pushers.clear();
+    }
+    const std::size_t before = scene.environment.size();
+    if (p.clutter.count > 0) sim::add_clutter(scene, p.clutter, scene.seed * 31 + 7);
+    const std::vector<sim::ObjectModel> models = sim::models_of(scene);
+    for (;;) {
+        const sim::CollisionChecker checker(scene, models, robot);
+        auto route = sim::drive_route(scene, checker, robot);
+        if (route || scene.environment.size() == before) return route;
+        scene.environment.pop_back();
+    }
+}
+
 }  // namespace
+
+FurnitureSplit split_furniture(std::vector<UserFurniture> furniture, int holdout_every) {
+    std::sort(furniture.begin(), furniture.end(),
+              [](const UserFurniture& a, const UserFurniture& b) {
+                  return std::tie(a.cls, a.name) < std::tie(b.cls, b.name);
+              });
+    FurnitureSplit split;
+    std::map<ObjectClass, int> index;
+    for (UserFurniture& f : furniture) {
+        const int i = index[f.cls]++;
+        const bool out = holdout_every > 0 && i % holdout_every == holdout_every - 1;
+        (out ? split.held_out : split.train).push_back(std::move(f));
+    }
+    return split;
+}
 
 std::vector<LabelledKeyframe> generate_detection_dataset(
     const DatasetParams& p, const std::function<void(int, int)>& progress,
@@ -98,13 +134,21 @@ std::vector<LabelledKeyframe> generate_detection_dataset(
         restyle_scene(scene, p);
         furnish(scene, p);
         const sim::RobotParams robot;
-        const sim::CollisionChecker checker(scene, sim::models_of(scene), robot);
-        auto route = sim::drive_route(scene, checker, robot);
+        auto route = clutter_and_route(scene, p, robot);
         if (scenes) scenes->push_back(scene);
         if (!route) continue;
         sim::SequenceParams sp;
         sp.seed = p.seed * 7919 + static_cast<std::uint64_t>(k);
         sp.odometry = p.odometry;
+        sp.lidar.beam_pattern = p.beam_pattern;
+        sp.robot.lidar_height_m = p.sensor_height_m;
+        Rng sensor_rng = make_rng(scene.seed, 0x5E45);
+        const DatasetParams::SensorVariety& v = p.sensor_variety;
+        if (!v.patterns.empty() && bernoulli(sensor_rng, v.share)) {
+            sp.lidar.beam_pattern = v.patterns[static_cast<std::size_t>(
+                uniform_int(sensor_rng, 0, static_cast<std::int64_t>(v.patterns.size()) - 1))];
+            sp.robot.lidar_height_m = uniform(sensor_rng, v.height_min_m, v.height_max_m);
+        }
         sim::SequenceSimulator simulator(scene, *route, sp);
         // The online system's front end on the drive's sweeps and wheel odometry.
         pipeline::SystemParams system = p.system;
@@ -129,11 +173,7 @@ std::vector<LabelledKeyframe> generate_detection_dataset(
             kf.sequence = static_cast<std::uint32_t>(k);
             kf.stamp_s = frame.stamp_s;
             kf.T_world_sensor = front.keyframe->T_world_keyframe;
-            if (front.keyframe->prepared.ground.found) {
-                const perception::GroundPlaneResult& plane = front.keyframe->prepared.ground;
-                kf.ground_plane_sensor = Eigen::Vector4d(plane.normal.x(), plane.normal.y(),
-                                                         plane.normal.z(), plane.offset);
-            }
+            kf.ground_plane_sensor = front.keyframe->prepared.ground.plane();
             for (const sim::ObjectState& o : frame.objects) {
                 const OrientedBox box = o.box_world.transformed(T_keyframe_world);
                 if (std::abs(box.centre_m.x()) > p.range_m ||

@@ -10,6 +10,8 @@
 
 #include "makeway/common/labelled_keyframe.hpp"
 #include "makeway/pipeline/system_params.hpp"
+#include "makeway/sim/clutter.hpp"
+#include "makeway/sim/lidar.hpp"
 #include "makeway/sim/robot.hpp"
 #include "makeway/sim/scene.hpp"
 
@@ -41,10 +43,35 @@ struct DatasetParams {
     /// probability furniture_share (seeded by the scene), so the detector learns them.
     std::vector<UserFurniture> furniture;
     double furniture_share = 0.5;
+    /// Non-furniture of furniture size (sim/clutter.hpp) added to every scene, unlabelled: the
+    /// detector's negatives. None by default, so older datasets are reproduced.
+    sim::ClutterParams clutter{.count = 0};
+    /// The scene's furniture removed and only clutter left (the false-positive measurement).
+    bool clutter_only = false;
+    /// The sensor every drive is recorded with, unless drawn by sensor_variety: its beams and its
+    /// height above the floor (the simulated Jackal's VLP-32C by default).
+    sim::BeamPattern beam_pattern = sim::BeamPattern::kVlp32c;
+    double sensor_height_m = 0.45;
+    /// Sensors a user may have (issue 32): a share of the scenes (drawn per scene, seeded by it)
+    /// recorded with one of `patterns` at a height drawn uniformly in [height_min_m, height_max_m].
+    struct SensorVariety {
+        double share = 0.0;
+        std::vector<sim::BeamPattern> patterns{sim::BeamPattern::kVlp16, sim::BeamPattern::kVlp32c,
+                                               sim::BeamPattern::kOs1_64,
+                                               sim::BeamPattern::kOs1_128};
+        double height_min_m = 0.3, height_max_m = 1.1;
+    } sensor_variety;
     /// The front end's parameters (keyframe.every is overridden by keyframe_every).
     pipeline::SystemParams system;
     sim::OdometryNoiseParams odometry;  ///< the wheel odometry the front end runs on
 };
+
+/// A user's furniture split by model for training and measuring: within each class, sorted by
+/// name, every `holdout_every`-th model (the 3rd, 6th, ... for 3) is held out; 0 holds none out.
+struct FurnitureSplit {
+    std::vector<UserFurniture> train, held_out;
+};
+FurnitureSplit split_furniture(std::vector<UserFurniture> furniture, int holdout_every);
 
 /// The styles of `params` on a scene: excluded styles become the first allowed scene style of their
 /// class; with `only_styles`, every object takes one of those of its class (at random among

@@ -21,7 +21,8 @@ std::pair<double, double> latency_ms(const perception::Detector& detector,
     std::vector<double> ms;
     for (int i = 0; i < std::min<int>(count, static_cast<int>(kfs.size())); ++i) {
         const auto t0 = std::chrono::steady_clock::now();
-        (void)detector.detect(kfs[static_cast<std::size_t>(i)].cloud_sensor);
+        const LabelledKeyframe& kf = kfs[static_cast<std::size_t>(i)];
+        (void)detector.detect(kf.cloud_sensor, kf.ground_plane_sensor);
         ms.push_back(
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                 .count());
@@ -37,18 +38,34 @@ DetectionEvalResult run_detection_eval(
     DetectionEvalResult r;
     std::optional<verification::CadLibrary> default_library;  // built only when asked for
     if (p.cad == CadSource::kDefault) default_library = default_cad_library();
-    for (int arm = 0; arm < 2; ++arm) {
+    enum Arm { kHeldOut, kLeftOut, kReal, kClutter };
+    std::vector<Arm> arms{kHeldOut, kLeftOut};
+    if (!p.real_held_out.empty()) arms.push_back(kReal);
+    if (p.clutter.count > 0) arms.push_back(kClutter);
+    for (const Arm arm : arms) {
         DatasetParams dp;
         dp.scenes = p.scenes;
         dp.seed = p.seed + static_cast<std::uint64_t>(arm) * 1000;
         dp.keyframe_every = p.keyframe_every;
         dp.max_keyframes_per_scene = p.max_keyframes_per_scene;
         dp.system = p.system;
-        if (arm == 0)
-            dp.exclude_styles = p.left_out_styles;
-        else
+        dp.beam_pattern = p.beam_pattern;
+        dp.sensor_height_m = p.sensor_height_m;
+        if (arm == kLeftOut)
             dp.only_styles = p.left_out_styles;
-        const std::string what = arm == 0 ? "held-out scenes" : "left-out styles";
+        else
+            dp.exclude_styles = p.left_out_styles;
+        if (arm == kReal) {
+            dp.furniture = p.real_held_out;
+            dp.furniture_share = 1.0;
+        }
+        if (arm == kClutter) {
+            dp.clutter = p.clutter;
+            dp.clutter_only = true;
+        }
+        static constexpr const char* kWhat[] = {"held-out scenes", "left-out styles",
+                                                "real models held out", "clutter"};
+        const std::string what = kWhat[arm];
         std::vector<sim::Scene> scenes;
         const std::vector<LabelledKeyframe> kfs = generate_detection_dataset(
             dp,
@@ -61,7 +78,7 @@ DetectionEvalResult run_detection_eval(
         std::map<std::uint32_t, verification::CadLibrary> scene_libraries;
         std::vector<std::vector<Detection>> net, ver, evidence;
         for (const LabelledKeyframe& kf : kfs) {
-            net.push_back(detector.detect(kf.cloud_sensor));
+            net.push_back(detector.detect(kf.cloud_sensor, kf.ground_plane_sensor));
             static const verification::CadLibrary kNoModels;
             const verification::CadLibrary* lib = default_library             ? &*default_library
                                                   : p.cad == CadSource::kNone ? &kNoModels
@@ -100,17 +117,29 @@ DetectionEvalResult run_detection_eval(
             evidence.push_back(
                 verification::accepted_detections(verified, verification::ScoreFrom::kExistence));
         }
-        StageMetrics& s = arm == 0 ? r.held_out : r.left_out;
+        const tracking::TrackerParams tracker =
+            pipeline::tracker_params_for(&detector, p.system.tracker);
+        if (arm == kClutter) {
+            ClutterMetrics c;
+            c.keyframes = kfs.size();
+            for (const sim::Scene& scene : scenes) c.clutter_items += scene.environment.size();
+            for (const auto& d : net) c.network += d.size();
+            for (const auto& d : track_keyframes(kfs, evidence, tracker, dp.range_m))
+                c.tracked += d.size();
+            r.clutter = c;
+            continue;
+        }
+        StageMetrics& s = arm == kHeldOut   ? r.held_out
+                          : arm == kLeftOut ? r.left_out
+                                            : r.real_held_out.emplace();
         std::vector<std::vector<LabelledBox>> gt;
         for (const LabelledKeyframe& kf : kfs) gt.push_back(ground_truth_of(kf));
         s.network = evaluate_detections(net, gt);
         s.verified = evaluate_detections(ver, gt);
-        s.tracked = evaluate_detections(
-            track_keyframes(kfs, evidence,
-                            pipeline::tracker_params_for(&detector, p.system.tracker), dp.range_m),
-            map_ground_truth_of(kfs));
+        s.tracked = evaluate_detections(track_keyframes(kfs, evidence, tracker, dp.range_m),
+                                        map_ground_truth_of(kfs));
         s.keyframes = kfs.size();
-        if (arm == 0) {
+        if (arm == kHeldOut) {
             std::tie(r.latency_ms_median_1t, r.latency_ms_p99_1t) =
                 latency_ms(detector, kfs, p.latency_keyframes, 1);
             std::tie(r.latency_ms_median_2t, r.latency_ms_p99_2t) =

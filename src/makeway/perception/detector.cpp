@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "makeway/perception/detector_impl.hpp"
+#include "makeway/perception/levelling.hpp"
 #include "makeway/perception/model_archive.hpp"
 
 namespace makeway::perception {
@@ -83,7 +84,7 @@ torch::Tensor params_tensor(const DetectorParams& p) {
         {p.grid.range_m, p.grid.cell_m, p.grid.z_min_m, p.grid.z_max_m,
          static_cast<double>(p.grid.height_slices), static_cast<double>(p.grid.output_stride),
          static_cast<double>(p.width), p.decode.score_threshold, p.decode.nms_bev_iou,
-         p.grid.intensity ? 1.0 : 0.0},
+         p.grid.intensity ? 1.0 : 0.0, p.level_height_m},
         torch::kFloat64);
 }
 
@@ -105,8 +106,7 @@ Detector Detector::load(const std::filesystem::path& path) {
         torch::serialize::InputArchive archive;
         archive.load_from(bytes.data(), bytes.size());
         torch::Tensor t;
-        if (!archive.try_read("makeway_detector_params", t) ||
-            (t.numel() != 9 && t.numel() != 10)) {
+        if (!archive.try_read("makeway_detector_params", t) || t.numel() < 9 || t.numel() > 11) {
             throw std::runtime_error("not a makeway detector (no parameters)");
         }
         const auto v = t.to(torch::kFloat64).contiguous();
@@ -122,7 +122,9 @@ Detector Detector::load(const std::filesystem::path& path) {
         p.decode.score_threshold = d[7];
         p.decode.nms_bev_iou = d[8];
         p.grid.intensity = t.numel() == 9 || d[9] != 0.0;  // files before the flag had the channel
-        if (!p.grid.validate().empty() || p.width < 1 || p.width > 512)
+        p.level_height_m = t.numel() == 11 ? d[10] : 0.0;  // files before levelling: none
+        if (!p.grid.validate().empty() || p.width < 1 || p.width > 512 ||
+            !(p.level_height_m >= 0.0 && p.level_height_m < 10.0))
             throw std::runtime_error("impossible parameters in the file");
         Detector det(p);
         det.impl_->net->load(archive);
@@ -166,8 +168,16 @@ std::vector<float> Detector::heads(const PointCloud& cloud) const {
     return std::vector<float>(out.data_ptr<float>(), out.data_ptr<float>() + out.numel());
 }
 
-std::vector<Detection> Detector::detect(const PointCloud& cloud) const {
-    return decode_heads(heads(cloud), params_.grid, params_.decode);
+std::vector<Detection> Detector::detect(
+    const PointCloud& cloud, const std::optional<Eigen::Vector4d>& ground_plane_sensor) const {
+    const std::optional<Isometry3> T_level_sensor =
+        level_frame_if(ground_plane_sensor, params_.level_height_m);
+    if (!T_level_sensor) return decode_heads(heads(cloud), params_.grid, params_.decode);
+    std::vector<Detection> found =
+        decode_heads(heads(cloud.transformed(*T_level_sensor)), params_.grid, params_.decode);
+    const Isometry3 T_sensor_level = T_level_sensor->inverse();
+    for (Detection& d : found) d.box_sensor = d.box_sensor.transformed(T_sensor_level);
+    return found;
 }
 
 }  // namespace makeway::perception

@@ -18,7 +18,11 @@ namespace makeway::perception {
 struct DetectorParams {
     BevGridParams grid;
     DecodeParams decode;
-    int width = 32;          ///< channels of the first stage (the second has twice as many)
+    int width = 32;  ///< channels of the first stage (the second has twice as many)
+    /// The sensor height above the floor the network was trained at [m]: with a keyframe's ground
+    /// plane, the cloud is levelled to it first (levelling.hpp), so any mounting looks like the
+    /// training's. 0: the cloud is taken as the sensor gave it (models before levelling).
+    double level_height_m = 0.0;
     int threads = 0;         ///< intra-op threads for inference; 0: leave torch's default
     std::uint64_t seed = 0;  ///< weight initialisation
 };
@@ -37,8 +41,12 @@ class Detector : public ObjectDetector {
     void save(const std::filesystem::path& path) const;
 
     /// Detections in the cloud's (sensor) frame; the cloud should be ground- and ceiling-filtered.
-    /// Safe to call from several threads at once.
-    std::vector<Detection> detect(const PointCloud& cloud_sensor) const override;
+    /// With the keyframe's ground plane and a model trained levelled, the network sees the cloud
+    /// from a level sensor at level_height_m. Safe to call from several threads at once.
+    std::vector<Detection> detect(
+        const PointCloud& cloud_sensor,
+        const std::optional<Eigen::Vector4d>& ground_plane_sensor) const override;
+    using ObjectDetector::detect;
     double reach_m() const override { return params_.grid.range_m; }
     bool uses_intensity() const override { return params_.grid.intensity; }
     /// The decoded head maps for a cloud (channel-major, see bev_grid.hpp).
@@ -59,10 +67,12 @@ class Detector : public ObjectDetector {
 /// training in this process.
 void set_inference_threads(int threads);
 
-/// A labelled training sample: a keyframe and its boxes in the sensor frame.
+/// A labelled training sample: a keyframe and its boxes in the sensor frame, and the keyframe's
+/// ground plane (levelled to the detector's level_height_m when both are there).
 struct TrainingSample {
     const PointCloud* cloud_sensor = nullptr;
     std::vector<std::pair<ObjectClass, OrientedBox>> boxes;
+    std::optional<Eigen::Vector4d> ground_plane_sensor;
 };
 
 struct TrainParams {

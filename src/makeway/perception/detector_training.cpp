@@ -7,6 +7,7 @@
 #include "makeway/common/angles.hpp"
 #include "makeway/common/random.hpp"
 #include "makeway/perception/detector_impl.hpp"
+#include "makeway/perception/levelling.hpp"
 #include "makeway/perception/training_augment.hpp"
 
 namespace makeway::perception {
@@ -146,6 +147,12 @@ std::vector<EpochReport> train_detector(Detector& detector,
                 const TrainingSample& s = samples[order[begin + i]];
                 PointCloud cloud = *s.cloud_sensor;
                 Boxes boxes = s.boxes;
+                // The network learns from a level sensor at the height detect() levels to.
+                if (const auto T =
+                        level_frame_if(s.ground_plane_sensor, detector.params().level_height_m)) {
+                    cloud = cloud.transformed(*T);
+                    for (auto& [cls, box] : boxes) box = box.transformed(*T);
+                }
                 if (params.augment) augment_sample(cloud, boxes, rng);
                 const std::vector<float> x = encode_bev(cloud, g);
                 std::copy(x.begin(), x.end(), bev[static_cast<std::int64_t>(i)].data_ptr<float>());

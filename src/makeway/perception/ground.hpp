@@ -4,6 +4,7 @@
 // on its inliers. Then, per keyframe, points near the ground and above the ceiling height are
 // removed.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,11 @@ struct GroundPlaneResult {
     /// z of the plane below (x, y) [m]: where an object standing there has its origin.
     double floor_z_at(double x_m, double y_m) const {
         return -(normal.x() * x_m + normal.y() * y_m + offset) / normal.z();
+    }
+    /// (normal, offset) when found: what the detector levels its input with.
+    std::optional<Eigen::Vector4d> plane() const {
+        if (!found) return std::nullopt;
+        return Eigen::Vector4d(normal.x(), normal.y(), normal.z(), offset);
     }
 };
 

@@ -116,7 +116,8 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
     timing.ground_ms = front.ground_ms;
     // Detect (eq. network heads -> peaks -> rotated NMS).
     Clock::time_point t = Clock::now();
-    if (detector_) kf.detections = detector_->detect(kf.prepared.cloud_sensor);
+    if (detector_)
+        kf.detections = detector_->detect(kf.prepared.cloud_sensor, kf.prepared.ground.plane());
     timing.detect_ms = ms_since(t);
     // Verify against the CAD models: accepted boxes become the aligned model's, scored by p_exist
     // (eq. 2).

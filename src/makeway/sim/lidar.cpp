@@ -64,6 +64,29 @@ const std::vector<double>& vlp32c_elevations_deg() {
     return kAngles;
 }
 
+namespace {
+constexpr std::array<std::pair<std::string_view, BeamPattern>, 4> kBeamPatternNames{{
+    {"vlp16", BeamPattern::kVlp16},
+    {"vlp32c", BeamPattern::kVlp32c},
+    {"os1_64", BeamPattern::kOs1_64},
+    {"os1_128", BeamPattern::kOs1_128},
+}};
+}  // namespace
+
+std::string_view to_string(BeamPattern pattern) {
+    for (const auto& [name, p] : kBeamPatternNames) {
+        if (p == pattern) return name;
+    }
+    return "unknown";
+}
+
+std::optional<BeamPattern> parse_beam_pattern(std::string_view name) {
+    for (const auto& [n, p] : kBeamPatternNames) {
+        if (n == name) return p;
+    }
+    return std::nullopt;
+}
+
 const std::vector<double>& beam_elevations_deg(BeamPattern pattern) {
     const auto uniform = [](int beams, double lo, double hi) {
         std::vector<double> e(static_cast<std::size_t>(beams));

@@ -5,7 +5,9 @@
 // the system can be tried with the sensor a user has.
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "makeway/common/point_cloud.hpp"
@@ -23,6 +25,9 @@ const std::vector<double>& vlp32c_elevations_deg();
 enum class BeamPattern { kVlp16, kVlp32c, kOs1_64, kOs1_128 };
 /// The pattern's elevation angles [deg], lowest first.
 const std::vector<double>& beam_elevations_deg(BeamPattern pattern);
+/// vlp16, vlp32c, os1_64, os1_128 (as the `lidar.beam_pattern` key spells them).
+std::string_view to_string(BeamPattern pattern);
+std::optional<BeamPattern> parse_beam_pattern(std::string_view name);
 
 struct LidarParams {
     BeamPattern beam_pattern = BeamPattern::kVlp32c;
