@@ -1,4 +1,5 @@
 // makeway dataset, train-detector, detect and eval-detection.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -308,6 +309,12 @@ int run_eval_detection(const EvalDetectionOptions& o) {
                         {"network_per_keyframe", c.network_per_keyframe()},
                         {"map_objects", c.tracked},
                         {"map_objects_per_keyframe", c.tracked_per_keyframe()}};
+        for (const double t : {0.4, 0.5, 0.6, 0.7}) {
+            const auto above = std::count_if(c.network_scores.begin(), c.network_scores.end(),
+                                             [t](double v) { return v >= t; });
+            j["clutter"]["network_per_keyframe_at"][std::to_string(t).substr(0, 3)] =
+                c.keyframes ? static_cast<double>(above) / static_cast<double>(c.keyframes) : 0.0;
+        }
     }
     j["cad_library"] = o.no_cad ? "none" : o.default_cad ? "default" : "scene";
     j["config"] = o.config.empty() ? io::Json(nullptr) : io::Json(o.config);

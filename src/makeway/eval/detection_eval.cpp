@@ -123,7 +123,10 @@ DetectionEvalResult run_detection_eval(
             ClutterMetrics c;
             c.keyframes = kfs.size();
             for (const sim::Scene& scene : scenes) c.clutter_items += scene.environment.size();
-            for (const auto& d : net) c.network += d.size();
+            for (const auto& d : net) {
+                c.network += d.size();
+                for (const Detection& x : d) c.network_scores.push_back(x.score);
+            }
             for (const auto& d : track_keyframes(kfs, evidence, tracker, dp.range_m))
                 c.tracked += d.size();
             r.clutter = c;

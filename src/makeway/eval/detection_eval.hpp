@@ -60,6 +60,7 @@ struct StageMetrics {
 /// the pipeline maps the network's boxes then).
 struct ClutterMetrics {
     std::size_t keyframes = 0, clutter_items = 0, network = 0, tracked = 0;
+    std::vector<double> network_scores;  ///< every false detection's score, for other thresholds
     double network_per_keyframe() const { return keyframes ? double(network) / keyframes : 0.0; }
     double tracked_per_keyframe() const { return keyframes ? double(tracked) / keyframes : 0.0; }
 };
