@@ -83,6 +83,7 @@ struct EvalDetectionOptions {
     int clutter = 8;                  ///< clutter items per room of the fourth set (0: none)
     std::string beam_pattern = "vlp32c";
     double sensor_height = 0.45;
+    std::string cad_fit = "exact";  ///< the scene's own models, or approximations of them
 };
 
 /// The user's furniture folder read and split as eval::split_furniture does.
@@ -274,6 +275,9 @@ int run_eval_detection(const EvalDetectionOptions& o) {
     p.clutter.count = o.clutter;
     p.beam_pattern = *sim::parse_beam_pattern(o.beam_pattern);
     p.sensor_height_m = o.sensor_height;
+    p.cad_fit = o.cad_fit == "scaled"             ? eval::CadFit::kScaled
+                : o.cad_fit == "other-dimensions" ? eval::CadFit::kOtherDimensions
+                                                  : eval::CadFit::kExact;
     const int sets = 2 + (p.real_held_out.empty() ? 0 : 1) + (o.clutter > 0 ? 1 : 0);
     io::ProgressBar bar("eval-detection", static_cast<std::size_t>(sets * o.scenes));
     int arm = 0;
@@ -317,6 +321,7 @@ int run_eval_detection(const EvalDetectionOptions& o) {
         }
     }
     j["cad_library"] = o.no_cad ? "none" : o.default_cad ? "default" : "scene";
+    j["cad_fit"] = o.cad_fit;
     j["config"] = o.config.empty() ? io::Json(nullptr) : io::Json(o.config);
     j["shape_model"] = o.shape_model.empty() ? io::Json(nullptr) : io::Json(o.shape_model);
     j["latency_ms_median_1t"] = r.latency_ms_median_1t;
@@ -503,6 +508,11 @@ void declare_eval_detection(CommandSpec& c, EvalDetectionOptions& ev) {
         .show_default();
     c.option("--sensor-height", ev.sensor_height, "The LiDAR's height above the floor [m]")
         .range(0.1, 3.0)
+        .show_default();
+    c.option("--cad-fit", ev.cad_fit,
+             "How close each scene's CAD models are: exact (its own), scaled (0.9-1.1 per axis), "
+             "other-dimensions (its style at other dimensions; real meshes scaled)")
+        .choices({"exact", "scaled", "other-dimensions"})
         .show_default();
     c.flag("--default-cad", ev.default_cad,
            "Verify against one default-dimension model per style instead of the "

@@ -4,6 +4,8 @@
 #include <random>
 
 #include "makeway/eval/detection_dataset.hpp"
+#include "makeway/eval/scene_cad.hpp"
+#include "makeway/sim/scene_generator.hpp"
 
 namespace makeway::eval {
 namespace {
@@ -66,6 +68,33 @@ TEST(DetectionDataset, ClutterIsSeenAndNeverLabelled) {
         }
     }
     EXPECT_GT(on_clutter, 500u);
+}
+
+// Approximate CAD libraries (issue 32): the same models in the same order, each scaled by
+// 0.9-1.1 per axis, or its style at other dimensions; the same scene gives the same library.
+TEST(SceneCad, ApproximateLibrariesAreCloseButNotTheModels) {
+    const sim::Scene scene = sim::generate_scene({.seed = 2, .density = sim::Density::kMedium});
+    const verification::CadLibrary exact = scene_cad_library(scene);
+    const verification::CadLibrary scaled = scene_cad_library(scene, CadFit::kScaled);
+    const verification::CadLibrary other = scene_cad_library(scene, CadFit::kOtherDimensions);
+    ASSERT_GT(exact.models().size(), 3u);
+    ASSERT_EQ(scaled.models().size(), exact.models().size());
+    ASSERT_EQ(other.models().size(), exact.models().size());
+    std::size_t other_differs = 0;
+    for (std::size_t i = 0; i < exact.models().size(); ++i) {
+        const Eigen::Vector3d e = exact.models()[i].box_object.size_m;
+        const Eigen::Vector3d s = scaled.models()[i].box_object.size_m;
+        EXPECT_EQ(scaled.models()[i].cls, exact.models()[i].cls);
+        EXPECT_FALSE(s.isApprox(e, 1e-6)) << exact.models()[i].name;
+        for (int a = 0; a < 3; ++a) {
+            EXPECT_GE(s(a), 0.9 * e(a) - 1e-6);
+            EXPECT_LE(s(a), 1.1 * e(a) + 1e-6);
+        }
+        if (!other.models()[i].box_object.size_m.isApprox(e, 1e-3)) ++other_differs;
+    }
+    EXPECT_GE(other_differs, exact.models().size() - 1);
+    const verification::CadLibrary again = scene_cad_library(scene, CadFit::kScaled);
+    EXPECT_TRUE(again.models()[0].box_object.size_m.isApprox(scaled.models()[0].box_object.size_m));
 }
 
 }  // namespace

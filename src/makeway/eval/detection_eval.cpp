@@ -87,7 +87,8 @@ DetectionEvalResult run_detection_eval(
                 auto it = scene_libraries.find(kf.sequence);
                 if (it == scene_libraries.end())
                     it = scene_libraries
-                             .emplace(kf.sequence, scene_cad_library(scenes.at(kf.sequence)))
+                             .emplace(kf.sequence,
+                                      scene_cad_library(scenes.at(kf.sequence), p.cad_fit))
                              .first;
                 lib = &it->second;
             }

@@ -12,6 +12,7 @@
 #include "makeway/eval/detection_dataset.hpp"
 #include "makeway/eval/detection_metrics.hpp"
 #include "makeway/eval/keyframe_stages.hpp"
+#include "makeway/eval/scene_cad.hpp"
 #include "makeway/perception/detector.hpp"
 #include "makeway/pipeline/system_params.hpp"
 
@@ -32,6 +33,7 @@ struct DetectionEvalParams {
     int keyframe_every = 5;
     int max_keyframes_per_scene = 60;
     CadSource cad = CadSource::kScene;
+    CadFit cad_fit = CadFit::kExact;  ///< with kScene: the scene's own models or approximations
     /// Learned shapes for detections no CAD model fits (null: none). Must outlive the run.
     const verification::ShapePrior* shape_prior = nullptr;
     pipeline::SystemParams system;  ///< the online system's front end, verification and tracker
