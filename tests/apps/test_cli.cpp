@@ -435,6 +435,23 @@ TEST(Cli, DatasetTrainDetectAndEvaluateATinyModel) {
         EXPECT_TRUE(s.contains(key)) << key;
     EXPECT_TRUE(s["per_class"]["chair"].contains("ap_25"));
     EXPECT_TRUE(s["left_out"]["per_class"]["table"].contains("yaw_within_10deg"));
+    // Issue 32: the dataset keeps each keyframe's ground plane, so the model is levelled to the
+    // data's sensor height (the simulated Jackal's 0.45 m), and the evaluation scores rooms of
+    // clutter alone.
+    EXPECT_TRUE(io::read_json(dir / "data" / "labels" / "000000.json").contains("ground_plane"));
+    EXPECT_NEAR(s["level_height_m"].get<double>(), 0.45, 0.02);
+    EXPECT_GT(s["clutter"]["keyframes"].get<int>(), 0);
+    EXPECT_TRUE(s["clutter"]["network_per_keyframe_at"].contains("0.5"));
+    // A furniture folder without models: one line naming it, exit 2, nothing written.
+    std::filesystem::create_directories(dir / "no_models");
+    r = run_makeway("eval-detection --model " + (dir / "model.pt").string() +
+                        " --scenes 1 --furniture " + (dir / "no_models").string() + " --out " +
+                        (dir / "eval2").string(),
+                    dir);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find((dir / "no_models").string()), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "eval2"));
     // Bad model and bad data: one line naming the file, exit 2.
     std::ofstream(dir / "junk.pt") << "junk";
     r = run_makeway("detect --model " + (dir / "junk.pt").string() + " --cloud " +
