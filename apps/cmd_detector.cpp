@@ -120,6 +120,7 @@ io::Json metrics_json(const eval::DetectionMetrics& m) {
 
 int run_dataset(const DatasetOptions& o) {
     eval::DatasetParams p = o.params;
+    if (p.exclude_styles == std::vector<std::string>{"none"}) p.exclude_styles.clear();
     p.beam_pattern = *sim::parse_beam_pattern(o.beam_pattern);
     p.sensor_variety.height_min_m = std::min(o.variety_heights[0], o.variety_heights[1]);
     p.sensor_variety.height_max_m = std::max(o.variety_heights[0], o.variety_heights[1]);
@@ -368,7 +369,8 @@ void declare_dataset(CommandSpec& c, DatasetOptions& ds) {
         .show_default();
     c.option("--seed", ds.params.seed, "Seed of the first scene").show_default();
     c.option("--exclude-styles", ds.params.exclude_styles,
-             "Styles replaced by another of their class (held out of training)")
+             "Styles replaced by another of their class (held out of training); none: every "
+             "style of the generated scenes")
         .delimiter(',')
         .show_default();
     c.option("--keyframe-every", ds.params.keyframe_every, "Sweeps between keyframes")

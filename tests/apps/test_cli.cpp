@@ -394,13 +394,15 @@ TEST(Cli, VerifyRefinesAFlippedDetectionAndRejectsAWallBox) {
 
 TEST(Cli, DatasetTrainDetectAndEvaluateATinyModel) {
     const auto dir = testing_util::fresh_dir("detector");
-    CliRun r =
-        run_makeway("dataset --scenes 1 --seed 3 --max-keyframes 4 --keyframe-every 5 --out " +
-                        (dir / "data").string(),
-                    dir);
+    CliRun r = run_makeway(
+        "dataset --scenes 1 --seed 3 --max-keyframes 4 --keyframe-every 5 "
+        "--exclude-styles none --out " +
+            (dir / "data").string(),
+        dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(std::filesystem::exists(dir / "data" / "clouds" / "000003.bin"));
     const io::Json meta = io::read_json(dir / "data" / "meta.json");
+    EXPECT_TRUE(meta["exclude_styles"].empty());  // none: every style of the generated scenes
     EXPECT_EQ(meta["keyframes"].get<int>(), 4);
     EXPECT_GT(meta["objects"].get<int>(), 0);
     r = run_makeway("train-detector --data " + (dir / "data").string() +
