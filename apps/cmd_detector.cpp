@@ -42,8 +42,6 @@ struct DatasetOptions {
     std::string out;
 };
 
-std::vector<std::string> beam_pattern_names() { return {"vlp16", "vlp32c", "os1_64", "os1_128"}; }
-
 struct TrainDetectorOptions {
     std::vector<std::string> data;
     int epochs = 20;
@@ -86,6 +84,10 @@ struct EvalDetectionOptions {
     std::string cad_fit = "exact";  ///< the scene's own models, or approximations of them
 };
 
+namespace {
+
+std::vector<std::string> beam_pattern_names() { return {"vlp16", "vlp32c", "os1_64", "os1_128"}; }
+
 /// The user's furniture folder read and split as eval::split_furniture does.
 eval::FurnitureSplit read_furniture_split(const std::string& folder, int holdout_every) {
     std::vector<eval::UserFurniture> all;
@@ -95,8 +97,6 @@ eval::FurnitureSplit read_furniture_split(const std::string& folder, int holdout
     }
     return eval::split_furniture(std::move(all), holdout_every);
 }
-
-namespace {
 
 namespace fs = std::filesystem;
 
