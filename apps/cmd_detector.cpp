@@ -86,7 +86,11 @@ struct EvalDetectionOptions {
 
 namespace {
 
-std::vector<std::string> beam_pattern_names() { return {"vlp16", "vlp32c", "os1_64", "os1_128"}; }
+std::vector<std::string> beam_pattern_names() {
+    std::vector<std::string> names;
+    for (const auto& [name, pattern] : sim::beam_patterns_by_name()) names.push_back(name);
+    return names;
+}
 
 /// The user's furniture folder read and split as eval::split_furniture does.
 eval::FurnitureSplit read_furniture_split(const std::string& folder, int holdout_every) {

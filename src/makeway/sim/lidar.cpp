@@ -64,24 +64,25 @@ const std::vector<double>& vlp32c_elevations_deg() {
     return kAngles;
 }
 
-namespace {
-constexpr std::array<std::pair<std::string_view, BeamPattern>, 4> kBeamPatternNames{{
-    {"vlp16", BeamPattern::kVlp16},
-    {"vlp32c", BeamPattern::kVlp32c},
-    {"os1_64", BeamPattern::kOs1_64},
-    {"os1_128", BeamPattern::kOs1_128},
-}};
-}  // namespace
+const std::vector<std::pair<std::string, BeamPattern>>& beam_patterns_by_name() {
+    static const std::vector<std::pair<std::string, BeamPattern>> kNames{
+        {"vlp16", BeamPattern::kVlp16},
+        {"vlp32c", BeamPattern::kVlp32c},
+        {"os1_64", BeamPattern::kOs1_64},
+        {"os1_128", BeamPattern::kOs1_128},
+    };
+    return kNames;
+}
 
 std::string_view to_string(BeamPattern pattern) {
-    for (const auto& [name, p] : kBeamPatternNames) {
+    for (const auto& [name, p] : beam_patterns_by_name()) {
         if (p == pattern) return name;
     }
     return "unknown";
 }
 
 std::optional<BeamPattern> parse_beam_pattern(std::string_view name) {
-    for (const auto& [n, p] : kBeamPatternNames) {
+    for (const auto& [n, p] : beam_patterns_by_name()) {
         if (n == name) return p;
     }
     return std::nullopt;

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "makeway/common/point_cloud.hpp"
@@ -25,7 +26,9 @@ const std::vector<double>& vlp32c_elevations_deg();
 enum class BeamPattern { kVlp16, kVlp32c, kOs1_64, kOs1_128 };
 /// The pattern's elevation angles [deg], lowest first.
 const std::vector<double>& beam_elevations_deg(BeamPattern pattern);
-/// vlp16, vlp32c, os1_64, os1_128 (as the `lidar.beam_pattern` key spells them).
+/// Every pattern with its name: vlp16, vlp32c, os1_64, os1_128 (as the `lidar.beam_pattern` key
+/// and the command line spell them).
+const std::vector<std::pair<std::string, BeamPattern>>& beam_patterns_by_name();
 std::string_view to_string(BeamPattern pattern);
 std::optional<BeamPattern> parse_beam_pattern(std::string_view name);
 

@@ -25,11 +25,7 @@ const ParamTable<LidarParams>& lidar_table() {
     using L = LidarParams;
     static const ParamTable<L> table = [] {
         ParamTable<L> t;
-        t.choice("beam_pattern", &L::beam_pattern,
-                 {{"vlp16", BeamPattern::kVlp16},
-                  {"vlp32c", BeamPattern::kVlp32c},
-                  {"os1_64", BeamPattern::kOs1_64},
-                  {"os1_128", BeamPattern::kOs1_128}},
+        t.choice("beam_pattern", &L::beam_pattern, beam_patterns_by_name(),
                  "the beams: Velodyne VLP-16 (16, +-15 deg), VLP-32C (32, -25..+15), Ouster "
                  "OS1-64 and OS1-128 (+-22.5)")
             .add("azimuth_step_deg", &L::azimuth_step_deg, closed(0.01, 10.0), "")
