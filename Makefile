@@ -104,8 +104,8 @@ fuzz:
 	@scripts/install-deps.sh --fuzz
 	@CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	    -DMAKEWAY_FUZZ=ON -DMAKEWAY_BUILD_TESTS=OFF -DMAKEWAY_BUILD_BENCH=OFF \
-	    -DMAKEWAY_BUILD_APPS=OFF > /dev/null
-	@cmake --build build-fuzz -j $(JOBS)
+	    -DMAKEWAY_BUILD_APPS=OFF $(CMAKE_ARGS) > /dev/null
+	@cmake --build build-fuzz -j $(JOBS) --target fuzzers
 
 # Runs each fuzz target for FUZZ_SECONDS on its seed corpus.
 fuzz-run: fuzz

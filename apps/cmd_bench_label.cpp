@@ -39,7 +39,7 @@ struct BenchLabelOptions {
 namespace fs = std::filesystem;
 namespace {
 
-io::Json metrics_json(const eval::DetectionMetrics& m) {
+io::Json label_metrics_json(const eval::DetectionMetrics& m) {
     io::Json j = {
         {"map_25", m.map_25}, {"map_50", m.map_50}, {"mar_25", m.mar_25}, {"mar_50", m.mar_50}};
     io::Json per = io::Json::object();
@@ -97,8 +97,8 @@ int run_bench_label(const BenchLabelOptions& o) {
                             {"movable", iou[2]},
                             {"dynamic", iou[3]}}},
                           {"panoptic", panoptic_json(s.panoptic)},
-                          {"boxes", metrics_json(s.boxes)},
-                          {"still_boxes", metrics_json(s.still_boxes)},
+                          {"boxes", label_metrics_json(s.boxes)},
+                          {"still_boxes", label_metrics_json(s.still_boxes)},
                           {"iou_by_motion",
                            {{"movable", eval::class_iou(s.confusion_by_motion)[2]},
                             {"dynamic", eval::class_iou(s.confusion_by_motion)[3]}}},
@@ -119,10 +119,10 @@ int run_bench_label(const BenchLabelOptions& o) {
                           {"permanent", r.iou_by_motion[1]},
                           {"movable", r.iou_by_motion[2]},
                           {"dynamic", r.iou_by_motion[3]}}},
-                        {"still_boxes", metrics_json(r.still_boxes)},
+                        {"still_boxes", label_metrics_json(r.still_boxes)},
                         {"still_yaw_within_10deg", yaw_within_10(r.still_boxes)},
                         {"panoptic", panoptic_json(r.panoptic)},
-                        {"boxes", metrics_json(r.boxes)},
+                        {"boxes", label_metrics_json(r.boxes)},
                         {"yaw_within_10deg", yaw_within_10(r.boxes)},
                         {"per_scene", scenes}};
     const fs::path out(o.out_dir);

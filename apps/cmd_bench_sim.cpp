@@ -1,6 +1,5 @@
 // makeway bench sim: LiDAR simulation speed on a 20 x 20 m room with 40 pieces of furniture.
 #include <algorithm>
-#include <chrono>
 #include <iostream>
 
 #include "apps/command.hpp"
@@ -9,6 +8,7 @@
 #include "makeway/common/box_overlap.hpp"
 #include "makeway/common/random.hpp"
 #include "makeway/common/statistics.hpp"
+#include "makeway/common/stopwatch.hpp"
 #include "makeway/sim/furniture.hpp"
 #include "makeway/sim/lidar.hpp"
 
@@ -69,12 +69,10 @@ int run_bench_sim(const BenchSimOptions& options) {
         std::vector<double> ms;
         sim::SweepStats stats;
         for (int i = 0; i < options.sweeps + 1; ++i) {
-            const auto t0 = std::chrono::steady_clock::now();
+            const auto t0 = SteadyClock::now();
             const PointCloud c =
                 sim::simulate_sweep(world, lidar, pose, 0.1 * i, options.seed, i, &stats);
-            const double dt =
-                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                    .count();
+            const double dt = ms_since(t0);
             if (i > 0) ms.push_back(dt);  // the first sweep warms caches and builds the BVH
         }
         return std::make_pair(median(ms), stats);

@@ -14,7 +14,7 @@
 namespace makeway::io {
 namespace {
 
-constexpr std::size_t kMaxHeaderBytes = 1 << 16;
+constexpr std::size_t kMaxPcdHeaderBytes = 1 << 16;
 constexpr std::uint64_t kMaxPoints = std::uint64_t{1} << 32;
 
 struct PcdField {
@@ -79,13 +79,14 @@ void set_field_column(PcdHeader& h, const std::vector<std::string_view>& w, cons
     }
 }
 
-PcdHeader parse_header(std::string_view bytes) {
+PcdHeader parse_pcd_header(std::string_view bytes) {
     PcdHeader h;
     std::optional<std::uint64_t> width, height, points;
     bool have_size = false, have_type = false, first = true;
     std::size_t pos = 0;
     while (h.data.empty()) {
-        if (pos > kMaxHeaderBytes) throw FormatError("no DATA line in the first 64 KiB of header");
+        if (pos > kMaxPcdHeaderBytes)
+            throw FormatError("no DATA line in the first 64 KiB of header");
         const auto line = next_line(bytes, pos);
         if (!line) throw FormatError(first ? "not a PCD file" : "header ends before its DATA line");
         const auto w = split_words(*line);
@@ -221,7 +222,7 @@ std::string size_mismatch(const PcdHeader& h, std::size_t expected, std::size_t 
 }  // namespace
 
 CloudFile parse_pcd(std::string_view bytes) {
-    const PcdHeader h = parse_header(bytes);
+    const PcdHeader h = parse_pcd_header(bytes);
     const std::string_view body = bytes.substr(h.data_offset);
     if (h.data == "ascii") {
         // At least two characters per value: guards the allocation against huge POINTS.

@@ -11,7 +11,7 @@
 namespace makeway::io {
 namespace {
 
-constexpr std::size_t kMaxHeaderBytes = 1 << 16;
+constexpr std::size_t kMaxPlyHeaderBytes = 1 << 16;
 
 struct PlyProperty {
     std::string name;
@@ -80,7 +80,7 @@ PlyProperty parse_property(const std::vector<std::string_view>& w) {
     return p;
 }
 
-PlyHeader parse_header(std::string_view bytes) {
+PlyHeader parse_ply_header(std::string_view bytes) {
     PlyHeader h;
     std::size_t pos = 0;
     auto first = next_line(bytes, pos);
@@ -89,7 +89,7 @@ PlyHeader parse_header(std::string_view bytes) {
     }
     bool have_format = false;
     while (true) {
-        if (pos > kMaxHeaderBytes) throw FormatError("no end_header in the first 64 KiB");
+        if (pos > kMaxPlyHeaderBytes) throw FormatError("no end_header in the first 64 KiB");
         const auto line = next_line(bytes, pos);
         if (!line) throw FormatError("header ends before end_header");
         const auto w = split_words(*line);
@@ -219,7 +219,7 @@ void read_ascii_element(const PlyElement& e, TokenStream& tokens, std::size_t bo
 }  // namespace
 
 CloudFile parse_ply(std::string_view bytes) {
-    PlyHeader h = parse_header(bytes);
+    PlyHeader h = parse_ply_header(bytes);
     PlyElement* vertex = nullptr;
     for (auto& e : h.elements) {
         if (e.name == "vertex") vertex = &e;

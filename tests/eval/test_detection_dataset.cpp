@@ -71,6 +71,17 @@ TEST(DetectionDataset, ClutterIsSeenAndNeverLabelled) {
     EXPECT_GT(on_clutter, 500u);
 }
 
+// The command line's names of the fits: each parses back to its fit, and nothing else parses.
+TEST(SceneCad, FitNamesRoundTrip) {
+    ASSERT_EQ(cad_fits_by_name().size(), 3u);
+    for (const auto& [name, fit] : cad_fits_by_name()) {
+        EXPECT_EQ(to_string(fit), name);
+        EXPECT_EQ(parse_cad_fit(name), fit);
+    }
+    EXPECT_EQ(parse_cad_fit("other_dimensions"), std::nullopt);
+    EXPECT_EQ(parse_cad_fit(""), std::nullopt);
+}
+
 // Approximate CAD libraries (issue 32): the same models in the same order, each scaled by
 // 0.9-1.1 per axis, or its style at other dimensions; the same scene gives the same library.
 TEST(SceneCad, ApproximateLibrariesAreCloseButNotTheModels) {

@@ -10,7 +10,7 @@
 namespace makeway::io {
 namespace {
 
-std::string problem_of(const std::string& yaml) {
+std::string config_problem_of(const std::string& yaml) {
     try {
         parse_sim_config(yaml);
     } catch (const FormatError& e) {
@@ -72,9 +72,10 @@ TEST(Config, AffordanceZonesArePerClassParameters) {
         "affordance:\n  chair:\n    forward_back_m: 0.9\n  table:\n    sides_m: 1.0\n");
     EXPECT_EQ(c.affordance.chair.forward_back_m, 0.9);
     EXPECT_EQ(c.affordance.table.sides_m, 1.0);
-    EXPECT_EQ(problem_of("affordance:\n  chair:\n    peak_cost: 300\n"),
+    EXPECT_EQ(config_problem_of("affordance:\n  chair:\n    peak_cost: 300\n"),
               "affordance.chair.peak_cost must be in [0, 252] (got 300)");
-    EXPECT_EQ(problem_of("affordance:\n  sofa:\n    side_m: 1\n"), "affordance.sofa: unknown key");
+    EXPECT_EQ(config_problem_of("affordance:\n  sofa:\n    side_m: 1\n"),
+              "affordance.sofa: unknown key");
 }
 
 TEST(Config, PartialFileKeepsDefaults) {
@@ -87,26 +88,30 @@ TEST(Config, PartialFileKeepsDefaults) {
 }
 
 TEST(Config, UnknownKeyGetsASuggestion) {
-    EXPECT_EQ(problem_of("lidar:\n  range_noise: 0.1\n"),
+    EXPECT_EQ(config_problem_of("lidar:\n  range_noise: 0.1\n"),
               "lidar.range_noise: unknown key (did you mean 'range_noise_m'?)");
-    EXPECT_EQ(problem_of("colour:\n  red: 1\n"), "colour: unknown section");
+    EXPECT_EQ(config_problem_of("colour:\n  red: 1\n"), "colour: unknown section");
 }
 
 TEST(Config, OutOfRangeAndWrongTypes) {
-    EXPECT_EQ(problem_of("lidar:\n  rate_hz: -3\n"), "lidar.rate_hz must be in [1, 50] (got -3)");
-    EXPECT_EQ(problem_of("simulation:\n  frames: many\n"), "simulation.frames: must be an integer");
-    EXPECT_NE(
-        problem_of("lidar:\n  range_noise_m: .nan\n").find("lidar.range_noise_m: must be finite"),
-        std::string::npos);
-    EXPECT_EQ(problem_of("scene:\n  people: perhaps\n"), "scene.people: must be true or false");
-    EXPECT_EQ(problem_of("scene:\n  density: crowded\n"),
+    EXPECT_EQ(config_problem_of("lidar:\n  rate_hz: -3\n"),
+              "lidar.rate_hz must be in [1, 50] (got -3)");
+    EXPECT_EQ(config_problem_of("simulation:\n  frames: many\n"),
+              "simulation.frames: must be an integer");
+    EXPECT_NE(config_problem_of("lidar:\n  range_noise_m: .nan\n")
+                  .find("lidar.range_noise_m: must be finite"),
+              std::string::npos);
+    EXPECT_EQ(config_problem_of("scene:\n  people: perhaps\n"),
+              "scene.people: must be true or false");
+    EXPECT_EQ(config_problem_of("scene:\n  density: crowded\n"),
               "scene.density: must be sparse, medium or dense (got 'crowded')");
-    EXPECT_EQ(problem_of("robot: 3\n"), "robot: must be a mapping of keys to values");
-    EXPECT_EQ(problem_of("scene:\n  seed: -1\n"), "scene.seed: must be a non-negative integer");
+    EXPECT_EQ(config_problem_of("robot: 3\n"), "robot: must be a mapping of keys to values");
+    EXPECT_EQ(config_problem_of("scene:\n  seed: -1\n"),
+              "scene.seed: must be a non-negative integer");
 }
 
 TEST(Config, EveryProblemListedAtOnce) {
-    const std::string msg = problem_of(
+    const std::string msg = config_problem_of(
         "simulation:\n  frames: 0\nlidar:\n  rate_hs: 3\n  dropout: 7\nrobot:\n  max_v_mps: x\n");
     EXPECT_EQ(msg.rfind("4 problems: ", 0), 0u) << msg;
     for (const char* part :
@@ -118,9 +123,9 @@ TEST(Config, EveryProblemListedAtOnce) {
 }
 
 TEST(Config, SyntaxErrorsAndFiles) {
-    EXPECT_NE(problem_of("scene:\n  seed: [1, 2\n").find("YAML syntax error at line"),
+    EXPECT_NE(config_problem_of("scene:\n  seed: [1, 2\n").find("YAML syntax error at line"),
               std::string::npos);
-    EXPECT_EQ(problem_of("- a\n- b\n"), "the top level must be a mapping of section names");
+    EXPECT_EQ(config_problem_of("- a\n- b\n"), "the top level must be a mapping of section names");
     const auto dir = testing_util::fresh_dir("cfg");
     std::ofstream(dir / "c.yaml") << "simulation:\n  frames: -2\n";
     try {
@@ -141,7 +146,8 @@ TEST(Config, TheRobotsReaderSkipsTheSimulatorsSections) {
         "scene:\n  density: crowded\nlidar:\n  rate_hs: 3\nrobot:\n  max_v_mps: 0.5\n";
     const Config robot_side = parse_config(yaml);
     EXPECT_EQ(robot_side.robot.max_v_mps, 0.5);
-    EXPECT_NE(problem_of(yaml).find("2 problems"), std::string::npos) << problem_of(yaml);
+    EXPECT_NE(config_problem_of(yaml).find("2 problems"), std::string::npos)
+        << config_problem_of(yaml);
     const SimConfig both = parse_sim_config("robot:\n  max_v_mps: 0.5\n");
     EXPECT_EQ(both.robot.max_v_mps, 0.5);
     EXPECT_EQ(both.scene.robot.max_v_mps, 0.5);  // the simulated robot is the described one
@@ -188,7 +194,7 @@ TEST(Config, EveryNumericKeyRefusesNonsense) {
     std::vector<std::string> accepted;
     for (const auto& [sec, key] : keys) {
         for (const char* bad : {"-1", "0", "-1e308", "1e308", ".nan", "text"}) {
-            const std::string problem = problem_of(sec + ":\n  " + key + ": " + bad + "\n");
+            const std::string problem = config_problem_of(sec + ":\n  " + key + ": " + bad + "\n");
             if (problem.empty()) {
                 accepted.push_back(sec + "." + key + "=" + bad);
                 continue;

@@ -17,7 +17,7 @@
 namespace makeway::io {
 namespace {
 
-std::string problem_of(const std::string& yaml) {
+std::string scene_problem_of(const std::string& yaml) {
     try {
         parse_scene(yaml);
     } catch (const FormatError& e) {
@@ -147,17 +147,18 @@ TEST(SceneIo, AnEnvironmentMeshIsPlacedPosedSeenAndSolid) {
         EXPECT_NE(std::string(e.what()).find("outside the scene's folder"), std::string::npos)
             << e.what();
     }
-    EXPECT_NE(problem_of("name: n\nenvironment:\n  - {units: cm}\n").find("mesh: required"),
+    EXPECT_NE(scene_problem_of("name: n\nenvironment:\n  - {units: cm}\n").find("mesh: required"),
               std::string::npos);
 }
 
 TEST(SceneIo, EveryProblemIsListed) {
-    EXPECT_EQ(problem_of("objects:\n  - {id: 1, class: chair, style: throne, pose: {x_m: 0, y_m: "
+    EXPECT_EQ(
+        scene_problem_of("objects:\n  - {id: 1, class: chair, style: throne, pose: {x_m: 0, y_m: "
                          "0, yaw_rad: 0}}\n"),
-              "objects[0]: unknown style 'throne'");
-    EXPECT_EQ(problem_of("objects:\n  - {id: 1, class: table, style: stool}\n"),
+        "objects[0]: unknown style 'throne'");
+    EXPECT_EQ(scene_problem_of("objects:\n  - {id: 1, class: table, style: stool}\n"),
               "objects[0]: style 'stool' is not a table");
-    const std::string many = problem_of(
+    const std::string many = scene_problem_of(
         "floor: {min_m: [0, 0], max_m: [-1, 5]}\nobjects:\n  - {id: 1, class: sofa, style: stool}\n"
         "  - {id: 1, class: chair, style: stool, colour: red}\npushers:\n  - {chair_id: 9, "
         "period_s: 0}\n");
@@ -168,11 +169,12 @@ TEST(SceneIo, EveryProblemIsListed) {
           "floor: max must exceed min"}) {
         EXPECT_NE(many.find(part), std::string::npos) << part << " missing from " << many;
     }
-    EXPECT_EQ(problem_of("walls: 3\n"), "walls: must be a list");
-    EXPECT_NE(
-        problem_of("walls:\n  - {a_m: [0], b_m: [1, 1]}\n").find("walls[0].a_m: must be a pair"),
-        std::string::npos);
-    EXPECT_EQ(problem_of("[1, 2]\n"), "a scene must be a mapping (name, walls, objects, ...)");
+    EXPECT_EQ(scene_problem_of("walls: 3\n"), "walls: must be a list");
+    EXPECT_NE(scene_problem_of("walls:\n  - {a_m: [0], b_m: [1, 1]}\n")
+                  .find("walls[0].a_m: must be a pair"),
+              std::string::npos);
+    EXPECT_EQ(scene_problem_of("[1, 2]\n"),
+              "a scene must be a mapping (name, walls, objects, ...)");
 }
 
 TEST(SceneIo, MissingMeshNamesBothFiles) {

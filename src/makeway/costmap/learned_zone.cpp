@@ -27,7 +27,10 @@ double footprint_term(const ZoneMotion& m, double c, double sn, const Eigen::Vec
     return normal_cdf((half.x() - x) / s) * normal_cdf((half.y() - y) / s);
 }
 
+}  // namespace
+
 // c_learned on a square grid around the object centre, cell centres at origin + cell (i + 1/2).
+// Outside the anonymous namespace: CoverageCache (declared in the header) holds it.
 struct CoverageRaster {
     Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();
     int n = 0;
@@ -44,8 +47,6 @@ struct CoverageRaster {
                ay * ((1 - ax) * v(x, y + 1) + ax * v(x + 1, y + 1));
     }
 };
-
-}  // namespace
 
 class CoverageCache {
   public:

@@ -1,11 +1,11 @@
 #include "makeway/eval/detection_eval.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <map>
 #include <optional>
 
 #include "makeway/common/statistics.hpp"
+#include "makeway/common/stopwatch.hpp"
 #include "makeway/eval/scene_cad.hpp"
 #include "makeway/pipeline/pipeline.hpp"
 #include "makeway/verification/verifier.hpp"
@@ -20,12 +20,10 @@ std::pair<double, double> latency_ms(const perception::Detector& detector,
     perception::set_inference_threads(threads);
     std::vector<double> ms;
     for (int i = 0; i < std::min<int>(count, static_cast<int>(kfs.size())); ++i) {
-        const auto t0 = std::chrono::steady_clock::now();
+        const auto t0 = SteadyClock::now();
         const LabelledKeyframe& kf = kfs[static_cast<std::size_t>(i)];
         (void)detector.detect(kf.cloud_sensor, kf.ground_plane_sensor);
-        ms.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                .count());
+        ms.push_back(ms_since(t0));
     }
     return {percentile(ms, 0.5), percentile(ms, 0.99)};
 }

@@ -19,6 +19,29 @@ verification::CadLibrary default_cad_library() {
     return lib;
 }
 
+const std::vector<std::pair<std::string, CadFit>>& cad_fits_by_name() {
+    static const std::vector<std::pair<std::string, CadFit>> kNames{
+        {"exact", CadFit::kExact},
+        {"scaled", CadFit::kScaled},
+        {"other-dimensions", CadFit::kOtherDimensions},
+    };
+    return kNames;
+}
+
+std::string_view to_string(CadFit fit) {
+    for (const auto& [name, f] : cad_fits_by_name()) {
+        if (f == fit) return name;
+    }
+    return "unknown";
+}
+
+std::optional<CadFit> parse_cad_fit(std::string_view name) {
+    for (const auto& [n, f] : cad_fits_by_name()) {
+        if (n == name) return f;
+    }
+    return std::nullopt;
+}
+
 verification::CadLibrary scene_cad_library(const sim::Scene& scene, CadFit fit) {
     verification::CadLibrary lib;
     std::set<std::string> added;

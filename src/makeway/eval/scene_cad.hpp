@@ -1,6 +1,12 @@
 #pragma once
 // The simulator's furniture as verification libraries: what a deployment would load from the
 // CAD files of its room (the paper's setting), here built from the scene's procedural models.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
 #include "makeway/sim/scene.hpp"
 #include "makeway/verification/cad_library.hpp"
 
@@ -17,6 +23,11 @@ enum class CadFit {
     kOtherDimensions,  ///< procedural furniture: its style at other dimensions (another model
                        ///< seed); a user's mesh: scaled as kScaled
 };
+/// The fits by the names the command line and the reports use ("exact", "scaled",
+/// "other-dimensions"): one table for both directions.
+const std::vector<std::pair<std::string, CadFit>>& cad_fits_by_name();
+std::string_view to_string(CadFit fit);
+std::optional<CadFit> parse_cad_fit(std::string_view name);
 
 /// The CAD models of the furniture in the scene, one per distinct model (the paper's setting: the
 /// robot's owner has the models of the room's chairs and tables), or approximations of them.

@@ -1,24 +1,19 @@
 #include "makeway/eval/shape_bench.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <numeric>
 
 #include "makeway/common/angles.hpp"
 #include "makeway/common/statistics.hpp"
+#include "makeway/common/stopwatch.hpp"
 #include "makeway/eval/verify_bench.hpp"
 #include "makeway/shape/mesh_sdf.hpp"
 
 namespace makeway::eval {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 double median_of(std::vector<double> v) {
     if (v.empty()) return 0.0;
@@ -82,7 +77,7 @@ ShapeBenchResult run_shape_bench(
             if (c < 0) continue;
             SetAccumulator& a = acc[c];
             ++a.views;
-            const auto t0 = Clock::now();
+            const auto t0 = SteadyClock::now();
             const auto T = model.estimate_pose(ex.cls, view.points, p.solve);
             fn_ms.push_back(ms_since(t0));
             const auto yaw_err =
@@ -132,7 +127,7 @@ ShapeBenchResult run_shape_bench(
             // Timing of one update: a view fused, the encoder run (its features are what a later
             // query reads), and separately the whole-grid query and isosurface.
             {
-                const auto t0 = Clock::now();
+                const auto t0 = SteadyClock::now();
                 shape::TsdfVolume one(grid, model.params().truncation_cells);
                 one.integrate(views.front(), origins.front());
                 (void)model.occupancy(ex.cls, one, shape::Latent{}, {Eigen::Vector3d::Zero()});
@@ -140,13 +135,13 @@ ShapeBenchResult run_shape_bench(
             }
             shape::CompletionParams cp;
             cp.fit_iterations = p.fit_iterations;
-            auto t0 = Clock::now();
+            auto t0 = SteadyClock::now();
             const shape::Completion done_shape =
                 shape::complete_shape(model, ex.cls, views, origins, cp);
             const double total_ms = ms_since(t0);
             // F_1 on the grid + isosurface timed apart; F_0's share (the code fit and its field) is
             // the rest of the completion's time.
-            t0 = Clock::now();
+            t0 = SteadyClock::now();
             const shape::TsdfVolume fused = shape::fuse_views(model, views, origins);
             const auto occ = model.occupancy(ex.cls, fused, done_shape.code, centres);
             const TriangleMesh mesh = shape::grid_isosurface(grid, occ, 0.5, false);

@@ -1,13 +1,13 @@
 #include "makeway/eval/verify_bench.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <map>
 
 #include "makeway/common/angles.hpp"
 #include "makeway/common/random.hpp"
 #include "makeway/common/statistics.hpp"
+#include "makeway/common/stopwatch.hpp"
 #include "makeway/perception/accumulator.hpp"
 #include "makeway/perception/ground.hpp"
 #include "makeway/pipeline/keyframe.hpp"
@@ -170,12 +170,10 @@ VerifyBenchResult run_verify_bench(const VerifyBenchParams& p,
             ++result.true_boxes;
             for (int arm = 0; arm < kArms; ++arm) {
                 const verification::CadLibrary& lib = libraries.get(o, static_cast<Arm>(arm));
-                const auto t0 = std::chrono::steady_clock::now();
+                const auto t0 = SteadyClock::now();
                 const verification::VerifiedDetection v = verification::verify_detection(
                     cloud, det, lib, p.verify, floor_z(det.box_sensor.centre_m));
-                ms[arm].push_back(
-                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                        .count());
+                ms[arm].push_back(ms_since(t0));
                 Sample smp;
                 smp.accepted = v.accepted;
                 true_rejected[arm] += !v.accepted;

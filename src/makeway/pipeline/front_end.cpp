@@ -1,16 +1,8 @@
 #include "makeway/pipeline/front_end.hpp"
 
-#include <chrono>
+#include "makeway/common/stopwatch.hpp"
 
 namespace makeway::pipeline {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-}  // namespace
 
 FrontEnd::FrontEnd(const SystemParams& params, const Pose2& start_pose)
     : params_(params),
@@ -26,13 +18,13 @@ Isometry3 FrontEnd::T_world_sensor_at(const Pose2& odometry) const {
 
 FrontEndResult FrontEnd::add(Sweep sweep) {
     FrontEndResult out;
-    const Clock::time_point t0 = Clock::now();
+    const SteadyClock::time_point t0 = SteadyClock::now();
     // Pose: the LiDAR odometry's, or the start pose plus the wheel odometry's motion since the
     // first reading (the odometry frame's origin is wherever the robot was switched on). Start and
     // end poses let every point be de-skewed by its own time.
     if (lidar_odometry_) {
         // LiDAR odometry: the sweep registered against the local map with the wheels as prior.
-        const Clock::time_point t_odo = Clock::now();
+        const SteadyClock::time_point t_odo = SteadyClock::now();
         const bool wheels = sweep.odometry_start && sweep.odometry_end;
         out.odometry =
             lidar_odometry_->register_sweep(sweep.points_sensor, sweep.stamp_s, sweep.duration_s,
@@ -64,10 +56,10 @@ FrontEndResult FrontEnd::add(Sweep sweep) {
     // Keyframe: the window in the newest sweep's frame, then the ground plane (fitted once: the
     // sensor is rigid on the robot) and the ground and ceiling removed.
     FrontEndKeyframe kf;
-    Clock::time_point t = Clock::now();
+    SteadyClock::time_point t = SteadyClock::now();
     const PointCloud raw = accumulator_.keyframe(&kf.T_world_keyframe);
     kf.accumulate_ms = ms_since(t);
-    t = Clock::now();
+    t = SteadyClock::now();
     kf.prepared = prepare_keyframe(raw, params_.keyframe, ground_ ? &*ground_ : nullptr);
     if (kf.prepared.ground.found) ground_ = kf.prepared.ground;
     kf.ground_ms = ms_since(t);

@@ -1,10 +1,10 @@
 #include "makeway/pipeline/navigator.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "makeway/common/angles.hpp"
+#include "makeway/common/stopwatch.hpp"
 #include "makeway/planning/dwa.hpp"
 
 namespace makeway::pipeline {
@@ -54,7 +54,7 @@ void Navigator::set_route(std::vector<Eigen::Vector2d> legs_m) {
 }
 
 NavigatorStep Navigator::step(const NavigatorInput& in) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = SteadyClock::now();
     NavigatorStep out;
     const Eigen::Vector2d here(in.pose.x_m, in.pose.y_m);
     // Costmap: every layer grows the update window, then writes inside it (also without a route:
@@ -70,9 +70,7 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
     }
     if (arrived()) {
         out.arrived = true;
-        out.update_ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                .count();
+        out.update_ms = ms_since(t0);
         return out;
     }
     check_progress(in, out);
@@ -101,9 +99,7 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
     // A robot that cannot plan, or cannot make progress, gives up instead of waiting forever.
     if (in.t_s - planned_t_ > params_.give_up_s || in.t_s - moved_t_ > params_.give_up_s) {
         out.gave_up = true;
-        out.update_ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                .count();
+        out.update_ms = ms_since(t0);
         return out;
     }
     // Local control: back up while recovering, else DWA along the plan.
@@ -130,8 +126,7 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
             out.command = {-params_.backup_speed_mps, 0.0};
         }
     }
-    out.update_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    out.update_ms = ms_since(t0);
     return out;
 }
 

@@ -1,12 +1,11 @@
 #include "makeway/pipeline/online_system.hpp"
 
-#include <chrono>
 #include <cmath>
+
+#include "makeway/common/stopwatch.hpp"
 
 namespace makeway::pipeline {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 Costmap map_of(const OnlineSystemSetup& s) {
     return s.map ? *s.map : free_area(s.start, s.free_area_m, s.free_area_resolution_m);
@@ -54,7 +53,7 @@ Controller::Step Controller::step(const NavigatorInput& in) {
     const VelocityCommand wanted =
         navigating_ && !out.nav.arrived && !out.nav.gave_up ? out.nav.command : VelocityCommand{};
     if (out.nav.arrived || out.nav.gave_up) navigating_ = false;
-    const Clock::time_point t0 = Clock::now();
+    const SteadyClock::time_point t0 = SteadyClock::now();
     // A chair someone moves can come up beside the robot where the sensor sees its seat but not
     // its base, and the monitor's memory has it where it was: while a chair has moved in the last
     // blind_memory_s its footprint stands in for the base (a box also covers the backrest above
@@ -88,7 +87,7 @@ Controller::Step Controller::step(const NavigatorInput& in) {
         solid.insert(solid.end(), kept.parts.begin(), kept.parts.end());
     out.guard = monitor_.filter(
         {in.t_s, in.pose, in.points_world, wanted, in.v_mps, in.w_radps, &solid, &chairs});
-    out.monitor_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    out.monitor_ms = ms_since(t0);
     // Idle (never driven, arrived, gave up, cancelled): zero, whatever the monitor was doing (a
     // recovery it had started is not a goal's to finish).
     out.command = out.navigating && navigating_ ? out.guard.command : VelocityCommand{};

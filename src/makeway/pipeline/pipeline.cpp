@@ -1,20 +1,15 @@
 #include "makeway/pipeline/pipeline.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <optional>
 #include <unordered_set>
 
 #include "makeway/common/param_table.hpp"
+#include "makeway/common/stopwatch.hpp"
 #include "makeway/verification/part_outlines.hpp"
 
 namespace makeway::pipeline {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 // Every problem of the parameters, and of the ICP levels against the CAD library's.
 const SystemParams& validated(const SystemParams& params, const verification::CadLibrary* library) {
@@ -55,7 +50,7 @@ void Pipeline::set_shape_prior(const verification::ShapePrior* prior) {
 }
 
 SweepResult Pipeline::process_sweep(const Sweep& sweep) {
-    const Clock::time_point t0 = Clock::now();
+    const SteadyClock::time_point t0 = SteadyClock::now();
     std::optional<PendingKeyframe> pending;
     SweepResult out = track(sweep, &pending);
     // Keyframe: detect, verify, track.
@@ -68,7 +63,7 @@ SweepResult Pipeline::process_sweep(const Sweep& sweep) {
 }
 
 SweepResult Pipeline::track(const Sweep& sweep, std::optional<PendingKeyframe>* pending) {
-    const Clock::time_point t0 = Clock::now();
+    const SteadyClock::time_point t0 = SteadyClock::now();
     SweepResult out;
     // Front end: pose from the start pose and the wheel odometry, the sweep de-skewed, and every
     // `every` sweeps a keyframe (accumulated, ground plane, ground and ceiling removed). The
@@ -115,13 +110,13 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
     timing.accumulate_ms = front.accumulate_ms;
     timing.ground_ms = front.ground_ms;
     // Detect (eq. network heads -> peaks -> rotated NMS).
-    Clock::time_point t = Clock::now();
+    SteadyClock::time_point t = SteadyClock::now();
     if (detector_)
         kf.detections = detector_->detect(kf.prepared.cloud_sensor, kf.prepared.ground.plane());
     timing.detect_ms = ms_since(t);
     // Verify against the CAD models: accepted boxes become the aligned model's, scored by p_exist
     // (eq. 2).
-    t = Clock::now();
+    t = SteadyClock::now();
     kf.evidence = kf.detections;
     const bool have_cad = library_ && !library_->models().empty();
     if (shapes_) shapes_->begin_keyframe(kf.T_world_keyframe);
@@ -145,7 +140,7 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
     }
     timing.verify_ms = ms_since(t);
     // Track: associate (GIoU + Hungarian), filter, fuse class and existence (eqs. 3-5), prune.
-    t = Clock::now();
+    t = SteadyClock::now();
     // Objects stand on the floor: the keyframe's plane, in the world frame, is the tracker's z
     // prior.
     std::optional<Eigen::Vector4d> floor;
@@ -162,7 +157,7 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
     // Learned shapes: each object verified against one gains this view, and its shape is completed
     // from all of its views; the next keyframe verifies it against that shape.
     if (shapes_ && !kf.verified.empty()) {
-        t = Clock::now();
+        t = SteadyClock::now();
         std::unordered_set<std::uint32_t> live;
         for (const auto& [id, track] : map_.tracks()) live.insert(id);
         kf.shapes_completed = shapes_->add_views(kf.prepared.cloud_sensor, kf.verified,
