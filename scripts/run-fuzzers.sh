@@ -20,7 +20,7 @@ fuzz_one() {
     if "$target" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 -timeout=10 \
         -artifact_prefix="$work/$name." -print_final_stats=1 \
         "$work/$name" "$root/fuzz/corpus/$name" 2>"$work/$name.log"; then
-        echo "fuzz $name: ${seconds}s, $(grep -oE "stat::number_of_executed_units: *[0-9]+" "$work/$name.log" | grep -oE "[0-9]+$" || echo '?') runs"
+        echo "fuzz $name: ${seconds}s, $(grep -oE "stat::number_of_executed_units: *[0-9]+" "$work/$name.log" | tail -1 | grep -oE "[0-9]+$" || echo '?') runs"
     else
         {
             tail -40 "$work/$name.log"
