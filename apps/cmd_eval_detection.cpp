@@ -42,12 +42,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> cad_fit_names() {
-    std::vector<std::string> names;
-    for (const auto& [name, fit] : eval::cad_fits_by_name()) names.push_back(name);
-    return names;
-}
-
 io::Json metrics_json(const eval::DetectionMetrics& m) {
     io::Json j = {
         {"map_25", m.map_25}, {"map_50", m.map_50}, {"mar_25", m.mar_25}, {"mar_50", m.mar_50}};
@@ -213,7 +207,7 @@ void declare_eval_detection(CommandSpec& c, EvalDetectionOptions& ev) {
     c.option("--cad-fit", ev.cad_fit,
              "How close each scene's CAD models are: exact (its own), scaled (0.9-1.1 per axis), "
              "other-dimensions (its style at other dimensions; real meshes scaled)")
-        .choices(cad_fit_names())
+        .choices(names_in(eval::cad_fits_by_name()))
         .show_default();
     c.flag("--default-cad", ev.default_cad,
            "Verify against one default-dimension model per style instead of the "

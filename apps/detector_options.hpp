@@ -13,9 +13,7 @@ namespace makeway::apps {
 
 /// The names --beam-pattern admits, in sim::beam_patterns_by_name()'s order.
 inline std::vector<std::string> beam_pattern_names() {
-    std::vector<std::string> names;
-    for (const auto& [name, pattern] : sim::beam_patterns_by_name()) names.push_back(name);
-    return names;
+    return names_in(sim::beam_patterns_by_name());
 }
 
 /// The user's furniture folder (empty: none) read and split as eval::split_furniture does: every

@@ -19,8 +19,8 @@ verification::CadLibrary default_cad_library() {
     return lib;
 }
 
-const std::vector<std::pair<std::string, CadFit>>& cad_fits_by_name() {
-    static const std::vector<std::pair<std::string, CadFit>> kNames{
+const NameTable<CadFit>& cad_fits_by_name() {
+    static const NameTable<CadFit> kNames{
         {"exact", CadFit::kExact},
         {"scaled", CadFit::kScaled},
         {"other-dimensions", CadFit::kOtherDimensions},
@@ -28,18 +28,10 @@ const std::vector<std::pair<std::string, CadFit>>& cad_fits_by_name() {
     return kNames;
 }
 
-std::string_view to_string(CadFit fit) {
-    for (const auto& [name, f] : cad_fits_by_name()) {
-        if (f == fit) return name;
-    }
-    return "unknown";
-}
+std::string_view to_string(CadFit fit) { return name_in(cad_fits_by_name(), fit); }
 
 std::optional<CadFit> parse_cad_fit(std::string_view name) {
-    for (const auto& [n, f] : cad_fits_by_name()) {
-        if (n == name) return f;
-    }
-    return std::nullopt;
+    return value_named(cad_fits_by_name(), name);
 }
 
 verification::CadLibrary scene_cad_library(const sim::Scene& scene, CadFit fit) {

@@ -2,11 +2,9 @@
 // The simulator's furniture as verification libraries: what a deployment would load from the
 // CAD files of its room (the paper's setting), here built from the scene's procedural models.
 #include <optional>
-#include <string>
 #include <string_view>
-#include <utility>
-#include <vector>
 
+#include "makeway/common/name_table.hpp"
 #include "makeway/sim/scene.hpp"
 #include "makeway/verification/cad_library.hpp"
 
@@ -25,7 +23,7 @@ enum class CadFit {
 };
 /// The fits by the names the command line and the reports use ("exact", "scaled",
 /// "other-dimensions"): one table for both directions.
-const std::vector<std::pair<std::string, CadFit>>& cad_fits_by_name();
+const NameTable<CadFit>& cad_fits_by_name();
 std::string_view to_string(CadFit fit);
 std::optional<CadFit> parse_cad_fit(std::string_view name);
 

@@ -64,8 +64,8 @@ const std::vector<double>& vlp32c_elevations_deg() {
     return kAngles;
 }
 
-const std::vector<std::pair<std::string, BeamPattern>>& beam_patterns_by_name() {
-    static const std::vector<std::pair<std::string, BeamPattern>> kNames{
+const NameTable<BeamPattern>& beam_patterns_by_name() {
+    static const NameTable<BeamPattern> kNames{
         {"vlp16", BeamPattern::kVlp16},
         {"vlp32c", BeamPattern::kVlp32c},
         {"os1_64", BeamPattern::kOs1_64},
@@ -75,17 +75,11 @@ const std::vector<std::pair<std::string, BeamPattern>>& beam_patterns_by_name() 
 }
 
 std::string_view to_string(BeamPattern pattern) {
-    for (const auto& [name, p] : beam_patterns_by_name()) {
-        if (p == pattern) return name;
-    }
-    return "unknown";
+    return name_in(beam_patterns_by_name(), pattern);
 }
 
 std::optional<BeamPattern> parse_beam_pattern(std::string_view name) {
-    for (const auto& [n, p] : beam_patterns_by_name()) {
-        if (n == name) return p;
-    }
-    return std::nullopt;
+    return value_named(beam_patterns_by_name(), name);
 }
 
 const std::vector<double>& beam_elevations_deg(BeamPattern pattern) {

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "makeway/common/name_table.hpp"
 #include "makeway/common/point_cloud.hpp"
 #include "makeway/common/transforms.hpp"
 #include "makeway/sim/world.hpp"
@@ -28,7 +29,7 @@ enum class BeamPattern { kVlp16, kVlp32c, kOs1_64, kOs1_128 };
 const std::vector<double>& beam_elevations_deg(BeamPattern pattern);
 /// Every pattern with its name: vlp16, vlp32c, os1_64, os1_128 (as the `lidar.beam_pattern` key
 /// and the command line spell them).
-const std::vector<std::pair<std::string, BeamPattern>>& beam_patterns_by_name();
+const NameTable<BeamPattern>& beam_patterns_by_name();
 std::string_view to_string(BeamPattern pattern);
 std::optional<BeamPattern> parse_beam_pattern(std::string_view name);
 
