@@ -64,7 +64,7 @@ bench:
 	@if [ -x $(BUILD)/bin/compare_kiss_icp ]; then echo "== compare_kiss_icp (one core)"; $(BUILD)/bin/compare_kiss_icp; fi
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build of everything, then the whole suite again, the
-# end-to-end runs included (whole drives, labelling, training: 60-160 s each under the sanitizers,
+# end-to-end runs included (whole drives, labelling, training: 45-125 s each under the sanitizers,
 # sized so; issue 31).
 asan:
 	@LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 UBSAN_OPTIONS=print_stacktrace=1 \

@@ -22,6 +22,7 @@ namespace makeway::apps {
 struct EvalDetectionOptions {
     std::string model;
     int scenes = 6;
+    int max_keyframes = 60;  ///< per scene (a quick look: fewer)
     std::uint64_t seed = 1000000;
     std::string out_dir = "out/eval_detection";
     bool default_cad =
@@ -63,6 +64,7 @@ int run_eval_detection(const EvalDetectionOptions& o) {
     eval::DetectionEvalParams p;
     p.system = io::load_config(o.config).system;
     p.scenes = o.scenes;
+    p.max_keyframes_per_scene = o.max_keyframes;
     p.seed = o.seed;
     p.cad = o.no_cad        ? eval::CadSource::kNone
             : o.default_cad ? eval::CadSource::kDefault
@@ -138,6 +140,7 @@ int run_eval_detection(const EvalDetectionOptions& o) {
     j["keyframes"] = r.held_out.keyframes;
     j["left_out_keyframes"] = r.left_out.keyframes;
     j["scenes"] = o.scenes;
+    j["max_keyframes"] = o.max_keyframes;
     j["seed"] = o.seed;
     j["beam_pattern"] = o.beam_pattern;
     j["sensor_height_m"] = o.sensor_height;
@@ -169,6 +172,10 @@ int run_eval_detection(const EvalDetectionOptions& o) {
 void declare_eval_detection(CommandSpec& c, EvalDetectionOptions& ev) {
     c.option("--model", ev.model, "Model file (default: models/detector.pt)");
     c.option("--scenes", ev.scenes, "Held-out scenes per set").range(1, 1000).show_default();
+    c.option("--max-keyframes", ev.max_keyframes,
+             "Keyframes per scene at most (as dataset's; fewer for a quick look)")
+        .range(1, 1000)
+        .show_default();
     c.option("--seed", ev.seed, "Seed of the held-out scenes (training uses smaller seeds)")
         .show_default();
     c.option("--out", ev.out_dir, "Output folder (summary.json)").show_default();

@@ -428,11 +428,15 @@ TEST(Cli, DatasetTrainDetectAndEvaluateATinyModel) {
     EXPECT_EQ(lines(r.err), 1u) << r.err;
     EXPECT_EQ(std::filesystem::file_size(cloud), cloud_bytes);
     EXPECT_FALSE(std::filesystem::exists(dir / "d4.json"));
-    r = run_makeway("eval-detection --model " + (dir / "model.pt").string() + " --scenes 1 --out " +
-                        (dir / "eval").string(),
+    // A quick look (6 keyframes per scene): the plumbing, not the accuracy (tests/eval does that).
+    r = run_makeway("eval-detection --model " + (dir / "model.pt").string() +
+                        " --scenes 1 --max-keyframes 6 --out " + (dir / "eval").string(),
                     dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const io::Json s = io::read_json(dir / "eval" / "summary.json");
+    EXPECT_EQ(s["max_keyframes"], 6);
+    EXPECT_GT(s["keyframes"].get<int>(), 0);
+    EXPECT_LE(s["keyframes"].get<int>(), 6);
     for (const char* key : {"map_25", "map_50", "latency_ms_median_2t"})
         EXPECT_TRUE(s.contains(key)) << key;
     EXPECT_TRUE(s["per_class"]["chair"].contains("ap_25"));
