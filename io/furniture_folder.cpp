@@ -36,8 +36,9 @@ std::optional<MeshPlacement> to_placement(const MeshPlacementKeys& k, YamlSectio
 }
 
 TriangleMesh read_placed_mesh(const std::filesystem::path& file, const MeshPlacement& placement,
-                              ObjectClass cls, const std::string& what, const Warn& warn) {
-    TriangleMesh mesh = place_mesh(read_mesh(file), placement);
+                              ObjectClass cls, const std::string& what, const Warn& warn,
+                              const MeshReadLimits& limits) {
+    TriangleMesh mesh = place_mesh(read_mesh(file, limits), placement);
     if (const auto warning = implausible_furniture_extent(mesh, cls); warning && warn) {
         warn(what + ": mesh " + file.filename().string() + ": " + *warning);
     }

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "io/config_reader.hpp"
+#include "io/mesh_io.hpp"
 #include "makeway/common/mesh_placement.hpp"
 
 namespace makeway::io {
@@ -39,7 +40,8 @@ using Warn = std::function<void(const std::string&)>;
 /// read_mesh + place_mesh, and a warning (`what: mesh FILE: ...`) when the result cannot be a
 /// piece of furniture of `cls`. Throws FileError naming the file.
 TriangleMesh read_placed_mesh(const std::filesystem::path& file, const MeshPlacement& placement,
-                              ObjectClass cls, const std::string& what, const Warn& warn);
+                              ObjectClass cls, const std::string& what, const Warn& warn,
+                              const MeshReadLimits& limits = {});
 
 struct FurnitureMesh {
     std::string name;  ///< the file's path in the folder, without extension

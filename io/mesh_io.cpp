@@ -228,10 +228,10 @@ TriangleMesh parse_mesh(std::string_view bytes, const std::string& extension_hin
     return mesh;
 }
 
-TriangleMesh read_mesh(const std::filesystem::path& path) {
+TriangleMesh read_mesh(const std::filesystem::path& path, const MeshReadLimits& limits) {
     const std::string bytes = read_file(path);
     try {
-        return parse_mesh(bytes, lower_extension(path));
+        return parse_mesh(bytes, lower_extension(path), limits);
     } catch (const FormatError& e) {
         throw FileError(path.string(), e.what());
     }

@@ -10,15 +10,15 @@
 
 namespace makeway::io {
 
-/// Node transforms applied, polygons triangulated, points and lines dropped. Throws FileError when
-/// the file is unreadable or holds no triangles.
-TriangleMesh read_mesh(const std::filesystem::path& path);
-
 /// What one mesh file may cost the reader (assimp, in a child process).
 struct MeshReadLimits {
     std::size_t memory_bytes = std::size_t{4} << 30;
     double seconds = 60.0;
 };
+
+/// Node transforms applied, polygons triangulated, points and lines dropped. Throws FileError when
+/// the file is unreadable or holds no triangles, or the reader exceeds `limits`.
+TriangleMesh read_mesh(const std::filesystem::path& path, const MeshReadLimits& limits = {});
 
 /// Parses a mesh held in memory; `extension_hint` is e.g. "obj". Throws FormatError, also when
 /// the reader crashes, runs out of its memory or time on the file (it runs in a child process).

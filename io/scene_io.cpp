@@ -97,8 +97,9 @@ sim::SceneObject read_object(const YAML::Node& node, const std::string& prefix,
     if (!o.mesh_file.empty() && !mesh_base_dir.empty() &&
         may_read(s, mesh_base_dir, o.mesh_file, options) && placement) {
         try {
-            o.user_mesh = std::make_shared<TriangleMesh>(read_placed_mesh(
-                mesh_base_dir / o.mesh_file, *placement, o.cls, prefix, options.warn));
+            o.user_mesh = std::make_shared<TriangleMesh>(
+                read_placed_mesh(mesh_base_dir / o.mesh_file, *placement, o.cls, prefix,
+                                 options.warn, options.mesh_limits));
         } catch (const FileError& e) {
             s.problem(std::string("mesh ") + e.what());
         }
@@ -140,7 +141,8 @@ sim::EnvironmentMesh read_environment(const YAML::Node& node, const std::string&
     if (may_read(s, mesh_base_dir, e.mesh_file, options) && placement && e.position_m.allFinite() &&
         e.rpy_rad.allFinite()) {
         try {
-            TriangleMesh mesh = place_mesh(read_mesh(mesh_base_dir / e.mesh_file), *placement);
+            TriangleMesh mesh =
+                place_mesh(read_mesh(mesh_base_dir / e.mesh_file, options.mesh_limits), *placement);
             sim::transform_mesh(
                 mesh, make_T_xyz_rpy(e.position_m, e.rpy_rad.x(), e.rpy_rad.y(), e.rpy_rad.z()));
             e.mesh_world = std::make_shared<TriangleMesh>(std::move(mesh));

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "io/error.hpp"
+#include "io/mesh_io.hpp"
 #include "makeway/sim/scene.hpp"
 
 namespace makeway::io {
@@ -17,6 +18,8 @@ struct SceneReadOptions {
     /// Told what is readable but suspicious (a user mesh whose size cannot be furniture of its
     /// class); by default a line on stderr.
     std::function<void(const std::string&)> warn = print_warning;
+    /// What each user mesh may cost its reader (a fuzzer's time limit is shorter than a user's).
+    MeshReadLimits mesh_limits;
 };
 
 /// Throws FileError ("PATH: 2 problems: ...") on any problem, including unreadable user meshes.

@@ -74,6 +74,27 @@ TEST(SceneIo, UserMeshIsLoadedScaledAndHitByRays) {
     EXPECT_GT(hits, 200u);
 }
 
+// The caller's limits on the mesh reader reach the scene's meshes (a fuzzer gives a shorter time
+// than a user's 60 s): with no time at all the read fails, naming the scene and the limit.
+TEST(SceneIo, TheMeshReadersLimitsReachTheScenesMeshes) {
+    const auto dir = testing_util::fresh_dir("mesh_limits");
+    TriangleMesh cube;
+    sim::add_box(cube, {0, 0, 0.5}, {1, 1, 1});
+    write_mesh(dir / "crate.stl", cube);
+    std::ofstream(dir / "s.yaml") << "name: crate_room\nfloor: {min_m: [-5, -5], max_m: [5, 5]}\n"
+                                     "objects:\n  - {id: 7, class: table, mesh: crate.stl, "
+                                     "pose: {x_m: 2, y_m: 0, yaw_rad: 0}}\n";
+    EXPECT_TRUE(read_scene(dir / "s.yaml").objects[0].user_mesh);
+    try {
+        (void)read_scene(dir / "s.yaml", {.mesh_limits = {.seconds = 0.0}});
+        FAIL() << "read with no time left";
+    } catch (const FileError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("s.yaml"), std::string::npos) << what;
+        EXPECT_NE(what.find("took longer than 0 s"), std::string::npos) << what;
+    }
+}
+
 // A room given as one mesh (as a scan of a building would be): a 6 x 4 m shell of 2.5 m walls
 // with a floor slab, drawn Y-up in centimetres around its own origin at the room's corner.
 TriangleMesh scanned_shell_y_up_cm() {
