@@ -95,7 +95,7 @@ std::vector<EpochReport> train_detector(Detector& detector,
                                         const std::function<void(const EpochReport&)>& on_epoch) {
     std::vector<EpochReport> reports;
     if (samples.empty()) return reports;
-    if (params.threads > 0) torch::set_num_threads(params.threads);
+    if (params.threads > 0) set_inference_threads(params.threads);  // torch's and OpenBLAS's
     torch::manual_seed(params.seed);
     CenterNet& net = detector.impl().net;
     const BevGridParams& g = detector.params().grid;

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "makeway/common/random.hpp"
+#include "makeway/perception/detector.hpp"
 #include "makeway/perception/model_archive.hpp"
 #include "makeway/shape/shape_model_impl.hpp"
 
@@ -12,7 +13,7 @@ namespace makeway::shape {
 namespace F = torch::nn::functional;
 
 void set_threads(int threads) {
-    if (threads > 0) torch::set_num_threads(threads);
+    perception::set_inference_threads(threads);  // torch's and OpenBLAS's (its spinning pool)
 }
 
 int shape_class_index(ObjectClass cls) {

@@ -100,7 +100,8 @@ class ShapeModel {
     std::unique_ptr<Impl> impl_;
 };
 
-/// Threads torch uses for the shape networks in this process (0: leave the default).
+/// Threads torch, and the OpenBLAS under it, use for the shape networks in this process (0: leave
+/// the default); perception::set_inference_threads.
 void set_threads(int threads);
 
 }  // namespace makeway::shape

@@ -295,7 +295,7 @@ ShapeTrainReport train_shape_model(
     ShapeModel& model, const ShapeTrainingSet& data, const ShapeTrainParams& p,
     const std::function<void(const std::string&, int, int, double)>& progress) {
     const auto t0 = std::chrono::steady_clock::now();
-    if (p.threads > 0) torch::set_num_threads(p.threads);
+    if (p.threads > 0) set_threads(p.threads);
     torch::manual_seed(p.seed);
     Rng rng = make_rng(p.seed, 1919);
     ShapeTrainReport report;
