@@ -12,13 +12,19 @@ namespace makeway {
 template <class E>
 using NameTable = std::vector<std::pair<std::string, E>>;
 
-/// The name of `value` in `table`; "unknown" when the table lacks it.
+/// The name of `value` in `table`; nullopt when the table lacks it.
 template <class E>
-std::string_view name_in(const NameTable<E>& table, E value) {
+std::optional<std::string_view> name_of(const NameTable<E>& table, E value) {
     for (const auto& [name, v] : table) {
         if (v == value) return name;
     }
-    return "unknown";
+    return std::nullopt;
+}
+
+/// The name of `value` in `table`; "unknown" when the table lacks it.
+template <class E>
+std::string_view name_in(const NameTable<E>& table, E value) {
+    return name_of(table, value).value_or("unknown");
 }
 
 /// The value named `name` exactly; nullopt when no entry has that name.

@@ -15,6 +15,8 @@
 #include <variant>
 #include <vector>
 
+#include "makeway/common/name_table.hpp"
+
 namespace makeway {
 
 /// Values a numeric parameter admits: lo..hi, either end open; `infinity`: +inf too (".inf" in
@@ -99,25 +101,21 @@ class ParamTable {
     }
     /// An enum written as one of `names`.
     template <class E>
-    ParamTable& choice(std::string key, E P::*member, std::vector<std::pair<std::string, E>> names,
-                       std::string doc) {
-        std::vector<std::string> words;
-        for (const auto& n : names) words.push_back(n.first);
+    ParamTable& choice(std::string key, E P::*member, NameTable<E> names, std::string doc) {
+        std::vector<std::string> words = names_in(names);
         entries_.push_back({std::move(key),
                             [member, names, words](P& p) -> ParamRef {
                                 E& value = p.*member;
                                 ParamChoice c;
                                 c.names = words;
                                 c.get = [&value, names] {
-                                    for (const auto& [n, v] : names) {
-                                        if (v == value) return std::vector<std::string>{n};
-                                    }
-                                    return std::vector<std::string>{};
+                                    const auto name = name_of(names, value);
+                                    return name ? std::vector<std::string>{std::string(*name)}
+                                                : std::vector<std::string>{};
                                 };
                                 c.set = [&value, names](const std::vector<std::string>& chosen) {
-                                    for (const auto& [n, v] : names) {
-                                        if (n == chosen.front()) value = v;
-                                    }
+                                    if (const auto v = value_named(names, chosen.front()))
+                                        value = *v;
                                 };
                                 return c;
                             },
