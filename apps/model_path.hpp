@@ -27,6 +27,16 @@ inline std::optional<std::filesystem::path> default_model_path(
     return std::nullopt;
 }
 
+/// A loader's error about the model file itself ("PATH: what") as an io::FileError naming it;
+/// anything else (the networks' module could not be opened) as it was thrown. Call it from the
+/// handler of `e`.
+[[noreturn]] inline void rethrow_model_error(const std::filesystem::path& path,
+                                             const std::runtime_error& e) {
+    const std::string what = e.what(), prefix = path.string() + ": ";
+    if (what.rfind(prefix, 0) != 0) throw;  // called from the handler: the same exception
+    throw io::FileError(path.string(), what.substr(prefix.size()));
+}
+
 /// The given model file, else the default weights; throws io::FileError naming the file when it is
 /// missing or not a detector.
 inline perception::Detector load_detector(const std::string& given) {
@@ -37,7 +47,7 @@ inline perception::Detector load_detector(const std::string& given) {
     try {
         return perception::Detector::load(path);
     } catch (const std::runtime_error& e) {
-        throw io::FileError(path.string(), std::string(e.what()).substr(path.string().size() + 2));
+        rethrow_model_error(path, e);
     }
 }
 
@@ -62,7 +72,7 @@ inline shape::ShapeModel load_shape_model(const std::string& given) {
     try {
         return shape::ShapeModel::load(path);
     } catch (const std::runtime_error& e) {
-        throw io::FileError(path.string(), std::string(e.what()).substr(path.string().size() + 2));
+        rethrow_model_error(path, e);
     }
 }
 

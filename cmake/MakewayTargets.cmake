@@ -52,3 +52,14 @@ function(makeway_forbid_links target pattern reason)
         endforeach()
     endwhile()
 endfunction()
+
+# makeway_position_independent(TARGET ...): compiled as position-independent code, for the
+# libraries the networks' module (src/makeway/neural) links into itself. Without semantic
+# interposition the compiler still inlines and calls directly as it does for the program (nothing
+# replaces a makeway function at load time: the module keeps its copies hidden).
+function(makeway_position_independent)
+    foreach(_target IN LISTS ARGN)
+        set_target_properties(${_target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+        target_compile_options(${_target} PRIVATE -fno-semantic-interposition)
+    endforeach()
+endfunction()

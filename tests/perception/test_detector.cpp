@@ -1,3 +1,4 @@
+#include <dlfcn.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -6,6 +7,7 @@
 #include "../io/io_test_util.hpp"
 #include "makeway/common/random.hpp"
 #include "makeway/perception/detector.hpp"
+#include "makeway/perception/neural_module.hpp"
 
 namespace makeway::perception {
 namespace {
@@ -108,6 +110,26 @@ TEST(Detector, SharedByThreadsGivesTheSerialAnswers) {
     }
     for (auto& th : threads) th.join();
     EXPECT_EQ(mismatches, std::vector<int>(3, 0));
+}
+
+// The network is the module's (neural_module.hpp), opened with its libraries kept local: the thread
+// count must still reach the OpenBLAS under torch, whose spinning pool took a core from
+// verification when it was left at a thread per core (set before the module opens and after).
+TEST(Detector, InferenceThreadsReachTheModulesOpenBlas) {
+    set_inference_threads(1);
+    const Detector detector(small_params());
+    EXPECT_NE(neural_module_path().find(kNeuralModuleFile), std::string::npos);
+    void* blas = dlopen("libopenblas.so.0", RTLD_NOW | RTLD_NOLOAD);
+    if (blas == nullptr) GTEST_SKIP() << "torch is not on OpenBLAS here";
+    using GetThreads = int (*)();
+    const auto get = reinterpret_cast<GetThreads>(dlsym(blas, "openblas_get_num_threads"));
+    ASSERT_NE(get, nullptr);
+    EXPECT_EQ(get(), 1);
+    set_inference_threads(2);
+    EXPECT_GE(get(), std::min(2, static_cast<int>(std::thread::hardware_concurrency())));
+    set_inference_threads(1);
+    EXPECT_EQ(get(), 1);
+    dlclose(blas);
 }
 
 // bench nav leaves the simulated intensity out when the detector says it reads none: the flag must

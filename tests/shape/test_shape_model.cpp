@@ -6,9 +6,9 @@
 #include <fstream>
 
 #include "makeway/eval/shape_dataset.hpp"
+#include "makeway/neural/shape_nets.hpp"
 #include "makeway/shape/mesh_sdf.hpp"
 #include "makeway/shape/shape_completion.hpp"
-#include "makeway/shape/shape_model_impl.hpp"
 #include "makeway/shape/shape_training.hpp"
 
 namespace makeway::shape {

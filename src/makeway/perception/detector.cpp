@@ -1,171 +1,52 @@
+// The detector's facade: what does not need torch (levelling, the BEV encoding, decoding, NMS)
+// runs here; the network is the module's (detector_backend.hpp).
 #include "makeway/perception/detector.hpp"
 
-#include <dlfcn.h>
-
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 
-#include "makeway/perception/detector_impl.hpp"
+#include "makeway/perception/detector_backend.hpp"
 #include "makeway/perception/levelling.hpp"
 #include "makeway/perception/model_archive.hpp"
+#include "makeway/perception/neural_module.hpp"
 
 namespace makeway::perception {
 
-ConvBnImpl::ConvBnImpl(int in, int out, int stride) {
-    conv = register_module(
-        "conv", torch::nn::Conv2d(
-                    torch::nn::Conv2dOptions(in, out, 3).stride(stride).padding(1).bias(false)));
-    bn = register_module("bn", torch::nn::BatchNorm2d(out));
-}
-
-torch::Tensor ConvBnImpl::forward(const torch::Tensor& x) {
-    return torch::relu(bn->forward(conv->forward(x)));
-}
-
-CenterNetImpl::CenterNetImpl(int in, int w) {
-    stem = register_module("stem", ConvBn(in, w, 2));
-    s2a = register_module("s2a", ConvBn(w, w, 1));
-    s2b = register_module("s2b", ConvBn(w, w, 1));
-    down = register_module("down", ConvBn(w, 2 * w, 2));
-    s4a = register_module("s4a", ConvBn(2 * w, 2 * w, 1));
-    s4b = register_module("s4b", ConvBn(2 * w, 2 * w, 1));
-    up = register_module(
-        "up", torch::nn::ConvTranspose2d(torch::nn::ConvTranspose2dOptions(2 * w, w, 2).stride(2)));
-    head_conv = register_module("head_conv", ConvBn(w, w, 1));
-    head =
-        register_module("head", torch::nn::Conv2d(torch::nn::Conv2dOptions(w, kHeadChannels, 1)));
-    // Heatmap logits start at p = 0.1 (CenterNet), the rest near zero.
-    torch::NoGradGuard no_grad;
-    head->bias.zero_();
-    head->bias.slice(0, 0, kNumObjectClasses).fill_(-2.19);
-}
-
-torch::Tensor CenterNetImpl::forward(const torch::Tensor& bev) {
-    const torch::Tensor a = s2b->forward(s2a->forward(stem->forward(bev)));
-    const torch::Tensor b = s4b->forward(s4a->forward(down->forward(a)));
-    const torch::Tensor c = torch::relu(up->forward(b)) + a;  // skip connection at stride 2
-    return head->forward(head_conv->forward(c));
-}
-
-torch::Tensor activate_heads(const torch::Tensor& raw) {
-    return torch::cat(
-        {torch::sigmoid(raw.slice(1, 0, kNumObjectClasses)), raw.slice(1, kNumObjectClasses)}, 1);
-}
-
-torch::Tensor bev_tensor(const PointCloud& cloud, const BevGridParams& g) {
-    std::vector<float> bev = encode_bev(cloud, g);
-    return torch::from_blob(bev.data(), {1, g.channels(), g.cells(), g.cells()}, torch::kFloat32)
-        .clone();
+const DetectorBackend& detector_backend() {
+    static const DetectorBackend* const backend = [] {
+        using Get = const DetectorBackend* (*)();
+        const auto* b = reinterpret_cast<Get>(neural_module_symbol("makeway_detector_backend"))();
+        if (b->abi != kDetectorBackendAbi || b->size != sizeof(DetectorBackend))
+            throw std::runtime_error(neural_module_path() +
+                                     ": a detector interface other than this program's (rebuild "
+                                     "the target makeway_neural)");
+        return b;
+    }();
+    return *backend;
 }
 
 Detector::Detector(const DetectorParams& params)
-    : params_(params), impl_(std::make_unique<Impl>()) {
-    torch::manual_seed(params.seed);
-    impl_->net = CenterNet(params.grid.channels(), params.width);
-    impl_->net->eval();
-}
+    : params_(params), impl_(detector_backend().create(params)) {}
+
+Detector::Detector(const DetectorParams& params, std::unique_ptr<Impl> impl)
+    : params_(params), impl_(std::move(impl)) {}
 
 Detector::~Detector() = default;
 Detector::Detector(Detector&&) noexcept = default;
 Detector& Detector::operator=(Detector&&) noexcept = default;
 
-std::size_t Detector::parameter_count() const {
-    std::size_t n = 0;
-    for (const auto& p : impl_->net->parameters()) n += static_cast<std::size_t>(p.numel());
-    return n;
-}
+std::size_t Detector::parameter_count() const { return impl_->parameter_count(); }
 
-namespace {
-
-// Grid and network shape, stored in the model file beside the weights.
-torch::Tensor params_tensor(const DetectorParams& p) {
-    return torch::tensor(
-        {p.grid.range_m, p.grid.cell_m, p.grid.z_min_m, p.grid.z_max_m,
-         static_cast<double>(p.grid.height_slices), static_cast<double>(p.grid.output_stride),
-         static_cast<double>(p.width), p.decode.score_threshold, p.decode.nms_bev_iou,
-         p.grid.intensity ? 1.0 : 0.0, p.level_height_m},
-        torch::kFloat64);
-}
-
-}  // namespace
-
-void Detector::save(const std::filesystem::path& path) const {
-    torch::serialize::OutputArchive archive;
-    archive.write("makeway_detector_params", params_tensor(params_));
-    impl_->net->save(archive);
-    const std::filesystem::path tmp = path.string() + ".tmp";
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-    archive.save_to(tmp.string());
-    std::filesystem::rename(tmp, path);
-}
+void Detector::save(const std::filesystem::path& path) const { impl_->save(path, params_); }
 
 Detector Detector::load(const std::filesystem::path& path) {
     const std::string bytes = read_checked_model_archive(path, "model");
-    try {
-        torch::serialize::InputArchive archive;
-        archive.load_from(bytes.data(), bytes.size());
-        torch::Tensor t;
-        if (!archive.try_read("makeway_detector_params", t) || t.numel() < 9 || t.numel() > 11) {
-            throw std::runtime_error("not a makeway detector (no parameters)");
-        }
-        const auto v = t.to(torch::kFloat64).contiguous();
-        const double* d = v.data_ptr<double>();
-        DetectorParams p;
-        p.grid = {.range_m = d[0],
-                  .cell_m = d[1],
-                  .z_min_m = d[2],
-                  .z_max_m = d[3],
-                  .height_slices = static_cast<int>(d[4]),
-                  .output_stride = static_cast<int>(d[5])};
-        p.width = static_cast<int>(d[6]);
-        p.decode.score_threshold = d[7];
-        p.decode.nms_bev_iou = d[8];
-        p.grid.intensity = t.numel() == 9 || d[9] != 0.0;  // files before the flag had the channel
-        p.level_height_m = t.numel() == 11 ? d[10] : 0.0;  // files before levelling: none
-        if (!p.grid.validate().empty() || p.width < 1 || p.width > 512 ||
-            !(p.level_height_m >= 0.0 && p.level_height_m < 10.0))
-            throw std::runtime_error("impossible parameters in the file");
-        Detector det(p);
-        det.impl_->net->load(archive);
-        det.impl_->net->eval();
-        return det;
-    } catch (const c10::Error& e) {
-        throw std::runtime_error(path.string() + ": not a readable model (" +
-                                 first_line(e.what_without_backtrace()) + ")");
-    } catch (const std::runtime_error& e) {
-        const std::string what = e.what();
-        if (what.rfind(path.string(), 0) == 0) throw;
-        throw std::runtime_error(path.string() + ": " + first_line(what));
-    } catch (const std::exception& e) {
-        // A damaged archive surfaces as whatever torch's readers throw (the TorchScript type
-        // parser, std::bad_alloc for a size field gone wild): all of them are a bad file.
-        throw std::runtime_error(path.string() + ": not a readable model (" + first_line(e.what()) +
-                                 ")");
-    }
-}
-
-void set_inference_threads(int threads) {
-    if (threads <= 0) return;
-    torch::set_num_threads(threads);
-    // Debian's libtorch multiplies through the system BLAS (OpenBLAS), whose own pool of a thread
-    // per core spins in sched_yield between calls: left alone, it takes the cores the caller kept
-    // for other work (a quarter of the CPU samples of a study-space run; in bench nav's shards
-    // four times their system time). Looked up at run time, so that any other BLAS links as well.
-    using SetThreads = void (*)(int);
-    if (auto* set_blas =
-            reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
-        set_blas(threads);
+    DetectorParams params;
+    std::unique_ptr<Impl> impl = detector_backend().load(bytes, path, params);
+    return Detector(params, std::move(impl));
 }
 
 std::vector<float> Detector::heads(const PointCloud& cloud) const {
-    torch::NoGradGuard no_grad;
-    if (params_.threads > 0) torch::set_num_threads(params_.threads);
-    // The network is in eval mode since construction, load() or the end of training: nothing here
-    // writes to it, so several threads may detect at once.
-    const torch::Tensor out =
-        activate_heads(impl_->net->forward(bev_tensor(cloud, params_.grid))).contiguous();
-    return std::vector<float>(out.data_ptr<float>(), out.data_ptr<float>() + out.numel());
+    return impl_->heads(encode_bev(cloud, params_.grid), params_);
 }
 
 std::vector<Detection> Detector::detect(
@@ -178,6 +59,27 @@ std::vector<Detection> Detector::detect(
     const Isometry3 T_sensor_level = T_level_sensor->inverse();
     for (Detection& d : found) d.box_sensor = d.box_sensor.transformed(T_sensor_level);
     return found;
+}
+
+std::vector<std::string> TrainParams::validate() const {
+    std::vector<std::string> p;
+    if (epochs < 1 || epochs > 10000) p.push_back("epochs must be in [1, 10000]");
+    if (batch_size < 1 || batch_size > 512) p.push_back("batch_size must be in [1, 512]");
+    if (!(learning_rate > 0.0 && learning_rate < 1.0))
+        p.push_back("learning_rate must be in (0, 1)");
+    if (!(weight_decay >= 0.0 && weight_decay < 1.0)) p.push_back("weight_decay must be in [0, 1)");
+    return p;
+}
+
+std::vector<EpochReport> train_detector(Detector& detector,
+                                        const std::vector<TrainingSample>& samples,
+                                        const TrainParams& params,
+                                        const std::function<void(int, int, double)>& progress,
+                                        const std::function<void(const EpochReport&)>& on_epoch) {
+    if (samples.empty()) return {};
+    if (params.threads > 0) set_inference_threads(params.threads);  // torch's and OpenBLAS's
+    return detector_backend().train(detector.impl(), detector.params(), samples, params, progress,
+                                    on_epoch);
 }
 
 }  // namespace makeway::perception

@@ -1,7 +1,8 @@
 #pragma once
 // The neural 3D detector (libtorch, CPU): height-sliced BEV occupancy -> a small 2D encoder-decoder
 // -> CenterNet-style heads (class heatmaps, centre offset, z, log size, sin/cos yaw) on a stride-2
-// grid -> peaks -> rotated NMS. Torch stays inside detector.cpp and detector_training.cpp.
+// grid -> peaks -> rotated NMS. The network is in the networks' module (src/makeway/neural/, the
+// only code that includes torch), opened on first use: perception/neural_module.hpp.
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -55,16 +56,18 @@ class Detector : public ObjectDetector {
     const DetectorParams& params() const { return params_; }
     std::size_t parameter_count() const;
 
-    struct Impl;  ///< torch internals (detector.cpp)
+    struct Impl;  ///< the network (detector_backend.hpp), in the networks' module
     Impl& impl() const { return *impl_; }
 
   private:
+    Detector(const DetectorParams& params, std::unique_ptr<Impl> impl);
     DetectorParams params_;
     std::unique_ptr<Impl> impl_;
 };
 
 /// Threads torch, and the OpenBLAS under it when that is the BLAS linked, use for inference and
-/// training in this process.
+/// training in this process: applied when the networks' module opens, and at once when it is open
+/// (setting them does not open it).
 void set_inference_threads(int threads);
 
 /// A labelled training sample: a keyframe and its boxes in the sensor frame, and the keyframe's

@@ -1,7 +1,7 @@
 #pragma once
 // What the pipeline needs of a 3D detector: boxes from a ground-filtered keyframe, and how far it
-// sees. The neural network (detector.hpp, the only code that includes torch) is one; tests and
-// other detectors can be others, without linking libtorch.
+// sees. The neural network (detector.hpp, its torch code in the networks' module) is one; tests
+// and other detectors can be others, without libtorch.
 #include <Eigen/Core>
 #include <optional>
 #include <vector>

@@ -1,6 +1,7 @@
 #pragma once
 // The learned shape networks of the supplementary material, one set per class (chair, table), in
-// libtorch on the CPU (torch stays inside shape_model.cpp and shape_training.cpp):
+// libtorch on the CPU (torch stays inside the networks' module, src/makeway/neural/, opened on
+// first use: perception/neural_module.hpp):
 //
 //  F_n  canonical correspondences: a PointNet over the object's points (per-point features and
 //       their max-pooled global feature, concatenated, then an MLP) regresses each point's
@@ -36,7 +37,17 @@ constexpr int kLatentDim = 32;
 using Latent = std::array<float, kLatentDim>;
 
 /// The classes with shape networks (chair, table); index into per-class arrays.
-int shape_class_index(ObjectClass cls);  ///< -1 for a class without networks
+/// -1 for a class without networks.
+inline int shape_class_index(ObjectClass cls) {
+    switch (cls) {
+        case ObjectClass::kChair:
+            return 0;
+        case ObjectClass::kTable:
+            return 1;
+        default:
+            return -1;
+    }
+}
 
 struct ShapeModelParams {
     int points = 128;  ///< F_n's input size (clouds are resampled to it, seeded)
@@ -92,10 +103,11 @@ class ShapeModel {
     const ShapeModelParams& params() const { return params_; }
     std::size_t parameter_count() const;
 
-    struct Impl;  ///< torch internals (shape_model_impl.hpp)
+    struct Impl;  ///< the networks (shape_backend.hpp), in the networks' module
     Impl& impl() const { return *impl_; }
 
   private:
+    ShapeModel(const ShapeModelParams& params, std::unique_ptr<Impl> impl);
     ShapeModelParams params_;
     std::unique_ptr<Impl> impl_;
 };

@@ -1,8 +1,9 @@
 #pragma once
-// Torch internals shared by shape_model.cpp and shape_training.cpp only.
+// The shape networks in libtorch (the module's; shape/shape_backend.hpp is the contract). Shared
+// by shape_nets.cpp and shape_training.cpp, and the tests of the differentiable solve.
 #include <torch/torch.h>
 
-#include "makeway/shape/shape_model.hpp"
+#include "makeway/shape/shape_backend.hpp"
 
 namespace makeway::shape {
 
@@ -43,9 +44,29 @@ struct ClassNets {
     torch::Tensor mean_code;  ///< [L]: F_0's mean training code, where test-time fitting starts
 };
 
-struct ShapeModel::Impl {
-    std::array<ClassNets, 2> nets;
+struct TorchShapeModel final : ShapeModel::Impl {
+    explicit TorchShapeModel(const ShapeModelParams& params);
+    std::size_t parameter_count() const override;
+    void save(const std::filesystem::path& path, const ShapeModelParams& params) const override;
+    std::vector<float> correspond(ObjectClass cls,
+                                  const std::vector<Eigen::Vector3d>& sample) const override;
+    std::vector<float> sdf(ObjectClass cls, const Latent& z,
+                           const std::vector<Eigen::Vector3d>& points) const override;
+    Latent fit_latent(ObjectClass cls, const std::vector<Eigen::Vector3d>& surface,
+                      const std::vector<Eigen::Vector3d>& free, int iterations,
+                      const ShapeModelParams& params) const override;
+    std::vector<float> occupancy(ObjectClass cls, const TsdfVolume& tsdf, const Latent& z,
+                                 const std::vector<Eigen::Vector3d>& points,
+                                 const ShapeModelParams& params) const override;
+    /// The networks of a class with networks (throws std::invalid_argument for another).
+    ClassNets& of(ObjectClass cls) const;
+    mutable std::array<ClassNets, 2> nets;  ///< chair, table (torch's modules are handles)
 };
+
+/// A ShapeModel's networks (every ShapeModel's Impl is the module's TorchShapeModel).
+inline std::array<ClassNets, 2>& torch_nets(ShapeModel::Impl& networks) {
+    return static_cast<TorchShapeModel&>(networks).nets;
+}
 
 /// The weighted upright Umeyama solve, batched and differentiable: v, p [B, N, 3], w [B, N] ->
 /// scale [B], rotation [B, 3, 3], translation [B, 3].
@@ -59,5 +80,13 @@ TorchSimilarity solve_upright_similarity(const torch::Tensor& v, const torch::Te
 /// [B, 2, R, R, R] from TSDF volumes.
 torch::Tensor volume_tensor(const std::vector<const TsdfVolume*>& volumes);
 torch::Tensor points_tensor(const std::vector<Eigen::Vector3d>& points);  ///< [N, 3]
+
+std::unique_ptr<ShapeModel::Impl> load_torch_shape_model(const std::string& bytes,
+                                                         const std::filesystem::path& path,
+                                                         ShapeModelParams& params);
+ShapeTrainReport train_torch_shape_model(
+    ShapeModel::Impl& networks, const ShapeModelParams& model, const ShapeTrainingSet& data,
+    const ShapeTrainParams& params,
+    const std::function<void(const std::string&, int, int, double)>& progress);
 
 }  // namespace makeway::shape

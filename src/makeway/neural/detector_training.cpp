@@ -6,21 +6,11 @@
 
 #include "makeway/common/angles.hpp"
 #include "makeway/common/random.hpp"
-#include "makeway/perception/detector_impl.hpp"
+#include "makeway/neural/detector_net.hpp"
 #include "makeway/perception/levelling.hpp"
 #include "makeway/perception/training_augment.hpp"
 
 namespace makeway::perception {
-
-std::vector<std::string> TrainParams::validate() const {
-    std::vector<std::string> p;
-    if (epochs < 1 || epochs > 10000) p.push_back("epochs must be in [1, 10000]");
-    if (batch_size < 1 || batch_size > 512) p.push_back("batch_size must be in [1, 512]");
-    if (!(learning_rate > 0.0 && learning_rate < 1.0))
-        p.push_back("learning_rate must be in (0, 1)");
-    if (!(weight_decay >= 0.0 && weight_decay < 1.0)) p.push_back("weight_decay must be in [0, 1)");
-    return p;
-}
 
 namespace {
 
@@ -88,17 +78,16 @@ Losses losses(const torch::Tensor& raw, const torch::Tensor& heat, const torch::
 
 }  // namespace
 
-std::vector<EpochReport> train_detector(Detector& detector,
-                                        const std::vector<TrainingSample>& samples,
-                                        const TrainParams& params,
-                                        const std::function<void(int, int, double)>& progress,
-                                        const std::function<void(const EpochReport&)>& on_epoch) {
+std::vector<EpochReport> train_torch_detector(
+    Detector::Impl& network, const DetectorParams& detector,
+    const std::vector<TrainingSample>& samples, const TrainParams& params,
+    const std::function<void(int, int, double)>& progress,
+    const std::function<void(const EpochReport&)>& on_epoch) {
     std::vector<EpochReport> reports;
     if (samples.empty()) return reports;
-    if (params.threads > 0) set_inference_threads(params.threads);  // torch's and OpenBLAS's
     torch::manual_seed(params.seed);
-    CenterNet& net = detector.impl().net;
-    const BevGridParams& g = detector.params().grid;
+    CenterNet& net = torch_net(network);
+    const BevGridParams& g = detector.grid;
     torch::optim::AdamW optimizer(
         net->parameters(),
         torch::optim::AdamWOptions(params.learning_rate).weight_decay(params.weight_decay));
@@ -148,8 +137,7 @@ std::vector<EpochReport> train_detector(Detector& detector,
                 PointCloud cloud = *s.cloud_sensor;
                 Boxes boxes = s.boxes;
                 // The network learns from a level sensor at the height detect() levels to.
-                if (const auto T =
-                        level_frame_if(s.ground_plane_sensor, detector.params().level_height_m)) {
+                if (const auto T = level_frame_if(s.ground_plane_sensor, detector.level_height_m)) {
                     cloud = cloud.transformed(*T);
                     for (auto& [cls, box] : boxes) box = box.transformed(*T);
                 }
