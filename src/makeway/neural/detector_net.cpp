@@ -63,6 +63,10 @@ TorchDetector::TorchDetector(const DetectorParams& params) {
     net->eval();
 }
 
+std::unique_ptr<Detector::Impl> create_torch_detector(const DetectorParams& params) {
+    return std::make_unique<TorchDetector>(params);
+}
+
 std::size_t TorchDetector::parameter_count() const {
     std::size_t n = 0;
     for (const auto& p : net->parameters()) n += static_cast<std::size_t>(p.numel());

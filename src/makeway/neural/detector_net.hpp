@@ -3,7 +3,7 @@
 // contract). Shared by detector_net.cpp and detector_training.cpp only.
 #include <torch/torch.h>
 
-#include "makeway/perception/detector_backend.hpp"
+#include "makeway/neural/networks.hpp"
 
 namespace makeway::perception {
 
@@ -44,17 +44,5 @@ inline CenterNet& torch_net(Detector::Impl& network) {
 /// Heads with the heatmaps passed through a sigmoid.
 torch::Tensor activate_heads(const torch::Tensor& raw);
 torch::Tensor bev_tensor(const PointCloud& cloud, const BevGridParams& grid);
-
-std::unique_ptr<Detector::Impl> load_torch_detector(const std::string& bytes,
-                                                    const std::filesystem::path& path,
-                                                    DetectorParams& params);
-std::vector<EpochReport> train_torch_detector(
-    Detector::Impl& network, const DetectorParams& detector,
-    const std::vector<TrainingSample>& samples, const TrainParams& params,
-    const std::function<void(int, int, double)>& progress,
-    const std::function<void(const EpochReport&)>& on_epoch);
-
-/// torch's intra-op threads and OpenBLAS's (perception::set_inference_threads in the program).
-void set_torch_threads(int threads);
 
 }  // namespace makeway::perception

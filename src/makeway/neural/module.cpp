@@ -1,17 +1,14 @@
 // The networks' module's exports: one table per facade (perception/detector_backend.hpp,
 // shape/shape_backend.hpp) and the threads. Everything else in the module is hidden: its copies of
 // the makeway libraries it links stay its own (-Wl,--exclude-libs,ALL, neural/CMakeLists.txt).
-#include "makeway/neural/detector_net.hpp"
-#include "makeway/neural/shape_nets.hpp"
+#include "makeway/neural/networks.hpp"
 
 #define MAKEWAY_NEURAL_EXPORT extern "C" __attribute__((visibility("default")))
 
 MAKEWAY_NEURAL_EXPORT const makeway::perception::DetectorBackend* makeway_detector_backend() {
     using namespace makeway::perception;
     static const DetectorBackend backend{
-        .create = [](const DetectorParams& params) -> std::unique_ptr<Detector::Impl> {
-            return std::make_unique<TorchDetector>(params);
-        },
+        .create = create_torch_detector,
         .load = load_torch_detector,
         .train = train_torch_detector,
     };
@@ -21,9 +18,7 @@ MAKEWAY_NEURAL_EXPORT const makeway::perception::DetectorBackend* makeway_detect
 MAKEWAY_NEURAL_EXPORT const makeway::shape::ShapeBackend* makeway_shape_backend() {
     using namespace makeway::shape;
     static const ShapeBackend backend{
-        .create = [](const ShapeModelParams& params) -> std::unique_ptr<ShapeModel::Impl> {
-            return std::make_unique<TorchShapeModel>(params);
-        },
+        .create = create_torch_shape_model,
         .load = load_torch_shape_model,
         .train = train_torch_shape_model,
     };

@@ -157,6 +157,10 @@ TorchShapeModel::TorchShapeModel(const ShapeModelParams& params) {
     }
 }
 
+std::unique_ptr<ShapeModel::Impl> create_torch_shape_model(const ShapeModelParams& params) {
+    return std::make_unique<TorchShapeModel>(params);
+}
+
 std::size_t TorchShapeModel::parameter_count() const {
     std::size_t n = 0;
     for (const auto& c : nets) {

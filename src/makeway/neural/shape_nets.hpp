@@ -3,7 +3,7 @@
 // by shape_nets.cpp and shape_training.cpp, and the tests of the differentiable solve.
 #include <torch/torch.h>
 
-#include "makeway/shape/shape_backend.hpp"
+#include "makeway/neural/networks.hpp"
 
 namespace makeway::shape {
 
@@ -80,13 +80,5 @@ TorchSimilarity solve_upright_similarity(const torch::Tensor& v, const torch::Te
 /// [B, 2, R, R, R] from TSDF volumes.
 torch::Tensor volume_tensor(const std::vector<const TsdfVolume*>& volumes);
 torch::Tensor points_tensor(const std::vector<Eigen::Vector3d>& points);  ///< [N, 3]
-
-std::unique_ptr<ShapeModel::Impl> load_torch_shape_model(const std::string& bytes,
-                                                         const std::filesystem::path& path,
-                                                         ShapeModelParams& params);
-ShapeTrainReport train_torch_shape_model(
-    ShapeModel::Impl& networks, const ShapeModelParams& model, const ShapeTrainingSet& data,
-    const ShapeTrainParams& params,
-    const std::function<void(const std::string&, int, int, double)>& progress);
 
 }  // namespace makeway::shape
