@@ -90,6 +90,17 @@ TEST(Cli, OnlyACommandThatRunsANetworkLoadsTorch) {
     EXPECT_TRUE(std::filesystem::exists(dir / "dets.json"));
     EXPECT_NE(detect.find(perception::kNeuralModuleFile), std::string::npos);
     EXPECT_NE(detect.find("libtorch_cpu"), std::string::npos);
+    // Without the module a network cannot run: one line naming what was tried, nothing written.
+    const CliRun missing =
+        run_shell("MAKEWAY_NEURAL_MODULE=" + (dir / "gone.so").string() + " " +
+                      std::string(MAKEWAY_BIN) + " detect --cloud " + (dir / "c.pcd").string() +
+                      " --out " + (dir / "again.json").string(),
+                  dir);
+    EXPECT_EQ(missing.exit_code, 1);
+    EXPECT_EQ(lines(missing.err), 1u) << missing.err;
+    EXPECT_NE(missing.err.find((dir / "gone.so").string() + ": no such file"), std::string::npos)
+        << missing.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "again.json"));
 }
 
 TEST(Cli, ConvertKeepsValuesAndWarnsAboutDroppedFields) {
