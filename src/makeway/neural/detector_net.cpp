@@ -6,6 +6,7 @@
 
 #include <stdexcept>
 
+#include "makeway/neural/archive_file.hpp"
 #include "makeway/perception/model_archive.hpp"
 
 namespace makeway::perception {
@@ -91,10 +92,7 @@ void TorchDetector::save(const std::filesystem::path& path, const DetectorParams
     torch::serialize::OutputArchive archive;
     archive.write("makeway_detector_params", params_tensor(params));
     net->save(archive);
-    const std::filesystem::path tmp = path.string() + ".tmp";
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-    archive.save_to(tmp.string());
-    std::filesystem::rename(tmp, path);
+    save_archive_atomically(archive, path);
 }
 
 std::unique_ptr<Detector::Impl> load_torch_detector(const std::string& bytes,

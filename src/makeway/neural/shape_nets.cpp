@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "makeway/neural/archive_file.hpp"
 #include "makeway/perception/model_archive.hpp"
 
 namespace makeway::shape {
@@ -205,10 +206,7 @@ void TorchShapeModel::save(const std::filesystem::path& path,
         archive.write(c + "_f1", f1);
         archive.write(c + "_mean_code", nets[k].mean_code);
     }
-    const std::filesystem::path tmp = path.string() + ".tmp";
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-    archive.save_to(tmp.string());
-    std::filesystem::rename(tmp, path);
+    perception::save_archive_atomically(archive, path);
 }
 
 std::unique_ptr<ShapeModel::Impl> load_torch_shape_model(const std::string& bytes,
