@@ -40,7 +40,10 @@ perception::Detector load_weights(const std::string& given) {
     try {
         return perception::Detector::load(path);
     } catch (const std::runtime_error& e) {
-        throw io::FileError(path.string(), e.what());
+        // The loader names the file itself ("PATH: what"); the networks' module's errors do not.
+        const std::string what = e.what(), prefix = path.string() + ": ";
+        throw io::FileError(path.string(),
+                            what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what);
     }
 }
 

@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "io/config_reader.hpp"
+#include "io/error.hpp"
 #include "io/nav_config.hpp"
 #include "makeway/eval/navigation.hpp"
 #include "makeway/sim/route.hpp"
@@ -49,6 +50,19 @@ NodeSettings settings() {
     NodeSettings s;
     s.model = (std::filesystem::path(MAKEWAY_SOURCE_DIR) / "models" / "detector.pt").string();
     return s;
+}
+
+// A node started with weights that are not there names the file once, as every makeway command
+// does.
+TEST(NodeEngine, MissingWeightsAreNamedOnce) {
+    NodeSettings s = settings();
+    s.model = (std::filesystem::path(::testing::TempDir()) / "no_such_detector.pt").string();
+    try {
+        NodeEngine engine(s, [](const NodeOutput&) {});
+        ADD_FAILURE() << "the engine started without weights";
+    } catch (const io::FileError& e) {
+        EXPECT_EQ(std::string(e.what()), s.model + ": no such model file");
+    }
 }
 
 TEST(NodeEngine, EverySweepInOrderStampedWithItsEnd) {
