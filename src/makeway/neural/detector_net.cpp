@@ -7,7 +7,6 @@
 #include <stdexcept>
 
 #include "makeway/neural/archive_file.hpp"
-#include "makeway/perception/model_archive.hpp"
 
 namespace makeway::perception {
 
@@ -127,18 +126,8 @@ std::unique_ptr<Detector::Impl> load_torch_detector(const std::string& bytes,
         det->net->eval();
         params = p;
         return det;
-    } catch (const c10::Error& e) {
-        throw std::runtime_error(path.string() + ": not a readable model (" +
-                                 first_line(e.what_without_backtrace()) + ")");
-    } catch (const std::runtime_error& e) {
-        const std::string what = e.what();
-        if (what.rfind(path.string(), 0) == 0) throw;
-        throw std::runtime_error(path.string() + ": " + first_line(what));
-    } catch (const std::exception& e) {
-        // A damaged archive surfaces as whatever torch's readers throw (the TorchScript type
-        // parser, std::bad_alloc for a size field gone wild): all of them are a bad file.
-        throw std::runtime_error(path.string() + ": not a readable model (" + first_line(e.what()) +
-                                 ")");
+    } catch (...) {
+        rethrow_load_error(path, "model");
     }
 }
 

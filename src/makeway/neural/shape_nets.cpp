@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "makeway/neural/archive_file.hpp"
-#include "makeway/perception/model_archive.hpp"
 
 namespace makeway::shape {
 
@@ -259,16 +258,8 @@ std::unique_ptr<ShapeModel::Impl> load_torch_shape_model(const std::string& byte
         }
         params = p;
         return model;
-    } catch (const c10::Error& e) {
-        throw std::runtime_error(path.string() + ": not a readable shape model (" +
-                                 perception::first_line(e.what_without_backtrace()) + ")");
-    } catch (const std::runtime_error& e) {
-        const std::string what = e.what();
-        if (what.rfind(path.string(), 0) == 0) throw;
-        throw std::runtime_error(path.string() + ": " + perception::first_line(what));
-    } catch (const std::exception& e) {
-        throw std::runtime_error(path.string() + ": not a readable shape model (" +
-                                 perception::first_line(e.what()) + ")");
+    } catch (...) {
+        perception::rethrow_load_error(path, "shape model");
     }
 }
 
