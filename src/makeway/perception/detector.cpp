@@ -12,16 +12,9 @@
 namespace makeway::perception {
 
 const DetectorBackend& detector_backend() {
-    static const DetectorBackend* const backend = [] {
-        using Get = const DetectorBackend* (*)();
-        const auto* b = reinterpret_cast<Get>(neural_module_symbol("makeway_detector_backend"))();
-        if (b->abi != kDetectorBackendAbi || b->size != sizeof(DetectorBackend))
-            throw std::runtime_error(neural_module_path() +
-                                     ": a detector interface other than this program's (rebuild "
-                                     "the target makeway_neural)");
-        return b;
-    }();
-    return *backend;
+    static const DetectorBackend& backend = neural_module_table<DetectorBackend>(
+        "makeway_detector_backend", kDetectorBackendAbi, "detector");
+    return backend;
 }
 
 Detector::Detector(const DetectorParams& params)

@@ -37,7 +37,13 @@ std::vector<std::filesystem::path> candidates() {
     return {bin.parent_path() / "lib" / kNeuralModuleFile, bin / kNeuralModuleFile};
 }
 
-using SetThreads = void (*)(int);
+// Called with the lock held, the module open: its torch's and OpenBLAS's threads.
+void apply_threads(const Module& m) {
+    using SetThreads = void (*)(int);
+    if (m.threads <= 0) return;
+    if (auto* set = reinterpret_cast<SetThreads>(dlsym(m.handle, "makeway_neural_set_threads")))
+        set(m.threads);
+}
 
 // Called with the lock held.
 void open(Module& m) {
@@ -52,11 +58,7 @@ void open(Module& m) {
         if (void* h = dlopen(p.c_str(), RTLD_NOW | RTLD_LOCAL)) {
             m.handle = h;
             m.path = p;
-            if (m.threads > 0) {
-                if (auto* set =
-                        reinterpret_cast<SetThreads>(dlsym(h, "makeway_neural_set_threads")))
-                    set(m.threads);
-            }
+            apply_threads(m);
             return;
         }
         const char* why = dlerror();
@@ -94,10 +96,7 @@ void set_inference_threads(int threads) {
     m.threads = threads;
     // Not opened for this: a program that sets the count and then runs no network never loads
     // torch. The module takes the count when it opens.
-    if (m.handle != nullptr) {
-        if (auto* set = reinterpret_cast<SetThreads>(dlsym(m.handle, "makeway_neural_set_threads")))
-            set(threads);
-    }
+    if (m.handle != nullptr) apply_threads(m);
 }
 
 }  // namespace makeway::perception

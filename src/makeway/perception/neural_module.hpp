@@ -6,6 +6,8 @@
 // --help`, each of the CLI tests' 176 runs, a navigation without a detector. The program holds
 // facades (Detector, ShapeModel) whose Impl is the module's; the module's functions reach them
 // through one table per facade (detector_backend.hpp, shape/shape_backend.hpp).
+#include <cstdint>
+#include <stdexcept>
 #include <string>
 
 namespace makeway::perception {
@@ -21,5 +23,19 @@ void* neural_module_symbol(const char* symbol);
 
 /// The file the module was opened from; empty while it is not open.
 std::string neural_module_path();
+
+/// The table a facade reaches the module through: what the module's function `symbol` returns,
+/// checked to be of this program's interface (its `abi` and its size; `what` names it in the
+/// error). Throws std::runtime_error as neural_module_symbol, or when the interface differs.
+template <class Table>
+const Table& neural_module_table(const char* symbol, std::uint32_t abi, const char* what) {
+    using Get = const Table* (*)();
+    const Table* table = reinterpret_cast<Get>(neural_module_symbol(symbol))();
+    if (table->abi != abi || table->size != sizeof(Table))
+        throw std::runtime_error(neural_module_path() + ": a " + what +
+                                 " interface other than this program's (rebuild the target "
+                                 "makeway_neural)");
+    return *table;
+}
 
 }  // namespace makeway::perception

@@ -15,17 +15,9 @@
 namespace makeway::shape {
 
 const ShapeBackend& shape_backend() {
-    static const ShapeBackend* const backend = [] {
-        using Get = const ShapeBackend* (*)();
-        const auto* b =
-            reinterpret_cast<Get>(perception::neural_module_symbol("makeway_shape_backend"))();
-        if (b->abi != kShapeBackendAbi || b->size != sizeof(ShapeBackend))
-            throw std::runtime_error(perception::neural_module_path() +
-                                     ": a shape network interface other than this program's "
-                                     "(rebuild the target makeway_neural)");
-        return b;
-    }();
-    return *backend;
+    static const ShapeBackend& backend = perception::neural_module_table<ShapeBackend>(
+        "makeway_shape_backend", kShapeBackendAbi, "shape network");
+    return backend;
 }
 
 void set_threads(int threads) {
