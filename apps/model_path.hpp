@@ -32,9 +32,9 @@ inline std::optional<std::filesystem::path> default_model_path(
 /// handler of `e`.
 [[noreturn]] inline void rethrow_model_error(const std::filesystem::path& path,
                                              const std::runtime_error& e) {
-    const std::string what = e.what(), prefix = path.string() + ": ";
-    if (what.rfind(prefix, 0) != 0) throw;  // called from the handler: the same exception
-    throw io::FileError(path.string(), what.substr(prefix.size()));
+    const std::optional<std::string> problem = io::problem_after_path(path.string(), e.what());
+    if (!problem) throw;  // called from the handler: the same exception
+    throw io::FileError(path.string(), *problem);
 }
 
 /// The given model file, else the default weights; throws io::FileError naming the file when it is

@@ -11,6 +11,12 @@ FileError::FileError(const std::string& path, const std::string& problem)
       path_(shown_path(path)),
       problem_(problem) {}
 
+std::optional<std::string> problem_after_path(const std::string& path, const std::string& message) {
+    const std::string prefix = path + ": ";
+    if (message.rfind(prefix, 0) != 0) return std::nullopt;
+    return message.substr(prefix.size());
+}
+
 void print_warning(const std::string& message) {
     std::cerr << "makeway: warning: " << message << "\n";
 }

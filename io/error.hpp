@@ -1,5 +1,6 @@
 #pragma once
 // The two error types of the io layer. Messages never end with a newline.
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -23,6 +24,10 @@ class FileError : public std::runtime_error {
     std::string path_;
     std::string problem_;
 };
+
+/// What a message that names `path` first ("PATH: what is wrong") says is wrong; nullopt when the
+/// message does not start with the path (a loader's own errors name their file; others do not).
+std::optional<std::string> problem_after_path(const std::string& path, const std::string& message);
 
 /// "makeway: warning: MESSAGE" on stderr: input that is readable but suspicious (a mesh whose size
 /// cannot be furniture of its class, fields a format cannot keep).

@@ -41,9 +41,8 @@ perception::Detector load_weights(const std::string& given) {
         return perception::Detector::load(path);
     } catch (const std::runtime_error& e) {
         // The loader names the file itself ("PATH: what"); the networks' module's errors do not.
-        const std::string what = e.what(), prefix = path.string() + ": ";
         throw io::FileError(path.string(),
-                            what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what);
+                            io::problem_after_path(path.string(), e.what()).value_or(e.what()));
     }
 }
 
