@@ -88,7 +88,7 @@ TSAN_RUNS := test_sim:*SameSeedSameSweepForAnyThreadCount* test_detector:Detecto
              test_costmap:*Threads*
 tsan: deps
 	@cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMAKEWAY_TSAN=ON \
-	    -DMAKEWAY_BUILD_BENCH=OFF -DMAKEWAY_BUILD_APPS=OFF $(CMAKE_ARGS) > /dev/null
+	    -DMAKEWAY_BUILD_BENCH=OFF -DMAKEWAY_BUILD_APPS=OFF -DMAKEWAY_SHAPE_NETWORKS=OFF $(CMAKE_ARGS) > /dev/null
 	@cmake --build build-tsan -j $(JOBS) --target test_sim test_detector test_pipeline test_node_engine test_verification \
 	    test_odometry test_costmap
 	@for run in $(TSAN_RUNS); do t=$${run%%:*}; echo "== tsan $$run"; \

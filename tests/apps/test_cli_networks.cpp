@@ -48,6 +48,20 @@ TEST(Cli, OnlyACommandThatRunsANetworkLoadsTorch) {
     EXPECT_NE(missing.err.find((dir / "gone.so").string() + ": no such file"), std::string::npos)
         << missing.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "again.json"));
+    // A module that loads but lacks the network (built with -DMAKEWAY_SHAPE_NETWORKS=OFF, or from
+    // other sources): one line naming the module and the missing function.
+    const CliRun without =
+        run_shell("MAKEWAY_NEURAL_MODULE=" + std::string(MAKEWAY_MODULE_WITHOUT_NETWORKS) + " " +
+                      std::string(MAKEWAY_BIN) + " detect --cloud " + (dir / "c.pcd").string() +
+                      " --out " + (dir / "again.json").string(),
+                  dir);
+    EXPECT_EQ(without.exit_code, 1);
+    EXPECT_EQ(lines(without.err), 1u) << without.err;
+    EXPECT_NE(without.err.find(std::string(MAKEWAY_MODULE_WITHOUT_NETWORKS) +
+                               ": no symbol makeway_detector_backend"),
+              std::string::npos)
+        << without.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "again.json"));
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "makeway/eval/odometry_bench.hpp"
 #include "makeway/eval/unavoidable_risk.hpp"
 #include "makeway/perception/accumulator.hpp"
+#include "makeway/pipeline/keyframe.hpp"
 #include "makeway/pipeline/online_system.hpp"
 #include "makeway/sim/route.hpp"
 #include "makeway/sim/world.hpp"
@@ -307,20 +308,22 @@ NavRunResult run_navigation_online(const sim::Scene& scene, const NavMethod& met
     online.set_route(route_of(scene));
     std::vector<KeyframeObjects> keyframes;
     std::vector<pipeline::StageTiming> timing;
-    NavRunResult out = drive(
-        scene, method, params, online.controller(), detector.uses_intensity(),
-        [&](const SimSweep& s) {
-            const pipeline::OnlineStep step = online.process(
-                {*s.points_sensor, s.stamp_s, s.duration_s, s.odometry_start, s.odometry_end});
-            const pipeline::SweepResult& r = step.sweep;
-            if (r.keyframe) {
-                keyframes.push_back({r.keyframe->stamp_s, r.keyframe->T_world_keyframe,
-                                     r.keyframe->detections.size(), r.keyframe->evidence.size(),
-                                     r.objects});
-                timing.push_back(r.timing);
-            }
-            return Thought{r.pose, step.control};
-        });
+    NavRunResult out =
+        drive(scene, method, params, online.controller(), detector.uses_intensity(),
+              [&](const SimSweep& s) {
+                  // Only the channels a sensor gives are copied (the simulator's labels stay here).
+                  const pipeline::OnlineStep step =
+                      online.process({pipeline::sensor_channels_only(*s.points_sensor), s.stamp_s,
+                                      s.duration_s, s.odometry_start, s.odometry_end});
+                  const pipeline::SweepResult& r = step.sweep;
+                  if (r.keyframe) {
+                      keyframes.push_back({r.keyframe->stamp_s, r.keyframe->T_world_keyframe,
+                                           r.keyframe->detections.size(),
+                                           r.keyframe->evidence.size(), r.objects});
+                      timing.push_back(r.timing);
+                  }
+                  return Thought{r.pose, step.control};
+              });
     out.keyframes = std::move(keyframes);
     out.keyframe_timing = std::move(timing);
     const std::vector<sim::ObjectModel> models = sim::models_of(scene);

@@ -15,6 +15,7 @@ MAKEWAY_NEURAL_EXPORT const makeway::perception::DetectorBackend* makeway_detect
     return &backend;
 }
 
+#ifdef MAKEWAY_SHAPE_NETWORKS  // off: the detector alone (neural/CMakeLists.txt)
 MAKEWAY_NEURAL_EXPORT const makeway::shape::ShapeBackend* makeway_shape_backend() {
     using namespace makeway::shape;
     static const ShapeBackend backend{
@@ -24,6 +25,7 @@ MAKEWAY_NEURAL_EXPORT const makeway::shape::ShapeBackend* makeway_shape_backend(
     };
     return &backend;
 }
+#endif
 
 MAKEWAY_NEURAL_EXPORT void makeway_neural_set_threads(int threads) {
     makeway::perception::set_torch_threads(threads);

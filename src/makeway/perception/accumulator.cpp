@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 
 namespace makeway::perception {
 
@@ -11,9 +12,11 @@ std::vector<std::string> AccumulatorParams::validate() const {
     return p;
 }
 
-void KeyframeAccumulator::add(const StampedSweep& sweep) {
-    sweeps_.push_back({deskew_sweep(sweep, Isometry3::Identity(), params_.deskew), sweep.stamp_s,
-                       sweep.T_world_sensor_start});
+void KeyframeAccumulator::add(StampedSweep sweep) {
+    const double stamp_s = sweep.stamp_s;
+    const Isometry3 T_world_sensor_start = sweep.T_world_sensor_start;
+    sweeps_.push_back({deskew_sweep(std::move(sweep), Isometry3::Identity(), params_.deskew),
+                       stamp_s, T_world_sensor_start});
     while (static_cast<int>(sweeps_.size()) > params_.window) sweeps_.pop_front();
 }
 
@@ -22,8 +25,8 @@ const PointCloud& KeyframeAccumulator::newest_world() const {
     return sweeps_.empty() ? kEmpty : sweeps_.back().points_world;
 }
 
-PointCloud deskew_sweep(const StampedSweep& s, const Isometry3& T_target_world, bool deskew) {
-    PointCloud c = s.points_sensor;
+PointCloud deskew_sweep(StampedSweep s, const Isometry3& T_target_world, bool deskew) {
+    PointCloud c = std::move(s.points_sensor);
     const bool moved = !s.T_world_sensor_start.isApprox(s.T_world_sensor_end, 1e-12);
     const bool per_point = deskew && moved && c.time_s.size() == c.size() && s.duration_s > 0.0;
     // Points fired together share a time (a column of the scan): the pose is computed once per

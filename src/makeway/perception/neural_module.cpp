@@ -79,7 +79,9 @@ void* neural_module_symbol(const char* symbol) {
     void* s = dlsym(m.handle, symbol);
     if (s == nullptr)
         throw std::runtime_error(m.path.string() + ": no symbol " + symbol +
-                                 " (a module built from other sources than this program)");
+                                 " (a module built from other sources than this program, or "
+                                 "without this network: -DMAKEWAY_SHAPE_NETWORKS=OFF leaves the "
+                                 "shape networks out)");
     return s;
 }
 

@@ -44,10 +44,8 @@ FrontEndResult FrontEnd::add(Sweep sweep) {
         out.T_world_sensor_end = T_world_sensor_at(odom_end);
         out.pose = to_pose2(*T_world_odom_ * to_isometry(odom_end));
     }
-    const perception::StampedSweep stamped{std::move(sweep.points_sensor), sweep.stamp_s,
-                                           sweep.duration_s, out.T_world_sensor_start,
-                                           out.T_world_sensor_end};
-    accumulator_.add(stamped);
+    accumulator_.add({std::move(sweep.points_sensor), sweep.stamp_s, sweep.duration_s,
+                      out.T_world_sensor_start, out.T_world_sensor_end});
     out.points_world = accumulator_.newest_world();
     out.deskew_ms = ms_since(t0);
     if (!accumulator_.full() || sweeps_++ % static_cast<std::size_t>(params_.keyframe.every) != 0)

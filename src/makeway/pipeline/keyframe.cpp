@@ -1,5 +1,7 @@
 #include "makeway/pipeline/keyframe.hpp"
 
+#include <utility>
+
 namespace makeway::pipeline {
 
 PreparedKeyframe prepare_keyframe(const PointCloud& raw, const KeyframeParams& params,
@@ -14,10 +16,20 @@ PreparedKeyframe prepare_keyframe(const PointCloud& raw, const KeyframeParams& p
     return out;
 }
 
-PointCloud sensor_channels_only(PointCloud cloud) {
-    cloud.label.clear();
-    cloud.instance.clear();
-    return cloud;
+PointCloud sensor_channels_only(PointCloud&& cloud) {
+    PointCloud out = std::move(cloud);
+    out.label.clear();
+    out.instance.clear();
+    return out;
+}
+
+PointCloud sensor_channels_only(const PointCloud& cloud) {
+    PointCloud out;
+    out.xyz = cloud.xyz;
+    out.intensity = cloud.intensity;
+    out.ring = cloud.ring;
+    out.time_s = cloud.time_s;
+    return out;
 }
 
 }  // namespace makeway::pipeline

@@ -25,7 +25,9 @@ struct PreparedKeyframe {
 PreparedKeyframe prepare_keyframe(const PointCloud& raw_sensor, const KeyframeParams& params,
                                   const perception::GroundPlaneResult* known_ground = nullptr);
 
-/// The channels a real sensor gives: the simulator's semantic labels and instance ids dropped.
-PointCloud sensor_channels_only(PointCloud cloud);
+/// The channels a real sensor gives: the simulator's semantic labels and instance ids dropped
+/// (moved: the cloud's own; copied: only the sensor's channels are).
+PointCloud sensor_channels_only(PointCloud&& cloud);
+PointCloud sensor_channels_only(const PointCloud& cloud);
 
 }  // namespace makeway::pipeline

@@ -115,17 +115,22 @@ OnlineSystem::OnlineSystem(const OnlineSystemSetup& setup)
     }
 }
 
-OnlineStep OnlineSystem::process(const Sweep& sweep) {
+OnlineStep OnlineSystem::process(Sweep sweep) {
     OnlineStep out;
-    out.sweep = pipeline_.process_sweep(sweep);
-    control(sweep, out);
+    // control() reads the sweep's stamps and wheel odometry, not its points.
+    const Sweep stamps{
+        {}, sweep.stamp_s, sweep.duration_s, sweep.odometry_start, sweep.odometry_end};
+    out.sweep = pipeline_.process_sweep(std::move(sweep));
+    control(stamps, out);
     return out;
 }
 
-OnlineStep OnlineSystem::drive(const Sweep& sweep, std::optional<PendingKeyframe>* pending) {
+OnlineStep OnlineSystem::drive(Sweep sweep, std::optional<PendingKeyframe>* pending) {
     OnlineStep out;
-    out.sweep = pipeline_.track(sweep, pending);
-    control(sweep, out);
+    const Sweep stamps{
+        {}, sweep.stamp_s, sweep.duration_s, sweep.odometry_start, sweep.odometry_end};
+    out.sweep = pipeline_.track(std::move(sweep), pending);
+    control(stamps, out);
     return out;
 }
 

@@ -105,12 +105,13 @@ class OnlineSystem {
     explicit OnlineSystem(const OnlineSystemSetup& setup);
 
     /// One sweep, top to bottom: perception, the costmap, and (with a route) the guarded command.
-    OnlineStep process(const Sweep& sweep);
+    /// The sweep is taken by value: a caller done with it moves it in (no copy of its points).
+    OnlineStep process(Sweep sweep);
     /// The control path alone, for a robot that must act before perception ends (the ROS node):
     /// the front end, then the costmap and the guarded command on the object map as it stands; a
     /// keyframe the front end formed is left in `pending` for perceive(), which may run on another
     /// thread (one call at a time) and updates the object map the next drive() uses.
-    OnlineStep drive(const Sweep& sweep, std::optional<PendingKeyframe>* pending);
+    OnlineStep drive(Sweep sweep, std::optional<PendingKeyframe>* pending);
     KeyframeResult perceive(PendingKeyframe pending, StageTiming& timing) {
         return pipeline_.perceive(std::move(pending), timing);
     }

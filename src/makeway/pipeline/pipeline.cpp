@@ -49,10 +49,10 @@ void Pipeline::set_shape_prior(const verification::ShapePrior* prior) {
     shapes_ = prior ? std::make_unique<TrackedShapes>(prior, params_.shapes) : nullptr;
 }
 
-SweepResult Pipeline::process_sweep(const Sweep& sweep) {
+SweepResult Pipeline::process_sweep(Sweep sweep) {
     const SteadyClock::time_point t0 = SteadyClock::now();
     std::optional<PendingKeyframe> pending;
-    SweepResult out = track(sweep, &pending);
+    SweepResult out = track(std::move(sweep), &pending);
     // Keyframe: detect, verify, track.
     if (pending) {
         out.keyframe = perceive(std::move(*pending), out.timing);
@@ -62,15 +62,15 @@ SweepResult Pipeline::process_sweep(const Sweep& sweep) {
     return out;
 }
 
-SweepResult Pipeline::track(const Sweep& sweep, std::optional<PendingKeyframe>* pending) {
+SweepResult Pipeline::track(Sweep sweep, std::optional<PendingKeyframe>* pending) {
     const SteadyClock::time_point t0 = SteadyClock::now();
     SweepResult out;
     // Front end: pose from the start pose and the wheel odometry, the sweep de-skewed, and every
     // `every` sweeps a keyframe (accumulated, ground plane, ground and ceiling removed). The
     // simulator's labels and instance ids are dropped first: only what a sensor measures enters.
-    Sweep measured = sweep;
-    measured.points_sensor = sensor_channels_only(std::move(measured.points_sensor));
-    FrontEndResult front = front_end_.add(std::move(measured));
+    const double stamp_s = sweep.stamp_s;
+    sweep.points_sensor = sensor_channels_only(std::move(sweep.points_sensor));
+    FrontEndResult front = front_end_.add(std::move(sweep));
     out.T_world_sensor_start = front.T_world_sensor_start;
     out.T_world_sensor_end = front.T_world_sensor_end;
     out.pose = front.pose;
@@ -79,8 +79,7 @@ SweepResult Pipeline::track(const Sweep& sweep, std::optional<PendingKeyframe>* 
     out.timing.odometry_ms = front.odometry_ms;
     out.odometry = front.odometry;
     out.keyframe_formed = front.keyframe.has_value();
-    if (front.keyframe && pending)
-        *pending = PendingKeyframe{std::move(*front.keyframe), sweep.stamp_s};
+    if (front.keyframe && pending) *pending = PendingKeyframe{std::move(*front.keyframe), stamp_s};
     out.objects = objects();
     out.timing.total_ms = ms_since(t0);
     return out;

@@ -95,7 +95,8 @@ class Pipeline {
 
     /// The whole method for one sweep, top to bottom. Never throws on degenerate input (an empty
     /// sweep gives an empty keyframe and no detections).
-    SweepResult process_sweep(const Sweep& sweep);
+    /// The sweep is taken by value: a caller done with it moves it in (no copy of its points).
+    SweepResult process_sweep(Sweep sweep);
 
     /// process_sweep() in two halves, for a robot that must not wait for perception before it
     /// acts: track() is the front end (pose, de-skewing, keyframe assembly; the object map as it
@@ -103,7 +104,7 @@ class Pipeline {
     /// (detect, verify, track) and updates the object map. They share no state but the object
     /// map (guarded), so perceive() may run on another thread than track(), one call at a time.
     /// process_sweep(s) == track(s, &p) then perceive(p).
-    SweepResult track(const Sweep& sweep, std::optional<PendingKeyframe>* pending);
+    SweepResult track(Sweep sweep, std::optional<PendingKeyframe>* pending);
     KeyframeResult perceive(PendingKeyframe pending, StageTiming& timing);
     /// The object map now (a copy: perceive() may be updating it).
     std::vector<ObjectEstimate> objects() const;
