@@ -1,6 +1,7 @@
 #include "makeway/pipeline/keyframe.hpp"
 
 #include <utility>
+#include <vector>
 
 namespace makeway::pipeline {
 
@@ -24,6 +25,8 @@ PointCloud sensor_channels_only(PointCloud&& cloud) {
 }
 
 PointCloud sensor_channels_only(const PointCloud& cloud) {
+    static_assert(sizeof(PointCloud) == 6 * sizeof(std::vector<float>),
+                  "a new PointCloud channel: copy it here if a sensor gives it");
     PointCloud out;
     out.xyz = cloud.xyz;
     out.intensity = cloud.intensity;
