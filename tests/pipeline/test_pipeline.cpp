@@ -9,6 +9,7 @@
 #include "makeway/common/polygon2d.hpp"
 #include "makeway/common/statistics.hpp"
 #include "makeway/perception/accumulator.hpp"
+#include "makeway/pipeline/keyframe.hpp"
 #include "makeway/pipeline/navigator.hpp"
 #include "makeway/pipeline/online_system.hpp"
 #include "makeway/pipeline/pipeline.hpp"
@@ -90,6 +91,25 @@ TEST(NoTruthRule, PerceptionNeverSeesLabelsOrInstanceIds) {
         EXPECT_FALSE(f.instance);
         EXPECT_TRUE(f.time);
     }
+}
+
+// A sweep the caller keeps (an lvalue: copied, where a moved one is not) reaches the pipeline with
+// the sensor's channels only, and stays whole for the caller.
+TEST(NoTruthRule, ACallersOwnSweepIsCopiedWithTheSensorsChannelsOnly) {
+    const Sweep kept{labelled_sweep(100), 0.0, 0.1, Pose2{}, Pose2{}};
+    const PointCloud copy = sensor_channels_only(kept.points_sensor);
+    EXPECT_TRUE(copy.label.empty());
+    EXPECT_TRUE(copy.instance.empty());
+    EXPECT_EQ(copy.xyz, kept.points_sensor.xyz);
+    EXPECT_EQ(copy.intensity, kept.points_sensor.intensity);
+    EXPECT_EQ(copy.ring, kept.points_sensor.ring);
+    EXPECT_EQ(copy.time_s, kept.points_sensor.time_s);
+    Pipeline pipeline({}, {}, nullptr, nullptr);
+    const SweepResult r = pipeline.process_sweep(kept);
+    EXPECT_EQ(r.points_world.size(), 100u);
+    EXPECT_TRUE(r.points_world.label.empty());
+    EXPECT_EQ(kept.points_sensor.label.size(), 100u);
+    EXPECT_EQ(kept.points_sensor.instance.size(), 100u);
 }
 
 TEST(Pipeline, KeyframeEveryFifthSweepOnceTheWindowIsFull) {
