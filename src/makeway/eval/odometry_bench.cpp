@@ -7,24 +7,11 @@
 #include <stdexcept>
 
 #include "makeway/common/angles.hpp"
+#include "makeway/pipeline/keyframe.hpp"
 #include "makeway/sim/route.hpp"
 #include "makeway/sim/scene_generator.hpp"
 
 namespace makeway::eval {
-namespace {
-
-// The points as the sensor gives them: no labels, no instance ids.
-PointCloud sensor_channels(const PointCloud& c) {
-    PointCloud out;
-    out.xyz = c.xyz;
-    out.intensity = c.intensity;
-    out.ring = c.ring;
-    out.time_s = c.time_s;
-    return out;
-}
-
-}  // namespace
-
 OdometryDrive simulate_odometry_drive(const sim::Scene& scene, const sim::SequenceParams& params,
                                       int max_sweeps, const std::string& name) {
     const auto models = sim::models_of(scene);
@@ -41,7 +28,7 @@ OdometryDrive simulate_odometry_drive(const sim::Scene& scene, const sim::Sequen
     // Sweep k ends where sweep k + 1 starts.
     for (std::size_t k = 0; k + 1 < frames.size(); ++k) {
         const sim::SimFrame& f = frames[k];
-        drive.sweeps.push_back({sensor_channels(f.points_sensor), f.stamp_s,
+        drive.sweeps.push_back({pipeline::sensor_channels_only(f.points_sensor), f.stamp_s,
                                 frames[k + 1].stamp_s - f.stamp_s, f.odometry_pose,
                                 f.odometry_end_pose, frames[k + 1].true_pose});
         const Pose2& a = f.true_pose;
