@@ -37,31 +37,25 @@ TEST(Cli, OnlyACommandThatRunsANetworkLoadsTorch) {
     EXPECT_TRUE(std::filesystem::exists(dir / "dets.json"));
     EXPECT_NE(detect.find(perception::kNeuralModuleFile), std::string::npos);
     EXPECT_NE(detect.find("libtorch_cpu"), std::string::npos);
-    // Without the module a network cannot run: one line naming what was tried, nothing written.
-    const CliRun missing =
-        run_shell("MAKEWAY_NEURAL_MODULE=" + (dir / "gone.so").string() + " " +
-                      std::string(MAKEWAY_BIN) + " detect --cloud " + (dir / "c.pcd").string() +
-                      " --out " + (dir / "again.json").string(),
-                  dir);
-    EXPECT_EQ(missing.exit_code, 1);
-    EXPECT_EQ(lines(missing.err), 1u) << missing.err;
-    EXPECT_NE(missing.err.find((dir / "gone.so").string() + ": no such file"), std::string::npos)
-        << missing.err;
-    EXPECT_FALSE(std::filesystem::exists(dir / "again.json"));
+    // `detect` with MAKEWAY_NEURAL_MODULE naming `module`: exit 1, one line saying `expected`,
+    // nothing written.
+    const auto refused = [&](const std::string& module, const std::string& expected) {
+        const CliRun r =
+            run_shell("MAKEWAY_NEURAL_MODULE=" + module + " " + std::string(MAKEWAY_BIN) +
+                          " detect --cloud " + (dir / "c.pcd").string() + " --out " +
+                          (dir / "again.json").string(),
+                      dir);
+        EXPECT_EQ(r.exit_code, 1) << module;
+        EXPECT_EQ(lines(r.err), 1u) << r.err;
+        EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "again.json")) << module;
+    };
+    // Without the module a network cannot run: the file tried is named.
+    refused((dir / "gone.so").string(), (dir / "gone.so").string() + ": no such file");
     // A module that loads but lacks the network (built with -DMAKEWAY_SHAPE_NETWORKS=OFF, or from
-    // other sources): one line naming the module and the missing function.
-    const CliRun without =
-        run_shell("MAKEWAY_NEURAL_MODULE=" + std::string(MAKEWAY_MODULE_WITHOUT_NETWORKS) + " " +
-                      std::string(MAKEWAY_BIN) + " detect --cloud " + (dir / "c.pcd").string() +
-                      " --out " + (dir / "again.json").string(),
-                  dir);
-    EXPECT_EQ(without.exit_code, 1);
-    EXPECT_EQ(lines(without.err), 1u) << without.err;
-    EXPECT_NE(without.err.find(std::string(MAKEWAY_MODULE_WITHOUT_NETWORKS) +
-                               ": no symbol makeway_detector_backend"),
-              std::string::npos)
-        << without.err;
-    EXPECT_FALSE(std::filesystem::exists(dir / "again.json"));
+    // other sources): the module and the missing function are named.
+    refused(MAKEWAY_MODULE_WITHOUT_NETWORKS,
+            std::string(MAKEWAY_MODULE_WITHOUT_NETWORKS) + ": no symbol makeway_detector_backend");
 }
 
 }  // namespace

@@ -7,6 +7,12 @@
 namespace makeway::pipeline {
 namespace {
 
+// The sweep without its points: what control() reads (stamps, wheel odometry) once the points
+// have moved into the pipeline.
+Sweep stamps_of(const Sweep& s) {
+    return {{}, s.stamp_s, s.duration_s, s.odometry_start, s.odometry_end};
+}
+
 Costmap map_of(const OnlineSystemSetup& s) {
     return s.map ? *s.map : free_area(s.start, s.free_area_m, s.free_area_resolution_m);
 }
@@ -117,9 +123,7 @@ OnlineSystem::OnlineSystem(const OnlineSystemSetup& setup)
 
 OnlineStep OnlineSystem::process(Sweep sweep) {
     OnlineStep out;
-    // control() reads the sweep's stamps and wheel odometry, not its points.
-    const Sweep stamps{
-        {}, sweep.stamp_s, sweep.duration_s, sweep.odometry_start, sweep.odometry_end};
+    const Sweep stamps = stamps_of(sweep);
     out.sweep = pipeline_.process_sweep(std::move(sweep));
     control(stamps, out);
     return out;
@@ -127,8 +131,7 @@ OnlineStep OnlineSystem::process(Sweep sweep) {
 
 OnlineStep OnlineSystem::drive(Sweep sweep, std::optional<PendingKeyframe>* pending) {
     OnlineStep out;
-    const Sweep stamps{
-        {}, sweep.stamp_s, sweep.duration_s, sweep.odometry_start, sweep.odometry_end};
+    const Sweep stamps = stamps_of(sweep);
     out.sweep = pipeline_.track(std::move(sweep), pending);
     control(stamps, out);
     return out;
