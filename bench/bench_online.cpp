@@ -216,26 +216,41 @@ void BM_CollisionMonitor(benchmark::State& state) {
     planning::CollisionMonitorParams p;
     p.apply_robot(robot);  // its speeds and accelerations are the monitor's defaults too
     if (state.range(0) == 0) p.bridge_gap_m = 0.0;  // narrow gaps left open
+    // give_way: a chair 0.2 m beside the robot pulled toward it every cycle (within the margin of
+    // a standing robot in 1 s: the standing and the commanded motion weighed each cycle).
+    if (state.range(2) != 0) p.give_way_horizon_s = 1.0;
     planning::CollisionMonitor monitor(p);
     std::size_t k = 0;
     for (auto _ : state) {
         const sim::SimFrame& f = d.frames[k % d.frames.size()];
+        std::vector<planning::MovingOutline> movers;
+        if (state.range(2) != 0) {
+            const Isometry2 T = to_isometry(f.true_pose);
+            const double y = 0.5 * robot.width_m + 0.2 + 0.225;
+            movers.push_back(
+                {{T * Eigen::Vector2d(-0.225, y - 0.225), T * Eigen::Vector2d(0.225, y - 0.225),
+                  T * Eigen::Vector2d(0.225, y + 0.225), T * Eigen::Vector2d(-0.225, y + 0.225)},
+                 T.linear() * Eigen::Vector2d(0.0, -0.17)});
+        }
         const auto r = monitor.filter({0.1 * static_cast<double>(k),
                                        f.true_pose,
                                        &worlds[k % worlds.size()],
                                        {robot.max_v_mps, 0.3},
                                        robot.max_v_mps,
                                        0.3,
-                                       state.range(1) != 0 ? &d.parts : nullptr});
+                                       state.range(1) != 0 ? &d.parts : nullptr,
+                                       nullptr,
+                                       &movers});
         benchmark::DoNotOptimize(r.command);
         ++k;
     }
 }
 BENCHMARK(BM_CollisionMonitor)
-    ->Args({0, 0})
-    ->Args({1, 0})
-    ->Args({1, 1})
-    ->ArgNames({"bridge_gaps", "parts"})
+    ->Args({0, 0, 0})
+    ->Args({1, 0, 0})
+    ->Args({1, 1, 0})
+    ->Args({1, 1, 1})
+    ->ArgNames({"bridge_gaps", "parts", "give_way"})
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
 

@@ -37,7 +37,8 @@ Costmap free_area(const Pose2& centre, double side_m, double resolution_m) {
 Controller::Controller(const Costmap& static_map, const NavigatorParams& params)
     : navigator_(static_map, params),
       monitor_(params.monitor),
-      min_existence_(params.affordance.min_existence) {}
+      min_existence_(params.affordance.min_existence),
+      moving_chairs_(params.monitor.give_way_min_speed_mps, params.monitor.give_way_window_s) {}
 
 void Controller::set_route(std::vector<Eigen::Vector2d> legs_m) {
     navigating_ = !legs_m.empty();
@@ -50,6 +51,28 @@ Polygon2 chair_footprint(const ObjectEstimate& o, double lead_s) {
     if (lead_s <= 0.0 || o.velocity_mps.squaredNorm() == 0.0) return out;
     for (const auto& q : c) out.push_back(q + lead_s * o.velocity_mps);
     return convex_hull(std::move(out));
+}
+
+MovingChairs::MovingChairs(double min_speed_mps, double window_s)
+    : min_speed_mps_(min_speed_mps), window_s_(window_s) {}
+
+std::vector<planning::MovingOutline> MovingChairs::update(
+    double t_s, const std::vector<ObjectEstimate>& objects, double min_existence) {
+    std::erase_if(centres_,
+                  [&](const auto& kv) { return t_s - kv.second.back().first > window_s_; });
+    std::vector<planning::MovingOutline> out;
+    for (const ObjectEstimate& o : objects) {
+        if (o.cls != ObjectClass::kChair || o.existence < min_existence) continue;
+        auto& seen = centres_[o.id];
+        seen.emplace_back(t_s, o.box_world.centre_m.head<2>());
+        while (seen.size() > 1 && t_s - seen[1].first >= window_s_) seen.pop_front();
+        Eigen::Vector2d v = o.velocity_mps;
+        const double span = t_s - seen.front().first;
+        if (v.norm() < min_speed_mps_ && span >= window_s_ - 1e-9)  // a whole window: no noise
+            v = (seen.back().second - seen.front().second) / span;
+        if (v.norm() >= min_speed_mps_) out.push_back({chair_footprint(o, 0.0), v});
+    }
+    return out;
 }
 
 Controller::Step Controller::step(const NavigatorInput& in) {
@@ -73,6 +96,9 @@ Controller::Step Controller::step(const NavigatorInput& in) {
     std::erase_if(parts_,
                   [&](const auto& kv) { return in.t_s - kv.second.t_s > mp.blind_memory_s; });
     std::vector<Polygon2> chairs, solid;
+    const std::vector<planning::MovingOutline> movers =
+        mp.give_way_horizon_s > 0.0 ? moving_chairs_.update(in.t_s, in.objects, min_existence_)
+                                    : std::vector<planning::MovingOutline>{};
     for (const ObjectEstimate& o : in.objects) {
         if (o.existence < min_existence_) continue;
         bool moving = false;
@@ -92,7 +118,7 @@ Controller::Step Controller::step(const NavigatorInput& in) {
     for (const auto& [id, kept] : parts_)
         solid.insert(solid.end(), kept.parts.begin(), kept.parts.end());
     out.guard = monitor_.filter(
-        {in.t_s, in.pose, in.points_world, wanted, in.v_mps, in.w_radps, &solid, &chairs});
+        {in.t_s, in.pose, in.points_world, wanted, in.v_mps, in.w_radps, &solid, &chairs, &movers});
     out.monitor_ms = ms_since(t0);
     // Idle (never driven, arrived, gave up, cancelled): zero, whatever the monitor was doing (a
     // recovery it had started is not a goal's to finish).

@@ -9,6 +9,7 @@
 //
 // Without a route the command is zero and the monitor still sees every sweep (its memory of what
 // the sensor can no longer see, and which returns are new, stay current for the next goal).
+#include <deque>
 #include <map>
 #include <optional>
 #include <unordered_map>
@@ -26,6 +27,26 @@ namespace makeway::pipeline {
 /// (collision_monitor.object_lead_s: the object map lags a pulled chair by up to a keyframe);
 /// lead_s 0 or a still chair: the box.
 Polygon2 chair_footprint(const ObjectEstimate& o, double lead_s);
+
+/// The chairs the collision monitor gives way to (give_way_horizon_s): those the object map has
+/// moving at least min_speed_mps, or whose box moved that fast over window_s. The map holds a chair
+/// at rest until its detections moved it 0.3 m (noise must not read as motion in its zones); a
+/// chair pulled out 0.4 m is at the robot by then, while its box already steps a few centimetres
+/// per keyframe.
+class MovingChairs {
+  public:
+    MovingChairs(double min_speed_mps, double window_s);
+    /// One control cycle's object map (objects less likely than min_existence left out): the
+    /// moving chairs, each its box and velocity.
+    std::vector<planning::MovingOutline> update(double t_s,
+                                                const std::vector<ObjectEstimate>& objects,
+                                                double min_existence);
+
+  private:
+    double min_speed_mps_, window_s_;
+    std::unordered_map<std::uint32_t, std::deque<std::pair<double, Eigen::Vector2d>>>
+        centres_;  ///< each chair's box centre per cycle, over window_s
+};
 
 /// The navigator, then the collision monitor between it and the motors (every method of the
 /// benchmark drives through this; `ours` inside an OnlineSystem).
@@ -57,6 +78,7 @@ class Controller {
     double min_existence_;  ///< objects this likely lend the monitor their footprints ...
     std::unordered_map<std::uint32_t, double>
         moved_at_;  ///< ... when they moved lately: object id -> when last seen moving
+    MovingChairs moving_chairs_;
     struct KeptParts {
         std::vector<Polygon2> parts;  ///< ObjectEstimate::parts_world
         double t_s = 0.0;             ///< when the map last held the object

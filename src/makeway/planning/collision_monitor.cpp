@@ -48,6 +48,8 @@ std::string_view to_string(MonitorAction a) {
             return "recovery_rotate";
         case MonitorAction::kBlocked:
             return "blocked";
+        case MonitorAction::kGiveWay:
+            return "give_way";
     }
     return "none";
 }
@@ -466,6 +468,16 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     }
 
     const VelocityCommand current{in.v_mps, in.w_radps};
+    MonitorResult r = decide(in, current, pts, dynamic, age);
+    if (params_.give_way_horizon_s > 0.0 && in.movers_world != nullptr && !in.movers_world->empty())
+        give_way(in, current, pts, dynamic, age, r);
+    return r;
+}
+
+MonitorResult CollisionMonitor::decide(const MonitorInput& in, const VelocityCommand& current,
+                                       const std::vector<Eigen::Vector2d>& pts,
+                                       const std::vector<char>& dynamic,
+                                       const std::vector<double>& age) {
     if (in.t_s < recovery_until_) {  // recovering: the recovery's own command, stop-checked
         MonitorResult r = check(recovery_command_, current, pts, dynamic, age);
         r.recovering = true;
@@ -518,6 +530,67 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     r.started_recovery = true;
     r.action = recovery_command_.v_mps != 0.0 ? MonitorAction::kBackup : MonitorAction::kRotate;
     return r;
+}
+
+void CollisionMonitor::give_way(const MonitorInput& in, const VelocityCommand& current,
+                                const std::vector<Eigen::Vector2d>& pts,
+                                const std::vector<char>& dynamic, const std::vector<double>& age,
+                                MonitorResult& r) {
+    const Isometry2 T_base_world = to_isometry(in.pose).inverse();
+    std::vector<MovingOutline> movers;
+    for (const MovingOutline& m : *in.movers_world) {
+        MovingOutline& b = movers.emplace_back();
+        for (const Eigen::Vector2d& q : m.outline) b.outline.push_back(T_base_world * q);
+        b.velocity_mps = T_base_world.linear() * m.velocity_mps;
+    }
+    const Eigen::Vector2d half(0.5 * params_.footprint_length_m, 0.5 * params_.footprint_width_m);
+    // Each command held for the horizon (no braking: the next cycle decides again).
+    auto clearance = [&](const VelocityCommand& c) {
+        return clearance_over(trajectory({current, c, params_.give_way_horizon_s, false}), half,
+                              movers, params_.give_way_margin_m);
+    };
+    // Only what comes at the robot even if it stands: a command that drives at a mover is the
+    // zones' business (a robot that waited for every chair moving ahead of it would not arrive).
+    const Clearance standing = clearance({});
+    if (!std::isfinite(standing.within_s)) {
+        giving_way_.reset();
+        return;
+    }
+    // Giving way already: the way off holds until the robot could stand clear, unless the
+    // navigator's command (or another way off) keeps more. DWA's next command turns back into
+    // the chair's way as soon as this one looks clear for the horizon.
+    MonitorResult best = r;
+    bool from_navigator = true;
+    VelocityCommand chosen;  // as asked for, before the zones scaled it
+    if (giving_way_) {
+        MonitorResult m = check(*giving_way_, current, pts, dynamic, age);
+        if (m.scale >= params_.min_scale) best = m, from_navigator = false, chosen = *giving_way_;
+    }
+    Clearance best_clearance = clearance(best.command);
+    if (from_navigator && !std::isfinite(best_clearance.within_s)) return;  // it keeps clear
+    const double s = params_.give_way_speed_mps;
+    // Slower first: of two that keep as clear, the gentler.
+    for (const VelocityCommand& c :
+         {r.command, VelocityCommand{-0.5 * s, 0.0}, VelocityCommand{0.5 * s, 0.0},
+          VelocityCommand{-s, 0.0}, VelocityCommand{s, 0.0}}) {
+        MonitorResult m = check(c, current, pts, dynamic, age);
+        if (m.scale < params_.min_scale) continue;  // held by the stop zone: no way off
+        const Clearance k = clearance(m.command);
+        if (k.better_than(best_clearance)) {
+            best = m;
+            best_clearance = k;
+            from_navigator = c.v_mps == r.command.v_mps && c.w_radps == r.command.w_radps;
+            chosen = c;
+        }
+    }
+    if (from_navigator) {  // nothing keeps more: as decided
+        giving_way_.reset();
+        return;
+    }
+    giving_way_ = chosen;
+    best.action = MonitorAction::kGiveWay;
+    best.recovering = r.recovering;
+    r = best;
 }
 
 }  // namespace makeway::planning

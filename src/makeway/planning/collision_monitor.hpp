@@ -78,6 +78,19 @@
 // recovery_after_s, it backs up (straight, backup_distance_m at backup_speed_mps) if the sweep
 // shows that space free, else turns on the spot (rotate_angle_rad, the free side first); the
 // recovery's own command passes the same stop check every cycle.
+//
+// Give way (give_way_horizon_s > 0; off by default, README): a chair someone pulls out comes at
+// 0.1-0.2 m/s into whatever stands behind it, and a robot the stop zone holds beside it waits to
+// be hit (the zones forbid moving toward returns, not being moved into). With the moving objects
+// the caller knows of (MonitorInput::movers_world, each carried along its velocity: the
+// Controller's MovingChairs), when even a robot that stops now would come within
+// give_way_margin_m of one over the horizon, and the decided command would too, the command is
+// replaced by the candidate that keeps the most clearance (the decided command, straight back or
+// straight on at half and at full give_way_speed_mps), as the stop check lets it through
+// (give_way.hpp). The way off holds until a standing robot would be clear (the navigator's next
+// command turns back into the chair's way as soon as it looks clear for the horizon), unless the
+// navigator's command keeps more. A command that drives at a mover while standing would be clear
+// is the zones' business: a robot that waited for every chair moving ahead of it would not arrive.
 #include <Eigen/Core>
 #include <cstdint>
 #include <deque>
@@ -93,6 +106,7 @@
 #include "makeway/common/robot_description.hpp"
 #include "makeway/common/transforms.hpp"
 #include "makeway/common/velocity_command.hpp"
+#include "makeway/planning/give_way.hpp"
 
 namespace makeway::planning {
 
@@ -166,6 +180,15 @@ struct CollisionMonitorParams {
     double backup_distance_m = 0.3;
     double rotate_speed_radps = 0.8;
     double rotate_angle_rad = 1.2;
+    double give_way_horizon_s =
+        0.0;  ///< give way: a known moving object would come this soon [s] ... 0: off
+    double give_way_margin_m = 0.05;  ///< ... within this of a standing robot's footprint ...
+    double give_way_speed_mps = 0.5;  ///< ... moves the robot off, straight back or on at this
+                                      ///< speed or half of it, or holds it
+    double give_way_min_speed_mps =
+        0.08;  ///< objects moving at least this fast are given way to (the Controller's: ...
+    double give_way_window_s =
+        1.0;  ///< ... the object map's velocity, else its box's displacement over this long)
     std::vector<std::string> validate() const;
     /// The robot's footprint, body, top speeds and accelerations (the sensor's height and lowest
     /// beam are its mounting's and stay as they are).
@@ -173,9 +196,18 @@ struct CollisionMonitorParams {
 };
 
 /// Why the monitor changed the command this cycle (run.json's stop_reason).
-enum class MonitorAction { kNone, kSlowdown, kApproach, kStop, kBackup, kRotate, kBlocked };
+enum class MonitorAction {
+    kNone,
+    kSlowdown,
+    kApproach,
+    kStop,
+    kBackup,
+    kRotate,
+    kBlocked,
+    kGiveWay
+};
 std::string_view to_string(MonitorAction action);
-inline constexpr int kMonitorActions = 7;
+inline constexpr int kMonitorActions = 8;
 
 struct MonitorInput {
     double t_s = 0.0;
@@ -190,6 +222,8 @@ struct MonitorInput {
     /// Every chair the robot knows of (null: none): a new return beside one is the chair being
     /// pulled, which the personal space leaves to the stop zone (a walker's is not beside one).
     const std::vector<Polygon2>* chairs_world = nullptr;
+    /// Objects the robot knows are moving, with their velocities (null: none): give way to them.
+    const std::vector<MovingOutline>* movers_world = nullptr;
 };
 
 struct MonitorResult {
@@ -245,6 +279,15 @@ class CollisionMonitor {
                          const std::vector<double>& age_s = {}) const;
     /// How far from the sensor a part z_m above the floor drops out of its lowest beam.
     double blind_radius_m(double z_m) const;
+    /// filter()'s decision on the command (recovering, held, recovery started), before giving way.
+    MonitorResult decide(const MonitorInput& in, const VelocityCommand& current,
+                         const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic,
+                         const std::vector<double>& age_s);
+    /// `r` replaced by the candidate that keeps the most clearance from in.movers_world, when
+    /// r's command comes within give_way_margin_m of one over give_way_horizon_s.
+    void give_way(const MonitorInput& in, const VelocityCommand& current,
+                  const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic,
+                  const std::vector<double>& age_s, MonitorResult& r);
     bool recovery_free(const VelocityCommand& c, const VelocityCommand& current, double duration_s,
                        const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic,
                        const std::vector<double>& age_s) const;
@@ -261,6 +304,7 @@ class CollisionMonitor {
     double held_since_ = -1.0;  ///< when the current hold began (-1: not held)
     double recovery_until_ = -1.0;
     VelocityCommand recovery_command_;
+    std::optional<VelocityCommand> giving_way_;  ///< the way off while giving way
 };
 
 }  // namespace makeway::planning

@@ -107,6 +107,21 @@ const ParamTable<CollisionMonitorParams>& collision_monitor_table() {
             .add("backup_distance_m", &C::backup_distance_m, closed(0.0, 10.0), "")
             .add("rotate_speed_radps", &C::rotate_speed_radps, above(0.0, 10.0), "")
             .add("rotate_angle_rad", &C::rotate_angle_rad, closed(0.0, 10.0), "")
+            .add("give_way_horizon_s", &C::give_way_horizon_s, closed(0.0, 5.0),
+                 "give way: a moving object the object map knows of (a chair being pulled out) "
+                 "that would come within give_way_margin_m of the robot standing this soon ...; "
+                 "0: off")
+            .add("give_way_margin_m", &C::give_way_margin_m, closed(0.0, 1.0), "")
+            .add("give_way_speed_mps", &C::give_way_speed_mps, above(0.0, 5.0),
+                 "... moves the robot off, straight back or on at this speed or half of it "
+                 "(whichever keeps "
+                 "more clearance and passes the stop check), or holds it")
+            .add("give_way_min_speed_mps", &C::give_way_min_speed_mps, closed(0.0, 5.0),
+                 "chairs moving at least this fast are given way to (the object map's velocity, "
+                 "else ...")
+            .add("give_way_window_s", &C::give_way_window_s, above(0.0, 10.0),
+                 "... its box's displacement over this long: the map holds a chair at rest until "
+                 "it moved 0.3 m)")
             .require([](const C& c) { return c.slowdown_padding_m >= c.stop_padding_m; },
                      "slowdown_padding_m must be in [stop_padding_m, 2]")
             .require([](const C& c) { return c.dynamic_min_seen <= c.dynamic_history; },

@@ -1,0 +1,51 @@
+#pragma once
+// Giving way to what the robot knows is moving: a chair someone pulls out from a table comes at
+// 0.1-0.2 m/s into whatever stands behind it, and a robot held beside the chair (the stop zone
+// forbids only moving *toward* returns) waits to be hit. The collision monitor's give-way
+// (give_way_horizon_s, collision_monitor.hpp) weighs its candidate commands by how they keep the
+// footprint clear of the moving objects over the horizon.
+//
+// The geometry here: the distance between the footprint following a predicted motion and outlines
+// moving at constant velocity. Straight-line prediction overshoots a pulled chair, which slows
+// down at the end of its pull: the robot gives way a little early, not late.
+#include <Eigen/Core>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "makeway/common/polygon2d.hpp"
+#include "makeway/common/transforms.hpp"
+
+namespace makeway::planning {
+
+/// An object the robot knows is moving: its outline (any vertex order) and its velocity, in the
+/// frame of the caller's poses.
+struct MovingOutline {
+    Polygon2 outline;
+    Eigen::Vector2d velocity_mps = Eigen::Vector2d::Zero();
+};
+
+/// Distance between the rectangle with half sizes `half` centred on `pose` (x along its yaw) and
+/// the convex polygon `polygon` (counter-clockwise); 0 when they touch or overlap.
+double rectangle_polygon_distance(const Pose2& pose, const Eigen::Vector2d& half,
+                                  const Polygon2& polygon);
+
+/// How a predicted motion keeps clear of moving outlines.
+struct Clearance {
+    double least_m = std::numeric_limits<double>::infinity();   ///< the least distance on the way
+    double within_s = std::numeric_limits<double>::infinity();  ///< first time within the margin
+    /// More clearance: within the margin later (or never), then farther at the closest.
+    bool better_than(const Clearance& o) const {
+        if (within_s != o.within_s) return within_s > o.within_s + 1e-9;
+        return least_m > o.least_m + 1e-3;
+    }
+};
+
+/// Over `poses` (time [s], pose of the base), the footprint (half sizes `half`) against each
+/// outline carried along its velocity to that time: the least distance, and the first time it
+/// is at most `margin_m`. With no outline or no pose, never and infinitely far.
+Clearance clearance_over(const std::vector<std::pair<double, Pose2>>& poses,
+                         const Eigen::Vector2d& half, const std::vector<MovingOutline>& movers,
+                         double margin_m);
+
+}  // namespace makeway::planning
