@@ -79,7 +79,7 @@
 // shows that space free, else turns on the spot (rotate_angle_rad, the free side first); the
 // recovery's own command passes the same stop check every cycle.
 //
-// Give way (give_way_horizon_s > 0; off by default, README): a chair someone pulls out comes at
+// Give way (give_way_horizon_s > 0; 1 s by default, README): a chair someone pulls out comes at
 // 0.1-0.2 m/s into whatever stands behind it, and a robot the stop zone holds beside it waits to
 // be hit (the zones forbid moving toward returns, not being moved into). With the moving objects
 // the caller knows of (MonitorInput::movers_world, each carried along its velocity: the
@@ -181,7 +181,7 @@ struct CollisionMonitorParams {
     double rotate_speed_radps = 0.8;
     double rotate_angle_rad = 1.2;
     double give_way_horizon_s =
-        0.0;  ///< give way: a known moving object would come this soon [s] ... 0: off
+        1.0;  ///< give way: a known moving object would come this soon [s] ... 0: off
     double give_way_margin_m = 0.05;  ///< ... within this of a standing robot's footprint ...
     double give_way_speed_mps = 0.5;  ///< ... moves the robot off, straight back or on at this
                                       ///< speed or half of it, or holds it
