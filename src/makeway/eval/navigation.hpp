@@ -112,7 +112,7 @@ struct NavRunResult {
     ContactCounts wall_contacts, furniture_contacts, people_contacts;  ///< by who caused them
     std::vector<ContactEvent> contact_events;
     /// The collision monitor per control cycle (none, slowdown, approach, stop, recovery_backup,
-    /// recovery_rotate, blocked), and the cycles it spent on each.
+    /// recovery_rotate, blocked, give_way), and the cycles it spent on each.
     std::vector<planning::MonitorAction> monitor_actions;
     std::vector<std::string>
         nav_states;  ///< the navigator per control cycle (pipeline::to_string_state)

@@ -471,6 +471,8 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     MonitorResult r = decide(in, current, pts, dynamic, age);
     if (params_.give_way_horizon_s > 0.0 && in.movers_world != nullptr && !in.movers_world->empty())
         give_way(in, current, pts, dynamic, age, r);
+    else
+        giving_way_.reset();  // nothing moves: no way off to hold on to
     return r;
 }
 

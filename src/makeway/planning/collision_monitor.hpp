@@ -283,8 +283,9 @@ class CollisionMonitor {
     MonitorResult decide(const MonitorInput& in, const VelocityCommand& current,
                          const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic,
                          const std::vector<double>& age_s);
-    /// `r` replaced by the candidate that keeps the most clearance from in.movers_world, when
-    /// r's command comes within give_way_margin_m of one over give_way_horizon_s.
+    /// `r` replaced by the candidate that keeps the most clearance from in.movers_world, when a
+    /// standing robot and r's command would both come within give_way_margin_m of one over
+    /// give_way_horizon_s (or the way off chosen before still keeps more).
     void give_way(const MonitorInput& in, const VelocityCommand& current,
                   const std::vector<Eigen::Vector2d>& pts, const std::vector<char>& dynamic,
                   const std::vector<double>& age_s, MonitorResult& r);
