@@ -24,12 +24,6 @@ Pose2 along_arc(double v, double w, double u) {
     return {v / w * std::sin(th), v / w * (1.0 - std::cos(th)), th};
 }
 
-// Signed distance from p to the centred rectangle with half sizes h (negative inside).
-double rect_signed_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& h) {
-    const Eigen::Vector2d q = p.cwiseAbs() - h;
-    return q.cwiseMax(0.0).norm() + std::min(std::max(q.x(), q.y()), 0.0);
-}
-
 }  // namespace
 
 std::string_view to_string(MonitorAction a) {

@@ -21,7 +21,7 @@ double rectangle_polygon_distance(const Pose2& pose, const Eigen::Vector2d& half
     // Apart, two convex shapes are nearest at a vertex of one against the other.
     double best = std::numeric_limits<double>::infinity();
     for (const Eigen::Vector2d& q : local)
-        best = std::min(best, (q.cwiseAbs() - half).cwiseMax(0.0).norm());
+        best = std::min(best, std::max(rect_signed_distance(q, half), 0.0));
     for (const Eigen::Vector2d& corner : rect)
         best = std::min(best, convex_distance(local, corner));
     // Crossing like a plus sign, neither holds a vertex of the other.

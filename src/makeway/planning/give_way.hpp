@@ -9,6 +9,7 @@
 // moving at constant velocity. Straight-line prediction overshoots a pulled chair, which slows
 // down at the end of its pull: the robot gives way a little early, not late.
 #include <Eigen/Core>
+#include <algorithm>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -24,6 +25,14 @@ struct MovingOutline {
     Polygon2 outline;
     Eigen::Vector2d velocity_mps = Eigen::Vector2d::Zero();
 };
+
+/// Signed distance from `p` to the rectangle with half sizes `half` centred on the origin, axes
+/// along x and y (negative inside): the footprint in the base frame. Inline: the collision
+/// monitor's zones call it for every return at every step of a motion.
+inline double rect_signed_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& half) {
+    const Eigen::Vector2d q = p.cwiseAbs() - half;
+    return q.cwiseMax(0.0).norm() + std::min(std::max(q.x(), q.y()), 0.0);
+}
 
 /// Distance between the rectangle with half sizes `half` centred on `pose` (x along its yaw) and
 /// the convex polygon `polygon` (counter-clockwise); 0 when they touch or overlap.
