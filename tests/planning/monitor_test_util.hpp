@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "makeway/common/transforms.hpp"
 #include "makeway/planning/collision_monitor.hpp"
@@ -25,6 +26,23 @@ inline double footprint_distance(const Pose2& pose, const Eigen::Vector2d& p) {
     return Eigen::Vector2d(std::max(std::abs(q.x()) - 0.5 * r.length_m, 0.0),
                            std::max(std::abs(q.y()) - 0.5 * r.width_m, 0.0))
         .norm();
+}
+
+/// A round walker (centre `w`, `radius`) touching the simulated robot in `state`: the robot's speed
+/// toward the contact point (the walker's surface toward the footprint's nearest point;
+/// robot-caused above 0.05 m/s, as the benchmark judges it); nothing while they do not touch.
+inline std::optional<double> speed_toward_walker(const sim::RobotState& state,
+                                                 const Eigen::Vector2d& w, double radius) {
+    const sim::RobotParams robot;
+    if (footprint_distance(state.pose, w) > radius) return std::nullopt;
+    const Eigen::Vector2d q = to_isometry(state.pose).inverse() * w;
+    const Eigen::Vector2d near =
+        to_isometry(state.pose) *
+        Eigen::Vector2d(std::clamp(q.x(), -0.5 * robot.length_m, 0.5 * robot.length_m),
+                        std::clamp(q.y(), -0.5 * robot.width_m, 0.5 * robot.width_m));
+    const Eigen::Vector2d contact = w + radius * (near - w).normalized();
+    return sim::speed_toward_contact(state.pose, state.v_mps, state.w_radps, contact,
+                                     robot.length_m, robot.width_m);
 }
 
 }  // namespace makeway::planning

@@ -197,18 +197,9 @@ double speed_at_walker_contact(const WalkerTurn& walk, double cluster_m, int min
         const double t = 0.1 * k;
         for (int i = 0; i < 10; ++i) {
             state = sim::step_diff_drive(state, cmd, 0.01, robot);
-            const Eigen::Vector2d w = walker_at(t + 0.01 * (i + 1));
-            if (footprint_distance(state.pose, w) <= radius) {
-                // Where they touch: the walker's surface toward the footprint's nearest point.
-                const Eigen::Vector2d q = to_isometry(state.pose).inverse() * w;
-                const Eigen::Vector2d near =
-                    to_isometry(state.pose) *
-                    Eigen::Vector2d(std::clamp(q.x(), -0.5 * robot.length_m, 0.5 * robot.length_m),
-                                    std::clamp(q.y(), -0.5 * robot.width_m, 0.5 * robot.width_m));
-                const Eigen::Vector2d contact = w + radius * (near - w).normalized();
-                return sim::speed_toward_contact(state.pose, state.v_mps, state.w_radps, contact,
-                                                 robot.length_m, robot.width_m);
-            }
+            if (const auto toward =
+                    speed_toward_walker(state, walker_at(t + 0.01 * (i + 1)), radius))
+                return *toward;
         }
         std::vector<Eigen::Vector2d> body;
         const Eigen::Vector2d w = walker_at(t + 0.1),

@@ -180,6 +180,24 @@ MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const Velocity
                 return hold(MonitorAction::kStop);
         }
     }
+    // Turning beside a walker: a corner sweeps sideways at w times its reach from the centre, into
+    // a walker beside it even while the body as a whole moves away (a walker overtaking the rear
+    // corner of a robot turning off its line). Near one, the turn is slowed (the same arc's
+    // curvature is not kept: a slower turn is the point) and that command checked instead.
+    const double turn_cap = params_.dynamic_turn_max_radps;
+    if (params_.dynamic_turn_space_m > 0.0 && std::abs(cmd.w_radps) > turn_cap) {
+        const Eigen::Vector2d half(0.5 * params_.footprint_length_m,
+                                   0.5 * params_.footprint_width_m);
+        for (std::size_t i = 0; i < dynamic.size() && i < pts.size(); ++i) {
+            if (dynamic[i] == 1 &&
+                rect_signed_distance(pts[i], half) < params_.dynamic_turn_space_m) {
+                MonitorResult slower = check({cmd.v_mps, std::copysign(turn_cap, cmd.w_radps)},
+                                             current, pts, dynamic, age_s);
+                if (slower.action == MonitorAction::kNone) slower.action = MonitorAction::kSlowdown;
+                return slower;
+            }
+        }
+    }
     if (first_contact({current, cmd, params_.latency_s, true}, params_.stop_padding_m, pts, dynamic,
                       age_s) >= 0.0) {
         return hold(MonitorAction::kStop);
@@ -364,8 +382,10 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     }
 
     // New returns beside a known chair are the chair moving (someone pulls it): still movers for
-    // the stop zone, but out of the personal space and the movers' memory, which are for walkers.
-    if ((params_.dynamic_personal_space_m > 0.0 || params_.dynamic_memory_s > 0.0) &&
+    // the stop zone, but out of the personal space, the turn cap and the movers' memory, which are
+    // for walkers.
+    if ((params_.dynamic_personal_space_m > 0.0 || params_.dynamic_memory_s > 0.0 ||
+         params_.dynamic_turn_space_m > 0.0) &&
         in.chairs_world != nullptr && !in.chairs_world->empty()) {
         std::vector<Polygon2> chairs;
         for (const Polygon2& poly : *in.chairs_world) {

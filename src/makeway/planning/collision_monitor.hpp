@@ -52,6 +52,11 @@
 // the command (a robot creeping or turning beside a walker meets the walker's next step), unless
 // it lies beside a chair the robot knows of (a pulled chair's returns are new too, and a robot
 // held by every pulled chair beside it gives up). Off by default (README).
+// With dynamic_turn_space_m, a new return that close to the footprint (not beside a known chair)
+// caps the turn rate at dynamic_turn_max_radps: a turning robot's corners sweep sideways at w times
+// their reach, into a walker beside it even while the robot drives away from the walker (one
+// overtaking the rear corner of a robot that turns off the walker's line), which the zones, made
+// for what the robot closes in on, pass.
 // With dynamic_memory_s, a walker near the robot (dynamic_memory_range_m; a body's worth of new
 // returns, not beside a known chair) is remembered that long as a mover, its padding grown by its
 // age too (a walker last seen 0.5 s ago may be 0.5 m from there), until new returns are seen
@@ -153,6 +158,10 @@ struct CollisionMonitorParams {
     double personal_space_object_margin_m =
         0.2;  ///< ... unless it lies this close to a known chair (MonitorInput::chairs_world): the
               ///< chair moves, not a walker
+    double dynamic_turn_space_m = 0.0;  ///< a new return this close to the footprint (not beside a
+                                        ///< known chair) caps the turn rate ...; 0: off (README)
+    double dynamic_turn_max_radps =
+        0.12;                 ///< ... at this (the Jackal's corners, 0.33 m out, sweep at 0.04 m/s)
     double min_scale = 0.05;  ///< an approach scale below this holds the robot (counts as a stop)
     double sensor_height_m = 0.45;  ///< the LiDAR above the floor (on the base's centre) ...
     double lowest_beam_deg =

@@ -70,6 +70,11 @@ const ParamTable<CollisionMonitorParams>& collision_monitor_table() {
             .add("personal_space_object_margin_m", &C::personal_space_object_margin_m,
                  closed(0.0, 1.0),
                  "... unless it lies this close to a known chair (a pulled chair, not a walker)")
+            .add("dynamic_turn_space_m", &C::dynamic_turn_space_m, closed(0.0, 2.0),
+                 "a new return this close to the footprint, not beside a known chair, caps the "
+                 "turn rate (a corner sweeps into a walker beside it; 0: off; README) ...")
+            .add("dynamic_turn_max_radps", &C::dynamic_turn_max_radps, above(0.0, 10.0),
+                 "... at this")
             .add("min_scale", &C::min_scale, below(0.0, 1.0),
                  "an approach scale below this holds the robot")
             .add(
