@@ -6,6 +6,8 @@
 #include <cmath>
 #include <optional>
 
+#include "makeway/common/angles.hpp"
+#include "makeway/common/point_cloud.hpp"
 #include "makeway/common/transforms.hpp"
 #include "makeway/planning/collision_monitor.hpp"
 #include "makeway/sim/robot.hpp"
@@ -43,6 +45,21 @@ inline std::optional<double> speed_toward_walker(const sim::RobotState& state,
     const Eigen::Vector2d contact = w + radius * (near - w).normalized();
     return sim::speed_toward_contact(state.pose, state.v_mps, state.w_radps, contact,
                                      robot.length_m, robot.width_m);
+}
+
+/// The returns of a round walker (centre `w`, `radius`) on the side a sensor at `sensor` sees,
+/// every 10 degrees, `z_m` up (a body).
+inline PointCloud walker_sweep(const Eigen::Vector2d& w, double radius, const Pose2& sensor,
+                               float z_m = 0.3f) {
+    const Eigen::Vector2d toward = (Eigen::Vector2d(sensor.x_m, sensor.y_m) - w).normalized();
+    PointCloud sweep;
+    for (int a = 0; a < 36; ++a) {
+        const double angle = a * kPi / 18;
+        const Eigen::Vector2d q = w + radius * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+        if ((q - w).dot(toward) > 0.0)
+            sweep.xyz.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), z_m);
+    }
+    return sweep;
 }
 
 }  // namespace makeway::planning

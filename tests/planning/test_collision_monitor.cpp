@@ -201,15 +201,7 @@ double speed_at_walker_contact(const WalkerTurn& walk, double cluster_m, int min
                     speed_toward_walker(state, walker_at(t + 0.01 * (i + 1)), radius))
                 return *toward;
         }
-        std::vector<Eigen::Vector2d> body;
-        const Eigen::Vector2d w = walker_at(t + 0.1),
-                              toward = (Eigen::Vector2d(state.pose.x_m, state.pose.y_m) - w)
-                                           .normalized();
-        for (int a = 0; a < 36; ++a) {
-            const Eigen::Vector2d u(std::cos(a * kPi / 18), std::sin(a * kPi / 18));
-            if (u.dot(toward) > 0.0) body.push_back(w + radius * u);  // the side the sensor sees
-        }
-        const PointCloud sweep = sweep_of(body, state.pose, 0.0, 0.3f);
+        const PointCloud sweep = walker_sweep(walker_at(t + 0.1), radius, state.pose);
         cmd = monitor
                   .filter({t + 0.1,
                            state.pose,
