@@ -29,6 +29,7 @@ TEST(MonitorTurnCap, SlowsATurnBesideAWalkerOnly) {
     const std::vector<Eigen::Vector2d> walker = walker_behind_right_corner();
     const VelocityCommand drive_off{0.6, 0.5};  // forward and left: the rear swings right
     CollisionMonitorParams p = jackal();
+    p.dynamic_turn_space_m = 0.0;
     // Off: driving away from the walker is what the zones let through, as it is.
     const MonitorResult off = CollisionMonitor(p).check(drive_off, drive_off, walker,
                                                         std::vector<char>(walker.size(), 1));

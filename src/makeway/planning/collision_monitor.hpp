@@ -52,8 +52,8 @@
 // the command (a robot creeping or turning beside a walker meets the walker's next step), unless
 // it lies beside a chair the robot knows of (a pulled chair's returns are new too, and a robot
 // held by every pulled chair beside it gives up). Off by default (README).
-// With dynamic_turn_space_m, a new return that close to the footprint (not beside a known chair)
-// caps the turn rate at dynamic_turn_max_radps: a turning robot's corners sweep sideways at w times
+// Within dynamic_turn_space_m (0.3 m; 0: off) of a new return not beside a known chair, the turn
+// rate is capped at dynamic_turn_max_radps: a turning robot's corners sweep sideways at w times
 // their reach, into a walker beside it even while the robot drives away from the walker (one
 // overtaking the rear corner of a robot that turns off the walker's line), which the zones, made
 // for what the robot closes in on, pass.
@@ -158,7 +158,7 @@ struct CollisionMonitorParams {
     double personal_space_object_margin_m =
         0.2;  ///< ... unless it lies this close to a known chair (MonitorInput::chairs_world): the
               ///< chair moves, not a walker
-    double dynamic_turn_space_m = 0.0;  ///< a new return this close to the footprint (not beside a
+    double dynamic_turn_space_m = 0.3;  ///< a new return this close to the footprint (not beside a
                                         ///< known chair) caps the turn rate ...; 0: off (README)
     double dynamic_turn_max_radps =
         0.12;                 ///< ... at this (the Jackal's corners, 0.33 m out, sweep at 0.04 m/s)
