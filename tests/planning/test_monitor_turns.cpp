@@ -72,6 +72,36 @@ TEST(MonitorTurnCap, SlowsATurnBesideAWalkerOnly) {
     EXPECT_FALSE(p.validate().empty());
 }
 
+// Through filter(): returns new in this sweep behind the right rear corner cap the turn, unless
+// they lie beside a chair the robot knows of (someone pulling it), with the personal space and the
+// movers' memory off (the chair test runs for the turn cap alone).
+TEST(MonitorTurnCap, LeavesAPulledChairToTheZones) {
+    const std::vector<Eigen::Vector2d> walker = walker_behind_right_corner();
+    const auto sweep = [&](bool mover) {
+        PointCloud c;
+        for (double y = -1.0; y <= 1.0; y += 0.02)
+            c.xyz.emplace_back(3.0f, static_cast<float>(y), 0.5f);  // a wall ahead
+        if (mover) {
+            for (const Eigen::Vector2d& q : walker)
+                c.xyz.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), 0.5f);
+        }
+        return c;
+    };
+    const PointCloud before = sweep(false), now = sweep(true);
+    const VelocityCommand drive_off{0.6, 0.5};
+    const std::vector<Polygon2> pulled = {{{-0.9, -0.1}, {-0.5, -0.1}, {-0.5, -0.5}, {-0.9, -0.5}}};
+    const auto turn = [&](const std::vector<Polygon2>* chairs) {
+        CollisionMonitorParams p = jackal();
+        p.dynamic_personal_space_m = 0.0;  // the defaults, said here: the turn cap alone
+        p.dynamic_memory_s = 0.0;
+        CollisionMonitor m(p);
+        m.filter({0.0, Pose2{}, &before, drive_off, 0.6, 0.5, nullptr, chairs});
+        return m.filter({0.1, Pose2{}, &now, drive_off, 0.6, 0.5, nullptr, chairs}).command.w_radps;
+    };
+    EXPECT_DOUBLE_EQ(turn(nullptr), 0.12);  // a walker: slowed
+    EXPECT_DOUBLE_EQ(turn(&pulled), 0.5);   // the chair being pulled: left to the zones
+}
+
 // A walker overtakes the robot (walkers here never give way) on a line beside it while the
 // navigator turns the robot off that line, at full speed: the rear corner swings into the walker.
 // Returns the robot's speed toward the walker when they touch (robot-caused above 0.05 m/s);
@@ -105,7 +135,7 @@ std::optional<double> speed_when_overtaken(double gap_m, double offset_m, double
 }
 
 // 288 overtakings (the walker 5-30 cm behind the rear, on a line whose near side runs from 3.5 cm
-// inside the robot's side to 0.5 cm outside it, either side, at 1.0-1.4 m/s; the navigator turning
+// inside the robot's side to 2.5 cm outside it, either side, at 1.0-1.4 m/s; the navigator turning
 // away from it at 0.3-1.0 rad/s): robot-caused contacts without and with the turn cap.
 TEST(MonitorTurnCap, AWalkerOvertakingATurningRobotMeetsNoSwingingCorner) {
     int without = 0, with = 0, touched = 0;
