@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <unordered_set>
@@ -106,7 +107,7 @@ double CollisionMonitor::first_contact(const Motion& m, double padding,
                                        const std::vector<Eigen::Vector2d>& pts,
                                        const std::vector<char>& dynamic,
                                        const std::vector<double>& age_s) const {
-    const Eigen::Vector2d half(0.5 * params_.footprint_length_m, 0.5 * params_.footprint_width_m);
+    const Eigen::Vector2d half = footprint_half();
     const std::vector<std::pair<double, Pose2>> poses = trajectory(m);
     // Only returns the padded footprint can reach along the way.
     const double grow = params_.dynamic_speed_mps, L = params_.latency_s;
@@ -167,36 +168,32 @@ MonitorResult CollisionMonitor::check(const VelocityCommand& cmd, const Velocity
     // allowed (there is nothing better to do than brake).
     const bool still = cmd.v_mps == 0.0 && cmd.w_radps == 0.0;
     if (still) return r;
+    // The nearest walker's return (new, not beside a known chair) to the footprint, for the
+    // personal space and the turn cap.
+    double walker_m = std::numeric_limits<double>::infinity();
+    if (params_.dynamic_personal_space_m > 0.0 || params_.dynamic_turn_space_m > 0.0) {
+        for (std::size_t i = 0; i < dynamic.size() && i < pts.size(); ++i) {
+            if (dynamic[i] == 1)
+                walker_m = std::min(walker_m, rect_signed_distance(pts[i], footprint_half()));
+        }
+    }
     // Personal space: a mover (a new return: a walker, a chair being pulled) this close to the
     // body holds it, whichever way the command goes. Next to a body, any motion of the robot's
     // surface toward it is a contact the robot caused when the walker steps in (rotating on the
     // spot sweeps a corner; creeping forward closes a gap the walker is about to fill).
-    if (params_.dynamic_personal_space_m > 0.0) {
-        const Eigen::Vector2d half(0.5 * params_.footprint_length_m,
-                                   0.5 * params_.footprint_width_m);
-        for (std::size_t i = 0; i < dynamic.size() && i < pts.size(); ++i) {
-            if (dynamic[i] == 1 &&
-                rect_signed_distance(pts[i], half) < params_.dynamic_personal_space_m)
-                return hold(MonitorAction::kStop);
-        }
-    }
+    if (params_.dynamic_personal_space_m > 0.0 && walker_m < params_.dynamic_personal_space_m)
+        return hold(MonitorAction::kStop);
     // Turning beside a walker: a corner sweeps sideways at w times its reach from the centre, into
     // a walker beside it even while the body as a whole moves away (a walker overtaking the rear
     // corner of a robot turning off its line). Near one, the turn is slowed (the same arc's
     // curvature is not kept: a slower turn is the point) and that command checked instead.
     const double turn_cap = params_.dynamic_turn_max_radps;
-    if (params_.dynamic_turn_space_m > 0.0 && std::abs(cmd.w_radps) > turn_cap) {
-        const Eigen::Vector2d half(0.5 * params_.footprint_length_m,
-                                   0.5 * params_.footprint_width_m);
-        for (std::size_t i = 0; i < dynamic.size() && i < pts.size(); ++i) {
-            if (dynamic[i] == 1 &&
-                rect_signed_distance(pts[i], half) < params_.dynamic_turn_space_m) {
-                MonitorResult slower = check({cmd.v_mps, std::copysign(turn_cap, cmd.w_radps)},
-                                             current, pts, dynamic, age_s);
-                if (slower.action == MonitorAction::kNone) slower.action = MonitorAction::kSlowdown;
-                return slower;
-            }
-        }
+    if (params_.dynamic_turn_space_m > 0.0 && walker_m < params_.dynamic_turn_space_m &&
+        std::abs(cmd.w_radps) > turn_cap) {
+        MonitorResult slower =
+            check({cmd.v_mps, std::copysign(turn_cap, cmd.w_radps)}, current, pts, dynamic, age_s);
+        if (slower.action == MonitorAction::kNone) slower.action = MonitorAction::kSlowdown;
+        return slower;
     }
     if (first_contact({current, cmd, params_.latency_s, true}, params_.stop_padding_m, pts, dynamic,
                       age_s) >= 0.0) {
@@ -559,7 +556,7 @@ void CollisionMonitor::give_way(const MonitorInput& in, const VelocityCommand& c
         for (const Eigen::Vector2d& q : m.outline) b.outline.push_back(T_base_world * q);
         b.velocity_mps = T_base_world.linear() * m.velocity_mps;
     }
-    const Eigen::Vector2d half(0.5 * params_.footprint_length_m, 0.5 * params_.footprint_width_m);
+    const Eigen::Vector2d half = footprint_half();
     // Each command held for the horizon (no braking: the next cycle decides again).
     auto clearance = [&](const VelocityCommand& c) {
         return clearance_over(trajectory({current, c, params_.give_way_horizon_s, false}), half,

@@ -286,6 +286,10 @@ class CollisionMonitor {
     double first_contact(const Motion& m, double padding, const std::vector<Eigen::Vector2d>& pts,
                          const std::vector<char>& dynamic = {},
                          const std::vector<double>& age_s = {}) const;
+    /// Half the footprint's length and width (the rectangle centred on the base).
+    Eigen::Vector2d footprint_half() const {
+        return {0.5 * params_.footprint_length_m, 0.5 * params_.footprint_width_m};
+    }
     /// How far from the sensor a part z_m above the floor drops out of its lowest beam.
     double blind_radius_m(double z_m) const;
     /// filter()'s decision on the command (recovering, held, recovery started), before giving way.

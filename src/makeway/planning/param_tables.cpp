@@ -116,11 +116,11 @@ const ParamTable<CollisionMonitorParams>& collision_monitor_table() {
                  "give way: a moving object the object map knows of (a chair being pulled out) "
                  "that would come within give_way_margin_m of the robot standing this soon ...; "
                  "0: off")
-            .add("give_way_margin_m", &C::give_way_margin_m, closed(0.0, 1.0), "")
+            .add("give_way_margin_m", &C::give_way_margin_m, closed(0.0, 1.0),
+                 "... within this of the footprint ...")
             .add("give_way_speed_mps", &C::give_way_speed_mps, above(0.0, 5.0),
                  "... moves the robot off, straight back or on at this speed or half of it "
-                 "(whichever keeps "
-                 "more clearance and passes the stop check), or holds it")
+                 "(whichever keeps more clearance and passes the stop check), or holds it")
             .add("give_way_min_speed_mps", &C::give_way_min_speed_mps, closed(0.0, 5.0),
                  "chairs moving at least this fast are given way to (the object map's velocity, "
                  "else ...")
