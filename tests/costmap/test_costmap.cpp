@@ -177,6 +177,45 @@ TEST(ObstacleLayer, MarksReturnsAndClearsAlongRays) {
     EXPECT_EQ(*lc.master().cost_at({4.5, 2.5}), cost::kLethal);
 }
 
+// A round table's foot plate (3 cm high) is marked from the returns on its top; a ray to the floor
+// behind it that passes 1.5 cm over that top proves nothing about it (the plate would not have
+// stopped it), one that passes lower than top + low_clear_margin_m does (the plate has gone).
+TEST(ObstacleLayer, KeepsALowMarkRaysPassOverAndClearsItFromBelowItsTop) {
+    auto sweep = [](LayeredCostmap& lc, std::vector<Eigen::Vector3f> xyz) {
+        PointCloud pts;
+        pts.xyz = std::move(xyz);
+        LayerInput in;
+        in.points_world = &pts;
+        in.sensor_world_m = {0.51, 2.52, 0.45};  // cell (10, 50)
+        lc.update(in);
+    };
+    const Eigen::Vector2d plate(1.42, 2.52);  // cell (28, 50)
+    const std::vector<Eigen::Vector3f> top = {{1.42f, 2.52f, 0.028f}, {1.43f, 2.53f, 0.030f}};
+    // Floor 20 cells out: over the plate's cell (18 of 20) the ray is 0.45 - 0.9 x 0.45 = 4.5 cm
+    // up.
+    const std::vector<Eigen::Vector3f> over = {{1.52f, 2.52f, 0.0f}};
+    // Floor 19 cells out: 18 of 19, 2.4 cm up, below the plate's top.
+    const std::vector<Eigen::Vector3f> through = {{1.47f, 2.52f, 0.0f}};
+    for (double margin : {0.01, 0.05}) {
+        ObstacleLayerParams p;
+        p.low_clear_margin_m = margin;
+        LayeredCostmap lc(grid());
+        lc.add_layer(std::make_unique<ObstacleLayer>(grid(), p));
+        sweep(lc, top);
+        ASSERT_EQ(*lc.master().cost_at(plate), cost::kLethal) << margin;
+        sweep(lc, over);
+        // 4.5 cm is 1.5 cm over the top: within a 5 cm margin (the old one) the plate is cleared.
+        EXPECT_EQ(*lc.master().cost_at(plate), margin < 0.015 ? cost::kLethal : cost::kFree)
+            << margin;
+        sweep(lc, top);
+        sweep(lc, through);
+        EXPECT_EQ(*lc.master().cost_at(plate), cost::kFree) << margin;
+    }
+    ObstacleLayerParams bad;
+    bad.low_clear_margin_m = -0.01;
+    EXPECT_FALSE(bad.validate().empty());
+}
+
 // The reference: Zingl's error-term Bresenham loop (the obstacle layer's walk before issue 31).
 std::vector<Eigen::Vector2i> bresenham(int x, int y, int ex, int ey) {
     std::vector<Eigen::Vector2i> out;

@@ -230,8 +230,13 @@ TEST(BodyModel, LowMarksNeedTwoReturnsAndSurviveRaysPassingOverThem) {
     pts.xyz = {{4.5f, 2.5f, 0.3f}};
     update();
     EXPECT_EQ(*layer.grid().cost_at({2.0, 2.51}), cost::kLethal);
-    // A ray to the floor just behind it passes 5 cm over it: cleared (the runner was moved).
+    // A ray to the floor 4 cells behind it passes 5.3 cm up, 2.3 cm over its 3 cm top: it proves
+    // nothing either (the runner would not have stopped it; with a 5 cm margin it cleared it).
     pts.xyz = {{2.2f, 2.5f, 0.0f}};
+    update();
+    EXPECT_EQ(*layer.grid().cost_at({2.0, 2.51}), cost::kLethal);
+    // 2 cells behind: 2.8 cm up, lower than the runner's top: cleared (the runner was moved).
+    pts.xyz = {{2.12f, 2.5f, 0.0f}};
     update();
     EXPECT_EQ(*layer.grid().cost_at({2.0, 2.51}), cost::kFree);
 }

@@ -119,7 +119,8 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
                                                                       (y - s.y()) * (y - s.y()))) /
                                             length
                                       : 0.0;
-        return sensor_z + f * (scratch_[idx].end_z - sensor_z) <= top_[i] + kClearMargin_m;
+        return sensor_z + f * (scratch_[idx].end_z - sensor_z) <=
+               top_[i] + params_.low_clear_margin_m;
     };
     auto free_cell = [&](int x, int y) {
         const int i = y * grid_.width + x;

@@ -10,6 +10,10 @@
 // 1 cm at 6 m) and only when at least low_min_returns of them, and low_min_share of the cell's
 // returns below the low band's top, stand above the clearance in one sweep: range noise lifts a
 // few floor returns of a cell (sigma 6 mm at the lowest ring), a runner or a foot plate most.
+// A ray clears a low mark only where it passes at most low_clear_margin_m above the mark's top: a
+// round table's 3 cm foot is reached by the lowest ring about 0.9 m out, and from closer the rays
+// to the floor behind it pass 2-5 cm over it, which proves nothing about it (with a 5 cm margin
+// they cleared it, and the robot's corner swept over the foot).
 #include <memory>
 
 #include "makeway/common/robot_body.hpp"
@@ -23,6 +27,8 @@ struct ObstacleLayerParams {
     double low_mark_range_m = 2.5;
     int low_min_returns = 2;
     double low_min_share = 0.5;
+    double low_clear_margin_m = 0.01;  ///< a ray clears a low mark passing at most this far above
+                                       ///< its top (range noise; see above)
     double mark_range_m = 6.0;
     double clear_range_m = 8.0;
     int threads = 2;  ///< threads walking the rays (1: the caller's alone); the same map for any
@@ -45,8 +51,6 @@ class ObstacleLayer : public Layer {
         std::uint16_t floor = 0;    ///< returns below the clearance, or too far
         std::uint8_t endpoint = 0;  ///< 0 none, 1 clear-only, 2 mark
     };
-    static constexpr double kClearMargin_m =
-        0.05;  ///< a ray this far above a mark's top still clears it (range noise)
     static constexpr int kBlock =
         16;  ///< rays cross blocks of kBlock x kBlock cells holding no mark in one step
 
