@@ -34,12 +34,21 @@ TEST(GiveWay, RectangleToPolygonDistanceHasKnownAnswers) {
     std::reverse(clockwise.begin(), clockwise.end());
     EXPECT_NEAR(rectangle_polygon_distance({}, half, clockwise), 0.25, 1e-12);
     EXPECT_NEAR(rectangle_polygon_distance({0.2, 0.0, 0.0}, half, ahead), 0.05, 1e-12);
-    // Crossing like a plus sign: no vertex of either inside the other, and still overlapping.
+    // Overlapping: minus the shortest shift that parts them. Crossing like a plus sign (no vertex
+    // of either inside the other): the bar leaves sideways, 0.25 + 0.05.
     const Polygon2 bar{{-0.05, -1.0}, {0.05, -1.0}, {0.05, 1.0}, {-0.05, 1.0}};
-    EXPECT_EQ(rectangle_polygon_distance({}, half, bar), 0.0);
-    // Inside, or holding it whole.
-    EXPECT_EQ(rectangle_polygon_distance({}, half, square({0.0, 0.0}, 0.05)), 0.0);
-    EXPECT_EQ(rectangle_polygon_distance({}, half, square({0.0, 0.0}, 2.0)), 0.0);
+    EXPECT_NEAR(rectangle_polygon_distance({}, half, bar), -0.3, 1e-12);
+    // Inside (out across the nearer, long side: 0.2 + 0.05), or holding it whole (2 - 0.2 + 0.4).
+    EXPECT_NEAR(rectangle_polygon_distance({}, half, square({0.0, 0.0}, 0.05)), -0.25, 1e-12);
+    EXPECT_NEAR(rectangle_polygon_distance({}, half, square({0.0, 0.0}, 2.0)), -2.2, 1e-12);
+    // Over a corner by 3 cm and 4 cm: out the shorter way. Turned 45 degrees under a diamond (a
+    // square in the rectangle's frame) whose lowest vertex is 0.18 m up: 0.2 - 0.18 cos 45 deg.
+    EXPECT_NEAR(rectangle_polygon_distance({}, half, square({0.32, 0.26}, 0.1)), -0.03, 1e-12);
+    EXPECT_NEAR(rectangle_polygon_distance({0.0, 0.0, kPi / 4}, half,
+                                           {{0.0, 0.18}, {-0.1, 0.28}, {0.0, 0.38}, {0.1, 0.28}}),
+                -(0.2 - 0.18 * std::sqrt(0.5)), 1e-12);
+    // Just touching: 0.
+    EXPECT_NEAR(rectangle_polygon_distance({}, half, square({0.35, 0.0}, 0.1)), 0.0, 1e-12);
     EXPECT_TRUE(std::isinf(rectangle_polygon_distance({}, half, {})));
 }
 
@@ -56,7 +65,8 @@ TEST(GiveWay, ClearanceOfAMoverComingAtAStandingRobot) {
     const MovingOutline coming{square({0.0, 0.7}, 0.2), {0.0, -0.2}};
     const Clearance c = clearance_over(standing(2.0), half, {coming}, 0.05);
     EXPECT_NEAR(c.within_s, 1.25, 1e-9);
-    EXPECT_EQ(c.least_m, 0.0);
+    EXPECT_NEAR(c.least_m, -0.1, 1e-9);  // 0.4 m travelled: 0.1 m into the footprint
+    EXPECT_NEAR(c.final_m, -0.1, 1e-9);
     // Over a shorter horizon it stays out of the margin.
     const Clearance early = clearance_over(standing(1.0), half, {coming}, 0.05);
     EXPECT_TRUE(std::isinf(early.within_s));
@@ -83,7 +93,8 @@ struct PullOutcome {
     Pose2 end;
 };
 
-PullOutcome pulled_into(double horizon_s, bool wall_behind, const VelocityCommand& asked = {}) {
+PullOutcome pulled_into(double horizon_s, bool wall_behind, const VelocityCommand& asked = {},
+                        double box_grow_m = 0.0) {
     const sim::RobotParams robot;
     CollisionMonitorParams p = jackal();
     p.give_way_horizon_s = horizon_s;
@@ -120,7 +131,12 @@ PullOutcome pulled_into(double horizon_s, bool wall_behind, const VelocityComman
         for (const Eigen::Vector2d& q : seen)
             sweep.xyz.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), 0.45f);
         std::vector<MovingOutline> movers;
-        if (t + 0.1 < pull_s) movers.push_back({chair_at(t + 0.1), {0.0, -speed}});
+        if (t + 0.1 < pull_s) {  // the known box: box_grow_m larger than the chair all round
+            Polygon2 box = chair_at(t + 0.1);
+            const Eigen::Vector2d c = 0.25 * (box[0] + box[1] + box[2] + box[3]);
+            for (Eigen::Vector2d& q : box) q += (q - c).cwiseSign() * box_grow_m;
+            movers.push_back({box, {0.0, -speed}});
+        }
         const MonitorResult r = monitor.filter({t + 0.1, state.pose, &sweep, asked, state.v_mps,
                                                 state.w_radps, nullptr, nullptr, &movers});
         out.give_way_cycles += r.action == MonitorAction::kGiveWay ? 1 : 0;
@@ -156,6 +172,23 @@ TEST(GiveWay, ANavigatorTurningIntoTheChairsWayStillGetsOut) {
     const PullOutcome on = pulled_into(2.0, false, into);
     EXPECT_GT(on.closest_m, 0.0);
     EXPECT_GT(on.give_way_cycles, 0);
+}
+
+TEST(GiveWay, ABoxAlreadyOnTheFootprintStillMovesTheRobotOff) {
+    // The known box is 0.35 m larger all round than the chair (a map's box around a chair's legs
+    // and arms): it lies 5 cm over the footprint while the chair is still 0.3 m off, so every way
+    // off is within the margin from the start and, as before, none was better than waiting (the
+    // least distance of each is now's). The one that ends farther out wins: the robot backs off.
+    const PullOutcome on = pulled_into(2.0, false, {}, 0.35);
+    EXPECT_GT(on.closest_m, 0.0);
+    EXPECT_GT(on.give_way_cycles, 0);
+    EXPECT_LT(on.end.x_m, -0.4);
+    // Of two motions within the margin from the start, the one that ends farther out; later
+    // within the margin beats that.
+    const Clearance stays{-0.05, 0.0, -0.05}, leaves{-0.05, 0.0, 0.2}, later{-0.3, 0.5, -0.3};
+    EXPECT_TRUE(leaves.better_than(stays));
+    EXPECT_FALSE(stays.better_than(leaves));
+    EXPECT_TRUE(later.better_than(leaves));
 }
 
 TEST(GiveWay, AMoverThatStaysClearLeavesTheCommandAlone) {

@@ -25,10 +25,27 @@ double rectangle_polygon_distance(const Pose2& pose, const Eigen::Vector2d& half
     for (const Eigen::Vector2d& corner : rect)
         best = std::min(best, convex_distance(local, corner));
     // Crossing like a plus sign, neither holds a vertex of the other.
-    if (best > 0.0 && local.size() >= 3 &&
-        std::abs(signed_area(clip_convex(rect, convex_hull(local)))) > 1e-12)
-        return 0.0;
-    return best;
+    const Polygon2 hull = local.size() >= 3 ? convex_hull(local) : local;
+    if (best > 0.0 && (hull.size() < 3 || std::abs(signed_area(clip_convex(rect, hull))) <= 1e-12))
+        return best;
+    // Overlapping (or touching): the depth is the least overlap of the two shapes' projections on
+    // the axes of their edges (the rectangle's two and the hull's normals).
+    std::vector<Eigen::Vector2d> axes{{1.0, 0.0}, {0.0, 1.0}};
+    for (std::size_t i = 0; i < hull.size(); ++i) {
+        const Eigen::Vector2d e = hull[(i + 1) % hull.size()] - hull[i];
+        if (e.norm() > 1e-12) axes.emplace_back(-e.y() / e.norm(), e.x() / e.norm());
+    }
+    double depth = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector2d& n : axes) {
+        const double r = std::abs(n.x()) * half.x() + std::abs(n.y()) * half.y();
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (const Eigen::Vector2d& q : hull) {
+            lo = std::min(lo, n.dot(q));
+            hi = std::max(hi, n.dot(q));
+        }
+        depth = std::min(depth, std::min(r - lo, hi + r));
+    }
+    return -std::max(depth, 0.0);
 }
 
 Clearance clearance_over(const std::vector<std::pair<double, Pose2>>& poses,
@@ -43,6 +60,7 @@ Clearance clearance_over(const std::vector<std::pair<double, Pose2>>& poses,
             const double d = rectangle_polygon_distance(pose, half, moved);
             out.least_m = std::min(out.least_m, d);
             if (d <= margin_m) out.within_s = std::min(out.within_s, t);
+            if (&pose == &poses.back().second) out.final_m = std::min(out.final_m, d);
         }
     }
     return out;
