@@ -177,10 +177,13 @@ TEST(ObstacleLayer, MarksReturnsAndClearsAlongRays) {
     EXPECT_EQ(*lc.master().cost_at({4.5, 2.5}), cost::kLethal);
 }
 
-// A round table's foot plate (3 cm high) is marked from the returns on its top; a ray to the floor
-// behind it that passes 1.5 cm over that top proves nothing about it (the plate would not have
-// stopped it), one that passes lower than top + low_clear_margin_m does (the plate has gone).
-TEST(ObstacleLayer, KeepsALowMarkRaysPassOverAndClearsItFromBelowItsTop) {
+// A round table's foot plate (3 cm high) is marked from the returns on its top, an arc of cells.
+// A ray to the floor behind it that passes 1.5 cm over that top proves nothing about it (the plate
+// would not have stopped it); one that passes lower than top + low_clear_margin_m does (the plate
+// has gone), and so does a sweep that shows its cell bare. A low mark alone (floor noise at the
+// lowest ring's reach) is cleared within low_single_clear_margin_m.
+TEST(ObstacleLayer, KeepsALowPartRaysPassOverAndClearsNoiseAndBareFloor) {
+    using V = Eigen::Vector3f;
     auto sweep = [](LayeredCostmap& lc, std::vector<Eigen::Vector3f> xyz) {
         PointCloud pts;
         pts.xyz = std::move(xyz);
@@ -190,26 +193,47 @@ TEST(ObstacleLayer, KeepsALowMarkRaysPassOverAndClearsItFromBelowItsTop) {
         lc.update(in);
     };
     const Eigen::Vector2d plate(1.42, 2.52);  // cell (28, 50)
-    const std::vector<Eigen::Vector3f> top = {{1.42f, 2.52f, 0.028f}, {1.43f, 2.53f, 0.030f}};
+    // The plate's edge: cells (28, 49), (28, 50), (28, 51), two returns on its top in each.
+    const std::vector<V> edge = {{1.42f, 2.47f, 0.028f}, {1.43f, 2.48f, 0.03f},
+                                 {1.42f, 2.52f, 0.028f}, {1.43f, 2.53f, 0.03f},
+                                 {1.42f, 2.57f, 0.028f}, {1.43f, 2.58f, 0.03f}};
+    const std::vector<V> alone = {edge[2], edge[3]};
     // Floor 20 cells out: over the plate's cell (18 of 20) the ray is 0.45 - 0.9 x 0.45 = 4.5 cm
     // up.
-    const std::vector<Eigen::Vector3f> over = {{1.52f, 2.52f, 0.0f}};
+    const std::vector<V> over = {{1.52f, 2.52f, 0.0f}};
     // Floor 19 cells out: 18 of 19, 2.4 cm up, below the plate's top.
-    const std::vector<Eigen::Vector3f> through = {{1.47f, 2.52f, 0.0f}};
+    const std::vector<V> through = {{1.47f, 2.52f, 0.0f}};
     for (double margin : {0.01, 0.05}) {
         ObstacleLayerParams p;
         p.low_clear_margin_m = margin;
         LayeredCostmap lc(grid());
         lc.add_layer(std::make_unique<ObstacleLayer>(grid(), p));
-        sweep(lc, top);
+        sweep(lc, edge);
         ASSERT_EQ(*lc.master().cost_at(plate), cost::kLethal) << margin;
         sweep(lc, over);
         // 4.5 cm is 1.5 cm over the top: within a 5 cm margin (the old one) the plate is cleared.
         EXPECT_EQ(*lc.master().cost_at(plate), margin < 0.015 ? cost::kLethal : cost::kFree)
             << margin;
-        sweep(lc, top);
+        sweep(lc, edge);
         sweep(lc, through);
         EXPECT_EQ(*lc.master().cost_at(plate), cost::kFree) << margin;
+    }
+    {
+        LayeredCostmap lc(grid());
+        lc.add_layer(std::make_unique<ObstacleLayer>(grid(), ObstacleLayerParams{}));
+        // A mark alone: the same ray 1.5 cm over it clears it (within 5 cm).
+        sweep(lc, alone);
+        ASSERT_EQ(*lc.master().cost_at(plate), cost::kLethal);
+        sweep(lc, over);
+        EXPECT_EQ(*lc.master().cost_at(plate), cost::kFree);
+        // The plate's cell seen bare (two floor returns, none above the clearance): cleared; with
+        // one return on the plate's top among them: kept.
+        sweep(lc, edge);
+        sweep(lc, {{1.41f, 2.51f, 0.004f}, {1.44f, 2.54f, 0.008f}, {1.42f, 2.53f, 0.029f}});
+        EXPECT_EQ(*lc.master().cost_at(plate), cost::kLethal);
+        sweep(lc, {{1.41f, 2.51f, 0.004f}, {1.44f, 2.54f, 0.008f}});
+        EXPECT_EQ(*lc.master().cost_at(plate), cost::kFree);
+        EXPECT_EQ(*lc.master().cost_at({1.42, 2.47}), cost::kLethal);  // the rest of the edge
     }
     ObstacleLayerParams bad;
     bad.low_clear_margin_m = -0.01;

@@ -230,13 +230,10 @@ TEST(BodyModel, LowMarksNeedTwoReturnsAndSurviveRaysPassingOverThem) {
     pts.xyz = {{4.5f, 2.5f, 0.3f}};
     update();
     EXPECT_EQ(*layer.grid().cost_at({2.0, 2.51}), cost::kLethal);
-    // A ray to the floor 4 cells behind it passes 5.3 cm up, 2.3 cm over its 3 cm top: it proves
-    // nothing either (the runner would not have stopped it; with a 5 cm margin it cleared it).
+    // A ray to the floor 4 cells behind it passes 5.3 cm up, 2.3 cm over its 3 cm top. The mark is
+    // alone (no low mark beside it, as floor noise raises them): cleared within 5 cm
+    // (low_single_clear_margin_m; a part of several cells is kept: tests/costmap).
     pts.xyz = {{2.2f, 2.5f, 0.0f}};
-    update();
-    EXPECT_EQ(*layer.grid().cost_at({2.0, 2.51}), cost::kLethal);
-    // 2 cells behind: 2.8 cm up, lower than the runner's top: cleared (the runner was moved).
-    pts.xyz = {{2.12f, 2.5f, 0.0f}};
     update();
     EXPECT_EQ(*layer.grid().cost_at({2.0, 2.51}), cost::kFree);
 }

@@ -49,6 +49,7 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
     // return costs one cache line.
     scratch_.resize(grid_.cost.size());
     top_.resize(grid_.cost.size(), 0.0f);
+    grouped_.resize(grid_.cost.size(), 0);
     std::vector<int>& cells = cells_;
     cells.clear();
     const double mark2 = params_.mark_range_m * params_.mark_range_m;
@@ -71,6 +72,7 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
         e.end_z = std::min(e.end_z, p.z());
         if (!params_.body.can_hit(p.z()) || d2 > mark2) {
             if (p.z() < params_.low_band_top_m && e.floor < 65535) ++e.floor;
+            if (p.z() < params_.body.ground_clearance_m && d2 <= low2 && e.bare < 65535) ++e.bare;
             continue;
         }
         if (p.z() >= params_.low_band_top_m) {
@@ -120,7 +122,8 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
                                             length
                                       : 0.0;
         return sensor_z + f * (scratch_[idx].end_z - sensor_z) <=
-               top_[i] + params_.low_clear_margin_m;
+               top_[i] +
+                   (grouped_[i] ? params_.low_clear_margin_m : params_.low_single_clear_margin_m);
     };
     auto free_cell = [&](int x, int y) {
         const int i = y * grid_.width + x;
@@ -161,6 +164,16 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
         for (const std::vector<int>& list : cleared)
             for (int i : list) free_cell(i % grid_.width, i / grid_.width);
     }
+    // A low mark whose cell this sweep shows bare (low_min_returns floor returns within
+    // low_mark_range_m, none on it) is cleared: the floor was seen there with nothing standing on
+    // it. Rays passing over a low mark cannot clear it (above), so a mark that floor noise or a
+    // pose error raised would otherwise stay until a ray came in below its top.
+    for (int idx : cells) {
+        const Scratch& e = scratch_[idx];
+        if (e.endpoint != 2 && e.low == 0 && e.bare >= params_.low_min_returns &&
+            grid_.cost[idx] != cost::kFree && top_[idx] < params_.low_band_top_m)
+            free_cell(idx % grid_.width, idx / grid_.width);
+    }
     for (int idx : cells) {
         if (scratch_[idx].endpoint == 2 && grid_.cost[idx] != cost::kLethal) {
             const int x = idx % grid_.width, y = idx / grid_.width;
@@ -168,8 +181,25 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
             grid_.cost[idx] = cost::kLethal;
             changed.expand({x, y, x + 1, y + 1});
         }
-        scratch_[idx] = Scratch{};
     }
+    // Low marks with a low mark beside them are a part (a plate's edge, a runner), cleared only
+    // from below their top; a low mark alone is cleared like noise (low_single_clear_margin_m).
+    auto low_mark = [&](int x, int y) {
+        const int i = y * grid_.width + x;
+        return grid_.inside(x, y) && grid_.cost[i] != cost::kFree &&
+               top_[i] < params_.low_band_top_m;
+    };
+    for (int idx : cells) {
+        const int x = idx % grid_.width, y = idx / grid_.width;
+        if (scratch_[idx].endpoint == 2 && top_[idx] < params_.low_band_top_m) {
+            grouped_[idx] = 0;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx)
+                    if ((dx != 0 || dy != 0) && low_mark(x + dx, y + dy))
+                        grouped_[idx] = grouped_[(y + dy) * grid_.width + x + dx] = 1;
+        }
+    }
+    for (int idx : cells) scratch_[idx] = Scratch{};
     window.expand(changed.clipped(grid_.width, grid_.height));
 }
 

@@ -82,8 +82,10 @@ const ParamTable<ObstacleLayerParams>& obstacle_layer_table() {
                  "noise lifts a few)")
             .renamed_from("low_obstacle_min_share")
             .add("low_clear_margin_m", &O::low_clear_margin_m, closed(0.0, 1.0),
-                 "a ray clears a low mark only passing at most this far above its top (rays over "
-                 "a table's foot prove nothing about it)")
+                 "a ray clears a low mark with another beside it only passing at most this far "
+                 "above its top (rays over a table's foot prove nothing about it) ...")
+            .add("low_single_clear_margin_m", &O::low_single_clear_margin_m, closed(0.0, 1.0),
+                 "... a low mark alone (floor noise at the lowest ring's reach), this far")
             .add("mark_range_m", &O::mark_range_m, above(0.0, 100.0), "returns farther do not mark")
             .add("clear_range_m", &O::clear_range_m, above(0.0, 100.0),
                  "rays clear free space this far")
