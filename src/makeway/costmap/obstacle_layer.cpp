@@ -164,26 +164,25 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
         for (const std::vector<int>& list : cleared)
             for (int i : list) free_cell(i % grid_.width, i / grid_.width);
     }
-    // A low mark whose cell this sweep shows bare (low_min_returns floor returns within
-    // low_mark_range_m, none on it) is cleared: the floor was seen there with nothing standing on
-    // it. Rays passing over a low mark cannot clear it (above), so a mark that floor noise or a
-    // pose error raised would otherwise stay until a ray came in below its top.
+    // This sweep's marks. And a low mark whose cell this sweep shows bare (low_min_returns floor
+    // returns within low_mark_range_m, none on it) is cleared: the floor was seen there with
+    // nothing standing on it. Rays passing over a low mark cannot clear it (above), so a mark that
+    // floor noise or a pose error raised would otherwise stay until a ray came in below its top.
     for (int idx : cells) {
         const Scratch& e = scratch_[idx];
-        if (e.endpoint != 2 && e.low == 0 && e.bare >= params_.low_min_returns &&
-            grid_.cost[idx] != cost::kFree && top_[idx] < params_.low_band_top_m)
-            free_cell(idx % grid_.width, idx / grid_.width);
-    }
-    for (int idx : cells) {
-        if (scratch_[idx].endpoint == 2 && grid_.cost[idx] != cost::kLethal) {
-            const int x = idx % grid_.width, y = idx / grid_.width;
+        const int x = idx % grid_.width, y = idx / grid_.width;
+        if (e.endpoint == 2 && grid_.cost[idx] != cost::kLethal) {
             if (grid_.cost[idx] == cost::kFree) ++block_of(x, y);
             grid_.cost[idx] = cost::kLethal;
             changed.expand({x, y, x + 1, y + 1});
+        } else if (e.endpoint != 2 && e.low == 0 && e.bare >= params_.low_min_returns &&
+                   grid_.cost[idx] != cost::kFree && top_[idx] < params_.low_band_top_m) {
+            free_cell(x, y);
         }
     }
     // Low marks with a low mark beside them are a part (a plate's edge, a runner), cleared only
     // from below their top; a low mark alone is cleared like noise (low_single_clear_margin_m).
+    // Neighbours are read from the grid, so each cell's scratch is cleared as it is done.
     auto low_mark = [&](int x, int y) {
         const int i = y * grid_.width + x;
         return grid_.inside(x, y) && grid_.cost[i] != cost::kFree &&
@@ -198,8 +197,8 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
                     if ((dx != 0 || dy != 0) && low_mark(x + dx, y + dy))
                         grouped_[idx] = grouped_[(y + dy) * grid_.width + x + dx] = 1;
         }
+        scratch_[idx] = Scratch{};
     }
-    for (int idx : cells) scratch_[idx] = Scratch{};
     window.expand(changed.clipped(grid_.width, grid_.height));
 }
 
