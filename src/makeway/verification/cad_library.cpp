@@ -34,6 +34,20 @@ struct ModelLevel::Index {
     Tree tree;
 };
 
+std::size_t ModelLevel::nearest_cell(const Eigen::Vector3d& q, double max_distance_m,
+                                     double* distance2) const {
+    if (grid) {
+        const std::uint32_t j = grid->lookup(q);
+        if (j != ClosestPointGrid::kOutside) {
+            const double d2 = (points_object[j] - q).squaredNorm();
+            const bool near = d2 <= max_distance_m * max_distance_m;
+            if (distance2) *distance2 = near ? d2 : std::numeric_limits<double>::infinity();
+            return near ? j : kNone;
+        }
+    }
+    return nearest(q, max_distance_m, distance2);
+}
+
 std::size_t ModelLevel::nearest(const Eigen::Vector3d& q, double max_distance_m,
                                 double* distance2) const {
     // A 1-NN search whose ball starts at max_distance: branches farther away are never visited.

@@ -46,7 +46,7 @@ void transform_line(const double* f, const std::uint32_t* site, std::size_t n, d
 
 ClosestPointGrid::ClosestPointGrid(const std::vector<Eigen::Vector3d>& points, double cell_m,
                                    double margin_m)
-    : cell_m_(cell_m) {
+    : cell_m_(cell_m), inv_cell_m_(1.0 / cell_m) {
     if (points.empty() || !(cell_m > 0.0) || !(margin_m >= 0.0)) return;
     Eigen::Vector3d lo = points.front(), hi = points.front();
     for (const auto& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
@@ -89,6 +89,13 @@ ClosestPointGrid::ClosestPointGrid(const std::vector<Eigen::Vector3d>& points, d
             for (std::size_t q = 0; q < n; ++q)
                 dist[start + q * step] = d[q], nearest_[start + q * step] = s_out[q];
         }
+    }
+    if (points.size() < kOutside16) {
+        nearest16_.resize(cells);
+        for (std::size_t i = 0; i < cells; ++i)
+            nearest16_[i] =
+                nearest_[i] == kOutside ? kOutside16 : static_cast<std::uint16_t>(nearest_[i]);
+        std::vector<std::uint32_t>().swap(nearest_);
     }
 }
 
