@@ -27,8 +27,8 @@ struct ModelLevel {
     /// squared distance, or kNone (distance2 = inf) when there is none that close. Inside the
     /// lookup grid the answer is the nearest point of q's cell centre (see ClosestPointGrid).
     std::size_t nearest(const Eigen::Vector3d& q, double max_distance_m, double* distance2) const;
-    /// The same from one grid read: the point nearest the centre of q's lookup cell (within half
-    /// the cell's diagonal of the exact answer); the k-d tree off the grid.
+    /// The same from one grid read: the point q's lookup cell holds (at most two cell diagonals
+    /// farther from q than the nearest point); the k-d tree off the grid.
     std::size_t nearest_cell(const Eigen::Vector3d& q, double max_distance_m,
                              double* distance2) const;
 };
