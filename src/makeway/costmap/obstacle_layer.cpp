@@ -164,6 +164,12 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
         for (const std::vector<int>& list : cleared)
             for (int i : list) free_cell(i % grid_.width, i / grid_.width);
     }
+    // A cell marked by returns below low_band_top_m (neighbours of a sweep's cells: in the grid).
+    auto low_mark = [&](int x, int y) {
+        const int i = y * grid_.width + x;
+        return grid_.inside(x, y) && grid_.cost[i] != cost::kFree &&
+               top_[i] < params_.low_band_top_m;
+    };
     // This sweep's marks. And a low mark whose cell this sweep shows bare (low_min_returns floor
     // returns within low_mark_range_m, none on it) is cleared: the floor was seen there with
     // nothing standing on it. Rays passing over a low mark cannot clear it (above), so a mark that
@@ -176,18 +182,13 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
             grid_.cost[idx] = cost::kLethal;
             changed.expand({x, y, x + 1, y + 1});
         } else if (e.endpoint != 2 && e.low == 0 && e.bare >= params_.low_min_returns &&
-                   grid_.cost[idx] != cost::kFree && top_[idx] < params_.low_band_top_m) {
+                   low_mark(x, y)) {
             free_cell(x, y);
         }
     }
     // Low marks with a low mark beside them are a part (a plate's edge, a runner), cleared only
     // from below their top; a low mark alone is cleared like noise (low_single_clear_margin_m).
     // Neighbours are read from the grid, so each cell's scratch is cleared as it is done.
-    auto low_mark = [&](int x, int y) {
-        const int i = y * grid_.width + x;
-        return grid_.inside(x, y) && grid_.cost[i] != cost::kFree &&
-               top_[i] < params_.low_band_top_m;
-    };
     for (int idx : cells) {
         const int x = idx % grid_.width, y = idx / grid_.width;
         if (scratch_[idx].endpoint == 2 && top_[idx] < params_.low_band_top_m) {

@@ -34,16 +34,23 @@ struct ModelLevel::Index {
     Tree tree;
 };
 
+namespace {
+
+// A grid's answer j at squared distance d2, or kNone (distance2 = inf) past max_distance_m.
+std::size_t within_reach(std::size_t j, double d2, double max_distance_m, double* distance2) {
+    const bool near = d2 <= max_distance_m * max_distance_m;
+    if (distance2) *distance2 = near ? d2 : std::numeric_limits<double>::infinity();
+    return near ? j : ModelLevel::kNone;
+}
+
+}  // namespace
+
 std::size_t ModelLevel::nearest_cell(const Eigen::Vector3d& q, double max_distance_m,
                                      double* distance2) const {
     if (grid) {
         const std::uint32_t j = grid->lookup(q);
-        if (j != ClosestPointGrid::kOutside) {
-            const double d2 = (points_object[j] - q).squaredNorm();
-            const bool near = d2 <= max_distance_m * max_distance_m;
-            if (distance2) *distance2 = near ? d2 : std::numeric_limits<double>::infinity();
-            return near ? j : kNone;
-        }
+        if (j != ClosestPointGrid::kOutside)
+            return within_reach(j, (points_object[j] - q).squaredNorm(), max_distance_m, distance2);
     }
     return nearest(q, max_distance_m, distance2);
 }
@@ -54,11 +61,7 @@ std::size_t ModelLevel::nearest(const Eigen::Vector3d& q, double max_distance_m,
     if (grid) {
         double d2 = 0.0;
         const std::uint32_t j = grid->nearest(q, points_object, &d2);
-        if (j != ClosestPointGrid::kOutside) {
-            const bool near = d2 <= max_distance_m * max_distance_m;
-            if (distance2) *distance2 = near ? d2 : std::numeric_limits<double>::infinity();
-            return near ? j : kNone;
-        }
+        if (j != ClosestPointGrid::kOutside) return within_reach(j, d2, max_distance_m, distance2);
     }
     std::size_t idx = kNone;
     double d2 = 0.0;
