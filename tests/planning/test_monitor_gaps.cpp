@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
+#include <set>
+#include <utility>
 
 #include "makeway/planning/collision_monitor.hpp"
 #include "makeway/planning/gap_bridge.hpp"
@@ -32,6 +35,62 @@ TEST(BridgeGaps, FillsANarrowGapEveryStepAndNothingElse) {
     EXPECT_TRUE(bridge_gaps(wall, 0.35, 0.03).empty());
     // Off: a gap no wider than two steps.
     EXPECT_TRUE(bridge_gaps(posts, 0.06, 0.03).empty());
+}
+
+// bridge_gaps by its definition, over every pair (no buckets, no bitmap): the cells of the points
+// it adds.
+std::set<std::pair<std::int64_t, std::int64_t>> brute_force_bridge_cells(
+    const std::vector<Eigen::Vector2d>& pts, double gap_m, double step_m) {
+    auto cell = [&](const Eigen::Vector2d& q) {
+        return std::pair<std::int64_t, std::int64_t>(
+            static_cast<std::int64_t>(std::floor(q.x() / step_m)),
+            static_cast<std::int64_t>(std::floor(q.y() / step_m)));
+    };
+    std::set<std::pair<std::int64_t, std::int64_t>> occupied, out;
+    for (const Eigen::Vector2d& q : pts) occupied.insert(cell(q));
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        for (std::size_t j = i + 1; j < pts.size(); ++j) {
+            const Eigen::Vector2d d = pts[j] - pts[i];
+            if (d.norm() <= 2.0 * step_m || d.norm() > gap_m) continue;
+            bool middle_free = true;
+            for (int dx = -1; dx <= 1; ++dx)
+                for (int dy = -1; dy <= 1; ++dy)
+                    middle_free &=
+                        !occupied.count(cell(pts[i] + 0.5 * d + step_m * Eigen::Vector2d(dx, dy)));
+            if (!middle_free) continue;
+            const int n = static_cast<int>(std::ceil(d.norm() / step_m));
+            for (int k = 1; k < n; ++k) {
+                const auto c = cell(pts[i] + d * (static_cast<double>(k) / n));
+                if (!occupied.count(c)) out.insert(c);
+            }
+        }
+    }
+    return out;
+}
+
+TEST(BridgeGaps, AddsTheCellsOfItsDefinitionOnScatteredReturns) {
+    // Scattered returns around the origin (negative cells too), and the same far apart (100 km:
+    // the cells no bitmap holds): one point per cell of the brute force's, none twice.
+    std::mt19937 rng(7);
+    for (const double spread_m : {1.5, 1.0e5}) {
+        std::uniform_real_distribution<double> u(-1.5, 1.5), far(-spread_m, spread_m);
+        std::vector<Eigen::Vector2d> pts;
+        for (int c = 0; c < 12; ++c) {  // clusters of returns, as chairs and walls give
+            const Eigen::Vector2d centre(spread_m > 10.0 ? far(rng) : 0.0, 0.0);
+            for (int k = 0; k < 40; ++k)
+                pts.push_back(centre + 0.5 * Eigen::Vector2d(u(rng), u(rng)));
+        }
+        const std::vector<Eigen::Vector2d> added = bridge_gaps(pts, 0.35, 0.03);
+        std::set<std::pair<std::int64_t, std::int64_t>> cells;
+        for (const Eigen::Vector2d& q : added)
+            EXPECT_TRUE(cells
+                            .insert({static_cast<std::int64_t>(std::floor(q.x() / 0.03)),
+                                     static_cast<std::int64_t>(std::floor(q.y() / 0.03))})
+                            .second);
+        const auto expected = brute_force_bridge_cells(pts, 0.35, 0.03);
+        EXPECT_GT(expected.size(), 50u) << spread_m;  // gaps to close, not an empty answer
+        EXPECT_EQ(cells, expected) << spread_m;
+    }
 }
 
 // The posts (below) stay out of the padded corner's reach.
