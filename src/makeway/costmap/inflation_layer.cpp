@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -72,8 +73,9 @@ std::uint8_t inflation_cost(double d, const InflationParams& p) {
 
 namespace {
 
-// The two passes (columns, then rows) on the arena's threads when there is one: each line is
-// transformed alone, with its own scratch, so the result does not depend on the threads.
+// The two passes: columns (two sweeps over the rows), then rows (dt1d, on the arena's threads when
+// there is one: each line is transformed alone, with its own scratch, so the result does not
+// depend on the threads).
 std::vector<double> distance_transform(const Costmap& grid, const GridWindow& src,
                                        const GridWindow& win, tbb::task_arena* arena) {
     const int w = src.x1 - src.x0, h = src.y1 - src.y0;
@@ -102,7 +104,24 @@ std::vector<double> distance_transform(const Costmap& grid, const GridWindow& sr
                                  pass(part.begin(), part.end(), n, line_step, step);
                              });
     };
-    lines(w, h, 1, static_cast<std::size_t>(w));  // columns
+    // Columns: on a grid of 0 (lethal) and kFar the envelope is the squared distance to the
+    // nearest lethal cell of the column (kFar where there is none), found row by row in two
+    // sweeps, down and up, in memory order (what dt1d gives, to the bit: the same integers).
+    std::vector<int> last(static_cast<std::size_t>(w));
+    for (const int dir : {1, -1}) {
+        std::fill(last.begin(), last.end(), -1);
+        for (int y = dir > 0 ? 0 : h - 1; y >= 0 && y < h; y += dir) {
+            double* row = g.data() + static_cast<std::size_t>(y) * w;
+            for (int x = 0; x < w; ++x) {
+                if (row[x] == 0.0) {
+                    last[x] = y;
+                } else if (last[x] >= 0) {
+                    const double d = static_cast<double>(y - last[x]) * (y - last[x]);
+                    row[x] = std::min(row[x], d);
+                }
+            }
+        }
+    }
     lines(h, w, static_cast<std::size_t>(w), 1);  // rows
     std::vector<double> out(static_cast<std::size_t>(win.x1 - win.x0) * (win.y1 - win.y0));
     for (int y = win.y0; y < win.y1; ++y) {
