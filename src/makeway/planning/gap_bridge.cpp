@@ -55,8 +55,12 @@ std::vector<Eigen::Vector2d> bridge_gaps(const std::vector<Eigen::Vector2d>& pts
                                          double step_m) {
     std::vector<Eigen::Vector2d> out;
     if (!(gap_m > 2.0 * step_m) || !(step_m > 0.0) || pts.size() < 2) return out;
+    // std::floor without a libm call (a generic x86-64 build calls it for every cell lookup):
+    // truncation, one down for negatives; clamped where the cast is defined.
     auto index_of = [](double v, double size) {
-        return static_cast<std::int64_t>(std::floor(v / size));
+        const double q = std::clamp(v / size, -0x1p62, 0x1p62);
+        auto i = static_cast<std::int64_t>(q);
+        return static_cast<double>(i) > q ? i - 1 : i;
     };
     // The returns' own cells (the gap test) and, in a second set, the points added too (no
     // duplicates); both over the returns' box grown by the cells around a middle.
