@@ -35,6 +35,39 @@ TEST(MovingChairs, ABoxSteppingEveryKeyframeMovesThoughTheMapHoldsItAtRest) {
     EXPECT_EQ(last.outline.size(), 4u);               // its box
 }
 
+Eigen::Vector2d centre_of(const planning::MovingOutline& m) {
+    Eigen::Vector2d c = Eigen::Vector2d::Zero();
+    for (const Eigen::Vector2d& q : m.outline) c += q;
+    return c / static_cast<double>(m.outline.size());
+}
+
+TEST(MovingChairs, TheBoxIsCarriedToNowFromWhenTheKeyframeMeasuredIt) {
+    // The map's box steps 6 cm every keyframe (0.5 s): each box was measured lag_s (0.3 s) before
+    // the cycle it first appears in, and the chair moved on at 0.12 m/s since.
+    MovingChairs movers(0.08, 1.0, 0.3);
+    for (int k = 0; k <= 17; ++k) {
+        const double t = 0.1 * k;
+        const double box_y = 1.0 - 0.06 * (k / 5);
+        const auto out = movers.update(t, {chair_at(2.0, box_y)}, 0.5);
+        if (k < 10) continue;  // no velocity before a whole window
+        ASSERT_EQ(out.size(), 1u) << k;
+        const double since = 0.5 * (k / 5);  // the cycle the box changed in
+        const Eigen::Vector2d c = centre_of(out.front());
+        EXPECT_NEAR(c.x(), 2.0, 1e-9) << k;
+        EXPECT_NEAR(c.y(), box_y - 0.12 * (t - since + 0.3), 1e-9) << k;
+    }
+    // A box that changes every cycle (the truth, lag 0) is where the chair is now.
+    MovingChairs truth(0.08, 1.0, 0.0);
+    ObjectEstimate pulled = chair_at(2.0, 1.0);
+    pulled.velocity_mps = {0.0, -0.2};
+    for (int k = 0; k <= 5; ++k) {
+        pulled.box_world.centre_m.y() = 1.0 - 0.02 * k;
+        const auto out = truth.update(0.1 * k, {pulled}, 0.5);
+        ASSERT_EQ(out.size(), 1u);
+        EXPECT_NEAR(centre_of(out.front()).y(), 1.0 - 0.02 * k, 1e-9) << k;
+    }
+}
+
 TEST(MovingChairs, AStillBoxThatJittersIsNoMover) {
     MovingChairs movers(0.08, 1.0);
     for (int k = 0; k <= 40; ++k) {

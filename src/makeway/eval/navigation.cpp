@@ -260,10 +260,12 @@ std::optional<NavMethod> nav_method(std::string_view name, const sim::RobotParam
 NavRunResult run_navigation(const sim::Scene& scene, const NavMethod& method, ObjectSource& source,
                             const NavParams& params) {
     const Isometry3 T_sensor_robot = params.robot.T_robot_sensor().inverse();
+    pipeline::NavigatorParams navigator = navigator_params(method, params);
+    navigator.monitor.give_way_lag_s = 0.0;  // the truth's boxes are where the chairs are now
     pipeline::Controller controller(
         params.static_map ? *params.static_map
                           : structure_grid(scene, params.resolution_m, params.robot.body()),
-        navigator_params(method, params));
+        navigator);
     controller.set_route(route_of(scene));
     return drive(
         scene, method, params, controller, source.reads_intensity(), [&](const SimSweep& s) {

@@ -1,6 +1,7 @@
 #include "makeway/pipeline/online_system.hpp"
 
 #include <cmath>
+#include <iterator>
 
 #include "makeway/common/stopwatch.hpp"
 
@@ -38,7 +39,8 @@ Controller::Controller(const Costmap& static_map, const NavigatorParams& params)
     : navigator_(static_map, params),
       monitor_(params.monitor),
       min_existence_(params.affordance.min_existence),
-      moving_chairs_(params.monitor.give_way_min_speed_mps, params.monitor.give_way_window_s) {}
+      moving_chairs_(params.monitor.give_way_min_speed_mps, params.monitor.give_way_window_s,
+                     params.monitor.give_way_lag_s) {}
 
 void Controller::set_route(std::vector<Eigen::Vector2d> legs_m) {
     navigating_ = !legs_m.empty();
@@ -53,8 +55,8 @@ Polygon2 chair_footprint(const ObjectEstimate& o, double lead_s) {
     return convex_hull(std::move(out));
 }
 
-MovingChairs::MovingChairs(double min_speed_mps, double window_s)
-    : min_speed_mps_(min_speed_mps), window_s_(window_s) {}
+MovingChairs::MovingChairs(double min_speed_mps, double window_s, double lag_s)
+    : min_speed_mps_(min_speed_mps), window_s_(window_s), lag_s_(lag_s) {}
 
 std::vector<planning::MovingOutline> MovingChairs::update(
     double t_s, const std::vector<ObjectEstimate>& objects, double min_existence) {
@@ -70,7 +72,17 @@ std::vector<planning::MovingOutline> MovingChairs::update(
         const double span = t_s - seen.front().first;
         if (v.norm() < min_speed_mps_ && span >= window_s_ - 1e-9)  // a whole window: no noise
             v = (seen.back().second - seen.front().second) / span;
-        if (v.norm() >= min_speed_mps_) out.push_back({chair_footprint(o, 0.0), v});
+        if (v.norm() < min_speed_mps_) continue;
+        // A moving chair's box changes with every keyframe that measures it: it was measured
+        // when it last changed, lag_s before that (the keyframe's sweeps, the filter), and the
+        // chair moved on since. Carried along its velocity to now, not where it was.
+        auto since = seen.rbegin();
+        while (std::next(since) != seen.rend() && std::next(since)->second == seen.back().second)
+            ++since;
+        const double age_s = t_s - since->first + lag_s_;
+        Polygon2 outline = chair_footprint(o, 0.0);
+        for (Eigen::Vector2d& q : outline) q += age_s * v;
+        out.push_back({std::move(outline), v});
     }
     return out;
 }

@@ -32,18 +32,21 @@ Polygon2 chair_footprint(const ObjectEstimate& o, double lead_s);
 /// moving at least min_speed_mps, or whose box moved that fast over window_s. The map holds a chair
 /// at rest until its detections moved it 0.3 m (noise must not read as motion in its zones); a
 /// chair pulled out 0.4 m is at the robot by then, while its box already steps a few centimetres
-/// per keyframe.
+/// per keyframe. Each box is carried along the velocity from when it was measured: lag_s before
+/// the cycle it changed in (collision_monitor.give_way_lag_s: a keyframe's box is 0.3 s old when
+/// it arrives, and it stays until the next keyframe, 0.5 s later; a box that changes every cycle,
+/// the truth's, with lag_s 0 is where it is).
 class MovingChairs {
   public:
-    MovingChairs(double min_speed_mps, double window_s);
+    MovingChairs(double min_speed_mps, double window_s, double lag_s = 0.0);
     /// One control cycle's object map (objects less likely than min_existence left out): the
-    /// moving chairs, each its box and velocity.
+    /// moving chairs, each its box (carried to t_s) and velocity.
     std::vector<planning::MovingOutline> update(double t_s,
                                                 const std::vector<ObjectEstimate>& objects,
                                                 double min_existence);
 
   private:
-    double min_speed_mps_, window_s_;
+    double min_speed_mps_, window_s_, lag_s_;
     std::unordered_map<std::uint32_t, std::deque<std::pair<double, Eigen::Vector2d>>>
         centres_;  ///< each chair's box centre per cycle, over window_s
 };

@@ -88,7 +88,8 @@
 // 0.1-0.2 m/s into whatever stands behind it, and a robot the stop zone holds beside it waits to
 // be hit (the zones forbid moving toward returns, not being moved into). With the moving objects
 // the caller knows of (MonitorInput::movers_world, each carried along its velocity: the
-// Controller's MovingChairs), when even a robot that stops now would come within
+// Controller's MovingChairs, which carries the object map's boxes from when they were measured
+// to now), when even a robot that stops now would come within
 // give_way_margin_m of one over the horizon, and the decided command would too, the command is
 // replaced by the candidate that keeps the most clearance (the decided command, straight back or
 // straight on at half and at full give_way_speed_mps), as the stop check lets it through
@@ -198,6 +199,8 @@ struct CollisionMonitorParams {
         0.08;  ///< objects moving at least this fast are given way to (the Controller's: ...
     double give_way_window_s =
         1.0;  ///< ... the object map's velocity, else its box's displacement over this long)
+    double give_way_lag_s = 0.3;  ///< a moving chair's box was measured this long before the
+                                  ///< cycle it changed in (carried along its velocity to now)
     std::vector<std::string> validate() const;
     /// The robot's footprint, body, top speeds and accelerations (the sensor's height and lowest
     /// beam are its mounting's and stay as they are).

@@ -127,6 +127,9 @@ const ParamTable<CollisionMonitorParams>& collision_monitor_table() {
             .add("give_way_window_s", &C::give_way_window_s, above(0.0, 10.0),
                  "... its box's displacement over this long: the map holds a chair at rest until "
                  "it moved 0.3 m)")
+            .add("give_way_lag_s", &C::give_way_lag_s, closed(0.0, 5.0),
+                 "a moving chair's box was measured this long before the cycle it changed in "
+                 "(the keyframe's sweeps, the filter): carried along its velocity to now")
             .require([](const C& c) { return c.slowdown_padding_m >= c.stop_padding_m; },
                      "slowdown_padding_m must be in [stop_padding_m, 2]")
             .require([](const C& c) { return c.dynamic_min_seen <= c.dynamic_history; },
