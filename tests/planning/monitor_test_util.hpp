@@ -62,4 +62,16 @@ inline PointCloud walker_sweep(const Eigen::Vector2d& w, double radius, const Po
     return sweep;
 }
 
+/// What a VLP-32C 0.45 m up sees of 2D points at height z: nothing closer than `blind_m` to the
+/// sensor (its lowest beam, -25 deg, reaches a 10 cm high part only from ~0.75 m).
+inline PointCloud sweep_of(const std::vector<Eigen::Vector2d>& pts, const Pose2& sensor,
+                           double blind_m, float z = 0.1f) {
+    PointCloud c;
+    for (const Eigen::Vector2d& p : pts) {
+        if ((p - Eigen::Vector2d(sensor.x_m, sensor.y_m)).norm() < blind_m) continue;
+        c.xyz.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), z);
+    }
+    return c;
+}
+
 }  // namespace makeway::planning
