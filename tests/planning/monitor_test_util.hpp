@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <vector>
 
 #include "makeway/common/angles.hpp"
 #include "makeway/common/point_cloud.hpp"
@@ -71,6 +72,17 @@ inline PointCloud sweep_of(const std::vector<Eigen::Vector2d>& pts, const Pose2&
         if ((p - Eigen::Vector2d(sensor.x_m, sensor.y_m)).norm() < blind_m) continue;
         c.xyz.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), z);
     }
+    return c;
+}
+
+/// A wall 3 m ahead of the origin (a return every 2 cm, 0.5 m up) and `extra` returns at that
+/// height: a sweep for filter() with something new beside the robot.
+inline PointCloud wall_ahead_and(const std::vector<Eigen::Vector2d>& extra = {}) {
+    PointCloud c;
+    for (double y = -1.0; y <= 1.0; y += 0.02)
+        c.xyz.emplace_back(3.0f, static_cast<float>(y), 0.5f);
+    for (const Eigen::Vector2d& q : extra)
+        c.xyz.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), 0.5f);
     return c;
 }
 

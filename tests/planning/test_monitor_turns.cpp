@@ -77,17 +77,7 @@ TEST(MonitorTurnCap, SlowsATurnBesideAWalkerOnly) {
 // movers' memory off (the chair test runs for the turn cap alone).
 TEST(MonitorTurnCap, LeavesAPulledChairToTheZones) {
     const std::vector<Eigen::Vector2d> walker = walker_behind_right_corner();
-    const auto sweep = [&](bool mover) {
-        PointCloud c;
-        for (double y = -1.0; y <= 1.0; y += 0.02)
-            c.xyz.emplace_back(3.0f, static_cast<float>(y), 0.5f);  // a wall ahead
-        if (mover) {
-            for (const Eigen::Vector2d& q : walker)
-                c.xyz.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), 0.5f);
-        }
-        return c;
-    };
-    const PointCloud before = sweep(false), now = sweep(true);
+    const PointCloud before = wall_ahead_and(), now = wall_ahead_and(walker);
     const VelocityCommand drive_off{0.6, 0.5};
     const std::vector<Polygon2> pulled = {{{-0.9, -0.1}, {-0.5, -0.1}, {-0.5, -0.5}, {-0.9, -0.5}}};
     const auto turn = [&](const std::vector<Polygon2>* chairs) {

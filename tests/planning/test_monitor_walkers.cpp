@@ -158,17 +158,9 @@ TEST(CollisionMonitor, PersonalSpaceHoldsTheRobotBesideAWalker) {
 // lie beside a chair the robot knows of (someone pulling it: the stop zone's business, not the
 // personal space's, or the robot waits beside every pulled chair).
 TEST(CollisionMonitor, PersonalSpaceLeavesAPulledChairToTheStopZone) {
-    const auto sweep = [](bool mover) {
-        PointCloud c;
-        for (double y = -1.0; y <= 1.0; y += 0.02)
-            c.xyz.emplace_back(3.0f, static_cast<float>(y), 0.5f);  // a wall ahead
-        if (mover) {
-            for (double x = -0.1; x <= 0.1 + 1e-9; x += 0.02)
-                c.xyz.emplace_back(static_cast<float>(x), -0.315f, 0.5f);
-        }
-        return c;
-    };
-    const PointCloud before = sweep(false), now = sweep(true);
+    std::vector<Eigen::Vector2d> mover;  // 10 cm beside the right side
+    for (double x = -0.1; x <= 0.1 + 1e-9; x += 0.02) mover.emplace_back(x, -0.315);
+    const PointCloud before = wall_ahead_and(), now = wall_ahead_and(mover);
     const VelocityCommand creep{0.2, 0.0};
     const std::vector<Polygon2> pulled = {
         {{-0.2, -0.3}, {0.2, -0.3}, {0.2, -0.7}, {-0.2, -0.7}}};  // the returns are its front
@@ -194,17 +186,9 @@ TEST(CollisionMonitor, PersonalSpaceLeavesAPulledChairToTheStopZone) {
 // it was last seen, its padding grown by its age: the robot is held from creeping at it (and may
 // back away) until the memory ends; without, it drives on as if the walker had vanished.
 TEST(CollisionMonitor, AWalkerInsideTheMinimumRangeIsRememberedAsAMover) {
-    const auto sweep = [](bool walker) {
-        PointCloud c;
-        for (double y = -1.0; y <= 1.0; y += 0.02)
-            c.xyz.emplace_back(3.0f, static_cast<float>(y), 0.5f);  // a wall ahead
-        if (walker) {
-            for (double y = -0.1; y <= 0.1 + 1e-9; y += 0.02)
-                c.xyz.emplace_back(0.55f, static_cast<float>(y), 0.5f);
-        }
-        return c;
-    };
-    const PointCloud wall = sweep(false), seen = sweep(true);
+    std::vector<Eigen::Vector2d> walker;  // 0.3 m ahead of the footprint
+    for (double y = -0.1; y <= 0.1 + 1e-9; y += 0.02) walker.emplace_back(0.55, y);
+    const PointCloud wall = wall_ahead_and(), seen = wall_ahead_and(walker);
     const VelocityCommand creep{0.3, 0.0}, back{-0.2, 0.0};
     const auto run = [&](double memory_s, const VelocityCommand& cmd, double t_s) {
         CollisionMonitorParams p = jackal();
