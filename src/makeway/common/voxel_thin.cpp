@@ -2,9 +2,9 @@
 
 #include <tsl/robin_set.h>
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
+
+#include "makeway/common/floor_index.hpp"
 
 namespace makeway {
 namespace {
@@ -29,12 +29,7 @@ std::vector<Eigen::Vector3d> voxel_thin(const std::vector<Eigen::Vector3d>& poin
     auto key = [voxel](const Eigen::Vector3d& p) {
         std::uint64_t k = 0;
         for (int a = 0; a < 3; ++a) {
-            // Clamped where the cast is defined: a finite point can lie up to 3e38 m away (a
-            // damaged or hostile cloud); every such point then shares the edge voxel's key.
-            const double q = std::clamp(p[a] / voxel, -0x1p62, 0x1p62);
-            auto f = static_cast<std::int64_t>(q);  // std::floor without a libm call
-            if (static_cast<double>(f) > q) --f;
-            const auto v = f & ((std::int64_t{1} << 21) - 1);
+            const auto v = floor_index(p[a], voxel) & ((std::int64_t{1} << 21) - 1);
             k = (k << 21) | static_cast<std::uint64_t>(v);
         }
         return k;

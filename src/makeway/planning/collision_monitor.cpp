@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include "makeway/common/angles.hpp"
+#include "makeway/common/floor_index.hpp"
 #include "makeway/planning/gap_bridge.hpp"
 #include "makeway/planning/param_tables.hpp"
 
@@ -262,8 +263,8 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             const Eigen::Vector2d q(p.x(), p.y());
             const double d2 = (q - here).squaredNorm();
             if (d2 > r2) continue;
-            const auto ix = static_cast<std::int64_t>(std::floor(q.x() / kThinCell_m));
-            const auto iy = static_cast<std::int64_t>(std::floor(q.y() / kThinCell_m));
+            const auto ix = floor_index(q.x(), kThinCell_m);
+            const auto iy = floor_index(q.y(), kThinCell_m);
             if (!seen.insert(cell_key(ix, iy)).second) continue;
             cells.push_back(cell_key(ix, iy));
             pts.push_back(T_base_world * q);
@@ -299,8 +300,8 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
         std::vector<std::int64_t> movers;
         auto coarse = [&](const Eigen::Vector2d& q) {
             return std::pair<std::int64_t, std::int64_t>(
-                static_cast<std::int64_t>(std::floor(q.x() / params_.dynamic_cluster_m)),
-                static_cast<std::int64_t>(std::floor(q.y() / params_.dynamic_cluster_m)));
+                floor_index(q.x(), params_.dynamic_cluster_m),
+                floor_index(q.y(), params_.dynamic_cluster_m));
         };
         if (params_.dynamic_cluster_m > 0.0) {
             // A mover's cell holds dynamic_cluster_min_new new returns: a walker's leading edge
@@ -344,8 +345,8 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
         // noise gives lone ones.
         auto supported = [&](const Candidate& c) {
             if (params_.low_edge_support <= 0 || c.high) return false;
-            const auto ix = static_cast<std::int64_t>(std::floor(c.q.x() / kThinCell_m));
-            const auto iy = static_cast<std::int64_t>(std::floor(c.q.y() / kThinCell_m));
+            const auto ix = floor_index(c.q.x(), kThinCell_m);
+            const auto iy = floor_index(c.q.y(), kThinCell_m);
             int n = 0;
             for (std::int64_t dx = -2; dx <= 2; ++dx) {
                 for (std::int64_t dy = -2; dy <= 2; ++dy) {

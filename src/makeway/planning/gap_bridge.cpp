@@ -6,6 +6,8 @@
 #include <unordered_set>
 #include <utility>
 
+#include "makeway/common/floor_index.hpp"
+
 namespace makeway::planning {
 namespace {
 
@@ -55,32 +57,26 @@ std::vector<Eigen::Vector2d> bridge_gaps(const std::vector<Eigen::Vector2d>& pts
                                          double step_m) {
     std::vector<Eigen::Vector2d> out;
     if (!(gap_m > 2.0 * step_m) || !(step_m > 0.0) || pts.size() < 2) return out;
-    // std::floor without a libm call (a generic x86-64 build calls it for every cell lookup):
-    // truncation, one down for negatives; clamped where the cast is defined.
-    auto index_of = [](double v, double size) {
-        const double q = std::clamp(v / size, -0x1p62, 0x1p62);
-        auto i = static_cast<std::int64_t>(q);
-        return static_cast<double>(i) > q ? i - 1 : i;
-    };
     // The returns' own cells (the gap test) and, in a second set, the points added too (no
     // duplicates); both over the returns' box grown by the cells around a middle.
-    std::int64_t x0 = index_of(pts[0].x(), step_m), x1 = x0;
-    std::int64_t y0 = index_of(pts[0].y(), step_m), y1 = y0;
+    std::int64_t x0 = floor_index(pts[0].x(), step_m), x1 = x0;
+    std::int64_t y0 = floor_index(pts[0].y(), step_m), y1 = y0;
     for (const Eigen::Vector2d& q : pts) {
-        const std::int64_t ix = index_of(q.x(), step_m), iy = index_of(q.y(), step_m);
+        const std::int64_t ix = floor_index(q.x(), step_m), iy = floor_index(q.y(), step_m);
         x0 = std::min(x0, ix), x1 = std::max(x1, ix), y0 = std::min(y0, iy), y1 = std::max(y1, iy);
     }
     CellSet occupied(x0 - 2, y0 - 2, x1 + 2, y1 + 2);
     CellSet filled(x0 - 2, y0 - 2, x1 + 2, y1 + 2);
     for (const Eigen::Vector2d& q : pts) {
-        occupied.insert(index_of(q.x(), step_m), index_of(q.y(), step_m));
-        filled.insert(index_of(q.x(), step_m), index_of(q.y(), step_m));
+        const std::int64_t ix = floor_index(q.x(), step_m), iy = floor_index(q.y(), step_m);
+        occupied.insert(ix, iy);
+        filled.insert(ix, iy);
     }
     auto around_occupied = [&](const Eigen::Vector2d& q) {
         for (int dx = -1; dx <= 1; ++dx) {
             for (int dy = -1; dy <= 1; ++dy) {
                 const Eigen::Vector2d p = q + step_m * Eigen::Vector2d(dx, dy);
-                if (occupied.contains(index_of(p.x(), step_m), index_of(p.y(), step_m)))
+                if (occupied.contains(floor_index(p.x(), step_m), floor_index(p.y(), step_m)))
                     return true;
             }
         }
@@ -90,7 +86,7 @@ std::vector<Eigen::Vector2d> bridge_gaps(const std::vector<Eigen::Vector2d>& pts
     // returns sorted by that cell (in their order within one), each cell's run found by search.
     std::vector<std::pair<std::int64_t, std::int64_t>> bucket(pts.size());
     for (std::size_t i = 0; i < pts.size(); ++i)
-        bucket[i] = {index_of(pts[i].x(), gap_m), index_of(pts[i].y(), gap_m)};
+        bucket[i] = {floor_index(pts[i].x(), gap_m), floor_index(pts[i].y(), gap_m)};
     std::vector<std::size_t> order(pts.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
     std::stable_sort(order.begin(), order.end(),
@@ -113,7 +109,7 @@ std::vector<Eigen::Vector2d> bridge_gaps(const std::vector<Eigen::Vector2d>& pts
                     const int n = static_cast<int>(std::ceil(std::sqrt(n2) / step_m));
                     for (int k = 1; k < n; ++k) {
                         const Eigen::Vector2d q = pts[i] + d * (static_cast<double>(k) / n);
-                        if (filled.insert(index_of(q.x(), step_m), index_of(q.y(), step_m)))
+                        if (filled.insert(floor_index(q.x(), step_m), floor_index(q.y(), step_m)))
                             out.push_back(q);
                     }
                 }
