@@ -157,6 +157,48 @@ TEST(AffordanceLayer, MovedObjectLeavesNoStaleCost) {
     EXPECT_EQ(lc.master().at(80, 80), 0);
 }
 
+// The layer keeps each zone's costs from when it was first written and copies them from then on
+// (affordance_layer.hpp). After every update of a drifting scene (a table standing, chairs that
+// appear, move, come back where they were, vanish and stand inside each other's zones) the master
+// equals every zone computed again, cell by cell.
+TEST(AffordanceLayer, ZonesKeptBetweenUpdatesEqualZonesComputedAgain) {
+    const AffordanceParams p;
+    LayeredCostmap lc(grid());
+    lc.add_layer(std::make_unique<AffordanceLayer>(p));
+    Rng rng(7);
+    const ObjectEstimate table = object(ObjectClass::kTable, {2.5, 2.5}, 1.2, 0.7, 0.4);
+    std::vector<ObjectEstimate> chairs = {object(ObjectClass::kChair, {1.6, 2.0}, 0.5, 0.5, 0.2),
+                                          object(ObjectClass::kChair, {3.3, 3.1}, 0.45, 0.5, 2.0),
+                                          object(ObjectClass::kChair, {2.4, 1.5}, 0.5, 0.45, -1.2)};
+    const std::vector<ObjectEstimate> first = chairs;
+    for (int step = 0; step < 40; ++step) {
+        LayerInput in;
+        in.objects = {table};
+        for (std::size_t i = 0; i < chairs.size(); ++i) {
+            ObjectEstimate& c = chairs[i];
+            const double u = uniform(rng, 0.0, 1.0);
+            if (u < 0.3) {  // pulled a little
+                c.box_world.centre_m.x() += uniform(rng, -0.2, 0.2);
+                c.box_world.centre_m.y() += uniform(rng, -0.2, 0.2);
+                c.box_world.yaw_rad += uniform(rng, -0.5, 0.5);
+            } else if (u < 0.4) {
+                c = first[i];  // back where it stood
+            }
+            if (uniform(rng, 0.0, 1.0) < 0.85) in.objects.push_back(c);  // sometimes unseen
+        }
+        lc.update(in);
+        for (int y = 0; y < 100; ++y) {
+            for (int x = 0; x < 100; ++x) {
+                std::uint8_t expected = cost::kFree;
+                for (const ObjectEstimate& o : in.objects)
+                    expected = std::max(expected, zone_cost(o, p, lc.master().centre_of(x, y)));
+                ASSERT_EQ(lc.master().at(x, y), expected)
+                    << "step " << step << " cell " << x << " " << y;
+            }
+        }
+    }
+}
+
 TEST(ObstacleLayer, MarksReturnsAndClearsAlongRays) {
     LayeredCostmap lc(grid());
     lc.add_layer(std::make_unique<ObstacleLayer>(grid(), ObstacleLayerParams{}));

@@ -29,11 +29,21 @@ void AffordanceLayer::update_bounds(const Costmap& master, const LayerInput& inp
         zone_bounds(o, params_, lo, hi);
         return master.window_of(lo, hi);
     };
+    // A patch is of one master geometry: another (a new map) computes every zone again.
+    if (master.origin_m != patch_origin_m_ || master.resolution_m != patch_resolution_m_) {
+        for (Patch& patch : patches_) patch.cost.clear();
+        patch_origin_m_ = master.origin_m, patch_resolution_m_ = master.resolution_m;
+    }
     std::vector<bool> matched(objects_.size(), false);
-    for (const ObjectEstimate& o : kept) {
+    std::vector<Patch> patches(kept.size());
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+        const ObjectEstimate& o = kept[k];
         bool found = false;
         for (std::size_t i = 0; i < objects_.size() && !found; ++i) {
-            if (!matched[i] && same_zone(o, objects_[i])) matched[i] = found = true;
+            if (!matched[i] && same_zone(o, objects_[i])) {
+                matched[i] = found = true;
+                patches[k] = std::move(patches_[i]);
+            }
         }
         if (!found) window.expand(bounds_of(o));
     }
@@ -41,16 +51,31 @@ void AffordanceLayer::update_bounds(const Costmap& master, const LayerInput& inp
         if (!matched[i]) window.expand(bounds_of(objects_[i]));
     }
     objects_ = std::move(kept);
+    patches_ = std::move(patches);
 }
 
 void AffordanceLayer::update_costs(Costmap& master, const GridWindow& window) {
-    for (const ObjectEstimate& o : objects_) {
-        Eigen::Vector2d lo, hi;
-        zone_bounds(o, params_, lo, hi);
-        const GridWindow w = master.window_of(lo, hi);
+    for (std::size_t k = 0; k < objects_.size(); ++k) {
+        const ObjectEstimate& o = objects_[k];
+        Patch& patch = patches_[k];
+        if (patch.cost.empty()) {
+            Eigen::Vector2d lo, hi;
+            zone_bounds(o, params_, lo, hi);
+            patch.window = master.window_of(lo, hi);
+            const GridWindow& w = patch.window;
+            if (w.empty()) continue;
+            patch.cost.resize(static_cast<std::size_t>(w.x1 - w.x0) * (w.y1 - w.y0));
+            std::uint8_t* c = patch.cost.data();
+            for (int y = w.y0; y < w.y1; ++y)
+                for (int x = w.x0; x < w.x1; ++x)
+                    *c++ = zone_cost(o, params_, master.centre_of(x, y));
+        }
+        const GridWindow& w = patch.window;
+        const int stride = w.x1 - w.x0;
         for (int y = std::max(w.y0, window.y0); y < std::min(w.y1, window.y1); ++y) {
             for (int x = std::max(w.x0, window.x0); x < std::min(w.x1, window.x1); ++x) {
-                const std::uint8_t c = zone_cost(o, params_, master.centre_of(x, y));
+                const std::uint8_t c =
+                    patch.cost[static_cast<std::size_t>(y - w.y0) * stride + (x - w.x0)];
                 std::uint8_t& m = master.at(x, y);
                 if (c != cost::kFree && (c > m || m == cost::kUnknown)) m = c;
             }
