@@ -1,7 +1,9 @@
 #include "makeway/odometry/voxel_map.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace makeway::odometry {
 
@@ -47,6 +49,16 @@ void VoxelMap::add(const std::vector<Eigen::Vector3d>& points_world) {
         Voxel& v = it.value();
         if (static_cast<int>(v.points.size()) >= params_.max_points_per_voxel) continue;
         v.points.push_back(p);
+        for (int a = 0; a < 3; ++a) {
+            // Rounded outward, so that the box in float holds every point in double.
+            float lo = static_cast<float>(p(a)), hi = lo;
+            if (static_cast<double>(lo) > p(a))
+                lo = std::nextafter(lo, -std::numeric_limits<float>::infinity());
+            if (static_cast<double>(hi) < p(a))
+                hi = std::nextafter(hi, std::numeric_limits<float>::infinity());
+            v.low(a) = std::min(v.low(a), lo);
+            v.high(a) = std::max(v.high(a), hi);
+        }
         changed.push_back(k);
     }
     std::sort(
@@ -75,9 +87,22 @@ std::optional<MapMatch> VoxelMap::nearest(const Eigen::Vector3d& query,
     double best = max_distance_m * max_distance_m;
     const Voxel* best_voxel = nullptr;
     const Eigen::Vector3d* best_point = nullptr;
-    const auto search = [&](const Eigen::Vector3i& at) {
+    // A neighbour's points are read only when the box around them is not farther than the best
+    // match so far (a voxel of a wall holds a thin slab of it): with a relative margin far above
+    // the rounding of either distance, so a skipped voxel never held the point the full search
+    // would return.
+    const auto box_far = [&](const Voxel& v) {
+        double d2 = 0.0;
+        for (int a = 0; a < 3; ++a) {
+            const double g = std::max({static_cast<double>(v.low(a)) - query(a),
+                                       query(a) - static_cast<double>(v.high(a)), 0.0});
+            d2 += g * g;
+        }
+        return d2 > best * (1.0 + 1e-9);
+    };
+    const auto search = [&](const Eigen::Vector3i& at, bool neighbour) {
         const auto it = voxels_.find(at);
-        if (it == voxels_.end()) return;
+        if (it == voxels_.end() || (neighbour && box_far(it->second))) return;
         for (const auto& p : it->second.points) {
             const double d2 = (p - query).squaredNorm();
             if (d2 < best) {
@@ -90,7 +115,7 @@ std::optional<MapMatch> VoxelMap::nearest(const Eigen::Vector3d& query,
     // The query's own voxel first: its nearest point is usually within a few centimetres, and
     // with that bound most neighbours are never looked up (before, in grid order, the first 13
     // were searched with the full correspondence distance as the bound).
-    search(k);
+    search(k, false);
     // How far the query lies inside its voxel: a neighbour whose nearest face is farther than the
     // best match so far cannot hold a closer point, and is not looked up.
     const Eigen::Vector3d low = query - k.cast<double>() * params_.voxel_m;
@@ -103,7 +128,7 @@ std::optional<MapMatch> VoxelMap::nearest(const Eigen::Vector3d& query,
             for (int dz = -1; dz <= 1; ++dz) {
                 if ((dx | dy | dz) == 0 || gap2(dx, 0) + gap2(dy, 1) + gap2(dz, 2) >= best)
                     continue;
-                search(Eigen::Vector3i(k.x() + dx, k.y() + dy, k.z() + dz));
+                search(Eigen::Vector3i(k.x() + dx, k.y() + dy, k.z() + dz), true);
             }
         }
     }

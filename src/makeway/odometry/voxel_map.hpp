@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -57,6 +58,9 @@ class VoxelMap {
         Eigen::Vector3d first = Eigen::Vector3d::Zero();  ///< its first point, inline: keep_within
                                                           ///< reads it for every voxel
         std::vector<Eigen::Vector3d> points;
+        Eigen::Vector3f low = Eigen::Vector3f::Constant(
+            std::numeric_limits<float>::infinity());  ///< the points' box, rounded outward
+        Eigen::Vector3f high = -low;
         VoxelShape shape = VoxelShape::kUnknown;
         Eigen::Vector3d axis = Eigen::Vector3d::Zero();
     };
