@@ -55,14 +55,30 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
     const double mark2 = params_.mark_range_m * params_.mark_range_m;
     const double clear2 = params_.clear_range_m * params_.clear_range_m;
     const double low2 = params_.low_mark_range_m * params_.low_mark_range_m;
-    for (const Eigen::Vector3f& p : input.points_world->xyz) {
+    // Each return's cell first, then the returns in order with the scratch of a return kAhead
+    // further on prefetched: returns come in scan order and their cells lie across the grid, so
+    // without it every new cell was a wait on memory.
+    const std::vector<Eigen::Vector3f>& xyz = input.points_world->xyz;
+    returns_.clear();
+    for (std::size_t i = 0; i < xyz.size(); ++i) {
+        const Eigen::Vector3f& p = xyz[i];
         if (!p.allFinite() || p.z() > params_.body.top_m) continue;
         const double d2 =
             (p.head<2>().cast<double>() - input.sensor_world_m.head<2>()).squaredNorm();
         if (d2 > clear2) continue;
         const Eigen::Vector2i c = grid_.cell_of(p.head<2>().cast<double>());
         if (!grid_.inside(c.x(), c.y())) continue;
-        const int idx = c.y() * grid_.width + c.x();
+        returns_.push_back({c.y() * grid_.width + c.x(), static_cast<std::uint32_t>(i), d2});
+    }
+    constexpr std::size_t kAhead = 16;
+    for (std::size_t k = 0; k < returns_.size(); ++k) {
+        if (k + kAhead < returns_.size()) {
+            __builtin_prefetch(&scratch_[static_cast<std::size_t>(returns_[k + kAhead].cell)], 1);
+            __builtin_prefetch(&top_[static_cast<std::size_t>(returns_[k + kAhead].cell)], 1);
+        }
+        const Eigen::Vector3f& p = xyz[returns_[k].point];
+        const double d2 = returns_[k].d2;
+        const int idx = returns_[k].cell;
         Scratch& e = scratch_[idx];
         if (e.endpoint == 0) {
             cells.push_back(idx);

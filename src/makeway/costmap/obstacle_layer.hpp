@@ -20,7 +20,9 @@
 // mark is also cleared by a sweep that shows its cell bare: low_min_returns returns below the
 // clearance there, none above (a mark that floor noise or a pose error raised is seen bare as the
 // robot drives on; a plate's top keeps returning above the clearance).
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "makeway/common/robot_body.hpp"
 #include "makeway/costmap/layer.hpp"
@@ -67,7 +69,13 @@ class ObstacleLayer : public Layer {
     Costmap grid_;
     std::vector<Scratch> scratch_;  ///< one per cell, one cache line per return
     std::vector<float> top_;        ///< per marked cell: the highest return behind its mark [m]
-    std::vector<std::uint8_t> grouped_;       ///< per low mark: another one beside it when marked
+    std::vector<std::uint8_t> grouped_;  ///< per low mark: another one beside it when marked
+    struct Return {           // a return within clear_range_m, in the grid, below the body's top
+        int cell;             ///< its cell's index
+        std::uint32_t point;  ///< its index in the sweep
+        double d2;            ///< its squared horizontal distance from the sensor [m^2]
+    };
+    std::vector<Return> returns_;             ///< this update's, in scan order
     std::vector<int> cells_;                  ///< the cells with an endpoint in this update
     std::vector<std::uint16_t> block_marks_;  ///< per block: its cells that are not free in grid_
     struct Threads;                           ///< threads > 1: the rays' TBB arena
