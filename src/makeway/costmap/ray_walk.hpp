@@ -16,7 +16,8 @@ inline int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b)
 
 /// Calls visit(x, y) for every cell of the line from (x0, y0) to (x1, y1), the end excluded, in
 /// order, except in blocks (block x block cells, aligned on multiples of `block`) for which
-/// empty_block(bx, by) is true: those are crossed without a call.
+/// empty_block(bx, by) is true: those are crossed without a call. empty_block is asked once per
+/// block the line enters, as it enters.
 template <class EmptyBlock, class Visit>
 void walk_ray(int x0, int y0, int x1, int y1, int block, EmptyBlock&& empty_block, Visit&& visit) {
     const int dx = std::abs(x1 - x0), dy = std::abs(y1 - y0);
@@ -32,25 +33,31 @@ void walk_ray(int x0, int y0, int x1, int y1, int block, EmptyBlock&& empty_bloc
     int t = 0, m = 0, r = major;
     while (t < major) {
         const int p = p0 + sp * t, q = q0 + sq * m;
-        const int x = x_major ? p : q, y = x_major ? q : p;
-        if (!empty_block(floor_div(x, block), floor_div(y, block))) {
-            visit(x, y);
-            ++t;
-            r += two_minor;
-            if (r >= two_major) r -= two_major, ++m;
-            continue;
-        }
-        // The first step whose cell leaves the block: along the major axis, or along the minor
-        // one (the smallest t whose minor coordinate has moved `need` cells).
-        // In 64 bits: 2 major need overflows int for rays longer than about 32,000 cells.
-        const std::int64_t bp = floor_div(p, block), bq = floor_div(q, block);
-        const std::int64_t t_major = sp > 0 ? (bp + 1) * block - p0 : p0 - (bp * block - 1);
+        const int bp = floor_div(p, block), bq = floor_div(q, block);
+        // The first step whose cell leaves this block: along the major axis, or along the minor
+        // one (the smallest t whose minor coordinate has moved `need` cells). In 64 bits: 2 major
+        // need overflows int for rays longer than about 32,000 cells.
+        const std::int64_t t_major =
+            sp > 0 ? (std::int64_t{bp} + 1) * block - p0 : p0 - (std::int64_t{bp} * block - 1);
         std::int64_t t_minor = major;
         if (minor > 0) {
-            const std::int64_t need = sq > 0 ? (bq + 1) * block - q0 : q0 - (bq * block - 1);
+            const std::int64_t need =
+                sq > 0 ? (std::int64_t{bq} + 1) * block - q0 : q0 - (std::int64_t{bq} * block - 1);
             t_minor = (std::int64_t{two_major} * need - major + two_minor - 1) / two_minor;
         }
-        t = static_cast<int>(std::max<std::int64_t>(t + 1, std::min(t_major, t_minor)));
+        const int exit = static_cast<int>(std::min<std::int64_t>(
+            major, std::max<std::int64_t>(t + 1, std::min(t_major, t_minor))));
+        if (!empty_block(x_major ? bp : bq, x_major ? bq : bp)) {
+            // Every cell up to the exit lies in this block: visited without asking again.
+            for (; t < exit; ++t) {
+                const int pc = p0 + sp * t, qc = q0 + sq * m;
+                visit(x_major ? pc : qc, x_major ? qc : pc);
+                r += two_minor;
+                if (r >= two_major) r -= two_major, ++m;
+            }
+            continue;
+        }
+        t = exit;
         const std::int64_t n = std::int64_t{two_minor} * t + major;
         m = static_cast<int>(n / two_major);
         r = static_cast<int>(n % two_major);
