@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "makeway/common/floor_index.hpp"
 #include "makeway/common/handover.hpp"
 #include "makeway/costmap/param_tables.hpp"
 #include "makeway/costmap/ray_walk.hpp"
@@ -66,9 +67,12 @@ void ObstacleLayer::update_bounds(const Costmap&, const LayerInput& input, GridW
         const double d2 =
             (p.head<2>().cast<double>() - input.sensor_world_m.head<2>()).squaredNorm();
         if (d2 > clear2) continue;
-        const Eigen::Vector2i c = grid_.cell_of(p.head<2>().cast<double>());
-        if (!grid_.inside(c.x(), c.y())) continue;
-        returns_.push_back({c.y() * grid_.width + c.x(), static_cast<std::uint32_t>(i), d2});
+        // grid_.cell_of's cell without its libm floor per return.
+        const std::int64_t cx = floor_index(p.x() - grid_.origin_m.x(), grid_.resolution_m),
+                           cy = floor_index(p.y() - grid_.origin_m.y(), grid_.resolution_m);
+        if (cx < 0 || cy < 0 || cx >= grid_.width || cy >= grid_.height) continue;
+        returns_.push_back({static_cast<int>(cy) * grid_.width + static_cast<int>(cx),
+                            static_cast<std::uint32_t>(i), d2});
     }
     constexpr std::size_t kAhead = 16;
     for (std::size_t k = 0; k < returns_.size(); ++k) {
