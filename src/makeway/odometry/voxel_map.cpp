@@ -50,8 +50,10 @@ void VoxelMap::add(const std::vector<Eigen::Vector3d>& points_world) {
         if (static_cast<int>(v.points.size()) >= params_.max_points_per_voxel) continue;
         v.points.push_back(p);
         for (int a = 0; a < 3; ++a) {
-            // Rounded outward, so that the box in float holds every point in double.
-            float lo = static_cast<float>(p(a)), hi = lo;
+            // Rounded outward, so that the box in float holds every point in double (a
+            // coordinate beyond float's range, from a damaged cloud, opens the box to infinity).
+            constexpr double kMax = std::numeric_limits<float>::max();
+            float lo = static_cast<float>(std::clamp(p(a), -kMax, kMax)), hi = lo;
             if (static_cast<double>(lo) > p(a))
                 lo = std::nextafter(lo, -std::numeric_limits<float>::infinity());
             if (static_cast<double>(hi) < p(a))
