@@ -76,5 +76,18 @@ TEST(VoxelMap, NearestIsTheBruteForceNearestAmongTheTwentySevenVoxels) {
     EXPECT_GT(found, 1000);
 }
 
+// A damaged cloud's coordinates beyond int's range of voxels (and float's) share the edge voxel:
+// added and found again, nothing undefined on the way.
+TEST(VoxelMap, CoordinatesBeyondTheGridShareTheEdgeVoxel) {
+    VoxelMap map;
+    const Eigen::Vector3d far(1e300, -1e300, 0.1), near(0.1, 0.1, 0.1);
+    map.add({far, near});
+    EXPECT_EQ(map.num_voxels(), 2u);
+    const std::optional<MapMatch> m = map.nearest(far, 1.0);
+    ASSERT_TRUE(m.has_value());
+    EXPECT_EQ(m->point, far);
+    EXPECT_EQ(map.nearest(near, 0.05)->point, near);
+}
+
 }  // namespace
 }  // namespace makeway::odometry

@@ -3,12 +3,23 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+
+#include "makeway/common/floor_index.hpp"
 
 namespace makeway::odometry {
 
 Eigen::Vector3i VoxelMap::key(const Eigen::Vector3d& p) const {
-    return (p / params_.voxel_m).array().floor().cast<int>();
+    // floor(p / voxel) per axis, clamped one short of int's ends (a damaged cloud's coordinate
+    // beyond 5e8 m would make the cast undefined, and nearest() steps one voxel either side):
+    // every such point shares the edge voxel.
+    constexpr std::int64_t kLow = std::numeric_limits<int>::min() + 1,
+                           kHigh = std::numeric_limits<int>::max() - 1;
+    Eigen::Vector3i k;
+    for (int a = 0; a < 3; ++a)
+        k(a) = static_cast<int>(std::clamp(floor_index(p(a), params_.voxel_m), kLow, kHigh));
+    return k;
 }
 
 void VoxelMap::fit_plane(Voxel& v) const {
