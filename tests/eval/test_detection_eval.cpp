@@ -89,7 +89,8 @@ TEST(DetectionEval, RoomsOfClutterAloneGiveFewFalseDetectionsAndAnEmptyMap) {
     }
     EXPECT_LE(detections, 8u) << "at most 0.4 false detections per keyframe";
     const auto map = track_keyframes(
-        kfs, found, pipeline::tracker_params_for(&detector, pipeline::SystemParams{}.tracker),
+        kfs, found,
+        pipeline::tracker_params_for(&detector, pipeline::SystemParams{}.tracker, false),
         p.range_m);
     std::size_t mapped = 0;  // in each drive's last keyframe: what the robot is left with
     for (std::size_t k = 0; k < map.size(); ++k) {

@@ -117,7 +117,7 @@ DetectionEvalResult run_detection_eval(
                 verification::accepted_detections(verified, verification::ScoreFrom::kExistence));
         }
         const tracking::TrackerParams tracker =
-            pipeline::tracker_params_for(&detector, p.system.tracker);
+            pipeline::tracker_params_for(&detector, p.system.tracker, p.cad != CadSource::kNone);
         if (arm == kClutter) {
             ClutterMetrics c;
             c.keyframes = kfs.size();

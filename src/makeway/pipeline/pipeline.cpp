@@ -29,10 +29,14 @@ const SystemParams& validated(const SystemParams& params, const verification::Ca
 }  // namespace
 
 tracking::TrackerParams tracker_params_for(const perception::ObjectDetector* detector,
-                                           tracking::TrackerParams params) {
+                                           tracking::TrackerParams params, bool cad_verified) {
     // Misses count only where the detector can see: inside the circle its square grid contains,
     // less half a large chair so that the whole object is inside.
     if (detector) params.miss_range_m = std::min(params.sensor_range_m, detector->reach_m() - 0.5);
+    if (cad_verified) {
+        for (tracking::MotionPrior& m : params.motion)
+            m.rest_yaw_rate_sigma_radps = params.kalman.yaw_rate_sigma_radps;
+    }
     return params;
 }
 
@@ -43,7 +47,7 @@ Pipeline::Pipeline(const SystemParams& params, const Pose2& start_pose,
       detector_(detector),
       library_(library),
       front_end_(params, start_pose),
-      map_(tracker_params_for(detector, params.tracker)) {}
+      map_(tracker_params_for(detector, params.tracker, library && !library->models().empty())) {}
 
 void Pipeline::set_shape_prior(const verification::ShapePrior* prior) {
     shapes_ = prior ? std::make_unique<TrackedShapes>(prior, params_.shapes) : nullptr;

@@ -21,7 +21,7 @@ BoxKalmanFilter::BoxKalmanFilter(const OrientedBox& b, const KalmanParams& param
         sv * sv, sv * sv;
 }
 
-void BoxKalmanFilter::predict(double dt) {
+void BoxKalmanFilter::predict(double dt, double yaw_rate_sigma_radps) {
     dt = std::max(0.0, dt);
     // x' = F x and P' = F P F^T with F = I + dt (position <- velocity), written out: F only adds
     // velocity rows/columns to position ones.
@@ -39,8 +39,13 @@ void BoxKalmanFilter::predict(double dt) {
     const double qp =
         params_.position_sigma_mps * params_.position_sigma_mps * dt;  // position random walk
     for (int a = 0; a < 3; ++a) P_(a, a) += qp;
-    P_(3, 3) += params_.yaw_rate_sigma_radps * params_.yaw_rate_sigma_radps * dt2;
+    P_(3, 3) += yaw_rate_sigma_radps * yaw_rate_sigma_radps * dt2;
     for (int a = 4; a < 7; ++a) P_(a, a) += params_.size_sigma_mps * params_.size_sigma_mps * dt2;
+}
+
+double BoxKalmanFilter::yaw_innovation(const OrientedBox& det) const {
+    const double d = angle_diff(det.yaw_rad, x_[3]);
+    return wrap_angle(d - std::round(d / (kPi / 2)) * kPi / 2);
 }
 
 int BoxKalmanFilter::update(const OrientedBox& det, double weight) {

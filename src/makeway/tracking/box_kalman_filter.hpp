@@ -44,10 +44,19 @@ class BoxKalmanFilter {
   public:
     BoxKalmanFilter(const OrientedBox& first_world, const KalmanParams& params);
 
-    void predict(double dt_s);
+    void predict(double dt_s) { predict(dt_s, params_.yaw_rate_sigma_radps); }
+    /// The same with this yaw random walk instead of the parameters' (an object at rest turns
+    /// less than one being pushed: ObjectMap's MotionPrior::rest_yaw_rate_sigma_radps).
+    void predict(double dt_s, double yaw_rate_sigma_radps);
     /// Updates with a detection box (world frame); returns the quarter turn k (0..3) by which the
     /// detection's yaw differed from the track's (0 = agreed; 2 = flipped by pi).
     int update(const OrientedBox& detection_world, double weight = 1.0);
+
+    /// The detection's yaw minus the track's, as the update will see it: the equivalent box within
+    /// pi/4 of the track's yaw, so in [-pi/4, pi/4].
+    double yaw_innovation(const OrientedBox& detection_world) const;
+    /// The yaw's variance grows by this (a turn the detections agree on, outside the prediction).
+    void add_yaw_variance(double variance_rad2) { P_(3, 3) += variance_rad2; }
 
     /// Velocity <- diag(factors) velocity, covariance alike (D P D^T): a motion prior's decay.
     void scale_velocity(const Eigen::Vector3d& factors);

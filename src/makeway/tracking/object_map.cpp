@@ -149,7 +149,11 @@ void ObjectMap::predict(double dt, const Eigen::Vector3d& sensor, TrackerFrameRe
         Track& t = it->second;
         ++t.age_frames;
         if (in_range(t.filter.box(), sensor)) {
-            t.filter.predict(dt);
+            t.filter.predict(
+                dt,
+                t.at_rest
+                    ? params_.motion[static_cast<std::size_t>(t.cls())].rest_yaw_rate_sigma_radps
+                    : params_.kalman.yaw_rate_sigma_radps);
         } else if (params_.out_of_range == OutOfRange::kDrop) {
             out.removed.push_back(it->first);
             it = tracks_.erase(it);
@@ -176,7 +180,8 @@ void ObjectMap::apply_motion_prior(double stamp_s, double dt) {
             (t.seen_at.back().second - t.seen_at.front().second).norm() >= m.min_displacement_m;
         const WindowFit fit =
             spans ? fit_window(t.seen_at, params_.kalman.meas_position_sigma_m) : WindowFit{};
-        if (m.min_displacement_m > 0.0 && !fit.significant) {
+        t.at_rest = m.min_displacement_m > 0.0 && !fit.significant;
+        if (t.at_rest) {
             t.filter.hold_at_rest();  // until the detections move it
         } else if (m.min_displacement_m > 0.0 && observed) {
             t.filter.set_planar_velocity(fit.velocity);
@@ -187,6 +192,21 @@ void ObjectMap::apply_motion_prior(double stamp_s, double dt) {
         if (m.planar) t.filter.scale_velocity({1.0, 1.0, 0.0});
         t.filter.clamp_speed(m.max_speed_mps);
     }
+}
+
+void ObjectMap::turn_where_it_stands(Track& t, const OrientedBox& det_world, double dt) const {
+    const MotionPrior& m = params_.motion[static_cast<std::size_t>(t.cls())];
+    // A moving object's yaw has the filter's full random walk already, and so has a standing one
+    // whose rest random walk is no smaller.
+    if (!t.at_rest || m.rest_yaw_rate_sigma_radps >= params_.kalman.yaw_rate_sigma_radps) return;
+    const double innovation = t.filter.yaw_innovation(det_world);
+    const double limit = m.turn_release_rad;
+    const int sign = innovation > limit ? 1 : innovation < -limit ? -1 : 0;
+    if (sign != 0 && sign == t.turn_sign) {
+        const double s = params_.kalman.yaw_rate_sigma_radps * dt;
+        t.filter.add_yaw_variance(s * s);  // what a moving object's prediction would have added
+    }
+    t.turn_sign = sign;
 }
 
 void ObjectMap::merge_duplicates(TrackerFrameResult& out) {
@@ -311,6 +331,7 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets,
             const int j = col[i];
             if (j < 0 || giou(static_cast<Eigen::Index>(i), j) < min_score) continue;
             Track& t = tracks_.at(candidates[static_cast<std::size_t>(j)]);
+            turn_where_it_stands(t, det_world[i], dt);
             t.filter.update(det_world[i]);
             for (int c = 0; c < kNumObjectClasses; ++c) {
                 t.class_probability_sum[static_cast<std::size_t>(c)] +=
@@ -387,6 +408,7 @@ TrackerFrameResult ObjectMap::update(const std::vector<Detection>& dets,
         t.hits = 1;
         t.last_stamp_s = stamp_s;
         t.seen_at.emplace_back(stamp_s, det_world[i].centre_m.head<2>());
+        t.at_rest = params_.motion[static_cast<std::size_t>(t.cls())].min_displacement_m > 0.0;
         out.track_of_detection[i] = static_cast<int>(t.id);
         out.born.push_back(t.id);
         tracks_.emplace(t.id, std::move(t));

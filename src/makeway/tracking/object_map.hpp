@@ -43,6 +43,17 @@ struct MotionPrior {
     /// motion. 0: the filter's velocity, always free (traffic).
     double min_displacement_m = 0.3;
     double motion_window_s = 2.0;
+    /// An object at rest does not turn either: its yaw random walk is this instead of the
+    /// filter's (KalmanParams::yaw_rate_sigma_radps, which follows a pushed chair), so the map's
+    /// yaw averages the views of a standing chair instead of repeating the last box's. The
+    /// network's yaw is within 10 deg of the truth for three chairs in four, and its errors
+    /// change with the view (eval-detection --no-cad). The pipeline keeps the filter's own where
+    /// CAD models verify the boxes (pipeline::tracker_params_for).
+    double rest_yaw_rate_sigma_radps = 0.03;
+    /// ... unless it is turned where it stands: two detections in a row whose yaw differs from the
+    /// object's by more than this, the same way, give the yaw the filter's full random walk for
+    /// that frame. Single outliers of the network do not.
+    double turn_release_rad = 0.3;
     std::vector<std::string> validate() const;
 };
 
@@ -142,7 +153,9 @@ struct Track {
     int age_frames = 0;
     double last_stamp_s = 0.0;
     std::deque<std::pair<double, Eigen::Vector2d>>
-        seen_at;  ///< (stamp, centre) of recent detections
+        seen_at;          ///< (stamp, centre) of recent detections
+    bool at_rest = true;  ///< held at rest by its MotionPrior (no window fit moved it)
+    int turn_sign = 0;    ///< the sign of the last yaw innovation beyond turn_release_rad, or 0
 
     ObjectClass cls() const;                                           ///< eq. (4)
     double class_confidence() const;                                   ///< eq. (5)
@@ -200,6 +213,9 @@ class ObjectMap {
     void apply_motion_prior(double stamp_s,
                             double dt);  ///< objects not associated at stamp_s decay
     void merge_duplicates(TrackerFrameResult& out);
+    /// An object at rest whose detections agree, twice in a row, that it was turned beyond its
+    /// class's turn_release_rad gets the yaw uncertainty of a moving one for this update.
+    void turn_where_it_stands(Track& t, const OrientedBox& detection_world, double dt) const;
     bool in_range(const OrientedBox& box, const Eigen::Vector3d& sensor) const;
     /// One frame's existence evidence for `t` (a detection's score, or 0 for an unexplained
     /// miss), folded into its open view or opening a new one; a miss adds to t.misses once per

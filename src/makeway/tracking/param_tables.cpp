@@ -38,7 +38,12 @@ const ParamTable<MotionPrior>& motion_prior_table() {
             .add("min_displacement_m", &M::min_displacement_m, closed(0.0, 100.0),
                  "held at rest until its detections moved this far ...")
             .add("motion_window_s", &M::motion_window_s, above(0.0, 3600.0),
-                 "... within this window (3+ boxes over half of it)");
+                 "... within this window (3+ boxes over half of it)")
+            .add("rest_yaw_rate_sigma_radps", &M::rest_yaw_rate_sigma_radps, open(0.0, 100.0),
+                 "yaw random walk while at rest (a standing object's views averaged; with CAD "
+                 "models: yaw_rate_sigma_radps)")
+            .add("turn_release_rad", &M::turn_release_rad, above(0.0, 3.2),
+                 "at rest: two detections in a row turned beyond this, the same way, free its yaw");
         return t;
     }();
     return table;
