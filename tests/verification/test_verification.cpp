@@ -359,6 +359,18 @@ TEST(Verification, ARoomOfVariantsTriesOnlyTheClosestInSize) {
     EXPECT_DOUBLE_EQ(by_existence[0].score, verified[0].p_exist);
     EXPECT_DOUBLE_EQ(by_detector[0].score, 0.7);
     EXPECT_EQ(by_existence[0].box_sensor.centre_m, verified[0].box_sensor.centre_m);
+    // keep_unfitted: the fitted detection first (the i-th evidence is the i-th accepted fit, as
+    // the pipeline's bookkeeping of fits reads it) even where the rejected one came first, then
+    // the rejected one as the network gave it: its box, its score.
+    const std::vector<VerifiedDetection> wall_first{verified[1], verified[0]};
+    const auto kept = accepted_detections(wall_first, ScoreFrom::kExistence, true);
+    ASSERT_EQ(kept.size(), 2u);
+    EXPECT_DOUBLE_EQ(kept[0].score, verified[0].p_exist);
+    EXPECT_EQ(kept[0].box_sensor.centre_m, verified[0].box_sensor.centre_m);
+    EXPECT_DOUBLE_EQ(kept[1].score, 0.7);
+    EXPECT_EQ(kept[1].box_sensor.centre_m, wall.box_sensor.centre_m);
+    EXPECT_EQ(kept[1].box_sensor.yaw_rad, wall.box_sensor.yaw_rad);
+    EXPECT_EQ(accepted_detections(wall_first).size(), 1u);  // dropped by default
     EXPECT_FALSE(VerifyParams{.max_models = 0}.validate().empty());
 }
 

@@ -111,10 +111,10 @@ DetectionEvalResult run_detection_eval(
             }
             const auto verified = verification::verify_detections(
                 kf.cloud_sensor, net.back(), *lib, p.system.verify, floor_z, p.shape_prior);
-            ver.push_back(
-                verification::accepted_detections(verified, verification::ScoreFrom::kDetector));
-            evidence.push_back(
-                verification::accepted_detections(verified, verification::ScoreFrom::kExistence));
+            ver.push_back(verification::accepted_detections(
+                verified, verification::ScoreFrom::kDetector, p.system.verify.keep_unfitted));
+            evidence.push_back(verification::accepted_detections(
+                verified, verification::ScoreFrom::kExistence, p.system.verify.keep_unfitted));
         }
         const tracking::TrackerParams tracker =
             pipeline::tracker_params_for(&detector, p.system.tracker, p.cad != CadSource::kNone);

@@ -133,7 +133,8 @@ KeyframeResult Pipeline::process_keyframe(FrontEndKeyframe front, double stamp_s
             prepared.cloud_sensor, kf.detections, have_cad ? *library_ : no_library_,
             params_.verify, [&](double x, double y) { return prepared.floor_z_at(x, y); },
             shapes_.get(), seeds);
-        kf.evidence = verification::accepted_detections(kf.verified);
+        kf.evidence = verification::accepted_detections(
+            kf.verified, verification::ScoreFrom::kExistence, params_.verify.keep_unfitted);
     } else {
         // Nothing to verify against: the network's boxes, chairs turned to their backs.
         const PreparedKeyframe& prepared = kf.prepared;
@@ -199,7 +200,8 @@ std::vector<std::optional<verification::VerifySeed>> Pipeline::seeds_for(
 }
 
 void Pipeline::remember_fits(const KeyframeResult& kf) {
-    // track_of_detection is per accepted detection (the tracker's evidence), in order.
+    // track_of_detection is per evidence: the accepted detections first, in order (then any
+    // unfitted ones kept, which have no fit).
     std::size_t k = 0;
     for (const verification::VerifiedDetection& v : kf.verified) {
         if (!v.accepted) continue;

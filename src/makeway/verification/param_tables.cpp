@@ -32,6 +32,8 @@ const ParamTable<VerifyParams>& verify_table() {
             .add("approx_e_max_m", &V::approx_e_max_m, below(0.0, 1.0),
                  "... unless at most this: an approximate fit places the box, the network's score "
                  "stays (0: off)")
+            .add("keep_unfitted", &V::keep_unfitted,
+                 "a detection no CAD model fits keeps the network's box and score (false: dropped)")
             .add("shape_e_max_m", &V::shape_e_max_m, open(0.0, 1.0),
                  "the same for a learned shape prior's completed mesh (--shape-model)")
             .add("min_points", &V::min_points, closed(0.0, 1e9),

@@ -456,7 +456,7 @@ std::vector<VerifiedDetection> verify_detections(
 }
 
 std::vector<Detection> accepted_detections(const std::vector<VerifiedDetection>& verified,
-                                           ScoreFrom score) {
+                                           ScoreFrom score, bool keep_unfitted) {
     std::vector<Detection> out;
     for (const VerifiedDetection& v : verified) {
         if (!v.accepted) continue;
@@ -464,6 +464,12 @@ std::vector<Detection> accepted_detections(const std::vector<VerifiedDetection>&
         d.box_sensor = v.box_sensor;
         if (score == ScoreFrom::kExistence) d.score = v.p_exist;
         out.push_back(d);
+    }
+    // After the accepted ones, so that their indices stay those of the accepted fits.
+    if (keep_unfitted) {
+        for (const VerifiedDetection& v : verified) {
+            if (!v.accepted) out.push_back(v.detection);
+        }
     }
     return out;
 }
