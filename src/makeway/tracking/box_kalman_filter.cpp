@@ -43,16 +43,23 @@ void BoxKalmanFilter::predict(double dt, double yaw_rate_sigma_radps) {
     for (int a = 4; a < 7; ++a) P_(a, a) += params_.size_sigma_mps * params_.size_sigma_mps * dt2;
 }
 
-double BoxKalmanFilter::yaw_innovation(const OrientedBox& det) const {
-    const double d = angle_diff(det.yaw_rad, x_[3]);
-    return wrap_angle(d - std::round(d / (kPi / 2)) * kPi / 2);
-}
-
-int BoxKalmanFilter::update(const OrientedBox& det, double weight) {
+int BoxKalmanFilter::quarter_turn(const OrientedBox& det, double& innovation) const {
     // The detection as the equivalent box within pi/4 of the predicted yaw.
     const double d = angle_diff(det.yaw_rad, x_[3]);  // det - state, in (-pi, pi]
     const int k = static_cast<int>(std::lround(d / (kPi / 2))) & 3;
-    double yaw_innovation = wrap_angle(d - k * kPi / 2);
+    innovation = wrap_angle(d - k * kPi / 2);
+    return k;
+}
+
+double BoxKalmanFilter::yaw_innovation(const OrientedBox& det) const {
+    double innovation = 0.0;
+    quarter_turn(det, innovation);
+    return innovation;
+}
+
+int BoxKalmanFilter::update(const OrientedBox& det, double weight) {
+    double dyaw = 0.0;
+    const int k = quarter_turn(det, dyaw);
     Eigen::Vector3d size = det.size_m;
     if (k % 2 == 1) std::swap(size.x(), size.y());
     // Heading votes: decayed, so the track follows a persistent turn but not single flips.
@@ -73,7 +80,7 @@ int BoxKalmanFilter::update(const OrientedBox& det, double weight) {
         return update(det, 0.0);
     }
     Eigen::Matrix<double, 7, 1> innovation;
-    innovation << det.centre_m - x_.head<3>(), yaw_innovation, size - x_.segment<3>(4);
+    innovation << det.centre_m - x_.head<3>(), dyaw, size - x_.segment<3>(4);
     // H selects the first 7 states: H P = P's top rows, H P H^T its top-left block.
     Eigen::Matrix<double, 7, 1> r;
     const double sp = params_.meas_position_sigma_m, sy = params_.meas_yaw_sigma_rad,

@@ -75,6 +75,10 @@ class BoxKalmanFilter {
     const BoxCovariance& covariance() const { return P_; }
 
   private:
+    /// The quarter turn k (0..3) from the track's yaw to the detection's equivalent box within
+    /// pi/4 of it, and that box's yaw minus the track's (`innovation`).
+    int quarter_turn(const OrientedBox& detection_world, double& innovation) const;
+
     KalmanParams params_;
     BoxState x_ = BoxState::Zero();
     BoxCovariance P_ = BoxCovariance::Identity();
