@@ -404,6 +404,42 @@ TEST(Navigator, EachClockedDetourGetsItsOwnGiveUpTime) {
     }
 }
 
+// Two ways of nearly equal length, through openings at y = -2 and y = 2: a robot 0.3 m toward the
+// upper one plans through it. Having strayed to 0.2 m toward the lower one (as when it made room
+// for a walker), the rest of its plan is about 7 % longer than the lower way: kept with a margin
+// of 0.2, dropped with none (the turn back that made the robot dither at forks until it gave up).
+// At 1.5 m toward the lower opening the rest is about 40 % longer: dropped either way.
+TEST(Navigator, ThePlanBeingFollowedIsKeptUntilAnotherIsClearlyCheaper) {
+    for (const double margin : {0.0, 0.2}) {
+        NavigatorParams params;
+        params.affordance_layer = false;
+        params.plan_switch_margin = margin;
+        params.astar.cost_weight = 0.0;  // lengths alone (the openings' inflation costs equal)
+        Navigator nav(openings_map({-2.0, 2.0}), params);
+        nav.set_route({{2.5, 0.0}});
+        auto step_at = [&](double t, double y) {
+            return nav.step({t, {-2.5, y, 0.0}, 0, 0, nullptr, Eigen::Vector3d::Zero(), {}});
+        };
+        auto through_upper = [&] {  // where the plan crosses the wall
+            const auto& plan = nav.plan();
+            const auto at_wall =
+                std::find_if(plan.begin(), plan.end(), [](const auto& p) { return p.x() > 0.0; });
+            return at_wall != plan.end() && at_wall->y() > 0.0;
+        };
+        ASSERT_EQ(step_at(0.0, 0.3).plan_status, planning::PlanStatus::kOk);
+        EXPECT_TRUE(through_upper());
+        const NavigatorStep strayed = step_at(1.0, -0.2);
+        EXPECT_TRUE(strayed.replanned);
+        EXPECT_EQ(strayed.kept_plan, margin > 0.0) << margin;
+        EXPECT_EQ(through_upper(), margin > 0.0) << margin;
+        const NavigatorStep far = step_at(2.0, -1.5);
+        if (margin > 0.0) {
+            EXPECT_FALSE(far.kept_plan);
+        }
+        EXPECT_FALSE(through_upper()) << margin;
+    }
+}
+
 // A robot wedged nose-first into a dead-end slot as narrow as its padded footprint: every
 // velocity but a standstill collides within DWA's horizon, so DWA "finds" v = w = 0 and the
 // robot would wait for stuck_timeout_s. It backs up after standstill_timeout_s instead.

@@ -52,6 +52,35 @@ TEST(AStar, RespectsSoftCosts) {
     EXPECT_NEAR(around.cost, 8 * std::sqrt(2.0) + 2.0, 1e-9);
 }
 
+// path_cost is A*'s objective for any path: A*'s own paths cost what A* summed (so a plan being
+// followed and a new one compare alike), a straight segment through a soft band pays for the band
+// alone, and a path into a blocked cell, an unknown one or off the map is infinite.
+TEST(AStar, PathCostIsTheObjectiveAStarMinimises) {
+    Costmap m({0, 0}, 1.0, 11, 9);
+    for (int y = 0; y < 4; ++y) m.at(5, y) = 200;
+    for (const double weight : {0.0, 10.0}) {
+        const AStarParams params{.cost_weight = weight};
+        const PlanResult r = plan_astar(m, {0.5, 0.5}, {10.5, 0.5}, params);
+        ASSERT_EQ(r.status, PlanStatus::kOk);
+        EXPECT_NEAR(path_cost(m, r.path_m, params), r.cost, 1e-9) << weight;
+    }
+    const AStarParams params{.cost_weight = 10.0};
+    // 10 m along row 0: 9 free cells and the band's cell (1 + 10 * 200 / 252 per metre).
+    EXPECT_NEAR(path_cost(m, {{0.5, 0.5}, {10.5, 0.5}}, params), 9.0 + (1.0 + 2000.0 / 252.0),
+                1e-9);
+    // Along row 6, clear of the band: its length (in half-cell pieces).
+    EXPECT_NEAR(path_cost(m, {{0.5, 6.5}, {10.5, 6.5}}, params), 10.0, 1e-9);
+    m.at(8, 0) = cost::kLethal;
+    EXPECT_TRUE(std::isinf(path_cost(m, {{0.5, 0.5}, {10.5, 0.5}}, params)));
+    m.at(8, 6) = cost::kUnknown;
+    EXPECT_TRUE(std::isinf(path_cost(m, {{0.5, 6.5}, {10.5, 6.5}}, params)));
+    EXPECT_NEAR(path_cost(m, {{0.5, 6.5}, {10.5, 6.5}}, {.allow_unknown = true}),
+                9.0 + (1.0 + 30.0 * cost::kMaxSoft / cost::kMaxSoft), 1e-9);
+    EXPECT_TRUE(std::isinf(path_cost(m, {{0.5, 6.5}, {12.5, 6.5}}, params)));  // off the map
+    EXPECT_EQ(path_cost(m, {{0.5, 6.5}}, params), 0.0);
+    EXPECT_EQ(path_cost(m, {}, params), 0.0);
+}
+
 TEST(Dwa, NeverSelectsAVelocityThatCollidesWithinItsHorizon) {
     Rng rng = make_rng(21);
     const DwaParams p;

@@ -125,7 +125,16 @@ struct Drive {
                                                          have_truth = true;
                                                      });
     }
-    ~Drive() { finish(); }
+    ~Drive() {
+        // The callbacks first: the spinner's threads may still run one (a message queued before
+        // the nodes stopped) while the members it writes are destroyed. One run under load
+        // crashed (SEGFAULT, not reproduced alone); this race is the one found. shutdown() waits
+        // for a callback in flight.
+        status_sub.shutdown();
+        cmd_sub.shutdown();
+        truth_sub.shutdown();
+        finish();
+    }
 
     // Waits (wall time) until `done` holds; false on timeout.
     bool wait_for(const std::function<bool()>& done, double timeout_s) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "makeway/common/angles.hpp"
 #include "makeway/common/stopwatch.hpp"
@@ -74,12 +75,20 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
         return out;
     }
     check_progress(in, out);
-    // Global plan when there is none, when it is due, or when something now blocks it.
-    if (plan_.empty() || in.t_s - last_plan_t_ >= params_.replan_period_s || plan_blocked(here)) {
+    // Global plan when there is none, when it is due, or when something now blocks it. A due
+    // plan replaces the one being followed only when clearly cheaper (plan_switch_margin).
+    const bool blocked = !plan_.empty() && plan_blocked(here);
+    if (plan_.empty() || in.t_s - last_plan_t_ >= params_.replan_period_s || blocked) {
         bool around = false;
-        const planning::PlanResult p = plan(here, in.t_s, around);
+        double kept_cost = std::numeric_limits<double>::infinity(), new_cost = 0.0;
+        const bool may_keep = params_.plan_switch_margin > 0.0 && !plan_.empty() && !blocked;
+        const planning::PlanResult p =
+            plan(here, in.t_s, around, may_keep ? &kept_cost : nullptr, &new_cost);
         if (p.status == planning::PlanStatus::kOk) {
-            plan_ = p.path_m;
+            const bool keep = may_keep && std::isfinite(kept_cost) &&
+                              kept_cost <= new_cost * (1.0 + params_.plan_switch_margin);
+            if (!keep) plan_ = p.path_m;
+            out.kept_plan = keep;
             planned_t_ = in.t_s;
             if (detour_pending_ && around) {
                 // The first plan around each of the leg's first clocked_detours stuck spots is
@@ -130,13 +139,25 @@ NavigatorStep Navigator::step(const NavigatorInput& in) {
     return out;
 }
 
-planning::PlanResult Navigator::plan(const Eigen::Vector2d& here, double t_s, bool& around) {
+planning::PlanResult Navigator::plan(const Eigen::Vector2d& here, double t_s, bool& around,
+                                     double* kept_cost, double* new_cost) {
     // The plan ends inside the leg's tolerance (a goal in a zone is reached from its cheap side),
     // short enough of the tolerance that the robot still crosses it on its pose estimate.
     const double tolerance =
         leg_ + 1 == legs_.size() ? params_.goal_tolerance_m : params_.waypoint_tolerance_m;
     const double radius = params_.plan_to_tolerance * tolerance;
     std::erase_if(avoided_, [&](const Avoided& a) { return a.until_s <= t_s; });
+    // The new plan and the rest of the one being followed (from the robot straight to its
+    // nearest point, then along it), costed alike on the map A* searched.
+    auto costs = [&](const Costmap& map, const planning::PlanResult& p) {
+        if (p.status != planning::PlanStatus::kOk || !kept_cost || plan_.empty()) return;
+        *new_cost = planning::path_cost(map, p.path_m, params_.astar);
+        std::vector<Eigen::Vector2d> rest{here};
+        rest.insert(rest.end(),
+                    plan_.begin() + static_cast<std::ptrdiff_t>(nearest_plan_index(here)),
+                    plan_.end());
+        *kept_cost = planning::path_cost(map, rest, params_.astar);
+    };
     if (!avoided_.empty()) {
         // Around the spots the robot got stuck at: their discs lethal on a copy of the costmap
         // (never under the robot itself, which must stay a valid start).
@@ -159,11 +180,15 @@ planning::PlanResult Navigator::plan(const Eigen::Vector2d& here, double t_s, bo
             planning::plan_astar(map, here, legs_[leg_], params_.astar, radius);
         if (p.status == planning::PlanStatus::kOk) {
             around = true;
+            costs(map, p);
             return p;
         }
         // No other way: through the stuck spot again.
     }
-    return planning::plan_astar(costmap_.master(), here, legs_[leg_], params_.astar, radius);
+    planning::PlanResult p =
+        planning::plan_astar(costmap_.master(), here, legs_[leg_], params_.astar, radius);
+    costs(costmap_.master(), p);
+    return p;
 }
 
 std::size_t Navigator::nearest_plan_index(const Eigen::Vector2d& robot) const {

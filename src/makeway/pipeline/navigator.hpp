@@ -1,8 +1,9 @@
 #pragma once
 // The navigation half of the online system: the layered costmap (static map of walls, LiDAR
 // obstacles, object affordance zones, inflation), A* on it, DWA to follow the plan, and the policy
-// around them (replan when due or when the plan is blocked; turn on the spot when DWA finds no
-// safe velocity; back up when stuck). One `step` per sweep, on the robot's own pose estimate.
+// around them (replan when due, keeping the current plan unless the new one is clearly cheaper,
+// or when the plan is blocked; turn on the spot when DWA finds no safe velocity; back up when
+// stuck). One `step` per sweep, on the robot's own pose estimate.
 #include <cstddef>
 #include <vector>
 
@@ -29,6 +30,7 @@ struct NavigatorInput {
 struct NavigatorStep {
     VelocityCommand command;
     bool replanned = false;
+    bool kept_plan = false;  ///< A* planned anew, but the plan being followed was not much dearer
     planning::PlanStatus plan_status = planning::PlanStatus::kOk;  ///< of the last A* call
     bool has_plan = false;                                         ///< a plan to follow this cycle
     bool dwa_found = true;    ///< false: every velocity collided, turning on the spot
@@ -69,7 +71,11 @@ class Navigator {
   private:
     bool plan_blocked(const Eigen::Vector2d& robot_m) const;
     /// A* to the leg's target; `around`: the plan goes around the stuck spots (not through them).
-    planning::PlanResult plan(const Eigen::Vector2d& from_m, double t_s, bool& around);
+    /// With `kept_cost` (and a plan being followed): it and `new_cost` get the objective of the
+    /// rest of that plan (from `from_m`) and of the new plan, on the map A* searched (infinite:
+    /// the rest enters a cell A* may not).
+    planning::PlanResult plan(const Eigen::Vector2d& from_m, double t_s, bool& around,
+                              double* kept_cost = nullptr, double* new_cost = nullptr);
     std::size_t nearest_plan_index(const Eigen::Vector2d& robot_m) const;  ///< 0 for an empty plan
     Eigen::Vector2d along_plan(const Eigen::Vector2d& robot_m, double ahead_m) const;
     VelocityCommand follow_plan(const NavigatorInput& input, NavigatorStep& step) const;

@@ -30,6 +30,9 @@ const ParamTable<NavigatorParams>& navigator_policy_table() {
         ParamTable<N> t;
         t.add("replan_period_s", &N::replan_period_s, above(0.0, 600.0),
               "the global plan is renewed at least this often")
+            .add("plan_switch_margin", &N::plan_switch_margin, closed(0.0, 10.0),
+                 "a renewed plan replaces the one being followed (still free) only when that one's "
+                 "rest costs more than (1 + this) times the new one (0: always the newest)")
             .add("blocked_lookahead_m", &N::blocked_lookahead_m, above(0.0, 100.0),
                  "a lethal cell on the plan this far ahead forces a replan ...")
             .add("blocked_ignore_m", &N::blocked_ignore_m, closed(0.0, 100.0),

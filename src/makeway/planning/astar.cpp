@@ -131,4 +131,27 @@ PlanResult plan_astar(const Costmap& map, const Eigen::Vector2d& start_m,
     return r;
 }
 
+double path_cost(const Costmap& map, const std::vector<Eigen::Vector2d>& path_m,
+                 const AStarParams& params) {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    const double res = map.resolution_m;
+    double total = 0.0;
+    for (std::size_t i = 1; i < path_m.size(); ++i) {
+        const Eigen::Vector2d a = path_m[i - 1], b = path_m[i];
+        const double length = (b - a).norm();
+        // A step to a neighbouring cell is one piece (A*'s own); a longer segment is cut into
+        // half-cell pieces. Each piece costs at the cell it ends in.
+        const int n = length <= 1.5 * res ? 1 : static_cast<int>(std::ceil(length / (0.5 * res)));
+        for (int k = 1; k <= n; ++k) {
+            const Eigen::Vector2i c = map.cell_of(a + (b - a) * (static_cast<double>(k) / n));
+            if (!map.inside(c.x(), c.y())) return kInf;
+            const std::uint8_t v = map.at(c.x(), c.y());
+            if (v == cost::kUnknown ? !params.allow_unknown : v >= params.blocked_cost) return kInf;
+            const double soft = v == cost::kUnknown ? cost::kMaxSoft : v;
+            total += length / n * (1.0 + params.cost_weight * soft / cost::kMaxSoft);
+        }
+    }
+    return total;
+}
+
 }  // namespace makeway::planning

@@ -36,4 +36,12 @@ PlanResult plan_astar(const Costmap& costmap, const Eigen::Vector2d& start_m,
                       const Eigen::Vector2d& goal_m, const AStarParams& params = {},
                       double goal_radius_m = 0.0);
 
+/// The objective plan_astar minimises, of any polyline: each step's length times
+/// (1 + cost_weight * cost / 252) of the cell it ends in; a segment longer than a step to a
+/// neighbouring cell is cut into half-cell pieces. A path as plan_astar returns it costs what A*
+/// summed. Infinite where a piece ends in a cell A* may not enter (blocked, unknown unless
+/// allowed, outside the map). Fewer than two points cost 0.
+double path_cost(const Costmap& costmap, const std::vector<Eigen::Vector2d>& path_m,
+                 const AStarParams& params = {});
+
 }  // namespace makeway::planning
