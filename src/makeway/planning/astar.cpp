@@ -9,6 +9,20 @@
 
 namespace makeway::planning {
 
+namespace {
+
+// A cell A* may enter, and what a metre through it weighs: plan_astar and path_cost share both, so
+// a path costed afterwards compares with A*'s own sum.
+bool enterable(std::uint8_t c, const AStarParams& params) {
+    return c == cost::kUnknown ? params.allow_unknown : c < params.blocked_cost;
+}
+double weight_per_m(std::uint8_t c, const AStarParams& params) {
+    const double soft = c == cost::kUnknown ? cost::kMaxSoft : c;
+    return 1.0 + params.cost_weight * soft / cost::kMaxSoft;
+}
+
+}  // namespace
+
 std::vector<std::string> AStarParams::validate() const {
     std::vector<std::string> out = astar_table().problems(*this);
     if (blocked_cost == 0) out.push_back("blocked_cost must be > 0");
@@ -40,11 +54,7 @@ PlanResult plan_astar(const Costmap& map, const Eigen::Vector2d& start_m,
         r.status = PlanStatus::kOutsideMap;
         return r;
     }
-    auto passable = [&](int x, int y) {
-        const std::uint8_t c = map.at(x, y);
-        if (c == cost::kUnknown) return params.allow_unknown;
-        return c < params.blocked_cost;
-    };
+    auto passable = [&](int x, int y) { return enterable(map.at(x, y), params); };
     if (!passable(s.x(), s.y())) {
         r.status = PlanStatus::kStartBlocked;
         return r;
@@ -103,10 +113,7 @@ PlanResult plan_astar(const Costmap& map, const Eigen::Vector2d& start_m,
                 const int nidx = ny * w + nx;
                 if (closed[nidx]) continue;
                 const double step = res * ((dx && dy) ? std::sqrt(2.0) : 1.0);
-                const std::uint8_t c = map.at(nx, ny);
-                const double soft = c == cost::kUnknown ? cost::kMaxSoft : c;
-                const double cand =
-                    best[idx] + step * (1.0 + params.cost_weight * soft / cost::kMaxSoft);
+                const double cand = best[idx] + step * weight_per_m(map.at(nx, ny), params);
                 if (cand < best[nidx]) {
                     best[nidx] = cand;
                     parent[nidx] = idx;
@@ -146,9 +153,8 @@ double path_cost(const Costmap& map, const std::vector<Eigen::Vector2d>& path_m,
             const Eigen::Vector2i c = map.cell_of(a + (b - a) * (static_cast<double>(k) / n));
             if (!map.inside(c.x(), c.y())) return kInf;
             const std::uint8_t v = map.at(c.x(), c.y());
-            if (v == cost::kUnknown ? !params.allow_unknown : v >= params.blocked_cost) return kInf;
-            const double soft = v == cost::kUnknown ? cost::kMaxSoft : v;
-            total += length / n * (1.0 + params.cost_weight * soft / cost::kMaxSoft);
+            if (!enterable(v, params)) return kInf;
+            total += length / n * weight_per_m(v, params);
         }
     }
     return total;
