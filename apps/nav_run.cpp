@@ -25,7 +25,10 @@ eval::NavRunResult run_nav_method(const sim::Scene& scene, const std::string& na
         eval::NoObjects none;
         return eval::run_navigation(scene, *method, none, params);
     }
-    eval::GroundTruthObjects truth(scene, sim::models_of(scene));
+    // The truth, with the parts of each object the body can hit (as ours has them from its CAD
+    // fits).
+    eval::GroundTruthObjects truth(scene, sim::models_of(scene),
+                                   params.system.navigator.monitor.body);
     return eval::run_navigation(scene, *method, truth, params);
 }
 

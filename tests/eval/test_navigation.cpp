@@ -1,7 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "makeway/common/angles.hpp"
 #include "makeway/eval/navigation.hpp"
+#include "makeway/eval/object_source.hpp"
+#include "makeway/sim/robot.hpp"
 
 namespace makeway::eval {
 namespace {
@@ -45,7 +49,7 @@ TEST(Navigation, EveryMethodReachesTheGoalWithoutCollisions) {
     for (const std::string& name : nav_method_names()) {
         const NavMethod method = *nav_method(name);
         NoObjects none;
-        GroundTruthObjects truth(scene, models);
+        GroundTruthObjects truth(scene, models, fast_params().system.navigator.monitor.body);
         ObjectSource& source = method.affordance ? static_cast<ObjectSource&>(truth) : none;
         const NavRunResult r = run_navigation(scene, method, source, fast_params());
         EXPECT_TRUE(r.success) << name << ": " << r.failure;
@@ -108,6 +112,57 @@ TEST(Navigation, GroundTruthSourceFollowsPushedChairs) {
     const auto at2 = ground_truth_objects(s, models, 2.0);  // fully pulled out
     EXPECT_NEAR(at2[1].box_world.centre_m.y() - at0[1].box_world.centre_m.y(), -0.4, 1e-9);
     EXPECT_EQ(at2[0].box_world.centre_m, at0[0].box_world.centre_m);
+}
+
+// gt-perc's objects carry what ours has from its CAD fits: each model's parts the body can hit,
+// where the object stands now. Brute force: every surface point of a model in the body's band,
+// placed at the object's pose, lies in one of the object's parts.
+TEST(Navigation, GroundTruthSourceCarriesThePartsTheBodyCanHit) {
+    sim::Scene s = corridor_with_table();
+    s.objects[1].style = "office_chair";  // its star base: below the LiDAR's lowest beam up close
+    s.pushers.push_back({2, 4.0, 0.4, 0.0});
+    const std::vector<sim::ObjectModel> models = sim::models_of(s);
+    const BodyHeights body;
+    GroundTruthObjects plain(s, models);
+    for (const ObjectEstimate& o : plain.objects({2.0})) EXPECT_TRUE(o.parts_world.empty());
+
+    GroundTruthObjects truth(s, models, body);
+    std::vector<Polygon2> chair_at0;
+    for (const double t : {0.0, 2.0}) {
+        const std::vector<ObjectEstimate> objects = truth.objects({t});
+        const std::vector<sim::ObjectState> states = sim::object_states_at(s, models, t);
+        ASSERT_EQ(objects.size(), 2u);
+        EXPECT_EQ(objects[0].parts_world.size(), 4u) << "the table's legs (its top is above)";
+        ASSERT_FALSE(objects[1].parts_world.empty());
+        for (std::size_t i = 0; i < objects.size(); ++i) {
+            int outside = 0, n = 0;
+            for (const Eigen::Vector2d& q :
+                 sim::low_surface_points(models[i].mesh_object, body, 0.02)) {
+                const Eigen::Vector2d p =
+                    (states[i].T_world_object * Eigen::Vector3d(q.x(), q.y(), 0.0)).head<2>();
+                double nearest = std::numeric_limits<double>::infinity();
+                for (const Polygon2& part : objects[i].parts_world)
+                    nearest = std::min(nearest, convex_distance(part, p));
+                outside += nearest > 1e-6;
+                ++n;
+            }
+            EXPECT_GT(n, 20) << i;
+            EXPECT_EQ(outside, 0) << "object " << i << " at t = " << t;
+        }
+        if (t == 0.0) {
+            chair_at0 = objects[1].parts_world;
+            continue;
+        }
+        // Pulled 0.4 m straight back (-y): its parts with it, not where it stood.
+        ASSERT_EQ(objects[1].parts_world.size(), chair_at0.size());
+        for (std::size_t k = 0; k < chair_at0.size(); ++k) {
+            ASSERT_EQ(objects[1].parts_world[k].size(), chair_at0[k].size());
+            for (std::size_t v = 0; v < chair_at0[k].size(); ++v) {
+                EXPECT_NEAR(objects[1].parts_world[k][v].x(), chair_at0[k][v].x(), 1e-9);
+                EXPECT_NEAR(objects[1].parts_world[k][v].y(), chair_at0[k][v].y() - 0.4, 1e-9);
+            }
+        }
+    }
 }
 
 }  // namespace
