@@ -27,10 +27,10 @@ std::vector<ObjectEstimate> ground_truth_objects(const sim::Scene& scene,
 }
 
 std::vector<ObjectEstimate> GroundTruthObjects::objects(const ObjectSourceInput& input) {
-    std::vector<ObjectEstimate> out = ground_truth_objects(scene_, models_, input.t_s);
-    if (parts_object_.empty()) return out;
+    // The states once: their poses place the parts, and they are the estimates.
     const std::vector<sim::ObjectState> states = sim::object_states_at(scene_, models_, input.t_s);
-    for (std::size_t i = 0; i < out.size() && i < states.size(); ++i) {
+    std::vector<ObjectEstimate> out = sim::object_estimates(states);
+    for (std::size_t i = 0; i < out.size() && i < parts_object_.size(); ++i) {
         for (const Polygon2& part : parts_object_[i]) {
             Polygon2 world;
             world.reserve(part.size());

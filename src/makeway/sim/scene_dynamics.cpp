@@ -95,11 +95,10 @@ TriangleMesh make_person_mesh() {
     return m;
 }
 
-std::vector<ObjectEstimate> object_estimates_at(const Scene& scene,
-                                                const std::vector<ObjectModel>& models,
-                                                double t_s) {
+std::vector<ObjectEstimate> object_estimates(const std::vector<ObjectState>& states) {
     std::vector<ObjectEstimate> out;
-    for (const ObjectState& s : object_states_at(scene, models, t_s)) {
+    out.reserve(states.size());
+    for (const ObjectState& s : states) {
         ObjectEstimate o;
         o.id = s.id;
         o.cls = s.cls;
@@ -108,6 +107,12 @@ std::vector<ObjectEstimate> object_estimates_at(const Scene& scene,
         out.push_back(o);
     }
     return out;
+}
+
+std::vector<ObjectEstimate> object_estimates_at(const Scene& scene,
+                                                const std::vector<ObjectModel>& models,
+                                                double t_s) {
+    return object_estimates(object_states_at(scene, models, t_s));
 }
 
 }  // namespace makeway::sim

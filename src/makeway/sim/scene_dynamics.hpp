@@ -39,8 +39,11 @@ Pose2 object_pose_at(const Scene& scene, std::size_t index, double t_s,
 std::vector<ObjectState> object_states_at(const Scene& scene,
                                           const std::vector<ObjectModel>& models, double t_s);
 
-/// object_states_at() as the object map's type (id, class, box, velocity; existence 1): the truth
-/// the benchmark's risk metrics and the truth-fed baselines use.
+/// States as the object map's type (id, class, box, velocity; existence 1), in order.
+std::vector<ObjectEstimate> object_estimates(const std::vector<ObjectState>& states);
+
+/// object_states_at() as the object map's type (object_estimates): the truth the benchmark's risk
+/// metrics and the truth-fed baselines use.
 std::vector<ObjectEstimate> object_estimates_at(const Scene& scene,
                                                 const std::vector<ObjectModel>& models, double t_s);
 
