@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -58,6 +59,7 @@ struct BenchNavOptions {
         "random";  ///< random (densities cycle) or study_space (the paper's room, seeded)
     std::string usage = "default";     ///< how the scenes' people move furniture (their profile)
     std::string zones;                 ///< learned zones for the methods' costmaps
+    int zones_sessions = 0;            ///< > 0: zones learned from this many sessions of each scene
     std::string risk_zones = "paper";  ///< paper, or truth-profile: each scene's profile as zones
     std::string shape_model;  ///< `ours` verifies against these learned shapes instead of the
                               ///< scenes' CAD models
@@ -217,6 +219,14 @@ int run_bench_nav(const BenchNavOptions& options) {
         io::write_scene(out / "scenes" / (scenes.back().name + ".yaml"), scenes.back());
     }
     const auto zones = io::load_zones(options.zones);
+    // --zones-sessions: each building's zones learned from its own earlier sessions
+    // (eval/zone_bench.hpp), as a robot that has driven there before would have them.
+    std::vector<std::shared_ptr<const costmap::LearnedZones>> own_zones(scenes.size());
+    if (options.zones_sessions > 0) {
+        for (std::size_t s = 0; s < scenes.size(); ++s)
+            own_zones[s] = std::make_shared<const costmap::LearnedZones>(
+                eval::building_zones(scenes[s], options.zones_sessions));
+    }
     // truth-profile: where each scene's furniture goes by its usage profile (eval/zone_bench.hpp).
     std::vector<std::shared_ptr<const costmap::LearnedZones>> truth_zones(scenes.size());
     if (options.risk_zones == "truth-profile") {
@@ -235,7 +245,7 @@ int run_bench_nav(const BenchNavOptions& options) {
         eval::NavParams params = nav_params(cfg);
         params.seed = options.seed + static_cast<std::uint64_t>(indices[s]);
         params.time_limit_s = options.time_limit_s;
-        use_zones(params, zones);
+        use_zones(params, own_zones[s] ? own_zones[s] : zones);
         if (truth_zones[s]) {
             costmap::AffordanceParams risk = cfg.affordance;
             risk.learned = truth_zones[s];
@@ -283,6 +293,7 @@ int run_bench_nav(const BenchNavOptions& options) {
     // Zones and usage only when asked for: the paper's benchmark keeps its header.
     if (options.usage != "default") header["usage"] = options.usage;
     if (!options.zones.empty()) header["zones"] = io::read_file(options.zones);
+    if (options.zones_sessions > 0) header["zones_sessions"] = options.zones_sessions;
     if (options.risk_zones != "paper") header["risk_zones"] = options.risk_zones;
     if (partial) {
         io::Json p = {{"kind", kPartialKind},
@@ -457,10 +468,23 @@ void declare_bench_nav(CommandSpec& c, BenchNavOptions& nav_o) {
              "README): default, pulled_back, sideways, tables_nudged")
         .choices(sim::usage_profile_names())
         .show_default();
-    c.option("--zones", nav_o.zones,
-             "Learned zones (makeway learn-zones, bench zones) for every method's affordance "
-             "layer instead of the hand-drawn ones")
-        .existing_file();
+    const OptionSpec& zones = c.option("--zones", nav_o.zones,
+                                       "Learned zones (makeway learn-zones, bench zones) for every "
+                                       "method's affordance layer instead of the hand-drawn ones")
+                                  .existing_file();
+    c.option("--zones-sessions", nav_o.zones_sessions,
+             "K > 0: every method plans with zones learned from K sessions of its own building "
+             "(the sessions' boxes, identities hidden; never the sessions truth-profile scores "
+             "on) instead of the hand-drawn ones; 0: off")
+        .range(0, 100)
+        .check(
+            [](const std::string& v) {
+                return std::atoi(v.c_str()) == 1 ? "one session shows no motion: 0 or 2 and more"
+                                                 : "";
+            },
+            "K")
+        .excludes(zones)
+        .show_default();
     c.option("--risk-zones", nav_o.risk_zones,
              "What risk time is scored against: paper (the hand-drawn zones, Table II) or "
              "truth-profile (where each scene's usage profile moves its furniture)")

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "../io/io_test_util.hpp"
 #include "cli_test_util.hpp"
@@ -151,6 +153,33 @@ TEST(Cli, BenchZonesWritesItsTableAndTheZonesItLearned) {
     EXPECT_EQ(j["usage"], "sideways");
     EXPECT_GT(j["chair"]["objects"].get<int>(), 0);
     EXPECT_TRUE(io::read_zones(dir / "bz" / "zones.yaml").chair.has_value());
+}
+
+TEST(Cli, BenchNavPlansWithEachBuildingsOwnZones) {
+    // --zones-sessions: each scene's zones learned from sessions of that building; risk scored
+    // on its profile. Said in the results; with --zones, or from one session, refused.
+    const auto dir = testing_util::fresh_dir("bench_nav_own_zones");
+    std::ofstream(dir / "fast.yaml") << "lidar:\n  azimuth_step_deg: 1.0\n";
+    const std::string common =
+        "bench nav --scenes 1 --methods gt-perc --time-limit 12 --threads 1 --usage sideways "
+        "--risk-zones truth-profile --config " +
+        (dir / "fast.yaml").string();
+    const CliRun r =
+        run_makeway(common + " --zones-sessions 3 --out " + (dir / "own").string(), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const io::Json j = io::read_json(dir / "own" / "results.json");
+    EXPECT_EQ(j["zones_sessions"], 3);
+    EXPECT_EQ(j["runs"].size(), 1u);
+    std::ofstream(dir / "zones.yaml") << "x";
+    const std::vector<std::string> refused = {
+        " --zones-sessions 1", " --zones-sessions 3 --zones " + (dir / "zones.yaml").string()};
+    for (const std::string& bad : refused) {
+        const CliRun e = run_makeway(common + bad + " --out " + (dir / "bad").string(), dir);
+        EXPECT_EQ(e.exit_code, 2) << bad;
+        EXPECT_EQ(lines(e.err), 1u) << e.err;
+        EXPECT_NE(e.err.find("--zones-sessions"), std::string::npos) << e.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "bad")) << bad;
+    }
 }
 
 }  // namespace

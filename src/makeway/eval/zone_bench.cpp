@@ -7,6 +7,8 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <stdexcept>
+#include <string>
 
 #include "makeway/common/angles.hpp"
 #include "makeway/eval/label_bench.hpp"
@@ -156,6 +158,20 @@ costmap::LearnedZones profile_zones(const sim::Scene& scene, int sessions,
     if (!motions[0].empty()) z.chair = zones::bin_motions(motions[0], ObjectClass::kChair, binning);
     if (!motions[1].empty()) z.table = zones::bin_motions(motions[1], ObjectClass::kTable, binning);
     return z;
+}
+
+costmap::LearnedZones building_zones(const sim::Scene& scene, int sessions,
+                                     const zones::ZoneLearnParams& learn) {
+    if (sessions < 2)
+        throw std::invalid_argument("zones of a building: at least 2 sessions to learn from, got " +
+                                    std::to_string(sessions));
+    const std::vector<sim::ObjectModel> models = sim::models_of(scene);
+    std::vector<zones::SessionObject> train;
+    for (int s = kProfileSessions; s < kProfileSessions + sessions; ++s) {
+        const auto more = session_objects(objects_of(sim::make_session(scene, s), models), 0, s);
+        train.insert(train.end(), more.begin(), more.end());
+    }
+    return zones::learn_zones(train, learn).zones;
 }
 
 ZoneBenchResult run_zone_bench(const ZoneBenchParams& p,

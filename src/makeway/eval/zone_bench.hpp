@@ -76,10 +76,22 @@ struct ZoneBenchResult {
 ZoneBenchResult run_zone_bench(const ZoneBenchParams& params,
                                const std::function<void(std::size_t, std::size_t)>& progress = {});
 
+/// Sessions 0..kProfileSessions-1 of a scene are the truth profile_zones draws.
+constexpr int kProfileSessions = 24;
+
 /// The scene's own usage profile as zones (no prior): the motions between every pair of `sessions`
 /// sessions drawn by sim::make_session, identities known. The truth `bench nav --risk-zones
 /// truth-profile` scores against.
-costmap::LearnedZones profile_zones(const sim::Scene& scene, int sessions = 24,
+costmap::LearnedZones profile_zones(const sim::Scene& scene, int sessions = kProfileSessions,
                                     const zones::ZoneLearnParams& binning = {});
+
+/// What a robot learns of its own building before it drives there (`bench nav --zones-sessions`):
+/// zones learned as `learn-zones` learns them from the boxes of `sessions` sessions of the scene
+/// with their identities hidden (matched by the learner, as bench zones' truth source). They are
+/// sessions kProfileSessions, kProfileSessions + 1, ...: never one that profile_zones' truth
+/// holds, so the prediction is not scored on its own data. Throws std::invalid_argument for
+/// sessions < 2 (one session has no motion).
+costmap::LearnedZones building_zones(const sim::Scene& scene, int sessions,
+                                     const zones::ZoneLearnParams& learn = {});
 
 }  // namespace makeway::eval
