@@ -36,8 +36,8 @@ TEST(ZoneBench, AProfilesOwnZoneIsWhereItsChairsGo) {
 
 TEST(ZoneBench, ABuildingsOwnSessionsTeachItsZone) {
     // Chairs swung out to one side and slid back: what the robot learns from sessions of this
-    // building (identities hidden) reaches to both sides (mirrored) and behind, and not 0.55 m in
-    // front where the paper's ellipse reaches; the scored truth says the same.
+    // building (identities hidden) reaches to both sides (mirrored) and behind, and not 0.55 m
+    // beyond its front edge, where the paper's ellipse reaches; the scored truth says the same.
     const sim::Scene scene =
         sim::generate_scene({.seed = 2, .usage = sim::UsageProfile::kSideways});
     const costmap::LearnedZones own = building_zones(scene, 6);
