@@ -32,4 +32,11 @@ eval::NavRunResult run_nav_method(const sim::Scene& scene, const std::string& na
     return eval::run_navigation(scene, *method, truth, params);
 }
 
+void plan_with_zones(eval::NavParams& params,
+                     const std::shared_ptr<const costmap::LearnedZones>& zones) {
+    if (!zones) return;
+    params.risk_zones = params.system.navigator.affordance;
+    params.system.navigator.affordance.learned = zones;
+}
+
 }  // namespace makeway::apps
