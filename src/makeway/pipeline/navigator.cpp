@@ -226,11 +226,33 @@ VelocityCommand Navigator::follow_plan(const NavigatorInput& in, NavigatorStep& 
         planning::dwa_step(costmap_.master(), {in.pose, in.v_mps, in.w_radps}, plan_, params_.dwa);
     out.dwa_found = r.found;
     if (r.found) return r.command;
-    // Every velocity collides: turn toward the path on the spot.
+    // Every velocity collides: turn toward the path on the spot where the turn is clear, else
+    // stand (a standstill: the recoveries take over).
     const auto k = static_cast<std::size_t>(params_.turn_target_index);
     const Eigen::Vector2d target = plan_.size() > k ? plan_[k] : plan_.back();
     const double heading = std::atan2(target.y() - in.pose.y_m, target.x() - in.pose.x_m);
-    return {0.0, std::copysign(params_.turn_rate_radps, angle_diff(heading, in.pose.yaw_rad))};
+    const double toward = std::copysign(1.0, angle_diff(heading, in.pose.yaw_rad));
+    if (!turn_clear(in.pose, toward)) return {};
+    return {0.0, toward * params_.turn_rate_radps};
+}
+
+bool Navigator::turn_clear(const Pose2& pose, double sign) const {
+    // The turn is checked against the costmap's lethal cells, which remember what the monitor's
+    // latest sweep may no longer show: a chair's base inside the sensor's blind ring, where a
+    // turning corner sweeps at the turn rate times its reach (0.33 m/s at 1 rad/s). The bare
+    // footprint (no padding: DWA, with it, found every velocity colliding), and only cells the
+    // turn would bring it onto: one it already stands on does not hold it.
+    if (params_.turn_clear_rad <= 0.0) return true;
+    planning::DwaParams bare = params_.dwa;
+    bare.footprint_padding_m = 0.0;
+    if (planning::footprint_collides(costmap_.master(), pose, bare)) return true;
+    constexpr double kStep_rad = 0.05;
+    for (double a = kStep_rad; a < params_.turn_clear_rad + kStep_rad; a += kStep_rad) {
+        Pose2 q = pose;
+        q.yaw_rad = wrap_angle(pose.yaw_rad + sign * std::min(a, params_.turn_clear_rad));
+        if (planning::footprint_collides(costmap_.master(), q, bare)) return false;
+    }
+    return true;
 }
 
 double Navigator::remaining_m(const Eigen::Vector2d& robot) const {

@@ -79,6 +79,9 @@ class Navigator {
     std::size_t nearest_plan_index(const Eigen::Vector2d& robot_m) const;  ///< 0 for an empty plan
     Eigen::Vector2d along_plan(const Eigen::Vector2d& robot_m, double ahead_m) const;
     VelocityCommand follow_plan(const NavigatorInput& input, NavigatorStep& step) const;
+    /// Whether turning on the spot by turn_clear_rad toward `sign` (+1: left) keeps the bare
+    /// footprint off lethal cells it is not on now.
+    bool turn_clear(const Pose2& pose, double sign) const;
     void check_progress(const NavigatorInput& input, NavigatorStep& step);
     void start_recovery(const NavigatorInput& input,
                         NavigatorStep& step);  ///< back up, then replan (around the spot ahead)

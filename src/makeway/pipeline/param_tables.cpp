@@ -40,6 +40,9 @@ const ParamTable<NavigatorParams>& navigator_policy_table() {
             .add("turn_target_index", &N::turn_target_index, closed(1, 1000),
                  "no safe velocity: turn on the spot toward this plan point")
             .add("turn_rate_radps", &N::turn_rate_radps, above(0.0, 10.0), "")
+            .add("turn_clear_rad", &N::turn_clear_rad, closed(0.0, 3.2),
+                 "... only where the bare footprint turned this far stays off lethal cells (0: "
+                 "unchecked)")
             .add("stuck_progress_m", &N::stuck_progress_m, above(0.0, 10.0),
                  "the way left along the plan shrinking by less than this ...")
             .add("stuck_timeout_s", &N::stuck_timeout_s, above(0.0, 600.0),
