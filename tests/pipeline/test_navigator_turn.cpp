@@ -1,7 +1,7 @@
 // The navigator's last resort: when DWA finds every velocity colliding it turns on the spot toward
-// its plan, and that turn is checked against the costmap's lethal cells, which remember what the
-// monitor's latest sweep may no longer show (a chair's base inside the sensor's blind ring, which
-// a turning corner sweeps into at the turn rate times its reach).
+// its plan; with turn_clear_rad that turn is checked against the costmap's lethal cells, which keep
+// what the obstacle layer marked from farther away (a chair's leg) where the monitor's latest
+// sweep, inside the sensor's blind ring, no longer shows it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -34,8 +34,8 @@ NavigatorStep first_step(const Costmap& map, const NavigatorParams& params) {
 // A leg 2.5 cm off the robot's left side near its back (outside the bare footprint, inside the
 // padded one, so DWA finds nothing), the plan ahead leading a little right of it: the turn toward
 // the plan (right) sweeps the rear-left corner over the leg within 0.2 rad, so the robot stands
-// (a standstill: the recoveries take over). A leg beside the front instead, which the front-left
-// corner turns away from, lets it turn.
+// (without progress, the stuck recovery backs it up later). A leg beside the front instead,
+// which the front-left corner turns away from, lets it turn.
 TEST(NavigatorTurn, TurnsOnTheSpotOnlyWhereTheCostmapShowsTheSweepFree) {
     NavigatorParams params;
     params.affordance_layer = false;

@@ -227,7 +227,7 @@ VelocityCommand Navigator::follow_plan(const NavigatorInput& in, NavigatorStep& 
     out.dwa_found = r.found;
     if (r.found) return r.command;
     // Every velocity collides: turn toward the path on the spot where the turn is clear, else
-    // stand (a standstill: the recoveries take over).
+    // stand (without progress for stuck_timeout_s, the stuck recovery backs the robot up).
     const auto k = static_cast<std::size_t>(params_.turn_target_index);
     const Eigen::Vector2d target = plan_.size() > k ? plan_[k] : plan_.back();
     const double heading = std::atan2(target.y() - in.pose.y_m, target.x() - in.pose.x_m);
@@ -237,11 +237,12 @@ VelocityCommand Navigator::follow_plan(const NavigatorInput& in, NavigatorStep& 
 }
 
 bool Navigator::turn_clear(const Pose2& pose, double sign) const {
-    // The turn is checked against the costmap's lethal cells, which remember what the monitor's
-    // latest sweep may no longer show: a chair's base inside the sensor's blind ring, where a
-    // turning corner sweeps at the turn rate times its reach (0.33 m/s at 1 rad/s). The bare
-    // footprint (no padding: DWA, with it, found every velocity colliding), and only cells the
-    // turn would bring it onto: one it already stands on does not hold it.
+    // The turn is checked against the costmap's lethal cells, which keep what the obstacle layer
+    // marked from farther away (a chair's leg) where the monitor's latest sweep, inside the
+    // sensor's blind ring, no longer shows it; a turning corner sweeps at the turn rate times its
+    // reach (0.33 m/s at 1 rad/s). The bare footprint (no padding: DWA, with it, found every
+    // velocity colliding), and only cells the turn would bring it onto: one it already stands on
+    // does not hold it.
     if (params_.turn_clear_rad <= 0.0) return true;
     planning::DwaParams bare = params_.dwa;
     bare.footprint_padding_m = 0.0;

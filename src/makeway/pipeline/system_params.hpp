@@ -60,7 +60,7 @@ struct NavigatorParams {
         3;  ///< DWA finds nothing: turn on the spot toward this plan point (cells from its start)
     double turn_rate_radps = 1.0;
     /// The turn on the spot only where the bare footprint, turned this far, stays off the
-    /// costmap's lethal cells (else none: the recoveries take over); 0: unchecked. Off by
+    /// costmap's lethal cells (else none: the stuck recovery); 0: unchecked. Off by
     /// default: 0.5 on 200 scenes moved robot-caused contacts between methods rather than
     /// removing them (README, Table II's twentieth pass).
     double turn_clear_rad = 0.0;
