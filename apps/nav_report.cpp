@@ -138,6 +138,9 @@ io::Json run_to_json(const eval::NavRunResult& r, bool with_trajectory) {
         for (const VelocityCommand& c : r.commands)
             commands.push_back({milli(c.v_mps), milli(c.w_radps)});
         j["command_vw"] = commands;
+        io::Json risk = io::Json::array();  // time inside a true affordance zone per sweep period
+        for (const double r_s : r.cycle_risk_s) risk.push_back(milli(r_s));
+        j["risk_s"] = risk;
     }
     return j;
 }

@@ -139,6 +139,34 @@ TEST(Affordance, TableIsPaddedOnItsSittingSidesOnly) {
         EXPECT_LE(zone_cost(table, p, {d, 0.0}), cost::kMaxSoft);
 }
 
+// The margin (margin_m > 0; 0.15 m by default) lies outside the zone: the risk zone is where it
+// was, the cost there falls linearly from margin_cost at the boundary to 1, and nothing past
+// margin_m.
+TEST(Affordance, MarginFallsOffOutsideTheZoneOnly) {
+    AffordanceParams p;
+    p.margin_m = 0.15;
+    p.margin_cost = 20;
+    AffordanceParams none;
+    none.margin_m = 0.0;
+    // Long axis along x: the zone is x in [-0.95, 0.95] (ends), y in [-1.15, 1.15] (sides).
+    const ObjectEstimate table = object(ObjectClass::kTable, {0, 0}, 1.6, 0.8, 0.0);
+    EXPECT_EQ(zone_cost(table, p, {0.0, 1.15 + 0.05}), 13);         // 20 (1 - 0.05 / 0.15) = 13.3
+    EXPECT_EQ(zone_cost(table, p, {0.95 + 0.06, 1.15 + 0.08}), 7);  // 0.1 m from the corner
+    EXPECT_EQ(zone_cost(table, p, {0.95 + 0.14, 0.0}), 1);
+    EXPECT_EQ(zone_cost(table, p, {0.95 + 0.16, 0.0}), cost::kFree);
+    EXPECT_EQ(zone_cost(table, none, {0.0, 1.15 + 0.05}), cost::kFree);
+    EXPECT_FALSE(in_affordance_zone(table, p, {0.0, 1.15 + 0.05}));
+    for (double y = 0.0; y <= 1.15; y += 0.05)  // inside: the zone's own costs
+        EXPECT_EQ(zone_cost(table, p, {0.3, y}), zone_cost(table, none, {0.3, y}));
+    // A chair's ellipse (semi-axes 0.85 along its axis, 0.4 across): distances along the axes.
+    const ObjectEstimate chair = object(ObjectClass::kChair, {2, 2}, 0.5, 0.5, 0.7);
+    const Eigen::Vector2d fwd(std::cos(0.7), std::sin(0.7)), side(-fwd.y(), fwd.x());
+    EXPECT_EQ(zone_cost(chair, p, Eigen::Vector2d(2, 2) + 0.925 * fwd), 10);  // 0.075 m out
+    EXPECT_EQ(zone_cost(chair, p, Eigen::Vector2d(2, 2) - 0.43 * side), 16);  // 0.03 m out
+    EXPECT_FALSE(in_affordance_zone(chair, p, Eigen::Vector2d(2, 2) + 0.925 * fwd));
+    EXPECT_EQ(zone_cost(chair, p, Eigen::Vector2d(2, 2) + 1.01 * fwd), cost::kFree);
+}
+
 TEST(AffordanceLayer, MovedObjectLeavesNoStaleCost) {
     LayeredCostmap lc(grid());
     lc.add_layer(std::make_unique<AffordanceLayer>(AffordanceParams{}));
@@ -160,40 +188,45 @@ TEST(AffordanceLayer, MovedObjectLeavesNoStaleCost) {
 // The layer keeps each zone's costs from when it was first written and copies them from then on
 // (affordance_layer.hpp). After every update of a drifting scene (a table standing, chairs that
 // appear, move, come back where they were, vanish and stand inside each other's zones) the master
-// equals every zone computed again, cell by cell.
+// equals every zone computed again, cell by cell; with a margin too (its cells are the zone's:
+// written, kept and cleared with it).
 TEST(AffordanceLayer, ZonesKeptBetweenUpdatesEqualZonesComputedAgain) {
-    const AffordanceParams p;
-    LayeredCostmap lc(grid());
-    lc.add_layer(std::make_unique<AffordanceLayer>(p));
-    Rng rng(7);
-    const ObjectEstimate table = object(ObjectClass::kTable, {2.5, 2.5}, 1.2, 0.7, 0.4);
-    std::vector<ObjectEstimate> chairs = {object(ObjectClass::kChair, {1.6, 2.0}, 0.5, 0.5, 0.2),
-                                          object(ObjectClass::kChair, {3.3, 3.1}, 0.45, 0.5, 2.0),
-                                          object(ObjectClass::kChair, {2.4, 1.5}, 0.5, 0.45, -1.2)};
-    const std::vector<ObjectEstimate> first = chairs;
-    for (int step = 0; step < 40; ++step) {
-        LayerInput in;
-        in.objects = {table};
-        for (std::size_t i = 0; i < chairs.size(); ++i) {
-            ObjectEstimate& c = chairs[i];
-            const double u = uniform(rng, 0.0, 1.0);
-            if (u < 0.3) {  // pulled a little
-                c.box_world.centre_m.x() += uniform(rng, -0.2, 0.2);
-                c.box_world.centre_m.y() += uniform(rng, -0.2, 0.2);
-                c.box_world.yaw_rad += uniform(rng, -0.5, 0.5);
-            } else if (u < 0.4) {
-                c = first[i];  // back where it stood
+    for (const double margin_m : {0.0, 0.2}) {
+        AffordanceParams p;
+        p.margin_m = margin_m;
+        LayeredCostmap lc(grid());
+        lc.add_layer(std::make_unique<AffordanceLayer>(p));
+        Rng rng(7);
+        const ObjectEstimate table = object(ObjectClass::kTable, {2.5, 2.5}, 1.2, 0.7, 0.4);
+        std::vector<ObjectEstimate> chairs = {
+            object(ObjectClass::kChair, {1.6, 2.0}, 0.5, 0.5, 0.2),
+            object(ObjectClass::kChair, {3.3, 3.1}, 0.45, 0.5, 2.0),
+            object(ObjectClass::kChair, {2.4, 1.5}, 0.5, 0.45, -1.2)};
+        const std::vector<ObjectEstimate> first = chairs;
+        for (int step = 0; step < 40; ++step) {
+            LayerInput in;
+            in.objects = {table};
+            for (std::size_t i = 0; i < chairs.size(); ++i) {
+                ObjectEstimate& c = chairs[i];
+                const double u = uniform(rng, 0.0, 1.0);
+                if (u < 0.3) {  // pulled a little
+                    c.box_world.centre_m.x() += uniform(rng, -0.2, 0.2);
+                    c.box_world.centre_m.y() += uniform(rng, -0.2, 0.2);
+                    c.box_world.yaw_rad += uniform(rng, -0.5, 0.5);
+                } else if (u < 0.4) {
+                    c = first[i];  // back where it stood
+                }
+                if (uniform(rng, 0.0, 1.0) < 0.85) in.objects.push_back(c);  // sometimes unseen
             }
-            if (uniform(rng, 0.0, 1.0) < 0.85) in.objects.push_back(c);  // sometimes unseen
-        }
-        lc.update(in);
-        for (int y = 0; y < 100; ++y) {
-            for (int x = 0; x < 100; ++x) {
-                std::uint8_t expected = cost::kFree;
-                for (const ObjectEstimate& o : in.objects)
-                    expected = std::max(expected, zone_cost(o, p, lc.master().centre_of(x, y)));
-                ASSERT_EQ(lc.master().at(x, y), expected)
-                    << "step " << step << " cell " << x << " " << y;
+            lc.update(in);
+            for (int y = 0; y < 100; ++y) {
+                for (int x = 0; x < 100; ++x) {
+                    std::uint8_t expected = cost::kFree;
+                    for (const ObjectEstimate& o : in.objects)
+                        expected = std::max(expected, zone_cost(o, p, lc.master().centre_of(x, y)));
+                    ASSERT_EQ(lc.master().at(x, y), expected)
+                        << "margin " << margin_m << " step " << step << " cell " << x << " " << y;
+                }
             }
         }
     }

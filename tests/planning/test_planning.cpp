@@ -4,7 +4,9 @@
 
 #include "makeway/common/angles.hpp"
 #include "makeway/common/random.hpp"
+#include "makeway/costmap/affordance_layer.hpp"
 #include "makeway/costmap/inflation_layer.hpp"
+#include "makeway/costmap/layered_costmap.hpp"
 #include "makeway/planning/astar.hpp"
 #include "makeway/planning/dwa.hpp"
 
@@ -193,6 +195,55 @@ TEST(Dwa, KeepsToThePlansCostEnvelopeAroundAZoneCorner) {
     const DwaResult cut = dwa_step(m, st, path, off);
     ASSERT_TRUE(cut.found);
     EXPECT_TRUE(enters_zone(cut));
+}
+
+// A table's zone (x in [3.05, 4.95], y up to 2.15) beside the straight way from (0.5, 2.17) to
+// (7.5, 2.17). Without a margin A* rides the zone's boundary on its cost-0 cells, 2.5 cm off; with
+// the margin (0.15 m) it keeps 0.15 m, and A* and DWA in a closed loop (a perfect unicycle) take
+// the robot past without its centre entering the zone, at cruising speed.
+TEST(AStar, ZoneMarginKeepsThePlanAndTheRobotOffTheZone) {
+    ObjectEstimate table;
+    table.cls = ObjectClass::kTable;
+    table.box_world = {{4.0, 1.0, 0.4}, {1.6, 0.8, 0.8}, 0.0};
+    const Eigen::Vector2d start(0.5, 2.17), goal(7.5, 2.17);
+    for (const double margin_m : {0.0, 0.15}) {
+        costmap::AffordanceParams zones;
+        zones.margin_m = margin_m;
+        costmap::LayeredCostmap lc(Costmap({0, 0}, 0.05, 160, 80));
+        lc.add_layer(std::make_unique<costmap::AffordanceLayer>(zones));
+        costmap::LayerInput in;
+        in.objects = {table};
+        lc.update(in);
+        const Costmap& m = lc.master();
+        const PlanResult plan = plan_astar(m, start, goal);
+        ASSERT_EQ(plan.status, PlanStatus::kOk);
+        double closest = 1e9;  // the plan's least distance from the zone along its top side
+        for (const Eigen::Vector2d& q : plan.path_m) {
+            if (q.x() > 3.05 && q.x() < 4.95) closest = std::min(closest, q.y() - 2.15);
+        }
+        if (margin_m == 0.0) {
+            EXPECT_NEAR(closest, 0.025, 1e-6);
+            continue;
+        }
+        EXPECT_GE(closest, 0.15 - 1e-6);
+        DwaState st;
+        st.pose = {start.x(), start.y(), 0.0};
+        int inside = 0, cycles = 0;
+        for (; cycles < 200 && (Eigen::Vector2d(st.pose.x_m, st.pose.y_m) - goal).norm() > 0.3;
+             ++cycles) {
+            const DwaResult r = dwa_step(m, st, plan.path_m, DwaParams{});
+            ASSERT_TRUE(r.found);
+            st.v_mps = r.command.v_mps, st.w_radps = r.command.w_radps;
+            for (int k = 0; k < 10; ++k) {  // 0.1 s in steps of 10 ms
+                st.pose.x_m += st.v_mps * std::cos(st.pose.yaw_rad) * 0.01;
+                st.pose.y_m += st.v_mps * std::sin(st.pose.yaw_rad) * 0.01;
+                st.pose.yaw_rad += st.w_radps * 0.01;
+            }
+            inside += costmap::in_affordance_zone(table, zones, {st.pose.x_m, st.pose.y_m});
+        }
+        EXPECT_EQ(inside, 0);
+        EXPECT_LT(cycles, 120);  // 6.7 m at up to 0.75 m/s: arrived within 12 s
+    }
 }
 
 // The true footprint (a 0.508 x 0.430 m rectangle) against the circles a round-robot check uses.

@@ -46,6 +46,22 @@ double hand_drawn_coordinate(const ObjectEstimate& o, const AffordanceParams& p,
     return std::max(ux, uy);
 }
 
+// Distance [m] from q (object frame, outside the zone) to the hand-drawn zone's boundary: exact for
+// a table's rectangle, to first order for a chair's ellipse ((e - 1) / |grad e|, within a few per
+// cent over a margin of a few decimetres).
+double hand_drawn_distance_outside(const ObjectEstimate& o, const AffordanceParams& p,
+                                   const Eigen::Vector2d& q_object) {
+    const Eigen::Vector2d q = q_object.cwiseAbs();
+    const Eigen::Vector2d h = zone_half_extent(o, p);
+    if (o.cls == ObjectClass::kChair) {
+        const double ax = std::max(h.x(), 1e-9), ay = std::max(h.y(), 1e-9);
+        const double e = std::hypot(q.x() / ax, q.y() / ay);
+        const double grad = std::hypot(q.x() / (ax * ax), q.y() / (ay * ay)) / std::max(e, 1e-9);
+        return std::max(0.0, (e - 1.0) / std::max(grad, 1e-9));
+    }
+    return std::hypot(std::max(0.0, q.x() - h.x()), std::max(0.0, q.y() - h.y()));
+}
+
 const ClassZone* learned_zone_of(const ObjectEstimate& o, const AffordanceParams& p) {
     return p.learned ? p.learned->of(o.cls) : nullptr;
 }
@@ -84,7 +100,15 @@ std::uint8_t zone_cost(const ObjectEstimate& o, const AffordanceParams& p,
                        const Eigen::Vector2d& p_m) {
     if (o.existence < p.min_existence) return cost::kFree;
     const double u = zone_coordinate(o, p, p_m);
-    if (u > 1.0) return cost::kFree;
+    if (u > 1.0) {
+        const ClassZone* zone = learned_zone_of(o, p);  // one that learned something: no margin
+        if (p.margin_m <= 0.0 || (zone != nullptr && zone->observations > 0.0)) return cost::kFree;
+        const double d = hand_drawn_distance_outside(o, p, to_object_frame(o, p_m));
+        if (d >= p.margin_m) return cost::kFree;
+        return static_cast<std::uint8_t>(
+            std::clamp(std::lround(p.margin_cost * (1.0 - d / p.margin_m)), 1L,
+                       static_cast<long>(cost::kMaxSoft)));
+    }
     const double peak = o.cls == ObjectClass::kChair ? p.chair.peak_cost : p.table.peak_cost;
     const double edge = o.cls == ObjectClass::kChair ? p.chair.edge_cost : p.table.edge_cost;
     return static_cast<std::uint8_t>(

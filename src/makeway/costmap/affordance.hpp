@@ -11,6 +11,13 @@
 // footprint, 1 on the zone boundary) to `edge_cost`; 0 outside. All costs are soft (<= 252), so a
 // zone steers the robot but never closes a passage.
 //
+// Margin (`margin_m` > 0): outside a zone, within margin_m of its boundary, the cost falls linearly
+// from `margin_cost` to 1. Without it A* rides a zone's boundary on its cost-0 cells and the robot,
+// a few centimetres off its plan, is inside the zone; DWA, kept to the plan's costs, then
+// refuses every rollout that clips the zone and creeps. The margin is costmap only: the zone (risk
+// time, in_affordance_zone) stays where it is. A learned zone that learned anything (no metric
+// boundary) gets none.
+//
 // With `learned` set (learned_zone.hpp, `makeway learn-zones`), a class with a learned zone gets
 // the density of where its footprint went in this building instead, blended with the shape above by
 // the amount of evidence; every function below follows it.
@@ -44,6 +51,10 @@ struct AffordanceParams {
     ChairZoneParams chair;
     TableZoneParams table;
     double min_existence = 0.5;  ///< objects less likely than this get no zone
+    /// Outside a zone, within this of its boundary, the margin's cost (0: no margin; README,
+    /// Table II's twenty-first pass) ...
+    double margin_m = 0.15;
+    double margin_cost = 20.0;  ///< ... falling from this at the boundary to 1
     /// Learned zones (a zones file); null, or a class without one: the hand-drawn zone.
     std::shared_ptr<const LearnedZones> learned;
     std::vector<std::string> validate() const;
@@ -59,7 +70,7 @@ inline bool in_affordance_zone(const ObjectEstimate& object, const AffordancePar
     return zone_coordinate(object, params, p_m) <= 1.0;
 }
 
-/// The soft cost at p (0 outside the zone).
+/// The soft cost at p (0 outside the zone and its margin).
 std::uint8_t zone_cost(const ObjectEstimate& object, const AffordanceParams& params,
                        const Eigen::Vector2d& p_m);
 
@@ -68,7 +79,7 @@ std::uint8_t zone_cost(const ObjectEstimate& object, const AffordanceParams& par
 std::vector<Eigen::Vector2d> zone_outline(const ObjectEstimate& object,
                                           const AffordanceParams& params, int rays = 72);
 
-/// Axis-aligned world bounds of the zone [m].
+/// Axis-aligned world bounds of the zone [m] (its margin not included).
 void zone_bounds(const ObjectEstimate& object, const AffordanceParams& params,
                  Eigen::Vector2d& min_m, Eigen::Vector2d& max_m);
 

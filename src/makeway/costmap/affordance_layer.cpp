@@ -15,6 +15,13 @@ bool same_zone(const ObjectEstimate& a, const ObjectEstimate& b) {
 
 }  // namespace
 
+GridWindow AffordanceLayer::zone_window(const Costmap& master, const ObjectEstimate& o) const {
+    Eigen::Vector2d lo, hi;
+    zone_bounds(o, params_, lo, hi);
+    const Eigen::Vector2d margin = Eigen::Vector2d::Constant(params_.margin_m);
+    return master.window_of(lo - margin, hi + margin);
+}
+
 void AffordanceLayer::update_bounds(const Costmap& master, const LayerInput& input,
                                     GridWindow& window) {
     std::vector<ObjectEstimate> kept;
@@ -24,11 +31,7 @@ void AffordanceLayer::update_bounds(const Costmap& master, const LayerInput& inp
     // Only the zones that appeared or vanished need rewriting (a moved object is both): the master
     // is reset inside the window, and every zone overlapping it is written again (update_costs).
     // The map hands the same objects sweep after sweep between keyframes; their zones stand.
-    auto bounds_of = [&](const ObjectEstimate& o) {
-        Eigen::Vector2d lo, hi;
-        zone_bounds(o, params_, lo, hi);
-        return master.window_of(lo, hi);
-    };
+    auto bounds_of = [&](const ObjectEstimate& o) { return zone_window(master, o); };
     // A patch is of one master geometry: another (a new map) computes every zone again.
     if (master.origin_m != patch_origin_m_ || master.resolution_m != patch_resolution_m_) {
         for (Patch& patch : patches_) patch.cost.clear();
@@ -59,9 +62,7 @@ void AffordanceLayer::update_costs(Costmap& master, const GridWindow& window) {
         const ObjectEstimate& o = objects_[k];
         Patch& patch = patches_[k];
         if (patch.cost.empty()) {
-            Eigen::Vector2d lo, hi;
-            zone_bounds(o, params_, lo, hi);
-            patch.window = master.window_of(lo, hi);
+            patch.window = zone_window(master, o);
             const GridWindow& w = patch.window;
             if (w.empty()) continue;
             patch.cost.resize(static_cast<std::size_t>(w.x1 - w.x0) * (w.y1 - w.y0));

@@ -20,6 +20,8 @@ class AffordanceLayer : public Layer {
     void update_costs(Costmap& master, const GridWindow& window) override;
 
   private:
+    /// The master's cells of an object's zone and its margin.
+    GridWindow zone_window(const Costmap& master, const ObjectEstimate& o) const;
     /// An object's zone as the master's cells hold it: its costs over the zone's window, computed
     /// when the zone first overlaps an update and copied from then on (a zone depends on the
     /// object alone; rewriting it cell by cell, a rotation and a square root per cell, every time

@@ -32,6 +32,11 @@ const ParamTable<AffordanceParams>& affordance_table() {
         ParamTable<A> t;
         t.add("min_existence", &A::min_existence, closed(0.0, 1.0),
               "objects less likely than this get no zone")
+            .add("margin_m", &A::margin_m, closed(0.0, 2.0),
+                 "outside a zone, within this of its boundary, a margin the plan keeps off (0: "
+                 "none; the risk zone is unchanged) ...")
+            .add("margin_cost", &A::margin_cost, closed(1.0, 252.0),
+                 "... its cost at the zone's boundary, falling to 1 at margin_m")
             .include(
                 "chair.", [](A& a) -> ChairZoneParams& { return a.chair; }, chair)
             .include(

@@ -166,6 +166,7 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
         // Act for one sweep period, scoring each physics step; keep the poses for the sweep.
         std::vector<Pose2> poses{state.pose};
         const Pose2 odometry_start = odometry.pose();
+        const double risk_before = out.risk_time_s;
         for (int i = 0; i < params.physics_steps; ++i) {
             const Pose2 before = state.pose;
             state = sim::step_diff_drive(state, cmd, dt, params.robot);
@@ -174,6 +175,7 @@ NavRunResult drive(const sim::Scene& scene, const NavMethod& method, const NavPa
             poses.push_back(state.pose);
             scorer.step(state, t + (i + 1) * dt, dt);
         }
+        out.cycle_risk_s.push_back(out.risk_time_s - risk_before);
         out.min_clearance_m =
             std::min(out.min_clearance_m, checker.clearance_m(state.pose, t + period, 2.0));
         // Sense: the sweep over that period, from the moving sensor.

@@ -118,6 +118,9 @@ struct NavRunResult {
         nav_states;  ///< the navigator per control cycle (pipeline::to_string_state)
     std::vector<VelocityCommand>
         commands;  ///< the command sent to the motors per control cycle (after the monitor)
+    /// Risk time per sweep period, the last (arriving or giving-up) one included: where the
+    /// risk accrued.
+    std::vector<double> cycle_risk_s;
     double monitor_ms_max =
         0.0;  ///< the slowest collision monitor cycle (timing.json; included in cycle_ms)
     double min_clearance_m = 0.0;
