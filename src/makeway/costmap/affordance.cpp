@@ -76,9 +76,11 @@ std::vector<std::string> AffordanceParams::validate() const {
     return out;
 }
 
-double zone_coordinate(const ObjectEstimate& o, const AffordanceParams& p,
-                       const Eigen::Vector2d& p_m) {
-    const Eigen::Vector2d q = to_object_frame(o, p_m);
+namespace {
+
+// zone_coordinate of q, in the object frame.
+double coordinate_in_object_frame(const ObjectEstimate& o, const AffordanceParams& p,
+                                  const Eigen::Vector2d& q) {
     const ClassZone* zone = learned_zone_of(o, p);
     if (zone == nullptr) return hand_drawn_coordinate(o, p, q);
     const Eigen::Vector2d half_object = 0.5 * o.box_world.size_m.head<2>();
@@ -96,14 +98,22 @@ double zone_coordinate(const ObjectEstimate& o, const AffordanceParams& p,
     return c >= 1.0 ? 0.0 : c <= 0.0 ? 2.0 : std::log(c) / std::log(tau);
 }
 
+}  // namespace
+
+double zone_coordinate(const ObjectEstimate& o, const AffordanceParams& p,
+                       const Eigen::Vector2d& p_m) {
+    return coordinate_in_object_frame(o, p, to_object_frame(o, p_m));
+}
+
 std::uint8_t zone_cost(const ObjectEstimate& o, const AffordanceParams& p,
                        const Eigen::Vector2d& p_m) {
     if (o.existence < p.min_existence) return cost::kFree;
-    const double u = zone_coordinate(o, p, p_m);
+    const Eigen::Vector2d q = to_object_frame(o, p_m);
+    const double u = coordinate_in_object_frame(o, p, q);
     if (u > 1.0) {
         const ClassZone* zone = learned_zone_of(o, p);  // one that learned something: no margin
         if (p.margin_m <= 0.0 || (zone != nullptr && zone->observations > 0.0)) return cost::kFree;
-        const double d = hand_drawn_distance_outside(o, p, to_object_frame(o, p_m));
+        const double d = hand_drawn_distance_outside(o, p, q);
         if (d >= p.margin_m) return cost::kFree;
         return static_cast<std::uint8_t>(
             std::clamp(std::lround(p.margin_cost * (1.0 - d / p.margin_m)), 1L,
