@@ -13,6 +13,20 @@
 namespace makeway::planning {
 namespace {
 
+// A perfect unicycle's pose after (v, w) for dt, on the exact arc: the tests' own motion model,
+// independent of DWA's rollouts.
+Pose2 along_arc(Pose2 pose, double v, double w, double dt) {
+    if (std::abs(w) < 1e-9) {
+        pose.x_m += v * dt * std::cos(pose.yaw_rad);
+        pose.y_m += v * dt * std::sin(pose.yaw_rad);
+    } else {
+        pose.x_m += v / w * (std::sin(pose.yaw_rad + w * dt) - std::sin(pose.yaw_rad));
+        pose.y_m -= v / w * (std::cos(pose.yaw_rad + w * dt) - std::cos(pose.yaw_rad));
+    }
+    pose.yaw_rad += w * dt;
+    return pose;
+}
+
 TEST(AStar, StraightLineIsOptimal) {
     const Costmap m({0, 0}, 1.0, 10, 5);
     const PlanResult r = plan_astar(m, {0.5, 2.5}, {9.5, 2.5});
@@ -111,15 +125,7 @@ TEST(Dwa, NeverSelectsAVelocityThatCollidesWithinItsHorizon) {
         Pose2 pose = st.pose;
         const double v = r.command.v_mps, w = r.command.w_radps;
         for (int k = 0; k < 16; ++k) {
-            const double dt = 0.1;
-            if (std::abs(w) < 1e-9) {
-                pose.x_m += v * dt * std::cos(pose.yaw_rad);
-                pose.y_m += v * dt * std::sin(pose.yaw_rad);
-            } else {
-                pose.x_m += v / w * (std::sin(pose.yaw_rad + w * dt) - std::sin(pose.yaw_rad));
-                pose.y_m -= v / w * (std::cos(pose.yaw_rad + w * dt) - std::cos(pose.yaw_rad));
-            }
-            pose.yaw_rad += w * dt;
+            pose = along_arc(pose, v, w, 0.1);
             ASSERT_FALSE(footprint_collides(m, pose, p)) << "trial " << trial << " step " << k;
         }
     }
@@ -234,11 +240,7 @@ TEST(AStar, ZoneMarginKeepsThePlanAndTheRobotOffTheZone) {
             const DwaResult r = dwa_step(m, st, plan.path_m, DwaParams{});
             ASSERT_TRUE(r.found);
             st.v_mps = r.command.v_mps, st.w_radps = r.command.w_radps;
-            for (int k = 0; k < 10; ++k) {  // 0.1 s in steps of 10 ms
-                st.pose.x_m += st.v_mps * std::cos(st.pose.yaw_rad) * 0.01;
-                st.pose.y_m += st.v_mps * std::sin(st.pose.yaw_rad) * 0.01;
-                st.pose.yaw_rad += st.w_radps * 0.01;
-            }
+            st.pose = along_arc(st.pose, st.v_mps, st.w_radps, 0.1);
             inside += costmap::in_affordance_zone(table, zones, {st.pose.x_m, st.pose.y_m});
         }
         EXPECT_EQ(inside, 0);

@@ -31,7 +31,6 @@ void AffordanceLayer::update_bounds(const Costmap& master, const LayerInput& inp
     // Only the zones that appeared or vanished need rewriting (a moved object is both): the master
     // is reset inside the window, and every zone overlapping it is written again (update_costs).
     // The map hands the same objects sweep after sweep between keyframes; their zones stand.
-    auto bounds_of = [&](const ObjectEstimate& o) { return zone_window(master, o); };
     // A patch is of one master geometry: another (a new map) computes every zone again.
     if (master.origin_m != patch_origin_m_ || master.resolution_m != patch_resolution_m_) {
         for (Patch& patch : patches_) patch.cost.clear();
@@ -48,10 +47,10 @@ void AffordanceLayer::update_bounds(const Costmap& master, const LayerInput& inp
                 patches[k] = std::move(patches_[i]);
             }
         }
-        if (!found) window.expand(bounds_of(o));
+        if (!found) window.expand(zone_window(master, o));
     }
     for (std::size_t i = 0; i < objects_.size(); ++i) {
-        if (!matched[i]) window.expand(bounds_of(objects_[i]));
+        if (!matched[i]) window.expand(zone_window(master, objects_[i]));
     }
     objects_ = std::move(kept);
     patches_ = std::move(patches);
