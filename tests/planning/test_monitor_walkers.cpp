@@ -54,14 +54,21 @@ TEST(CollisionMonitor, WaitsForAWalkerCrossingThePathThenPasses) {
 struct WalkerTurn {
     double heading_rad, start_m, turn_s;
 };
-double speed_at_walker_contact(const WalkerTurn& walk, double cluster_m, int min_seen = 1,
-                               double memory_s = 0.0, double memory_range_m = 0.8) {
+struct WalkerMonitor {
+    double cluster_m = 0.0;
+    int min_seen = 1;
+    double memory_s = 0.0, memory_range_m = 0.8;
+    int min_seen_off_chairs = 0;
+    std::vector<Polygon2> chairs;  ///< known chairs (world)
+};
+double speed_at_walker_contact(const WalkerTurn& walk, const WalkerMonitor& m) {
     const sim::RobotParams robot;
     CollisionMonitorParams p = jackal();
-    p.dynamic_cluster_m = cluster_m;
-    p.dynamic_min_seen = min_seen;
-    p.dynamic_memory_s = memory_s;
-    p.dynamic_memory_range_m = memory_range_m;
+    p.dynamic_cluster_m = m.cluster_m;
+    p.dynamic_min_seen = m.min_seen;
+    p.dynamic_min_seen_off_chairs = m.min_seen_off_chairs;
+    p.dynamic_memory_s = m.memory_s;
+    p.dynamic_memory_range_m = m.memory_range_m;
     CollisionMonitor monitor(p);
     sim::RobotState state;
     VelocityCommand cmd;
@@ -86,7 +93,9 @@ double speed_at_walker_contact(const WalkerTurn& walk, double cluster_m, int min
                            &sweep,
                            {robot.max_v_mps, 0.0},
                            state.v_mps,
-                           state.w_radps})
+                           state.w_radps,
+                           nullptr,
+                           &m.chairs})
                   .command;
     }
     return -1.0;
@@ -95,27 +104,40 @@ double speed_at_walker_contact(const WalkerTurn& walk, double cluster_m, int min
 // 750 walks (heading every 0.25 rad, starting 1-3 m ahead, turning after 0.5-3 s) in front of a
 // robot asked for full speed: robot-caused contacts with new returns alone (a cell seen in any of
 // the last 5 sweeps is known), keeping a mover a mover, a cell seen in only one of them new, and
-// a mover remembered where it was last seen new (dynamic_memory_s).
+// a mover remembered where it was last seen new (dynamic_memory_s). A cell seen in only one of
+// them new away from known chairs: with none, as the cell seen twice to be known; with a known
+// chair over all the walks' ground (a pulled chair's returns, which are no walker's), as new
+// returns alone.
 TEST(CollisionMonitor, AWalkerTurningBackIsStillAMover) {
-    int clustered = 0, once_known = 0, twice_known = 0, remembered_near = 0, remembered_far = 0;
+    int clustered = 0, once_known = 0, twice_known = 0, remembered_near = 0, remembered_far = 0,
+        off_no_chairs = 0, off_beside_chair = 0;
+    WalkerMonitor cluster, once, twice, near, far, off, beside;
+    cluster.cluster_m = 0.3;
+    twice.min_seen = 2;
+    near.memory_s = far.memory_s = 1.0;
+    far.memory_range_m = 1.5;
+    off.min_seen_off_chairs = beside.min_seen_off_chairs = 2;
+    beside.chairs = {{{-10.0, -10.0}, {10.0, -10.0}, {10.0, 10.0}, {-10.0, 10.0}}};
     for (double heading = -3.0; heading <= 3.01; heading += 0.25) {
         for (double start = 1.0; start <= 3.01; start += 0.5) {
             for (double turn = 0.5; turn <= 3.01; turn += 0.5) {
-                clustered += speed_at_walker_contact({heading, start, turn}, 0.3) > 0.05;
-                once_known += speed_at_walker_contact({heading, start, turn}, 0.0) > 0.05;
-                twice_known += speed_at_walker_contact({heading, start, turn}, 0.0, 2) > 0.05;
-                remembered_near +=
-                    speed_at_walker_contact({heading, start, turn}, 0.0, 1, 1.0, 0.8) > 0.05;
-                remembered_far +=
-                    speed_at_walker_contact({heading, start, turn}, 0.0, 1, 1.0, 1.5) > 0.05;
+                const WalkerTurn walk{heading, start, turn};
+                clustered += speed_at_walker_contact(walk, cluster) > 0.05;
+                once_known += speed_at_walker_contact(walk, once) > 0.05;
+                twice_known += speed_at_walker_contact(walk, twice) > 0.05;
+                remembered_near += speed_at_walker_contact(walk, near) > 0.05;
+                remembered_far += speed_at_walker_contact(walk, far) > 0.05;
+                off_no_chairs += speed_at_walker_contact(walk, off) > 0.05;
+                off_beside_chair += speed_at_walker_contact(walk, beside) > 0.05;
             }
         }
     }
     std::printf(
         "robot-caused contacts in 750 walks: new returns alone %d, clustered movers %d, seen twice "
-        "to be known %d, "
-        "movers remembered 1 s within 0.8 m %d, within 1.5 m %d\n",
-        once_known, clustered, twice_known, remembered_near, remembered_far);
+        "to be known %d, movers remembered 1 s within 0.8 m %d, within 1.5 m %d; seen twice away "
+        "from known chairs: none known %d, all beside one %d\n",
+        once_known, clustered, twice_known, remembered_near, remembered_far, off_no_chairs,
+        off_beside_chair);
     EXPECT_LE(clustered,
               2);  // measured: 2 (a walker cutting back across the robot's bow at 0.12 m/s)
     EXPECT_GE(once_known, 6);      // measured: 6 (new returns alone)
@@ -123,6 +145,8 @@ TEST(CollisionMonitor, AWalkerTurningBackIsStillAMover) {
     EXPECT_LE(remembered_far, 2);  // measured: 2 (dynamic_memory_s 1 within 1.5 m; 0.5 s: 6) ...
     EXPECT_GE(remembered_near,
               6);  // ... 6 within 0.8 m: these walkers turn back 1-3 m out (README)
+    EXPECT_EQ(off_no_chairs, twice_known);    // no chair known: seen twice to be known, everywhere
+    EXPECT_EQ(off_beside_chair, once_known);  // beside a known chair: once is enough
 }
 
 // A walker beside the robot's right side, 10 cm from it, while the robot creeps forward: the side

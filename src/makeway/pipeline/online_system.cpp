@@ -99,8 +99,8 @@ Controller::Step Controller::step(const NavigatorInput& in) {
     // its base, and the monitor's memory has it where it was: while a chair has moved in the last
     // blind_memory_s its footprint stands in for the base (a box also covers the backrest above
     // the body, so a still chair is left to the sweep and the memory). Chairs only: tables are
-    // open below their top. Every chair goes to the personal space's and the turn cap's test (new
-    // returns beside one are that chair being pulled, not a walker).
+    // open below their top. Every chair goes to the monitor's test of what is a walker (new returns
+    // beside one are that chair being pulled, not a walker).
     const planning::CollisionMonitorParams& mp = monitor_.params();
     std::erase_if(moved_at_, [&](const auto& kv) {
         return in.t_s - kv.second > mp.blind_memory_s;

@@ -240,6 +240,21 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     std::vector<Eigen::Vector2d> pts;
     for (const Remembered& m : memory_) pts.push_back(T_base_world * m.p_world);
     std::vector<char> dynamic(pts.size(), 0);  // remembered returns are where they were
+    // The chairs the robot knows of, in the base frame: new returns beside one are the chair
+    // moving (someone pulls it), or its thin parts flickering, not a walker.
+    std::vector<Polygon2> chairs;
+    if (in.chairs_world != nullptr) {
+        for (const Polygon2& poly : *in.chairs_world) {
+            Polygon2 base;
+            for (const Eigen::Vector2d& q : poly) base.push_back(T_base_world * q);
+            chairs.push_back(std::move(base));
+        }
+    }
+    auto beside_chair = [&](const Eigen::Vector2d& p_base) {
+        return std::any_of(chairs.begin(), chairs.end(), [&](const Polygon2& chair) {
+            return convex_distance(chair, p_base) <= params_.personal_space_object_margin_m;
+        });
+    };
     // The new sweep: the returns the body can hit, thinned; each remembered while the sensor,
     // closing in, could no longer see it.
     if (in.points_world != nullptr) {
@@ -270,9 +285,13 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             pts.push_back(T_base_world * q);
             // New: a return in this cell or next to it in fewer than dynamic_min_seen of the last
             // dynamic_history sweeps (none new before the first). A surface stays where it is
-            // sweep after sweep; a walker who turns back crosses each cell it left once.
-            const int need =
-                std::min<int>(params_.dynamic_min_seen, static_cast<int>(previous_cells_.size()));
+            // sweep after sweep; a walker who turns back crosses each cell it left once. Away
+            // from the chairs the robot knows, dynamic_min_seen_off_chairs of them, when larger
+            // (a chair's thin parts flicker, and a pulled chair crosses cells it left too).
+            const int history = static_cast<int>(previous_cells_.size());
+            const int need_near = std::min<int>(params_.dynamic_min_seen, history);
+            const int need = std::min<int>(
+                std::max(params_.dynamic_min_seen, params_.dynamic_min_seen_off_chairs), history);
             int seen_in = 0;
             for (const std::vector<std::int64_t>& earlier : previous_cells_) {
                 bool here_then = false;
@@ -283,7 +302,8 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
                 }
                 if (here_then && ++seen_in >= need) break;
             }
-            const bool known = seen_in >= need;
+            const bool known =
+                seen_in >= need || (seen_in >= need_near && beside_chair(pts.back()));
             const bool seen_before =
                 seen_in > 0 || previous_cells_.empty();  // not one sweep's noise
             // Near the floor, noise: the lowest rings graze it ~0.9 m out, and a return 2 cm up
@@ -375,21 +395,9 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
     // for walkers.
     if ((params_.dynamic_personal_space_m > 0.0 || params_.dynamic_memory_s > 0.0 ||
          params_.dynamic_turn_space_m > 0.0) &&
-        in.chairs_world != nullptr && !in.chairs_world->empty()) {
-        std::vector<Polygon2> chairs;
-        for (const Polygon2& poly : *in.chairs_world) {
-            Polygon2 base;
-            for (const Eigen::Vector2d& q : poly) base.push_back(T_base_world * q);
-            chairs.push_back(std::move(base));
-        }
+        !chairs.empty()) {
         for (std::size_t i = 0; i < pts.size(); ++i) {
-            if (dynamic[i] == 0) continue;
-            for (const Polygon2& chair : chairs) {
-                if (convex_distance(chair, pts[i]) <= params_.personal_space_object_margin_m) {
-                    dynamic[i] = 2;
-                    break;
-                }
-            }
+            if (dynamic[i] != 0 && beside_chair(pts[i])) dynamic[i] = 2;
         }
     }
 

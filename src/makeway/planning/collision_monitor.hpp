@@ -44,6 +44,8 @@
 // rings' noise is new every sweep). A surface that stays is seen sweep after sweep; a walker who
 // turns back toward the robot walks over the cells it left, each seen in one earlier sweep, so
 // with dynamic_min_seen 2 it stays new (off by default: pulled chairs become movers too, README).
+// dynamic_min_seen_off_chairs asks that only away from the chairs the robot knows of
+// (MonitorInput::chairs_world): a robot without an object map has none, and asks it everywhere.
 // For the stop zone and the approach check a new return's padding grows by dynamic_speed_mps for
 // every second until the robot would be there (latency included). So the robot stops for a
 // walker who could step into its way before it has braked, and waits while the walker is near
@@ -142,6 +144,9 @@ struct CollisionMonitorParams {
     int dynamic_history = 5;   ///< sweeps a cell is remembered as seen ...
     int dynamic_min_seen = 1;  ///< ... new: seen in fewer than this many of them (2: a walker
                                ///< turning back is new; README)
+    int dynamic_min_seen_off_chairs =
+        0;  ///< away from known chairs (personal_space_object_margin_m), this many instead when
+            ///< larger (2: a walker turning back is new, a pulled chair is not); 0: off
     double dynamic_cluster_m = 0.0;  ///< returns within about this of a mover (this sweep or the
                                      ///< last dynamic_history) move too; 0: off ...
     int dynamic_cluster_min_new =

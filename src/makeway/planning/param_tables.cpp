@@ -46,6 +46,10 @@ const ParamTable<CollisionMonitorParams>& collision_monitor_table() {
             .add("dynamic_min_seen", &C::dynamic_min_seen, closed(1, 100),
                  "... of the last dynamic_history sweeps (2: a walker turning back over cells it "
                  "left stays new; off: README)")
+            .add("dynamic_min_seen_off_chairs", &C::dynamic_min_seen_off_chairs, closed(0, 100),
+                 "... away from every known chair (personal_space_object_margin_m) this many "
+                 "instead, when larger (2: a walker turning back stays new, a pulled chair does "
+                 "not; 0: off)")
             .add("dynamic_cluster_m", &C::dynamic_cluster_m, closed(0.0, 2.0),
                  "> 0: a mover stays one, returns about this close to a mover (this sweep or "
                  "those) move too (off: README) ...")
@@ -133,7 +137,9 @@ const ParamTable<CollisionMonitorParams>& collision_monitor_table() {
             .require([](const C& c) { return c.slowdown_padding_m >= c.stop_padding_m; },
                      "slowdown_padding_m must be in [stop_padding_m, 2]")
             .require([](const C& c) { return c.dynamic_min_seen <= c.dynamic_history; },
-                     "dynamic_min_seen must be in [1, dynamic_history]");
+                     "dynamic_min_seen must be in [1, dynamic_history]")
+            .require([](const C& c) { return c.dynamic_min_seen_off_chairs <= c.dynamic_history; },
+                     "dynamic_min_seen_off_chairs must be in [0, dynamic_history]");
         return t;
     }();
     return table;
