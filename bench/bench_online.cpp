@@ -10,6 +10,7 @@
 #include "makeway/perception/accumulator.hpp"
 #include "makeway/pipeline/navigator.hpp"
 #include "makeway/pipeline/object_costmap.hpp"
+#include "makeway/pipeline/online_system.hpp"
 #include "makeway/planning/collision_monitor.hpp"
 #include "makeway/sim/route.hpp"
 #include "makeway/sim/scene_generator.hpp"
@@ -208,7 +209,9 @@ BENCHMARK(BM_ControlCycle)
 // checks of a full-speed command along a gentle arc, on the same drive's de-skewed sweeps;
 // bridge_gaps: 0 with narrow gaps left open, 1 closed (the default, bridge_gap_m); parts: 1 with
 // every object's body-height parts handed in (object_parts: what the Controller gives when the map
-// has placed each object by its CAD model), 0 none.
+// has placed each object by its CAD model), 0 none; walkers: 1 with every chair of the drive
+// handed in as known and a return seen in only one of the last sweeps new away from them
+// (dynamic_min_seen_off_chairs 2), 0 neither.
 void BM_CollisionMonitor(benchmark::State& state) {
     const Drive& d = medium_drive();
     const sim::RobotParams robot;
@@ -219,6 +222,13 @@ void BM_CollisionMonitor(benchmark::State& state) {
     // give_way: a chair 0.2 m beside the robot pulled toward it every cycle (within the margin of
     // a standing robot in 1 s: the standing and the commanded motion weighed each cycle).
     if (state.range(2) != 0) p.give_way_horizon_s = 1.0;
+    std::vector<Polygon2> chairs;
+    if (state.range(3) != 0) {
+        p.dynamic_min_seen_off_chairs = 2;
+        for (const ObjectEstimate& o : d.objects) {
+            if (o.cls == ObjectClass::kChair) chairs.push_back(pipeline::chair_footprint(o, 0.0));
+        }
+    }
     planning::CollisionMonitor monitor(p);
     std::size_t k = 0;
     for (auto _ : state) {
@@ -239,18 +249,19 @@ void BM_CollisionMonitor(benchmark::State& state) {
                                        robot.max_v_mps,
                                        0.3,
                                        state.range(1) != 0 ? &d.parts : nullptr,
-                                       nullptr,
+                                       state.range(3) != 0 ? &chairs : nullptr,
                                        &movers});
         benchmark::DoNotOptimize(r.command);
         ++k;
     }
 }
 BENCHMARK(BM_CollisionMonitor)
-    ->Args({0, 0, 0})
-    ->Args({1, 0, 0})
-    ->Args({1, 1, 0})
-    ->Args({1, 1, 1})
-    ->ArgNames({"bridge_gaps", "parts", "give_way"})
+    ->Args({0, 0, 0, 0})
+    ->Args({1, 0, 0, 0})
+    ->Args({1, 1, 0, 0})
+    ->Args({1, 1, 1, 0})
+    ->Args({1, 1, 1, 1})
+    ->ArgNames({"bridge_gaps", "parts", "give_way", "walkers"})
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
 

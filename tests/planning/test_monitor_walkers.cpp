@@ -59,7 +59,8 @@ struct WalkerMonitor {
     int min_seen = 1;
     double memory_s = 0.0, memory_range_m = 0.8;
     int min_seen_off_chairs = 0;
-    std::vector<Polygon2> chairs;  ///< known chairs (world)
+    std::vector<Polygon2> chairs;  ///< known chairs (world) ...
+    bool object_map = true;        ///< ... false: no object map (MonitorInput::chairs_world null)
 };
 double speed_at_walker_contact(const WalkerTurn& walk, const WalkerMonitor& m) {
     const sim::RobotParams robot;
@@ -95,7 +96,7 @@ double speed_at_walker_contact(const WalkerTurn& walk, const WalkerMonitor& m) {
                            state.v_mps,
                            state.w_radps,
                            nullptr,
-                           &m.chairs})
+                           m.object_map ? &m.chairs : nullptr})
                   .command;
     }
     return -1.0;
@@ -105,18 +106,19 @@ double speed_at_walker_contact(const WalkerTurn& walk, const WalkerMonitor& m) {
 // robot asked for full speed: robot-caused contacts with new returns alone (a cell seen in any of
 // the last 5 sweeps is known), keeping a mover a mover, a cell seen in only one of them new, and
 // a mover remembered where it was last seen new (dynamic_memory_s). A cell seen in only one of
-// them new away from known chairs: with none, as the cell seen twice to be known; with a known
-// chair over all the walks' ground (a pulled chair's returns, which are no walker's), as new
-// returns alone.
+// them new away from known chairs: with none known, as the cell seen twice to be known; with a
+// known chair over all the walks' ground (a pulled chair's returns, which are no walker's), and
+// without an object map (nothing told from a walker), as new returns alone.
 TEST(CollisionMonitor, AWalkerTurningBackIsStillAMover) {
     int clustered = 0, once_known = 0, twice_known = 0, remembered_near = 0, remembered_far = 0,
-        off_no_chairs = 0, off_beside_chair = 0;
-    WalkerMonitor cluster, once, twice, near, far, off, beside;
+        off_no_chairs = 0, off_beside_chair = 0, off_no_map = 0;
+    WalkerMonitor cluster, once, twice, near, far, off, beside, no_map;
     cluster.cluster_m = 0.3;
     twice.min_seen = 2;
     near.memory_s = far.memory_s = 1.0;
     far.memory_range_m = 1.5;
-    off.min_seen_off_chairs = beside.min_seen_off_chairs = 2;
+    off.min_seen_off_chairs = beside.min_seen_off_chairs = no_map.min_seen_off_chairs = 2;
+    no_map.object_map = false;
     beside.chairs = {{{-10.0, -10.0}, {10.0, -10.0}, {10.0, 10.0}, {-10.0, 10.0}}};
     for (double heading = -3.0; heading <= 3.01; heading += 0.25) {
         for (double start = 1.0; start <= 3.01; start += 0.5) {
@@ -129,15 +131,16 @@ TEST(CollisionMonitor, AWalkerTurningBackIsStillAMover) {
                 remembered_far += speed_at_walker_contact(walk, far) > 0.05;
                 off_no_chairs += speed_at_walker_contact(walk, off) > 0.05;
                 off_beside_chair += speed_at_walker_contact(walk, beside) > 0.05;
+                off_no_map += speed_at_walker_contact(walk, no_map) > 0.05;
             }
         }
     }
     std::printf(
         "robot-caused contacts in 750 walks: new returns alone %d, clustered movers %d, seen twice "
         "to be known %d, movers remembered 1 s within 0.8 m %d, within 1.5 m %d; seen twice away "
-        "from known chairs: none known %d, all beside one %d\n",
+        "from known chairs: none known %d, all beside one %d, no object map %d\n",
         once_known, clustered, twice_known, remembered_near, remembered_far, off_no_chairs,
-        off_beside_chair);
+        off_beside_chair, off_no_map);
     EXPECT_LE(clustered,
               2);  // measured: 2 (a walker cutting back across the robot's bow at 0.12 m/s)
     EXPECT_GE(once_known, 6);      // measured: 6 (new returns alone)
@@ -147,6 +150,7 @@ TEST(CollisionMonitor, AWalkerTurningBackIsStillAMover) {
               6);  // ... 6 within 0.8 m: these walkers turn back 1-3 m out (README)
     EXPECT_EQ(off_no_chairs, twice_known);    // no chair known: seen twice to be known, everywhere
     EXPECT_EQ(off_beside_chair, once_known);  // beside a known chair: once is enough
+    EXPECT_EQ(off_no_map, once_known);        // no object map: dynamic_min_seen everywhere
 }
 
 // A walker beside the robot's right side, 10 cm from it, while the robot creeps forward: the side

@@ -39,6 +39,7 @@ Controller::Controller(const Costmap& static_map, const NavigatorParams& params)
     : navigator_(static_map, params),
       monitor_(params.monitor),
       min_existence_(params.affordance.min_existence),
+      object_map_(params.affordance_layer),
       moving_chairs_(params.monitor.give_way_min_speed_mps, params.monitor.give_way_window_s,
                      params.monitor.give_way_lag_s) {}
 
@@ -129,8 +130,10 @@ Controller::Step Controller::step(const NavigatorInput& in) {
     }
     for (const auto& [id, kept] : parts_)
         solid.insert(solid.end(), kept.parts.begin(), kept.parts.end());
-    out.guard = monitor_.filter(
-        {in.t_s, in.pose, in.points_world, wanted, in.v_mps, in.w_radps, &solid, &chairs, &movers});
+    // Without the object-aware layer (the con and oppo baselines) the robot has no object map:
+    // the monitor is told so, not that the room holds no chair.
+    out.guard = monitor_.filter({in.t_s, in.pose, in.points_world, wanted, in.v_mps, in.w_radps,
+                                 &solid, object_map_ ? &chairs : nullptr, &movers});
     out.monitor_ms = ms_since(t0);
     // Idle (never driven, arrived, gave up, cancelled): zero, whatever the monitor was doing (a
     // recovery it had started is not a goal's to finish).

@@ -79,6 +79,7 @@ class Controller {
     Navigator navigator_;
     planning::CollisionMonitor monitor_;
     double min_existence_;  ///< objects this likely lend the monitor their footprints ...
+    bool object_map_;       ///< the navigator uses the objects (NavigatorParams::affordance_layer)
     std::unordered_map<std::uint32_t, double>
         moved_at_;  ///< ... when they moved lately: object id -> when last seen moving
     MovingChairs moving_chairs_;

@@ -287,11 +287,15 @@ MonitorResult CollisionMonitor::filter(const MonitorInput& in) {
             // dynamic_history sweeps (none new before the first). A surface stays where it is
             // sweep after sweep; a walker who turns back crosses each cell it left once. Away
             // from the chairs the robot knows, dynamic_min_seen_off_chairs of them, when larger
-            // (a chair's thin parts flicker, and a pulled chair crosses cells it left too).
+            // (a chair's thin parts flicker, and a pulled chair crosses cells it left too); a
+            // robot without an object map (no chairs_world) cannot tell them apart and does not.
             const int history = static_cast<int>(previous_cells_.size());
             const int need_near = std::min<int>(params_.dynamic_min_seen, history);
-            const int need = std::min<int>(
-                std::max(params_.dynamic_min_seen, params_.dynamic_min_seen_off_chairs), history);
+            const int need = in.chairs_world == nullptr
+                                 ? need_near
+                                 : std::min<int>(std::max(params_.dynamic_min_seen,
+                                                          params_.dynamic_min_seen_off_chairs),
+                                                 history);
             int seen_in = 0;
             for (const std::vector<std::int64_t>& earlier : previous_cells_) {
                 bool here_then = false;

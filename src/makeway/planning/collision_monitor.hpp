@@ -45,7 +45,10 @@
 // turns back toward the robot walks over the cells it left, each seen in one earlier sweep, so
 // with dynamic_min_seen 2 it stays new (off by default: pulled chairs become movers too, README).
 // dynamic_min_seen_off_chairs asks that only away from the chairs the robot knows of
-// (MonitorInput::chairs_world): a robot without an object map has none, and asks it everywhere.
+// (MonitorInput::chairs_world), where a pulled chair's and a flickering thin part's returns are
+// not. A robot without an object map (chairs_world null) cannot tell them from a walker's: there
+// it stays dynamic_min_seen (with 2 everywhere, oppo lost a run and gained a robot-caused
+// contact on 200 scenes, README).
 // For the stop zone and the approach check a new return's padding grows by dynamic_speed_mps for
 // every second until the robot would be there (latency included). So the robot stops for a
 // walker who could step into its way before it has braked, and waits while the walker is near
@@ -236,8 +239,9 @@ struct MonitorInput {
     /// Objects solid below the body's top (null or empty: none): where the sensor cannot see the
     /// floor, their outlines count as returns (the Controller's: object_footprints, object_parts).
     const std::vector<Polygon2>* footprints_world = nullptr;
-    /// Every chair the robot knows of (null: none): a new return beside one is the chair being
-    /// pulled, which the personal space leaves to the stop zone (a walker's is not beside one).
+    /// Every chair the robot knows of (null: the robot has no object map): a new return beside
+    /// one is the chair being pulled, which the personal space leaves to the stop zone (a
+    /// walker's is not beside one).
     const std::vector<Polygon2>* chairs_world = nullptr;
     /// Objects the robot knows are moving, with their velocities (null: none): give way to them.
     const std::vector<MovingOutline>* movers_world = nullptr;

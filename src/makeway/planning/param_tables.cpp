@@ -49,7 +49,7 @@ const ParamTable<CollisionMonitorParams>& collision_monitor_table() {
             .add("dynamic_min_seen_off_chairs", &C::dynamic_min_seen_off_chairs, closed(0, 100),
                  "... away from every known chair (personal_space_object_margin_m) this many "
                  "instead, when larger (2: a walker turning back stays new, a pulled chair does "
-                 "not; 0: off)")
+                 "not; a robot without an object map keeps dynamic_min_seen; 0: off)")
             .add("dynamic_cluster_m", &C::dynamic_cluster_m, closed(0.0, 2.0),
                  "> 0: a mover stays one, returns about this close to a mover (this sweep or "
                  "those) move too (off: README) ...")
